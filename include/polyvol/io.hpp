@@ -1,0 +1,73 @@
+// polyvol/io.hpp — reading mesh files.
+//
+// Readers turn bytes into a Mesh (see mesh.hpp) and never measure or
+// validate geometry. Format is chosen by content, with the file extension as
+// a hint for the few cases content cannot decide (an empty file, an OFF file
+// without its header line):
+//   gzip magic 1f 8b        -> decompressed (zlib), then detected again
+//   zip magic "PK\3\4"      -> 3MF (has 3D/3dmodel.model) or zipped AMF
+//   "ply" line              -> PLY (ascii, binary_little_endian, binary_big_endian)
+//   XML with root <amf>     -> AMF; root <model> -> 3MF model part as bare XML
+//   size == 84 + 50 * n     -> binary STL (n from bytes 80..83), even when the
+//                              header starts with "solid"
+//   "solid"                 -> ASCII STL (several solid blocks allowed)
+//   [ST][C][N][4][n]OFF     -> OFF
+//   otherwise               -> OBJ if the extension says so or the lines look like OBJ
+// A UTF-16 byte-order mark converts the text to 8-bit first.
+//
+// Errors: every reader throws ReadError naming the file, the 1-based line (text
+// formats) or the byte offset (binary formats), and what was expected. No reader
+// allocates from a count the file claims before checking it against the bytes
+// that are actually there.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "polyvol/mesh.hpp"
+
+namespace polyvol {
+
+enum class Format { unknown, stl, obj, off, ply, threemf, amf };
+
+// "stl", "obj", "off", "ply", "3mf", "amf", "unknown".
+std::string_view format_name(Format f);
+// Format suggested by a path's extension (".gz" is looked through), or unknown.
+Format format_from_extension(std::string_view path);
+
+// Where in the input a problem is. line is 1-based for text formats (0 = not
+// applicable); byte_offset is from the start of the (decompressed) data.
+struct ReadError : std::runtime_error {
+    std::string file;
+    uint64_t line = 0;
+    uint64_t byte_offset = 0;
+    bool has_byte_offset = false;
+    std::string message;  // what was wrong / what was expected
+
+    ReadError(std::string file, uint64_t line, std::string message);
+    static ReadError at_byte(std::string file, uint64_t offset, std::string message);
+    static ReadError whole_file(std::string file, std::string message);
+};
+
+struct LoadedMesh {
+    Mesh mesh;
+    Format format = Format::unknown;
+    std::string encoding;             // "ascii", "binary_le", "binary_be", "zip", "xml"
+    bool gzip = false;                // the bytes were gzip-compressed
+    std::vector<std::string> notes;   // quirks met while reading, e.g. "stl-multiple-solids(2)"
+};
+
+// Reads a file; "-" reads standard input. Throws ReadError.
+LoadedMesh read_mesh_file(const std::string& path);
+
+// Reads from memory. name is used in messages and, through its extension, as a
+// format hint; hint overrides the extension when not unknown. Throws ReadError.
+LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& name,
+                            Format hint = Format::unknown);
+
+}  // namespace polyvol

@@ -1,0 +1,95 @@
+// polyvol/measure.hpp — volume and mass properties of a mesh (3D).
+//
+// Conventions, as in Geometric Tools' mass properties:
+//   * density 1 unless MeasureOptions::density says otherwise; "mass" is
+//     density * volume, and moments/inertia are scaled by density.
+//   * every integral is the divergence-theorem sum over the fan triangles
+//     (a, b, c) of the signed tetrahedra (origin, a, b, c):
+//       volume          V       = sum det(a,b,c) / 6
+//       first moments   ∫x_i    = sum det * (a_i + b_i + c_i) / 24
+//       second moments  ∫x_i x_j = sum det * (a_i a_j + b_i b_j + c_i c_j + s_i s_j) / 120, s = a+b+c
+//   * for a closed, consistently oriented surface (no unbalanced edge, see
+//     topology.hpp) these are the integrals over the enclosed solid and do not
+//     depend on the origin; an inward-oriented surface gives negated values;
+//     several shells and cavities add up. For an open surface the numbers are
+//     still the sums above about (0,0,0) — callers decide whether to accept them.
+//   * inertia (unit density): Ixx = ∫(y²+z²), Iyy = ∫(x²+z²), Izz = ∫(x²+y²),
+//     Ixy = -∫xy, Iyz = -∫yz, Izx = -∫zx; about the origin and, by the
+//     parallel axis theorem applied in exact arithmetic, about the centroid.
+//   * symmetric 3x3 quantities are stored as {xx, yy, zz, xy, yz, zx}.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "polyvol/mesh.hpp"
+
+namespace polyvol {
+
+// How the volume is computed (all agree for closed meshes):
+//   cone    — Allgower–Schmidt (2.1): det(a,b,c)/6 per fan triangle.
+//   prism   — Allgower–Schmidt (2.2): mean z times the signed xy-projected area.
+//   pyramid — Franklin: per polygon face, (vector area of its fan) · v0 / 3,
+//             i.e. face area times signed distance of its plane from the origin / 3.
+//   vtnb    — Franklin's local-topology formula over vertex–edge–face
+//             incidences: V = -1/6 Σ (V·T)(V·N)(V·B), A = 1/2 Σ (V·T)(V·N),
+//             L = -1/2 Σ V·T (valid for closed, edge-manifold surfaces).
+enum class Method { cone, prism, pyramid, vtnb };
+
+// How the sums are formed:
+//   correctly_rounded — the exact value for the coordinates as given, rounded
+//                       once to the nearest double (volume; other quantities
+//                       carry a stated error bound).
+//   fast              — plain double arithmetic with an a-posteriori error bound.
+enum class Accuracy { correctly_rounded, fast };
+
+std::string_view method_name(Method m);     // "cone", ...
+std::string_view accuracy_name(Accuracy a); // "correctly-rounded", "fast"
+
+struct MeasureOptions {
+    Method method = Method::cone;                   // volume formula
+    Accuracy accuracy = Accuracy::correctly_rounded;
+    double density = 1.0;                           // scales mass, moments, inertia
+};
+
+struct MassProperties {
+    double volume = 0;                    // signed (negative for an inside-out surface)
+    double mass = 0;                      // density * volume
+    std::array<double, 3> first_moments{};   // density * ∫x, ∫y, ∫z
+    std::array<double, 3> centroid{};        // first moments / mass; NaN when volume == 0
+    std::array<double, 6> second_moments{};  // density * ∫x_i x_j about the origin {xx,yy,zz,xy,yz,zx}
+    std::array<double, 6> inertia_origin{};  // inertia tensor about the origin
+    std::array<double, 6> inertia_centroid{};// inertia tensor about the centroid
+    double area = 0;                      // Σ |(b-a)×(c-a)|/2 over fan triangles
+    double edge_length = 0;               // each undirected edge (after welding bit-identical vertices) once
+
+    // Guarantees. An error bound of 0 together with volume_exact means the
+    // volume is the exact value rounded once (correctly rounded).
+    bool volume_correctly_rounded = false;
+    double volume_error_bound = 0;        // absolute bound on |volume - exact|
+    double moments_relative_error = 0;    // bound on the error of moments, centroid, inertia, relative to the largest magnitude involved
+    double area_relative_error = 0;       // bound, relative
+    double edge_length_relative_error = 0;// bound, relative
+    Method method = Method::cone;
+    Accuracy accuracy = Accuracy::correctly_rounded;
+};
+
+// All mass properties in one pass over the mesh.
+MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& options = {});
+
+// Signed volume only, by the chosen method and accuracy.
+double signed_volume(const MeshView& mesh, Method method = Method::cone,
+                     Accuracy accuracy = Accuracy::correctly_rounded);
+
+// Σ |(b-a)×(c-a)|/2 over the fan triangles.
+double surface_area(const MeshView& mesh);
+
+// Σ |b-a| over the undirected edges of the polygon faces, each counted once
+// after welding vertices with bit-identical coordinates (-0.0 == +0.0).
+double total_edge_length(const MeshView& mesh);
+
+// Inertia tensor {xx,yy,zz,xy,yz,zx} from second moments {xx,yy,zz,xy,yz,zx}.
+std::array<double, 6> inertia_from_second_moments(const std::array<double, 6>& m);
+
+}  // namespace polyvol

@@ -1,0 +1,82 @@
+// polyvol/mesh.hpp — the mesh as plain arrays.
+//
+// Conventions (every module relies on them):
+//   * positions: vertex v is (positions[3*v], positions[3*v+1], positions[3*v+2]),
+//     IEEE doubles exactly as read (float32 input widened exactly).
+//   * faces in compressed rows: face f uses the vertex indices
+//       indices[face_offsets[f] .. face_offsets[f+1])
+//     with face_offsets.size() == face_count() + 1 and face_offsets[0] == 0.
+//     Fast path: when face_offsets is EMPTY every face is a triangle and
+//     face f is indices[3*f .. 3*f+3).
+//   * winding: counter-clockwise seen from outside (outward normals).
+//   * a polygon (v0 v1 ... vk) means its fan (v0, vi, vi+1), i = 1..k-1, also
+//     when it is concave or not planar (concave fans give negative triangles,
+//     which is correct).
+//   * faces with fewer than 3 vertices are kept as read (so counts match the
+//     file) and contribute nothing to any measure or to topology.
+//   * indices are always < vertex_count() (readers check this).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace polyvol {
+
+// A non-owning view of a mesh: zero-copy from numpy or any caller's arrays.
+struct MeshView {
+    std::span<const double> positions;       // 3 * vertex_count()
+    std::span<const uint32_t> face_offsets;  // empty (all triangles) or face_count() + 1
+    std::span<const uint32_t> indices;
+
+    std::size_t vertex_count() const { return positions.size() / 3; }
+    bool all_triangles() const { return face_offsets.empty(); }
+    std::size_t face_count() const {
+        return face_offsets.empty() ? indices.size() / 3 : face_offsets.size() - 1;
+    }
+    std::size_t face_begin(std::size_t f) const {
+        return face_offsets.empty() ? 3 * f : face_offsets[f];
+    }
+    std::size_t face_size(std::size_t f) const {
+        return face_offsets.empty() ? 3 : face_offsets[f + 1] - face_offsets[f];
+    }
+    std::span<const uint32_t> face(std::size_t f) const {
+        return indices.subspan(face_begin(f), face_size(f));
+    }
+    // Number of fan triangles: sum over faces of max(0, size - 2).
+    std::size_t triangle_count() const;
+};
+
+// An owning mesh, as the readers produce it.
+struct Mesh {
+    std::vector<double> positions;
+    std::vector<uint32_t> face_offsets;  // empty while every face is a triangle
+    std::vector<uint32_t> indices;
+
+    std::size_t vertex_count() const { return positions.size() / 3; }
+    std::size_t face_count() const {
+        return face_offsets.empty() ? indices.size() / 3 : face_offsets.size() - 1;
+    }
+    MeshView view() const { return {positions, face_offsets, indices}; }
+
+    uint32_t add_vertex(double x, double y, double z) {
+        positions.push_back(x);
+        positions.push_back(y);
+        positions.push_back(z);
+        return static_cast<uint32_t>(positions.size() / 3 - 1);
+    }
+    // Appends a face of any size; switches to compressed rows at the first
+    // face that is not a triangle.
+    void add_face(std::span<const uint32_t> face);
+    void add_triangle(uint32_t a, uint32_t b, uint32_t c);
+    // Appends another mesh (its indices shifted).
+    void append(const Mesh& other);
+};
+
+// Canonical vertex ids: result[v] is the smallest index of a vertex with the
+// same coordinates as v (bit-identical doubles, -0.0 equal to +0.0; NaNs are
+// never welded). Expected O(n).
+std::vector<uint32_t> weld_vertices(std::span<const double> positions);
+
+}  // namespace polyvol
