@@ -1,0 +1,282 @@
+#include "report.hpp"
+
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace polyvol::cli {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string point_text(double x, double y, double z) {
+    return "(" + shortest(x) + ", " + shortest(y) + ", " + shortest(z) + ")";
+}
+
+// Symmetric {xx,yy,zz,xy,yz,zx} -> 3x3 rows.
+nlohmann::json matrix3(const std::array<double, 6>& s) {
+    auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    return nlohmann::json::array({{num(s[0]), num(s[3]), num(s[5])},
+                                  {num(s[3]), num(s[1]), num(s[4])},
+                                  {num(s[5]), num(s[4]), num(s[2])}});
+}
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+std::string_view role_name(ShellRole r) {
+    switch (r) {
+        case ShellRole::solid: return "solid";
+        case ShellRole::cavity: return "cavity";
+        case ShellRole::inside_out: return "inside-out";
+        case ShellRole::nested: return "nested";
+        case ShellRole::open: return "open";
+    }
+    return "?";
+}
+
+std::string unbalanced_message(const TopologyReport& t) {
+    std::string m = "not a closed surface: " + std::to_string(t.unbalanced_edges) +
+                    " unbalanced edge" + (t.unbalanced_edges == 1 ? "" : "s") +
+                    " (used a different number of times in its two directions)";
+    if (t.unbalanced_example) {
+        const auto& e = *t.unbalanced_example;
+        m += ", e.g. " + point_text(e[0], e[1], e[2]) + " - " + point_text(e[3], e[4], e[5]);
+    }
+    m += "; its volume would depend on the origin (--allow-open gives it anyway)";
+    return m;
+}
+
+}  // namespace
+
+std::string shortest(double v) {
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[64];
+    auto res = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, res.ptr);
+}
+
+FileResult process_file(const std::string& path, const Request& request) {
+    FileResult r;
+    r.file = path;
+    auto t0 = std::chrono::steady_clock::now();
+    try {
+        r.loaded = read_mesh_file(path);
+    } catch (const ReadError& e) {
+        r.exit_code = Exit::unreadable;
+        r.error = e.what();
+        return r;
+    } catch (const std::bad_alloc&) {
+        r.exit_code = Exit::unreadable;
+        r.error = path + ": out of memory while reading";
+        return r;
+    }
+    r.seconds_read = seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    const MeshView view = r.loaded->mesh.view();
+    r.topology = analyze_topology(view);
+    if (request.need_mass) {
+        if (!r.topology->closed_2_cycle) {
+            if (request.allow_open) {
+                r.warning = path + ": " + std::to_string(r.topology->unbalanced_edges) +
+                            " unbalanced edges: the surface is not closed, so the figures depend on "
+                            "the origin (they are the sums about (0,0,0))";
+            } else {
+                r.exit_code = Exit::invalid;
+                r.error = path + ": " + unbalanced_message(*r.topology);
+            }
+        }
+        if (r.exit_code == Exit::ok) r.mass = mass_properties(view, request.measure);
+    }
+    r.seconds_measure = seconds_since(t0);
+    return r;
+}
+
+std::string volume_guarantee(const MassProperties& m) {
+    if (m.volume_correctly_rounded) return "correctly rounded (the exact volume of the coordinates as read, rounded once)";
+    return "error bound " + shortest(m.volume_error_bound) + " (absolute)";
+}
+
+nlohmann::json to_json(const FileResult& r, const Request& request) {
+    nlohmann::json j;
+    j["file"] = r.file;
+    if (r.loaded) {
+        const auto& l = *r.loaded;
+        j["format"] = std::string(format_name(l.format));
+        j["encoding"] = l.encoding;
+        j["gzip"] = l.gzip;
+        j["notes"] = l.notes;
+        j["vertices"] = l.mesh.vertex_count();
+        j["faces"] = l.mesh.face_count();
+        j["triangles"] = l.mesh.view().triangle_count();
+    } else {
+        j["format"] = nullptr;
+    }
+    if (r.topology) {
+        const auto& t = *r.topology;
+        j["boundary_edges"] = t.boundary_edges;
+        j["nonmanifold_edges"] = t.nonmanifold_edges;
+        j["misoriented_edges"] = t.misoriented_edges;
+        j["unbalanced_edges"] = t.unbalanced_edges;
+        j["components"] = t.components_edge_connected;
+        j["closed_2_cycle"] = t.closed_2_cycle;
+        j["euler_characteristic"] = t.euler_characteristic;
+        j["vertices_welded"] = t.vertices_welded;
+        j["edges"] = t.edges;
+        j["degenerate_triangles"] = t.triangles_with_repeated_vertex + t.zero_area_triangles;
+        j["cavities"] = t.cavities;
+        j["inside_out_shells"] = t.inside_out_shells;
+        if (t.unbalanced_example) {
+            const auto& e = *t.unbalanced_example;
+            j["unbalanced_example"] = {{e[0], e[1], e[2]}, {e[3], e[4], e[5]}};
+        }
+        nlohmann::json shells = nlohmann::json::array();
+        for (const Shell& s : t.shells) {
+            nlohmann::json sj{{"signed_volume", s.signed_volume},
+                              {"faces", s.faces},
+                              {"boundary_edges", s.boundary_edges},
+                              {"unbalanced_edges", s.unbalanced_edges},
+                              {"euler_characteristic", s.euler_characteristic},
+                              {"winding_of_others", s.winding_of_others},
+                              {"role", std::string(role_name(s.role))}};
+            sj["genus"] = s.genus ? nlohmann::json(*s.genus) : nlohmann::json(nullptr);
+            shells.push_back(std::move(sj));
+        }
+        j["shells"] = std::move(shells);
+    }
+    if (request.need_mass) {
+        j["method"] = std::string(method_name(request.measure.method));
+        j["accuracy"] = std::string(accuracy_name(request.measure.accuracy));
+        j["density"] = request.measure.density;
+    }
+    if (r.mass) {
+        const auto& m = *r.mass;
+        j["accuracy"] = m.volume_correctly_rounded ? "correctly-rounded" : "error-bound";
+        j["volume"] = number(m.volume);
+        j["volume_error_bound"] = m.volume_error_bound;
+        j["mass"] = number(m.mass);
+        j["area"] = number(m.area);
+        j["area_relative_error"] = m.area_relative_error;
+        j["centroid"] = {number(m.centroid[0]), number(m.centroid[1]), number(m.centroid[2])};
+        j["first_moments"] = {number(m.first_moments[0]), number(m.first_moments[1]), number(m.first_moments[2])};
+        j["second_moments"] = matrix3(m.second_moments);
+        j["inertia"] = matrix3(m.inertia_centroid);
+        j["inertia_origin"] = matrix3(m.inertia_origin);
+        j["moments_relative_error"] = m.moments_relative_error;
+        j["edge_length"] = number(m.edge_length);
+        j["edge_length_relative_error"] = m.edge_length_relative_error;
+    }
+    if (!r.warning.empty()) j["warning"] = r.warning;
+    if (!r.error.empty()) j["error"] = r.error;
+    j["exit_code"] = r.exit_code;
+    return j;
+}
+
+std::string volume_table(const std::vector<FileResult>& results, const Request& request) {
+    std::ostringstream out;
+    char line[512];
+    std::snprintf(line, sizeof line, "%-32s %10s  %-24s %-24s %s\n", "file", "triangles", "volume", "area", "centroid");
+    out << line;
+    bool any_rounded = false, any_bound = false;
+    for (const auto& r : results) {
+        std::string name = r.file;
+        if (!r.mass) {
+            std::snprintf(line, sizeof line, "%-32s %10s  %s\n", name.c_str(),
+                          r.loaded ? std::to_string(r.loaded->mesh.view().triangle_count()).c_str() : "-",
+                          r.exit_code == Exit::invalid ? "open surface: not measured" : "unreadable");
+            out << line;
+            continue;
+        }
+        const auto& m = *r.mass;
+        (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
+        std::string vol = shortest(m.volume) + (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
+        std::snprintf(line, sizeof line, "%-32s %10zu  %-24s %-24s %s\n", name.c_str(),
+                      r.loaded->mesh.view().triangle_count(), vol.c_str(), shortest(m.area).c_str(),
+                      point_text(m.centroid[0], m.centroid[1], m.centroid[2]).c_str());
+        out << line;
+    }
+    out << "method: " << method_name(request.measure.method) << ". ";
+    if (any_rounded) out << "Volumes without ± are correctly rounded: the exact volume of the coordinates as read, rounded once. ";
+    if (any_bound) out << "± is a rigorous absolute error bound. ";
+    out << "Area and centroid carry relative error bounds (see `polyvol measure`).\n";
+    return out.str();
+}
+
+std::string measure_report(const FileResult& r, const Request& request) {
+    std::ostringstream out;
+    const auto& l = *r.loaded;
+    const auto& m = *r.mass;
+    out << r.file << "  (" << format_name(l.format) << ", " << l.encoding << (l.gzip ? ", gzip" : "")
+        << "; " << l.mesh.vertex_count() << " vertices, " << l.mesh.face_count() << " faces, "
+        << l.mesh.view().triangle_count() << " triangles)\n";
+    out << "  method          " << method_name(request.measure.method) << ", density " << shortest(request.measure.density) << "\n";
+    out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m) << "]\n";
+    out << "  mass            " << shortest(m.mass) << "\n";
+    out << "  surface area    " << shortest(m.area) << "   [relative error <= " << shortest(m.area_relative_error) << "]\n";
+    out << "  edge length     " << shortest(m.edge_length) << "   [relative error <= " << shortest(m.edge_length_relative_error) << "]\n";
+    out << "  centroid        " << point_text(m.centroid[0], m.centroid[1], m.centroid[2]) << "\n";
+    auto tensor = [&](const char* title, const std::array<double, 6>& s) {
+        char line[256];
+        out << "  " << title << "\n";
+        const double rows[3][3] = {{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}};
+        for (const auto& row : rows) {
+            std::snprintf(line, sizeof line, "    %24s %24s %24s\n", shortest(row[0]).c_str(), shortest(row[1]).c_str(),
+                          shortest(row[2]).c_str());
+            out << line;
+        }
+    };
+    tensor("second moments about the origin (density × ∫ x_i x_j):", m.second_moments);
+    tensor("inertia tensor about the origin:", m.inertia_origin);
+    tensor("inertia tensor about the centroid:", m.inertia_centroid);
+    out << "  centroid, moments and inertia: relative error <= " << shortest(m.moments_relative_error)
+        << " (of the largest magnitude involved)\n";
+    if (!r.warning.empty()) out << "  warning: " << r.warning << "\n";
+    return out.str();
+}
+
+std::string check_report(const FileResult& r) {
+    std::ostringstream out;
+    const auto& t = *r.topology;
+    const auto& l = *r.loaded;
+    out << r.file << "  (" << format_name(l.format) << ", " << l.encoding << (l.gzip ? ", gzip" : "") << ")\n";
+    for (const auto& n : l.notes) out << "  note: " << n << "\n";
+    out << "  vertices        " << l.mesh.vertex_count() << " read, " << t.vertices_welded << " after welding, "
+        << t.vertices_referenced << " used by faces\n";
+    out << "  faces           " << t.faces << " (" << t.faces_with_lt3_vertices << " with fewer than 3 vertices, ignored), "
+        << t.triangles << " fan triangles\n";
+    out << "  edges           " << t.edges << "\n";
+    out << "  boundary        " << t.boundary_edges << "\n";
+    out << "  non-manifold    " << t.nonmanifold_edges << "\n";
+    out << "  misoriented     " << t.misoriented_edges << "\n";
+    out << "  unbalanced      " << t.unbalanced_edges << "\n";
+    out << "  degenerate      " << t.triangles_with_repeated_vertex << " triangles with a repeated vertex, "
+        << t.zero_area_triangles << " of zero area, " << t.degenerate_edge_uses << " zero-length sides\n";
+    out << "  Euler char.     " << t.euler_characteristic << "\n";
+    out << "  components      " << t.components_edge_connected << " edge-connected, " << t.components_vertex_connected
+        << " vertex-connected\n";
+    out << "  closed 2-cycle  " << (t.closed_2_cycle ? "yes: the volume does not depend on the origin"
+                                                      : "no: " + unbalanced_message(t))
+        << "\n";
+    std::size_t shown = 0;
+    for (const Shell& s : t.shells) {
+        if (shown++ == 20) {
+            out << "  ... " << (t.shells.size() - 20) << " more shells\n";
+            break;
+        }
+        out << "  shell " << shown << ": " << role_name(s.role) << ", volume " << shortest(s.signed_volume) << ", "
+            << s.faces << " faces, χ = " << s.euler_characteristic;
+        if (s.genus) out << ", genus " << *s.genus;
+        if (s.boundary_edges) out << ", " << s.boundary_edges << " boundary edges";
+        out << "\n";
+    }
+    if (t.cavities || t.inside_out_shells || t.nested_shells)
+        out << "  nesting         " << t.cavities << " cavities, " << t.inside_out_shells << " inside-out shells, "
+            << t.nested_shells << " shells inside other solids\n";
+    return out.str();
+}
+
+}  // namespace polyvol::cli

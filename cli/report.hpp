@@ -1,0 +1,55 @@
+// What the CLI computes for one file, and how it is printed (a table for
+// people, JSON for programs). The library never prints; this is the only
+// place that does.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "polyvol/io.hpp"
+#include "polyvol/measure.hpp"
+#include "polyvol/topology.hpp"
+
+namespace polyvol::cli {
+
+// Exit codes, stated once: 0 ok, 1 usage, 2 unreadable input, 3 input read
+// but not valid for the request (e.g. an open surface asked for a volume).
+enum Exit : int { ok = 0, usage = 1, unreadable = 2, invalid = 3 };
+
+struct FileResult {
+    std::string file;
+    int exit_code = Exit::ok;
+    std::string error;                       // set when exit_code != ok
+    std::optional<LoadedMesh> loaded;        // when the file was read
+    std::optional<TopologyReport> topology;  // when read
+    std::optional<MassProperties> mass;      // when measured
+    std::string warning;                     // e.g. the origin dependence with --allow-open
+    double seconds_read = 0, seconds_measure = 0;
+};
+
+struct Request {
+    MeasureOptions measure;
+    bool allow_open = false;
+    bool need_mass = true;  // false for `check`
+};
+
+// Reads, analyses and measures one file; never throws.
+FileResult process_file(const std::string& path, const Request& request);
+
+// Shortest decimal that reads back as the same double ("nan", "inf" spelled out).
+std::string shortest(double v);
+
+nlohmann::json to_json(const FileResult& r, const Request& request);
+
+// Table for `polyvol volume` (one row per file), and the reports of
+// `polyvol measure` and `polyvol check` for one file.
+std::string volume_table(const std::vector<FileResult>& results, const Request& request);
+std::string measure_report(const FileResult& r, const Request& request);
+std::string check_report(const FileResult& r);
+
+// A sentence stating the guarantee of the printed volume.
+std::string volume_guarantee(const MassProperties& m);
+
+}  // namespace polyvol::cli

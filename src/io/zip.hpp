@@ -1,0 +1,57 @@
+// A small read-only wrapper over libzip for archives held in memory (3MF
+// packages, zipped AMF). Every error is a polyvol::ReadError naming the file.
+//
+// Decompression is bounded: the bytes read from an archive, summed over all
+// entries read through one ZipArchive, may not exceed max_total_bytes()
+// (by default min(4 GiB, max(64 x the archive size, 16 MiB))). Sizes the
+// archive claims are checked against that bound before anything is allocated
+// and are never trusted beyond it.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/readers.hpp"
+
+struct zip;  // libzip's zip_t
+
+namespace polyvol::io {
+
+class ZipArchive {
+public:
+    // Opens the archive in data (which must outlive this object). Throws
+    // ReadError::whole_file when data is not a readable zip archive.
+    // max_total_bytes == 0 selects default_limit(data.size()).
+    ZipArchive(Bytes data, std::string name, uint64_t max_total_bytes = 0);
+    ~ZipArchive();
+    ZipArchive(const ZipArchive&) = delete;
+    ZipArchive& operator=(const ZipArchive&) = delete;
+
+    // min(4 GiB, max(64 * archive_bytes, 16 MiB)).
+    static uint64_t default_limit(std::size_t archive_bytes);
+    uint64_t max_total_bytes() const { return limit_; }
+
+    // Names of the file entries (directory entries left out), in archive order.
+    std::vector<std::string> file_names() const;
+
+    // The stored name of the entry called `entry`: exact match first, then
+    // ignoring ASCII case, a leading '/' and '\\' vs '/' (OPC part names are
+    // case-insensitive). nullopt when there is none.
+    std::optional<std::string> find(std::string_view entry) const;
+
+    // The whole content of an entry (a stored name, e.g. from find()). Throws
+    // ReadError when it is missing, encrypted, compressed with an unsupported
+    // method, corrupt (CRC), or would exceed the decompression limit.
+    std::vector<std::byte> read(const std::string& entry);
+
+private:
+    ::zip* archive_ = nullptr;
+    std::string name_;
+    uint64_t limit_ = 0;
+    uint64_t used_ = 0;  // bytes decompressed so far
+};
+
+}  // namespace polyvol::io

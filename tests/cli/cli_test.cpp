@@ -1,0 +1,212 @@
+// The polyvol command as users run it: exit codes, JSON keys and values,
+// messages on stderr.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kCorpus = POLYVOL_CORPUS_DIR;
+const fs::path kExamples = fs::path(POLYVOL_TEST_DATA).parent_path().parent_path() / "examples";
+
+struct Run {
+    int code = -1;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Runs `polyvol ARGS` through the shell (so ARGS may redirect stdin).
+Run polyvol(const std::string& args) {
+    const fs::path err = fs::temp_directory_path() / ("polyvol_cli_test_" + std::to_string(::getpid()) + ".err");
+    const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
+    Run r;
+    FILE* p = ::popen(cmd.c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    const int status = ::pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.err = slurp(err);
+    fs::remove(err);
+    return r;
+}
+
+std::string corpus(const std::string& rel) { return "'" + (kCorpus / "meshes" / rel).string() + "'"; }
+
+TEST(Cli, VolumeJsonHasEveryKeyAndExactValues) {
+    const Run r = polyvol("volume --json " + corpus("stl-models/unitCube.ascii.stl"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    ASSERT_TRUE(j.is_array());
+    ASSERT_EQ(j.size(), 1u);
+    const json& f = j[0];
+    for (const char* key : {"file", "format", "vertices", "faces", "triangles", "method", "volume", "area", "centroid",
+                            "second_moments", "inertia", "edge_length", "boundary_edges", "nonmanifold_edges",
+                            "misoriented_edges", "unbalanced_edges", "components", "accuracy"})
+        EXPECT_TRUE(f.contains(key)) << key;
+    EXPECT_EQ(f["format"], "stl");
+    EXPECT_EQ(f["triangles"], 12);
+    EXPECT_EQ(f["method"], "cone");
+    EXPECT_EQ(f["accuracy"], "correctly-rounded");
+    EXPECT_EQ(f["volume"].get<double>(), 1.0);
+    EXPECT_EQ(f["area"].get<double>(), 6.0);
+    EXPECT_DOUBLE_EQ(f["edge_length"].get<double>(), 12.0 + 6.0 * std::sqrt(2.0));  // 12 sides and 6 diagonals
+    EXPECT_EQ(f["centroid"], json::array({0.5, 0.5, 0.5}));
+    // unit cube: ∫x² = 1/3, ∫xy = 1/4; about the centroid Ixx = 1/6, Ixy = 0
+    EXPECT_DOUBLE_EQ(f["second_moments"][0][0].get<double>(), 1.0 / 3);
+    EXPECT_DOUBLE_EQ(f["second_moments"][0][1].get<double>(), 0.25);
+    EXPECT_DOUBLE_EQ(f["inertia"][0][0].get<double>(), 1.0 / 6);
+    EXPECT_NEAR(f["inertia"][0][1].get<double>(), 0.0, 1e-15);
+    EXPECT_EQ(f["unbalanced_edges"], 0);
+    EXPECT_EQ(f["components"], 1);
+}
+
+TEST(Cli, BundledSampleMeasuresExactly) {
+    const Run r = polyvol("measure --json '" + (kExamples / "l_bracket.obj").string() + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json f = json::parse(r.out)[0];
+    EXPECT_EQ(f["volume"].get<double>(), 12.0);
+    EXPECT_DOUBLE_EQ(f["area"].get<double>(), 40.0);
+    EXPECT_DOUBLE_EQ(f["edge_length"].get<double>(), 40.0);
+    EXPECT_DOUBLE_EQ(f["centroid"][0].get<double>(), 1.5);
+    EXPECT_DOUBLE_EQ(f["centroid"][1].get<double>(), 1.0);
+    EXPECT_DOUBLE_EQ(f["centroid"][2].get<double>(), 1.0);
+    const Run table = polyvol("measure '" + (kExamples / "l_bracket.obj").string() + "'");
+    ASSERT_EQ(table.code, 0);
+    EXPECT_NE(table.out.find("correctly rounded"), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("inertia tensor about the centroid"), std::string::npos);
+}
+
+TEST(Cli, TableStatesTheGuarantee) {
+    const Run r = polyvol("volume " + corpus("stl-models/unitCube.ascii.stl"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("correctly rounded"), std::string::npos) << r.out;
+    const Run fast = polyvol("volume --accuracy fast " + corpus("stl-models/unitCube.ascii.stl"));
+    ASSERT_EQ(fast.code, 0);
+    EXPECT_NE(fast.out.find("±"), std::string::npos) << fast.out;
+}
+
+TEST(Cli, OpenSurfaceExitsThreeButStillReports) {
+    const Run r = polyvol("volume --json " + corpus("stl-models/missingFace.ascii.stl"));
+    EXPECT_EQ(r.code, 3);
+    EXPECT_NE(r.err.find("unbalanced"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("missingFace.ascii.stl"), std::string::npos) << r.err;
+    const json f = json::parse(r.out)[0];
+    EXPECT_GT(f["unbalanced_edges"].get<int>(), 0);
+    EXPECT_TRUE(f.contains("boundary_edges"));
+    EXPECT_TRUE(f.contains("triangles"));
+    EXPECT_TRUE(f.contains("error"));
+    EXPECT_FALSE(f.contains("volume"));
+
+    const Run open = polyvol("volume --json --allow-open " + corpus("stl-models/missingFace.ascii.stl"));
+    EXPECT_EQ(open.code, 0) << open.err;
+    EXPECT_NE(open.err.find("origin"), std::string::npos) << open.err;
+    EXPECT_TRUE(json::parse(open.out)[0].contains("warning"));
+}
+
+TEST(Cli, EveryInvalidCorpusFileExitsTwoWithItsName) {
+    std::ifstream in(kCorpus / "manifest.json");
+    ASSERT_TRUE(in) << "corpus missing";
+    const json m = json::parse(in);
+    int checked = 0;
+    for (const json& e : m) {
+        if (e["category"] != "invalid") continue;
+        const std::string path = (kCorpus / e["path"].get<std::string>()).string();
+        const Run r = polyvol("volume --json '" + path + "'");
+        EXPECT_EQ(r.code, 2) << path;
+        const std::string name = fs::path(path).filename().string();
+        EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+        const json f = json::parse(r.out)[0];
+        ASSERT_TRUE(f.contains("error")) << path;
+        EXPECT_NE(f["error"].get<std::string>().find(name), std::string::npos);
+        ++checked;
+    }
+    EXPECT_GE(checked, 9);
+}
+
+TEST(Cli, SeveralFilesReportEachAndExitWithTheHighestCode) {
+    const Run r = polyvol("volume --json " + corpus("stl-models/unitCube.ascii.stl") + " " +
+                          corpus("stl-models/missingFace.ascii.stl") + " " + corpus("stl-models/empty.stl") + " " +
+                          corpus("libcgal-demo/tetrahedron.off"));
+    EXPECT_EQ(r.code, 3);
+    const json j = json::parse(r.out);
+    ASSERT_EQ(j.size(), 4u);
+    EXPECT_EQ(j[0]["volume"].get<double>(), 1.0);
+    EXPECT_EQ(j[1]["exit_code"], 3);
+    EXPECT_EQ(j[2]["exit_code"], 2);
+    EXPECT_EQ(j[3]["exit_code"], 0);
+}
+
+TEST(Cli, ReadsStandardInput) {
+    const Run r = polyvol("volume --json - < " + corpus("stl-models/unitCube.ascii.stl"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(json::parse(r.out)[0]["volume"].get<double>(), 1.0);
+}
+
+TEST(Cli, MethodsAndDensity) {
+    for (const char* method : {"cone", "prism", "pyramid", "vtnb"}) {
+        const Run r = polyvol(std::string("volume --json --method ") + method + " '" +
+                              (kExamples / "l_bracket.obj").string() + "'");
+        ASSERT_EQ(r.code, 0) << method << r.err;
+        const json f = json::parse(r.out)[0];
+        EXPECT_EQ(f["method"], method);
+        EXPECT_NEAR(f["volume"].get<double>(), 12.0, 1e-13) << method;
+    }
+    const Run d = polyvol("measure --json --density 2.5 '" + (kExamples / "l_bracket.obj").string() + "'");
+    ASSERT_EQ(d.code, 0);
+    const json f = json::parse(d.out)[0];
+    EXPECT_EQ(f["volume"].get<double>(), 12.0);
+    EXPECT_EQ(f["mass"].get<double>(), 30.0);
+}
+
+TEST(Cli, CheckReportsTopology) {
+    const Run r = polyvol("check " + corpus("stl-models/missingFace.ascii.stl"));
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("boundary"), std::string::npos);
+    EXPECT_NE(r.out.find("closed 2-cycle  no"), std::string::npos) << r.out;
+    const Run j = polyvol("check --json " + corpus("libcgal-demo/tetrahedron.off"));
+    ASSERT_EQ(j.code, 0);
+    const json f = json::parse(j.out)[0];
+    EXPECT_EQ(f["euler_characteristic"], 2);
+    EXPECT_EQ(f["shells"][0]["genus"], 0);
+    EXPECT_EQ(f["shells"][0]["role"], "solid");
+}
+
+TEST(Cli, HelpAndUsageErrors) {
+    for (const char* sub : {"", "volume ", "measure ", "check "}) {
+        const Run r = polyvol(std::string(sub) + "--help");
+        EXPECT_EQ(r.code, 0) << sub;
+        EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub << r.out;
+    }
+    EXPECT_EQ(polyvol("").code, 1);
+    EXPECT_EQ(polyvol("volume").code, 1);
+    EXPECT_EQ(polyvol("volume --method nonsense x.stl").code, 1);
+    EXPECT_EQ(polyvol("frobnicate").code, 1);
+}
+
+TEST(Cli, MissingFileExitsTwo) {
+    const Run r = polyvol("volume /nonexistent/file.stl");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("/nonexistent/file.stl"), std::string::npos) << r.err;
+}
+
+}  // namespace
