@@ -73,12 +73,6 @@ bool is_element(pugi::xml_node n, std::string_view local) {
     return n.type() == pugi::node_element && local_name(n.name()) == local;
 }
 
-pugi::xml_node first_child(pugi::xml_node n, std::string_view local) {
-    for (pugi::xml_node c : n.children())
-        if (is_element(c, local)) return c;
-    return {};
-}
-
 pugi::xml_attribute attribute_local(pugi::xml_node n, std::string_view local) {
     for (pugi::xml_attribute a : n.attributes())
         if (local_name(a.name()) == local) return a;
@@ -108,8 +102,6 @@ struct MeshData {
     std::vector<double> positions;
     std::vector<uint32_t> triangles;
 };
-
-struct Part;
 
 struct Component {
     pugi::xml_node node;
@@ -188,7 +180,7 @@ public:
             }
         } else {
             for (pugi::xml_node item : items) {
-                const Component ref = parse_reference(root, item, "item");
+                const Component ref = parse_reference(root, item);
                 Part& target = ref.path.empty() ? root : part(ref.path, root, item);
                 if (ref.has_transform) {
                     transform_seen_ = true;
@@ -213,7 +205,6 @@ private:
     }
 
     Part& part(const std::string& path, const Part& from, pugi::xml_node ref) {
-        if (auto it = parts_.find(path); it != parts_.end()) return *it->second;
         if (!zip_)
             fail(from, ref, "reference to the model part '" + path +
                                 "', which cannot exist: the model is bare XML, not a 3MF package");
@@ -224,12 +215,10 @@ private:
         p->entry = *stored;
         p->owned = zip_->read(*stored);
         p->text = p->owned;
-        Part& ref_part = *p;
-        parts_.emplace(path, std::move(p));
-        if (path != ref_part.entry) parts_.emplace(ref_part.entry, nullptr);  // placeholder avoided below
-        parts_.erase(ref_part.entry == path ? std::string("\x01") : ref_part.entry);
-        parse_part(ref_part);
-        return ref_part;
+        Part& loaded = *p;
+        parts_.emplace(*stored, std::move(p));
+        parse_part(loaded);
+        return loaded;
     }
 
     void parse_part(Part& p) {
@@ -256,7 +245,7 @@ private:
     uint64_t index_attr(const Part& p, pugi::xml_node n, const char* attr, const char* what) {
         const pugi::xml_attribute a = n.attribute(attr);
         if (!a)
-            fail(p, n, std::string("<") + local_name(n.name()).data() + "> without attribute " + attr +
+            fail(p, n, "<" + std::string(local_name(n.name())) + "> without attribute " + attr +
                            ", expected " + what);
         const auto v = xmlnum::parse_index(a.value());
         if (!v)
@@ -304,7 +293,7 @@ private:
     }
 
     // objectid, transform and p:path of an <item> or <component>.
-    Component parse_reference(const Part& p, pugi::xml_node n, const char*) {
+    Component parse_reference(const Part& p, pugi::xml_node n) {
         Component c;
         c.node = n;
         c.objectid = index_attr(p, n, "objectid", "an object id (a non-negative integer)");
@@ -330,7 +319,7 @@ private:
             } else if (is_element(c, "components")) {
                 o.has_components = true;
                 for (pugi::xml_node comp : c.children())
-                    if (is_element(comp, "component")) o.components.push_back(parse_reference(p, comp, "component"));
+                    if (is_element(comp, "component")) o.components.push_back(parse_reference(p, comp));
             }
         }
         p.order.push_back(id);
@@ -381,7 +370,7 @@ private:
         if (!active_.insert(key).second)
             fail(from, ref, "object " + std::to_string(id) + " contains itself through its components");
         const Object& o = it->second;
-        if (o.has_mesh) emit(p, o, ref);
+        if (o.has_mesh) emit(from, o, ref);
         if (o.has_components) {
             components_seen_ = true;
             for (const Component& c : o.components) {
@@ -398,6 +387,7 @@ private:
     }
 
     // Appends an object's own mesh under the current transform chain.
+    // (ref, in part p, is the item or component that led here: errors point at it.)
     void emit(const Part& p, const Object& o, pugi::xml_node ref) {
         const MeshData& m = o.mesh;
         const std::size_t nv = m.positions.size() / 3;
