@@ -189,6 +189,32 @@ private:
     bool has_comment_;
 };
 
+// The OFF header keyword [ST][C][N][4][n]OFF (Geomview's prefixes, in that
+// order). Shared by the OFF reader and format detection.
+struct OffKeyword {
+    bool valid = false;
+    bool has4 = false;   // 4: one more coordinate per vertex
+    bool has_n = false;  // n: a dimension line follows
+};
+inline OffKeyword parse_off_keyword(std::string_view tok) {
+    OffKeyword h;
+    if (tok.size() < 3 || tok.substr(tok.size() - 3) != "OFF") return h;
+    std::string_view p = tok.substr(0, tok.size() - 3);
+    if (p.starts_with("ST")) p.remove_prefix(2);
+    if (p.starts_with("C")) p.remove_prefix(1);
+    if (p.starts_with("N")) p.remove_prefix(1);
+    if (p.starts_with("4")) {
+        h.has4 = true;
+        p.remove_prefix(1);
+    }
+    if (p.starts_with("n")) {
+        h.has_n = true;
+        p.remove_prefix(1);
+    }
+    h.valid = p.empty();
+    return h;
+}
+
 // Adds a note once.
 void add_note(LoadedMesh& out, std::string note);
 

@@ -1,0 +1,304 @@
+// Format detection and the public entry points read_mesh_file and
+// read_mesh_memory. Detection is by content, in this order (io.hpp):
+//   empty                   -> an empty OBJ when the hint says OBJ, else an error
+//   gzip magic 1f 8b        -> gunzip, detect again ("gzip-compressed")
+//   zip magic PK 3 4        -> 3MF when the archive names 3D/3dmodel.model, else AMF
+//   UTF-16 byte-order mark  -> converted to UTF-8, detect again ("utf16-be-bom")
+//   "ply" line              -> PLY
+//   XML                     -> AMF (root <amf>) or 3MF (root <model>)
+//   size == 84 + 50 n       -> binary STL
+//   "solid"                 -> ASCII STL
+//   [ST][C][N][4][n]OFF     -> OFF
+//   OBJ statements          -> OBJ
+//   otherwise               -> the reader the hint names (it reports what is
+//                              wrong: an OFF file without its header, a binary
+//                              STL of the wrong size, ...), or an error.
+// The binary STL size rule is tried before the byte-order marks: a binary
+// header may start with any bytes, while UTF-16 text never satisfies it.
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "io/readers.hpp"
+#include "io/text.hpp"
+
+namespace polyvol {
+
+std::string_view format_name(Format f) {
+    switch (f) {
+        case Format::stl: return "stl";
+        case Format::obj: return "obj";
+        case Format::off: return "off";
+        case Format::ply: return "ply";
+        case Format::threemf: return "3mf";
+        case Format::amf: return "amf";
+        case Format::unknown: break;
+    }
+    return "unknown";
+}
+
+Format format_from_extension(std::string_view path) {
+    const std::size_t slash = path.find_last_of("/\\");
+    std::string_view file = slash == std::string_view::npos ? path : path.substr(slash + 1);
+    for (;;) {
+        const std::size_t dot = file.rfind('.');
+        if (dot == std::string_view::npos || dot == 0) return Format::unknown;
+        const std::string_view ext = file.substr(dot + 1);
+        using io::text::iequals;
+        if (iequals(ext, "gz")) {
+            file = file.substr(0, dot);
+            continue;
+        }
+        if (iequals(ext, "stl")) return Format::stl;
+        if (iequals(ext, "obj")) return Format::obj;
+        if (iequals(ext, "off")) return Format::off;
+        if (iequals(ext, "ply")) return Format::ply;
+        if (iequals(ext, "3mf")) return Format::threemf;
+        if (iequals(ext, "amf")) return Format::amf;
+        return Format::unknown;
+    }
+}
+
+namespace {
+
+using io::Bytes;
+namespace text = io::text;
+
+bool starts_with(Bytes data, std::string_view magic) {
+    return data.size() >= magic.size() && std::memcmp(data.data(), magic.data(), magic.size()) == 0;
+}
+
+bool contains(Bytes data, std::string_view needle) {
+    return text::as_text(data).find(needle) != std::string_view::npos;
+}
+
+// The first line of s that is neither blank nor a '#' comment, trimmed.
+std::string_view first_statement(std::string_view s) {
+    std::size_t pos = 0;
+    while (pos < s.size()) {
+        std::size_t eol = pos;
+        while (eol < s.size() && !text::is_eol(s[eol])) ++eol;
+        const std::string_view line = text::trim(s.substr(pos, eol - pos));
+        if (!line.empty() && line.front() != '#') return line;
+        pos = eol + 1;
+    }
+    return {};
+}
+
+std::string_view first_word(std::string_view line) {
+    std::size_t i = 0;
+    while (i < line.size() && !text::is_space(line[i]) && line[i] != '#') ++i;
+    return line.substr(0, i);
+}
+
+bool is_ply(Bytes data) {
+    return starts_with(data, "ply") && (data.size() == 3 || text::is_space(static_cast<char>(data[3])));
+}
+
+bool is_ascii_stl(std::string_view s) {
+    std::size_t i = 0;
+    while (i < s.size() && text::is_space(s[i])) ++i;
+    return s.size() - i >= 5 && text::iequals(s.substr(i, 5), "solid") &&
+           (s.size() - i == 5 || text::is_space(s[i + 5]));
+}
+
+bool is_binary_stl(Bytes data) {
+    if (data.size() < 84) return false;
+    const auto* b = reinterpret_cast<const unsigned char*>(data.data()) + 80;
+    const uint64_t n = uint64_t{b[0]} | uint64_t{b[1]} << 8 | uint64_t{b[2]} << 16 | uint64_t{b[3]} << 24;
+    return 84 + 50 * n == data.size();
+}
+
+bool is_off(std::string_view s) {
+    return text::parse_off_keyword(first_word(first_statement(s))).valid;
+}
+
+// Plain text whose first statement is an OBJ one.
+bool looks_like_obj(std::string_view s) {
+    const std::string_view head = s.substr(0, 4096);
+    for (char c : head) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 && !text::is_space(c)) return false;
+    }
+    static constexpr std::string_view keywords[] = {
+        "v", "vt", "vn", "vp", "f", "l", "p", "o", "g", "s", "usemtl", "mtllib", "usemap", "maplib",
+        "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv", "sp", "end",
+        "con", "mg", "bevel", "c_interp", "d_interp", "lod", "shadow_obj", "trace_obj", "ctech", "stech", "fo"};
+    const std::string_view kw = first_word(first_statement(s));
+    for (std::string_view k : keywords)
+        if (kw == k) return true;
+    return false;
+}
+
+// The name of the root element of an XML document (namespace prefix
+// removed), or empty when s does not start like XML.
+std::string_view xml_root(std::string_view s) {
+    std::size_t i = 0;
+    for (;;) {
+        while (i < s.size() && text::is_space(s[i])) ++i;
+        if (i >= s.size() || s[i] != '<') return {};
+        const std::string_view rest = s.substr(i);
+        std::string_view close;
+        if (rest.starts_with("<?")) close = "?>";
+        else if (rest.starts_with("<!--")) close = "-->";
+        else if (rest.starts_with("<!")) close = ">";
+        if (!close.empty()) {
+            const std::size_t e = s.find(close, i + 2);
+            if (e == std::string_view::npos) return {};
+            i = e + close.size();
+            continue;
+        }
+        std::size_t j = i + 1;
+        while (j < s.size() && !text::is_space(s[j]) && s[j] != '>' && s[j] != '/') ++j;
+        std::string_view name = s.substr(i + 1, j - i - 1);
+        const std::size_t colon = name.rfind(':');
+        if (colon != std::string_view::npos) name.remove_prefix(colon + 1);
+        return name.empty() ? std::string_view("?") : name;
+    }
+}
+
+// UTF-16 (either byte order) to UTF-8; unpaired surrogates become '?'.
+std::vector<std::byte> utf16_to_utf8(Bytes data, bool big_endian) {
+    std::vector<std::byte> out;
+    out.reserve(data.size() / 2);
+    auto put = [&](uint32_t c) { out.push_back(static_cast<std::byte>(c)); };
+    const auto* b = reinterpret_cast<const unsigned char*>(data.data());
+    const std::size_t n = data.size() / 2;
+    auto unit = [&](std::size_t k) -> uint32_t {
+        return big_endian ? (uint32_t{b[2 * k]} << 8 | b[2 * k + 1]) : (uint32_t{b[2 * k + 1]} << 8 | b[2 * k]);
+    };
+    for (std::size_t k = 1; k < n; ++k) {  // unit 0 is the byte-order mark
+        uint32_t c = unit(k);
+        if (c >= 0xD800 && c < 0xDC00 && k + 1 < n && unit(k + 1) >= 0xDC00 && unit(k + 1) < 0xE000) {
+            c = 0x10000 + ((c - 0xD800) << 10) + (unit(k + 1) - 0xDC00);
+            ++k;
+        } else if (c >= 0xD800 && c < 0xE000) {
+            c = '?';
+        }
+        if (c < 0x80) {
+            put(c);
+        } else if (c < 0x800) {
+            put(0xC0 | c >> 6);
+            put(0x80 | (c & 0x3F));
+        } else if (c < 0x10000) {
+            put(0xE0 | c >> 12);
+            put(0x80 | ((c >> 6) & 0x3F));
+            put(0x80 | (c & 0x3F));
+        } else {
+            put(0xF0 | c >> 18);
+            put(0x80 | ((c >> 12) & 0x3F));
+            put(0x80 | ((c >> 6) & 0x3F));
+            put(0x80 | (c & 0x3F));
+        }
+    }
+    return out;
+}
+
+LoadedMesh with_note_first(LoadedMesh m, std::string note) {
+    m.notes.insert(m.notes.begin(), std::move(note));
+    return m;
+}
+
+LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth) {
+    if (data.empty()) {
+        if (hint == Format::obj) {
+            LoadedMesh m;
+            m.format = Format::obj;
+            m.encoding = "ascii";
+            return m;
+        }
+        throw ReadError::whole_file(name, "empty file");
+    }
+    if (starts_with(data, "\x1f\x8b")) {
+        if (depth >= 3) throw ReadError::whole_file(name, "gzip nested too deeply");
+        const std::vector<std::byte> inner = io::gunzip(data, name);
+        LoadedMesh m = detect(inner, name, hint, depth + 1);
+        m.gzip = true;
+        return with_note_first(std::move(m), "gzip-compressed");
+    }
+    if (starts_with(data, "PK\x03\x04")) {
+        if (contains(data, "3D/3dmodel.model")) return io::read_3mf_zip(data, name);
+        if (hint == Format::threemf) return io::read_3mf_zip(data, name);
+        return io::read_amf_zip(data, name);
+    }
+    const bool binary_stl = is_binary_stl(data);
+    if (!binary_stl && depth < 3) {
+        if (starts_with(data, "\xfe\xff") || starts_with(data, "\xff\xfe")) {
+            const bool be = starts_with(data, "\xfe\xff");
+            const std::vector<std::byte> utf8 = utf16_to_utf8(data, be);
+            return with_note_first(detect(utf8, name, hint, depth + 1), be ? "utf16-be-bom" : "utf16-le-bom");
+        }
+        if (starts_with(data, "\xef\xbb\xbf"))
+            return with_note_first(detect(data.subspan(3), name, hint, depth + 1), "utf8-bom");
+    }
+    const std::string_view s = text::as_text(data);
+    if (is_ply(data)) return io::read_ply(data, name);
+    if (!binary_stl) {
+        const std::string_view root = xml_root(s.substr(0, 1 << 16));
+        if (!root.empty()) {
+            if (root == "amf") return io::read_amf_xml(data, name);
+            if (root == "model") return io::read_3mf_xml(data, name);
+            throw ReadError::whole_file(name, "XML document with root <" + std::string(root) +
+                                                  "> is neither AMF (<amf>) nor 3MF (<model>)");
+        }
+    }
+    if (binary_stl || is_ascii_stl(s)) return io::read_stl(data, name);
+    if (is_off(s)) return io::read_off(data, name);
+    if (looks_like_obj(s)) return io::read_obj(data, name);
+    switch (hint) {
+        case Format::stl: return io::read_stl(data, name);
+        case Format::obj: return io::read_obj(data, name);
+        case Format::off: return io::read_off(data, name);
+        case Format::ply: return io::read_ply(data, name);
+        case Format::threemf: return io::read_3mf_zip(data, name);
+        case Format::amf: return io::read_amf_xml(data, name);
+        case Format::unknown: break;
+    }
+    throw ReadError::whole_file(
+        name,
+        "unrecognised content (tried gzip, zip (3MF/AMF), PLY, XML (AMF/3MF), binary STL (size 84 + 50 n), "
+        "ASCII STL ('solid'), OFF and OBJ; the file name's extension gives no hint)");
+}
+
+}  // namespace
+
+LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& name, Format hint) {
+    if (hint == Format::unknown) hint = format_from_extension(name);
+    return detect(data, name, hint, 0);
+}
+
+LoadedMesh read_mesh_file(const std::string& path) {
+    const bool from_stdin = path == "-";
+    const std::string name = from_stdin ? std::string("<stdin>") : path;
+    std::FILE* f = from_stdin ? stdin : std::fopen(path.c_str(), "rb");
+    if (f == nullptr) throw ReadError::whole_file(name, std::string("cannot open: ") + std::strerror(errno));
+    // Sized from the real file size when there is one (plus a byte, so the
+    // end of the file is seen without growing), doubled as data arrives.
+    std::size_t cap = std::size_t{1} << 16;
+    if (!from_stdin) {
+        std::error_code ec;
+        const auto size = std::filesystem::file_size(path, ec);
+        if (!ec) cap = static_cast<std::size_t>(size) + 1;
+    }
+    std::vector<std::byte> buf(cap);
+    std::size_t used = 0;
+    for (;;) {
+        if (used == buf.size()) buf.resize(2 * buf.size());
+        const std::size_t got = std::fread(buf.data() + used, 1, buf.size() - used, f);
+        used += got;
+        if (got == 0) break;
+    }
+    const bool failed = std::ferror(f) != 0;
+    const int err = errno;
+    if (!from_stdin) std::fclose(f);
+    if (failed) throw ReadError::whole_file(name, std::string("cannot read: ") + std::strerror(err));
+    buf.resize(used);
+    return read_mesh_memory(buf, from_stdin ? std::string("<stdin>") : path, Format::unknown);
+}
+
+}  // namespace polyvol
