@@ -23,7 +23,7 @@ using nlohmann::json;
 const fs::path kCorpus = POLYVOL_CORPUS_DIR;
 const fs::path kExamples = fs::path(POLYVOL_TEST_DATA).parent_path().parent_path() / "examples";
 
-struct Run {
+struct CliRun {
     int code = -1;
     std::string out, err;
 };
@@ -34,10 +34,10 @@ std::string slurp(const fs::path& p) {
 }
 
 // Runs `polyvol ARGS` through the shell (so ARGS may redirect stdin).
-Run polyvol(const std::string& args) {
+CliRun polyvol(const std::string& args) {
     const fs::path err = fs::temp_directory_path() / ("polyvol_cli_test_" + std::to_string(::getpid()) + ".err");
     const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
-    Run r;
+    CliRun r;
     FILE* p = ::popen(cmd.c_str(), "r");
     if (!p) return r;
     std::array<char, 4096> buf;
@@ -50,10 +50,16 @@ Run polyvol(const std::string& args) {
     return r;
 }
 
-std::string corpus(const std::string& rel) { return "'" + (kCorpus / "meshes" / rel).string() + "'"; }
+// The corpus file, quoted for the shell.
+std::string corpus(const std::string& rel) {
+    std::string quoted = "'";
+    quoted += (kCorpus / "meshes" / rel).string();
+    quoted += "'";
+    return quoted;
+}
 
 TEST(Cli, VolumeJsonHasEveryKeyAndExactValues) {
-    const Run r = polyvol("volume --json " + corpus("stl-models/unitCube.ascii.stl"));
+    const CliRun r = polyvol("volume --json " + corpus("stl-models/unitCube.ascii.stl"));
     ASSERT_EQ(r.code, 0) << r.err;
     const json j = json::parse(r.out);
     ASSERT_TRUE(j.is_array());
@@ -81,7 +87,7 @@ TEST(Cli, VolumeJsonHasEveryKeyAndExactValues) {
 }
 
 TEST(Cli, BundledSampleMeasuresExactly) {
-    const Run r = polyvol("measure --json '" + (kExamples / "l_bracket.obj").string() + "'");
+    const CliRun r = polyvol("measure --json '" + (kExamples / "l_bracket.obj").string() + "'");
     ASSERT_EQ(r.code, 0) << r.err;
     const json f = json::parse(r.out)[0];
     EXPECT_EQ(f["volume"].get<double>(), 12.0);
@@ -90,23 +96,23 @@ TEST(Cli, BundledSampleMeasuresExactly) {
     EXPECT_DOUBLE_EQ(f["centroid"][0].get<double>(), 1.5);
     EXPECT_DOUBLE_EQ(f["centroid"][1].get<double>(), 1.0);
     EXPECT_DOUBLE_EQ(f["centroid"][2].get<double>(), 1.0);
-    const Run table = polyvol("measure '" + (kExamples / "l_bracket.obj").string() + "'");
+    const CliRun table = polyvol("measure '" + (kExamples / "l_bracket.obj").string() + "'");
     ASSERT_EQ(table.code, 0);
     EXPECT_NE(table.out.find("correctly rounded"), std::string::npos) << table.out;
     EXPECT_NE(table.out.find("inertia tensor about the centroid"), std::string::npos);
 }
 
 TEST(Cli, TableStatesTheGuarantee) {
-    const Run r = polyvol("volume " + corpus("stl-models/unitCube.ascii.stl"));
+    const CliRun r = polyvol("volume " + corpus("stl-models/unitCube.ascii.stl"));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("correctly rounded"), std::string::npos) << r.out;
-    const Run fast = polyvol("volume --accuracy fast " + corpus("stl-models/unitCube.ascii.stl"));
+    const CliRun fast = polyvol("volume --accuracy fast " + corpus("stl-models/unitCube.ascii.stl"));
     ASSERT_EQ(fast.code, 0);
     EXPECT_NE(fast.out.find("±"), std::string::npos) << fast.out;
 }
 
 TEST(Cli, OpenSurfaceExitsThreeButStillReports) {
-    const Run r = polyvol("volume --json " + corpus("stl-models/missingFace.ascii.stl"));
+    const CliRun r = polyvol("volume --json " + corpus("stl-models/missingFace.ascii.stl"));
     EXPECT_EQ(r.code, 3);
     EXPECT_NE(r.err.find("unbalanced"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("missingFace.ascii.stl"), std::string::npos) << r.err;
@@ -117,7 +123,7 @@ TEST(Cli, OpenSurfaceExitsThreeButStillReports) {
     EXPECT_TRUE(f.contains("error"));
     EXPECT_FALSE(f.contains("volume"));
 
-    const Run open = polyvol("volume --json --allow-open " + corpus("stl-models/missingFace.ascii.stl"));
+    const CliRun open = polyvol("volume --json --allow-open " + corpus("stl-models/missingFace.ascii.stl"));
     EXPECT_EQ(open.code, 0) << open.err;
     EXPECT_NE(open.err.find("origin"), std::string::npos) << open.err;
     EXPECT_TRUE(json::parse(open.out)[0].contains("warning"));
@@ -131,7 +137,7 @@ TEST(Cli, EveryInvalidCorpusFileExitsTwoWithItsName) {
     for (const json& e : m) {
         if (e["category"] != "invalid") continue;
         const std::string path = (kCorpus / e["path"].get<std::string>()).string();
-        const Run r = polyvol("volume --json '" + path + "'");
+        const CliRun r = polyvol("volume --json '" + path + "'");
         EXPECT_EQ(r.code, 2) << path;
         const std::string name = fs::path(path).filename().string();
         EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
@@ -144,7 +150,7 @@ TEST(Cli, EveryInvalidCorpusFileExitsTwoWithItsName) {
 }
 
 TEST(Cli, SeveralFilesReportEachAndExitWithTheHighestCode) {
-    const Run r = polyvol("volume --json " + corpus("stl-models/unitCube.ascii.stl") + " " +
+    const CliRun r = polyvol("volume --json " + corpus("stl-models/unitCube.ascii.stl") + " " +
                           corpus("stl-models/missingFace.ascii.stl") + " " + corpus("stl-models/empty.stl") + " " +
                           corpus("libcgal-demo/tetrahedron.off"));
     EXPECT_EQ(r.code, 3);
@@ -157,21 +163,21 @@ TEST(Cli, SeveralFilesReportEachAndExitWithTheHighestCode) {
 }
 
 TEST(Cli, ReadsStandardInput) {
-    const Run r = polyvol("volume --json - < " + corpus("stl-models/unitCube.ascii.stl"));
+    const CliRun r = polyvol("volume --json - < " + corpus("stl-models/unitCube.ascii.stl"));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(json::parse(r.out)[0]["volume"].get<double>(), 1.0);
 }
 
 TEST(Cli, MethodsAndDensity) {
     for (const char* method : {"cone", "prism", "pyramid", "vtnb"}) {
-        const Run r = polyvol(std::string("volume --json --method ") + method + " '" +
+        const CliRun r = polyvol(std::string("volume --json --method ") + method + " '" +
                               (kExamples / "l_bracket.obj").string() + "'");
         ASSERT_EQ(r.code, 0) << method << r.err;
         const json f = json::parse(r.out)[0];
         EXPECT_EQ(f["method"], method);
         EXPECT_NEAR(f["volume"].get<double>(), 12.0, 1e-13) << method;
     }
-    const Run d = polyvol("measure --json --density 2.5 '" + (kExamples / "l_bracket.obj").string() + "'");
+    const CliRun d = polyvol("measure --json --density 2.5 '" + (kExamples / "l_bracket.obj").string() + "'");
     ASSERT_EQ(d.code, 0);
     const json f = json::parse(d.out)[0];
     EXPECT_EQ(f["volume"].get<double>(), 12.0);
@@ -179,11 +185,11 @@ TEST(Cli, MethodsAndDensity) {
 }
 
 TEST(Cli, CheckReportsTopology) {
-    const Run r = polyvol("check " + corpus("stl-models/missingFace.ascii.stl"));
+    const CliRun r = polyvol("check " + corpus("stl-models/missingFace.ascii.stl"));
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("boundary"), std::string::npos);
     EXPECT_NE(r.out.find("closed 2-cycle  no"), std::string::npos) << r.out;
-    const Run j = polyvol("check --json " + corpus("libcgal-demo/tetrahedron.off"));
+    const CliRun j = polyvol("check --json " + corpus("libcgal-demo/tetrahedron.off"));
     ASSERT_EQ(j.code, 0);
     const json f = json::parse(j.out)[0];
     EXPECT_EQ(f["euler_characteristic"], 2);
@@ -193,7 +199,7 @@ TEST(Cli, CheckReportsTopology) {
 
 TEST(Cli, HelpAndUsageErrors) {
     for (const char* sub : {"", "volume ", "measure ", "check "}) {
-        const Run r = polyvol(std::string(sub) + "--help");
+        const CliRun r = polyvol(std::string(sub) + "--help");
         EXPECT_EQ(r.code, 0) << sub;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub << r.out;
     }
@@ -204,7 +210,7 @@ TEST(Cli, HelpAndUsageErrors) {
 }
 
 TEST(Cli, MissingFileExitsTwo) {
-    const Run r = polyvol("volume /nonexistent/file.stl");
+    const CliRun r = polyvol("volume /nonexistent/file.stl");
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("/nonexistent/file.stl"), std::string::npos) << r.err;
 }

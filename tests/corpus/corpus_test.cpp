@@ -224,6 +224,6 @@ TEST_P(Corpus, VtnbAreaAndLength) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Manifest, Corpus, ::testing::ValuesIn(entries()),
-                         [](const auto& info) { return test_name(info.param); });
+                         [](const auto& param_info) { return test_name(param_info.param); });
 
 }  // namespace
