@@ -35,13 +35,28 @@ namespace polyvol {
 //   vtnb    — Franklin's local-topology formula over vertex–edge–face
 //             incidences: V = -1/6 Σ (V·T)(V·N)(V·B), A = 1/2 Σ (V·T)(V·N),
 //             L = -1/2 Σ V·T (valid for closed, edge-manifold surfaces).
+// The method chooses only `volume` (and `mass`; for vtnb also `area` and
+// `edge_length`). Moments, centroid and inertia always come from the cone
+// rule's sums, with the chosen accuracy; the centroid divides by the cone
+// rule's volume. Only the cone rule's volume can be correctly rounded; the
+// others are computed in double and report volume_error_bound.
 enum class Method { cone, prism, pyramid, vtnb };
 
 // How the sums are formed:
 //   correctly_rounded — the exact value for the coordinates as given, rounded
-//                       once to the nearest double (volume; other quantities
-//                       carry a stated error bound).
-//   fast              — plain double arithmetic with an a-posteriori error bound.
+//                       once to the nearest double (ties to even): the cone
+//                       volume, mass, first and second moments, centroid and
+//                       both inertia tensors (each the exact rational function
+//                       of the exact sums, rounded once). Computed by a
+//                       double-double filter with a rigorous error bound, and
+//                       exactly (expansions / big integers) only when the
+//                       filter cannot decide the rounding (e.g. an exact zero).
+//   fast              — double arithmetic per triangle (the sum across blocks is
+//                       exact), with a rigorous a-posteriori error bound.
+// Meshes with a coordinate outside {0} ∪ [2^-160, 2^190] take an exact
+// big-integer path in both modes (then correctly rounded). Area and edge
+// length are computed in double in both modes (with bounds). Non-finite
+// coordinates on a used vertex give NaN results.
 enum class Accuracy { correctly_rounded, fast };
 
 std::string_view method_name(Method m);     // "cone", ...
@@ -57,18 +72,22 @@ struct MassProperties {
     double volume = 0;                    // signed (negative for an inside-out surface)
     double mass = 0;                      // density * volume
     std::array<double, 3> first_moments{};   // density * ∫x, ∫y, ∫z
-    std::array<double, 3> centroid{};        // first moments / mass; NaN when volume == 0
+    std::array<double, 3> centroid{};        // ∫x_i / V (cone rule; density cancels); NaN when V == 0 exactly
     std::array<double, 6> second_moments{};  // density * ∫x_i x_j about the origin {xx,yy,zz,xy,yz,zx}
-    std::array<double, 6> inertia_origin{};  // inertia tensor about the origin
-    std::array<double, 6> inertia_centroid{};// inertia tensor about the centroid
+    std::array<double, 6> inertia_origin{};  // density * inertia tensor about the origin
+    std::array<double, 6> inertia_centroid{};// density * inertia tensor about the centroid (NaN when V == 0)
     double area = 0;                      // Σ |(b-a)×(c-a)|/2 over fan triangles
     double edge_length = 0;               // each undirected edge (after welding bit-identical vertices) once
 
-    // Guarantees. An error bound of 0 together with volume_exact means the
-    // volume is the exact value rounded once (correctly rounded).
+    // Guarantees. volume_correctly_rounded (then volume_error_bound == 0)
+    // means the volume is the exact value rounded once to nearest.
     bool volume_correctly_rounded = false;
     double volume_error_bound = 0;        // absolute bound on |volume - exact|
-    double moments_relative_error = 0;    // bound on the error of moments, centroid, inertia, relative to the largest magnitude involved
+    // moments_correctly_rounded: mass (cone method), first/second moments,
+    // centroid and inertia are each the exact value rounded once to nearest;
+    // moments_relative_error is then 2^-53 (half an ulp, for results >= 2^-1022).
+    bool moments_correctly_rounded = false;
+    double moments_relative_error = 0;    // bound on the error of moments, centroid, inertia, relative to the largest magnitude in the same array (inf when the volume may be 0)
     double area_relative_error = 0;       // bound, relative
     double edge_length_relative_error = 0;// bound, relative
     Method method = Method::cone;

@@ -1,0 +1,764 @@
+// measure/cone.cpp — the cone rule's ten sums (see cone.hpp), filtered,
+// exact and big-integer.
+//
+// What is guaranteed, and why (u = 2^-53, safe coordinate range, see cone.hpp):
+//
+// Filtered, double-double. Per fan triangle (a, b, c):
+//   u = b - a, w = c - a are split exactly (two_sum) into uh + ul, wh + wl;
+//   det = a · (uh × wh) + a · (uh × wl + ul × wh + ul × wl)   (exact identity)
+//   The first product is formed with two_prod/two_sum (cross product as an
+//   unnormalised double-double, dot product with exact products of its high
+//   parts), the second (of relative size 2u) in plain double. With
+//     Perm = Σ_i |a_i| (|uh_j wh_k| + |uh_k wh_j|)   (a permanent, computed),
+//   the error of det is below 96 u² Perm (the low-order parts are a sum of
+//   nine terms of total magnitude <= 7.2 u Perm, summed with relative error
+//   < 8u; the cross products' own errors are <= 3.01 u² per unit of Perm).
+//   s_i = a_i + b_i + c_i is formed as a double-double with error
+//   <= 2.02 u² σ_i, σ_i = |a_i| + |b_i| + |c_i|; q_ij = a_i a_j + b_i b_j +
+//   c_i c_j + s_i s_j with error <= 65 u² Mq_ij, Mq_ij = |a_i a_j| + |b_i b_j|
+//   + |c_i c_j| + σ_i σ_j (seven low-order terms of total <= 9.1 u Mq summed
+//   in double, plus the errors of s); the products det·s_i and det·q_ij
+//   (two_prod of the high parts, cross terms in double) then have errors
+//   <= 128 u² Perm σ_i and <= 176 u² Perm Mq_ij.
+//   Terms are summed in 4 lanes of 8 per block (Ogita–Rump–Oishi Sum2: the
+//   high parts by two_sum, the errors and low parts in plain double), whose
+//   error is <= 2B (1.01 B + 3.1) u² Σ|term| <= 179 u² Σ magnitude for B = 8;
+//   each lane's (sum, error) pair goes exactly into a superaccumulator.
+//   With a factor 2 of safety the bound used is K u² Σ magnitude (1 + 2^-10),
+//   K = 512 (volume), 768 (first moments), 1024 (second moments); the factor
+//   (1 + 2^-10) covers the rounding of the magnitudes (sums of non-negative
+//   doubles, n < 2^40 terms).
+//   In the safe range no operation underflows or overflows: every value is a
+//   multiple of 2^-1060 (products of at most five coordinates, each a multiple
+//   of 2^-212) of magnitude below 2^1000, so the relative error model above
+//   holds without absolute terms.
+//
+// Filtered, fast (plain double): det = a · (fl(b-a) × fl(c-a)), s, q, and the
+// products in double: errors <= 7.1 u Perm, 10.1 u Perm σ_i, 17.1 u Perm Mq_ij;
+// lanes of 8 add <= γ_7 Σ|term|; K = 32, 40, 56 (times u, with the factor 2).
+//
+// Exact: det as a compressed expansion (det3_exact), s_i and q_ij as
+// expansions (Grow-Expansion + Compress), every product of components by
+// two_prod into the superaccumulator: exact in the safe range.
+//
+// Exact, as integers (tried first for each triangle): when each axis's three
+// coordinates are k 2^e with |k| < 2^60, the terms are products of 64-bit
+// integers in at most 384 bits, added to the superaccumulator at their
+// exponent (ExactSum::add_wide). See integer_triangle.
+//
+// GMP: coordinates as integers times 2^E0 (E0 the lowest set bit of any used
+// coordinate), sums in mpz: exact for any finite input.
+//
+// Cost (one core of a shared 2-core AMD EPYC with AVX2/FMA, 2M triangles
+// far from the origin, where a naive double loop takes 2.2-2.4 ns/triangle):
+// filtered volume 8 ns/triangle (+1 for the range check), fast volume 4.3,
+// all ten filtered sums 31 (double-double) / 15 (fast), exact volume 55,
+// all ten exact 148. Blocks are processed in parallel (TBB).
+#include "measure/cone.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/partitioner.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "exact/eft.hpp"
+#include "exact/expansion.hpp"
+
+namespace polyvol::measure::cone {
+namespace {
+
+using exact::ExactSum;
+using exact::two_prod_t;
+using exact::two_sum;
+
+constexpr int kLanes = 4;
+constexpr int kPerLane = 8;
+constexpr int kBlock = kLanes * kPerLane;  // triangles per block
+constexpr double kU = 0x1p-53;
+
+// Fan triangles of a block as structure of arrays: coordinate k of vertex v
+// of triangle i is c[3*v + k][i]; unused slots are zero (they add exactly 0).
+struct Block {
+    alignas(64) double c[9][kBlock];
+    int n = 0;
+};
+
+// Per-triangle terms of a block: term k of triangle i is h[k][i] + l[k][i],
+// with magnitude m[k][i] (the bound is K u² Σ m, see the top of this file).
+template <int N>
+struct Terms {
+    alignas(64) double h[N][kBlock];
+    alignas(64) double l[N][kBlock];
+    alignas(64) double m[N][kBlock];
+};
+
+// ---- per-triangle kernels (what is summed) -------------------------------
+
+// The ten terms of one triangle in double-double.
+template <bool kFma, int N>
+POLYVOL_INLINE void terms_dd(const Block& b, int i, Terms<N>& t) {
+    const double a[3] = {b.c[0][i], b.c[1][i], b.c[2][i]};
+    const double bb[3] = {b.c[3][i], b.c[4][i], b.c[5][i]};
+    const double cc[3] = {b.c[6][i], b.c[7][i], b.c[8][i]};
+    double uh[3], ul[3], wh[3], wl[3];
+    #pragma GCC unroll 6
+    for (int k = 0; k < 3; ++k) {
+        two_sum(bb[k], -a[k], uh[k], ul[k]);
+        two_sum(cc[k], -a[k], wh[k], wl[k]);
+    }
+    // Cross product uh × wh: component k = uh[j] wh[l] - uh[l] wh[j].
+    double ns[3], nl[3], pn[3], corr[3];
+    #pragma GCC unroll 6
+    for (int k = 0; k < 3; ++k) {
+        const int j = (k + 1) % 3, l = (k + 2) % 3;
+        double p1, e1, p2, e2, tt;
+        two_prod_t<kFma>(uh[j], wh[l], p1, e1);
+        two_prod_t<kFma>(uh[l], wh[j], p2, e2);
+        two_sum(p1, -p2, ns[k], tt);
+        nl[k] = (e1 - e2) + tt;
+        pn[k] = std::fabs(p1) + std::fabs(p2);
+        corr[k] = ((uh[j] * wl[l] - uh[l] * wl[j]) + (ul[j] * wh[l] - ul[l] * wh[j])) +
+                  (ul[j] * wl[l] - ul[l] * wl[j]);
+    }
+    double P[3], Q[3];
+    #pragma GCC unroll 6
+    for (int k = 0; k < 3; ++k) two_prod_t<kFma>(a[k], ns[k], P[k], Q[k]);
+    double h1, g1, h, g2;
+    two_sum(P[0], P[1], h1, g1);
+    two_sum(h1, P[2], h, g2);
+    const double lo = ((g1 + g2) + ((Q[0] + Q[1]) + Q[2])) +
+                      ((a[0] * nl[0] + a[1] * nl[1]) + a[2] * nl[2]) +
+                      ((a[0] * corr[0] + a[1] * corr[1]) + a[2] * corr[2]);
+    double dh, dl;
+    two_sum(h, lo, dh, dl);
+    const double perm = (std::fabs(a[0]) * pn[0] + std::fabs(a[1]) * pn[1]) + std::fabs(a[2]) * pn[2];
+    t.h[kV][i] = dh;
+    t.l[kV][i] = dl;
+    t.m[kV][i] = perm;
+    if constexpr (N > 1) {
+        const exact::DD d{dh, dl};
+        exact::DD s[3];
+        double sigma[3];
+        #pragma GCC unroll 6
+        for (int k = 0; k < 3; ++k) {
+            double tt, e, e2;
+            two_sum(a[k], bb[k], tt, e);
+            two_sum(tt, cc[k], s[k].hi, e2);
+            s[k].lo = e + e2;
+            sigma[k] = (std::fabs(a[k]) + std::fabs(bb[k])) + std::fabs(cc[k]);
+            const exact::DD m = exact::dd_mul<kFma>(d, s[k]);
+            t.h[kMx + k][i] = m.hi;
+            t.l[kMx + k][i] = m.lo;
+            t.m[kMx + k][i] = perm * sigma[k];
+        }
+        constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
+        #pragma GCC unroll 6
+        for (int k = 0; k < 6; ++k) {
+            const int x = I[k], y = J[k];
+            double pa, ea, pb, eb, pc, ec;
+            two_prod_t<kFma>(a[x], a[y], pa, ea);
+            two_prod_t<kFma>(bb[x], bb[y], pb, eb);
+            two_prod_t<kFma>(cc[x], cc[y], pc, ec);
+            const exact::DD ss = exact::dd_mul<kFma>(s[x], s[y]);
+            double q1, f1, q2, f2, q3, f3;
+            two_sum(pa, pb, q1, f1);
+            two_sum(q1, pc, q2, f2);
+            two_sum(q2, ss.hi, q3, f3);
+            const double qlo = ((f1 + f2) + f3) + (((ea + eb) + ec) + ss.lo);
+            exact::DD q;
+            two_sum(q3, qlo, q.hi, q.lo);
+            const double mq = ((std::fabs(pa) + std::fabs(pb)) + std::fabs(pc)) + sigma[x] * sigma[y];
+            const exact::DD m = exact::dd_mul<kFma>(d, q);
+            t.h[kSxx + k][i] = m.hi;
+            t.l[kSxx + k][i] = m.lo;
+            t.m[kSxx + k][i] = perm * mq;
+        }
+    }
+}
+
+// The ten terms of one triangle in plain double (Accuracy::fast).
+template <int N>
+POLYVOL_INLINE void terms_fast(const Block& b, int i, Terms<N>& t) {
+    const double a[3] = {b.c[0][i], b.c[1][i], b.c[2][i]};
+    const double bb[3] = {b.c[3][i], b.c[4][i], b.c[5][i]};
+    const double cc[3] = {b.c[6][i], b.c[7][i], b.c[8][i]};
+    const double u[3] = {bb[0] - a[0], bb[1] - a[1], bb[2] - a[2]};
+    const double w[3] = {cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]};
+    double det = 0, perm = 0;
+    #pragma GCC unroll 6
+    for (int k = 0; k < 3; ++k) {
+        const int j = (k + 1) % 3, l = (k + 2) % 3;
+        const double p1 = u[j] * w[l], p2 = u[l] * w[j];
+        det += a[k] * (p1 - p2);
+        perm += std::fabs(a[k]) * (std::fabs(p1) + std::fabs(p2));
+    }
+    t.h[kV][i] = det;
+    t.m[kV][i] = perm;
+    if constexpr (N > 1) {
+        double s[3], sigma[3];
+        #pragma GCC unroll 6
+        for (int k = 0; k < 3; ++k) {
+            s[k] = (a[k] + bb[k]) + cc[k];
+            sigma[k] = (std::fabs(a[k]) + std::fabs(bb[k])) + std::fabs(cc[k]);
+            t.h[kMx + k][i] = det * s[k];
+            t.m[kMx + k][i] = perm * sigma[k];
+        }
+        constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
+        #pragma GCC unroll 6
+        for (int k = 0; k < 6; ++k) {
+            const int x = I[k], y = J[k];
+            const double pa = a[x] * a[y], pb = bb[x] * bb[y], pc = cc[x] * cc[y];
+            const double q = ((pa + pb) + pc) + s[x] * s[y];
+            t.h[kSxx + k][i] = det * q;
+            t.m[kSxx + k][i] = perm * (((std::fabs(pa) + std::fabs(pb)) + std::fabs(pc)) + sigma[x] * sigma[y]);
+        }
+    }
+}
+
+template <bool kFma, bool kDD, int N>
+POLYVOL_INLINE void block_terms(const Block& b, Terms<N>& t) {
+    for (int i = 0; i < kBlock; ++i) {
+        if constexpr (kDD) {
+            terms_dd<kFma, N>(b, i, t);
+        } else {
+            terms_fast<N>(b, i, t);
+        }
+    }
+}
+
+// The same loops compiled for AVX2 + FMA (run-time dispatch) and for the
+// baseline (two_prod by Dekker's splitting, SSE2).
+#if defined(__x86_64__) && defined(__GNUC__)
+#define POLYVOL_HAVE_FMA_CLONE 1
+__attribute__((target("avx2,fma"))) void block_dd1_fma(const Block& b, Terms<1>& t) { block_terms<true, true, 1>(b, t); }
+__attribute__((target("avx2,fma"))) void block_dd10_fma(const Block& b, Terms<kSumCount>& t) {
+    block_terms<true, true, kSumCount>(b, t);
+}
+__attribute__((target("avx2,fma"))) void block_fast1_fma(const Block& b, Terms<1>& t) { block_terms<true, false, 1>(b, t); }
+__attribute__((target("avx2,fma"))) void block_fast10_fma(const Block& b, Terms<kSumCount>& t) {
+    block_terms<true, false, kSumCount>(b, t);
+}
+std::atomic<bool> g_force_baseline{false};
+bool cpu_has_fma() {
+    static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    return has && !g_force_baseline.load(std::memory_order_relaxed);
+}
+#else
+#define POLYVOL_HAVE_FMA_CLONE 0
+#endif
+void block_dd1(const Block& b, Terms<1>& t) { block_terms<false, true, 1>(b, t); }
+void block_dd10(const Block& b, Terms<kSumCount>& t) { block_terms<false, true, kSumCount>(b, t); }
+void block_fast1(const Block& b, Terms<1>& t) { block_terms<false, false, 1>(b, t); }
+void block_fast10(const Block& b, Terms<kSumCount>& t) { block_terms<false, false, kSumCount>(b, t); }
+
+template <int N>
+void compute_terms(const Block& b, Terms<N>& t, bool dd) {
+#if POLYVOL_HAVE_FMA_CLONE
+    if (cpu_has_fma()) {
+        if constexpr (N == 1) {
+            dd ? block_dd1_fma(b, t) : block_fast1_fma(b, t);
+        } else {
+            dd ? block_dd10_fma(b, t) : block_fast10_fma(b, t);
+        }
+        return;
+    }
+#endif
+    if constexpr (N == 1) {
+        dd ? block_dd1(b, t) : block_fast1(b, t);
+    } else {
+        dd ? block_dd10(b, t) : block_fast10(b, t);
+    }
+}
+
+// ---- how it is summed ----------------------------------------------------
+
+// Per task: the exact sums of the blocks' results, and of their magnitudes
+// (also exact, so that bounds do not depend on how the work was split).
+template <int N>
+struct Accumulator {
+    ExactSum sum[N];
+    ExactSum magnitude[N];
+    std::size_t triangles = 0;
+    void merge(const Accumulator& o) {
+        for (int k = 0; k < N; ++k) {
+            sum[k].merge(o.sum[k]);
+            magnitude[k].merge(o.magnitude[k]);
+        }
+        triangles += o.triangles;
+    }
+};
+
+// Sum2 in 4 lanes of 8, then each lane's (sum, error) into the superaccumulator.
+template <int N>
+void accumulate(const Terms<N>& t, bool dd, Accumulator<N>& acc) {
+    for (int k = 0; k < N; ++k) {
+        double s[kLanes] = {}, e[kLanes] = {}, m[kLanes] = {};
+        if (dd) {
+            for (int r = 0; r < kPerLane; ++r) {
+                for (int j = 0; j < kLanes; ++j) {
+                    const int i = r * kLanes + j;
+                    double ns, ne;
+                    two_sum(s[j], t.h[k][i], ns, ne);
+                    s[j] = ns;
+                    e[j] += ne + t.l[k][i];
+                    m[j] += t.m[k][i];
+                }
+            }
+        } else {
+            for (int r = 0; r < kPerLane; ++r) {
+                for (int j = 0; j < kLanes; ++j) {
+                    const int i = r * kLanes + j;
+                    s[j] += t.h[k][i];
+                    m[j] += t.m[k][i];
+                }
+            }
+        }
+        for (int j = 0; j < kLanes; ++j) {
+            acc.sum[k].add(s[j]);
+            if (dd) acc.sum[k].add(e[j]);
+        }
+        acc.magnitude[k].add((m[0] + m[1]) + (m[2] + m[3]));
+    }
+}
+
+// ---- walking the fan triangles --------------------------------------------
+
+// Calls fn(block) for blocks of up to kBlock fan triangles of faces
+// [f0, f1) (all-triangle meshes: triangles [f0, f1)).
+template <class Fn>
+void for_each_block(const MeshView& mesh, std::size_t f0, std::size_t f1, Fn&& fn) {
+    Block b;
+    const double* pos = mesh.positions.data();
+    const uint32_t* idx = mesh.indices.data();
+    auto put = [&](uint32_t va, uint32_t vb, uint32_t vc) {
+        const double* pa = pos + 3 * std::size_t{va};
+        const double* pb = pos + 3 * std::size_t{vb};
+        const double* pc = pos + 3 * std::size_t{vc};
+        for (int k = 0; k < 3; ++k) {
+            b.c[k][b.n] = pa[k];
+            b.c[3 + k][b.n] = pb[k];
+            b.c[6 + k][b.n] = pc[k];
+        }
+        if (++b.n == kBlock) {
+            fn(b);
+            b.n = 0;
+        }
+    };
+    if (mesh.all_triangles()) {
+        for (std::size_t f = f0; f < f1; ++f) put(idx[3 * f], idx[3 * f + 1], idx[3 * f + 2]);
+    } else {
+        const uint32_t* off = mesh.face_offsets.data();
+        for (std::size_t f = f0; f < f1; ++f) {
+            const uint32_t begin = off[f], end = off[f + 1];
+            for (uint32_t i = begin + 1; i + 1 < end; ++i) put(idx[begin], idx[i], idx[i + 1]);
+        }
+    }
+    if (b.n > 0) {
+        for (int r = 0; r < 9; ++r)
+            for (int i = b.n; i < kBlock; ++i) b.c[r][i] = 0;
+        fn(b);
+    }
+}
+
+// Faces per parallel task (at most). The simple partitioner halves ranges
+// down to this size, so the blocks (and hence the rounding inside them) do
+// not depend on scheduling: results are reproducible bit for bit, and the
+// reduction itself is exact.
+constexpr std::size_t kGrain = 8192;
+
+// Acc: default-constructible, with merge(const Acc&) and a triangles count.
+template <class Acc, class PerBlock>
+Acc reduce_blocks(const MeshView& mesh, PerBlock per_block) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, mesh.face_count(), kGrain), Acc{},
+        [&](const tbb::blocked_range<std::size_t>& r, Acc acc) {
+            for_each_block(mesh, r.begin(), r.end(), [&](const Block& b) {
+                acc.triangles += static_cast<std::size_t>(b.n);
+                per_block(b, acc);
+            });
+            return acc;
+        },
+        [](Acc x, const Acc& y) {
+            x.merge(y);
+            return x;
+        },
+        tbb::simple_partitioner());
+}
+
+template <int N>
+ConeSums filtered_impl(const MeshView& mesh, bool dd) {
+    const Accumulator<N> acc = reduce_blocks<Accumulator<N>>(mesh, [dd](const Block& b, Accumulator<N>& a) {
+        Terms<N> t;
+        compute_terms<N>(b, t, dd);
+        accumulate<N>(t, dd, a);
+    });
+    ConeSums out;
+    out.count = N;
+    out.triangles = acc.triangles;
+    for (int k = 0; k < N; ++k) {
+        out.sum[k] = acc.sum[k];
+        const double K = k == kV ? (dd ? 512 : 32) : (k <= kMz ? (dd ? 768 : 40) : (dd ? 1024 : 56));
+        const double unit = dd ? kU * kU : kU;
+        const double mag = acc.magnitude[k].round();
+        // + 2^-1060 covers the rounding of a bound in the subnormal range (any
+        // error is a multiple of 2^-1060 in the safe range).
+        out.bound[k] = mag > 0 ? K * unit * mag * (1 + 0x1p-10) + 0x1p-1060 : 0.0;
+    }
+    return out;
+}
+
+// ---- exact terms as integers ------------------------------------------------
+
+__extension__ typedef unsigned __int128 u128;
+__extension__ typedef __int128 i128;
+
+constexpr int kLimbs = 6;
+
+// acc += (negative ? -x : x); x has n limbs (magnitude), acc two's complement.
+POLYVOL_INLINE void wide_add(uint64_t* acc, const uint64_t* x, int n, bool negative) {
+    if (!negative) {
+        u128 c = 0;
+        for (int i = 0; i < kLimbs; ++i) {
+            c += static_cast<u128>(acc[i]) + (i < n ? x[i] : 0);
+            acc[i] = static_cast<uint64_t>(c);
+            c >>= 64;
+        }
+    } else {
+        uint64_t borrow = 0;
+        for (int i = 0; i < kLimbs; ++i) {
+            const u128 t = static_cast<u128>(acc[i]) - (i < n ? x[i] : 0) - borrow;
+            acc[i] = static_cast<uint64_t>(t);
+            borrow = static_cast<uint64_t>(t >> 64) != 0 ? 1 : 0;
+        }
+    }
+}
+
+// out[0 .. nx+ny) = x * y (magnitudes).
+POLYVOL_INLINE void wide_mul(const uint64_t* x, int nx, const uint64_t* y, int ny, uint64_t* out) {
+    for (int i = 0; i < nx + ny; ++i) out[i] = 0;
+    for (int i = 0; i < nx; ++i) {
+        u128 c = 0;
+        for (int j = 0; j < ny; ++j) {
+            c += static_cast<u128>(x[i]) * y[j] + out[i + j];
+            out[i + j] = static_cast<uint64_t>(c);
+            c >>= 64;
+        }
+        out[i + ny] = static_cast<uint64_t>(c);
+    }
+}
+
+POLYVOL_INLINE void split_i128(i128 v, uint64_t* mag, bool& negative) {
+    negative = v < 0;
+    const u128 m = negative ? static_cast<u128>(0) - static_cast<u128>(v) : static_cast<u128>(v);
+    mag[0] = static_cast<uint64_t>(m);
+    mag[1] = static_cast<uint64_t>(m >> 64);
+}
+
+// Coordinate x = k 2^e with an integer k: the exponent of x's lowest set bit
+// and of its highest (x != 0, finite).
+POLYVOL_INLINE void bit_range(double x, int& lowest, int& highest) {
+    const uint64_t bits = std::bit_cast<uint64_t>(x);
+    const int ex = static_cast<int>((bits >> 52) & 0x7FF);
+    const uint64_t frac = bits & ((uint64_t{1} << 52) - 1);
+    const uint64_t mant = ex != 0 ? (frac | (uint64_t{1} << 52)) : frac;
+    const int e = (ex != 0 ? ex : 1) - 1075;  // x = mant 2^e
+    lowest = e + std::countr_zero(mant);
+    highest = e + 63 - std::countl_zero(mant);
+}
+
+// One triangle's exact terms as integers, when each axis's three
+// coordinates are k 2^e_axis with |k| < 2^60 (the usual case: a triangle's
+// coordinates share their leading exponents). det is then an integer times
+// 2^(ex+ey+ez), det s_i one times 2^(ex+ey+ez+e_i), det q_ij one times
+// 2^(ex+ey+ez+e_i+e_j) (det is trilinear with one coordinate of each axis
+// per term). Bounds: |det| < 2^183, |s| < 2^62, |q| < 2^125, |det q| < 2^308.
+// Returns false (nothing added) when some axis spans more than 60 bits.
+bool integer_triangle(const double* a, const double* b, const double* c, uint32_t mask, ExactSum* acc) {
+    int e[3];
+    for (int k = 0; k < 3; ++k) {
+        int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
+        for (double x : {a[k], b[k], c[k]}) {
+            if (x == 0) continue;
+            int l, h;
+            bit_range(x, l, h);
+            lo = std::min(lo, l);
+            hi = std::max(hi, h);
+        }
+        if (lo == std::numeric_limits<int>::max()) {
+            lo = 0;  // all three zero
+        } else if (hi + 1 - lo > 60) {
+            return false;
+        }
+        e[k] = lo;
+    }
+    int64_t A[3], B[3], C[3];
+    for (int k = 0; k < 3; ++k) {  // exact: |x 2^-e| < 2^60; 2^-e is a normal double in the safe range
+        const double scale = std::bit_cast<double>(static_cast<uint64_t>(1023 - e[k]) << 52);
+        A[k] = static_cast<int64_t>(a[k] * scale);
+        B[k] = static_cast<int64_t>(b[k] * scale);
+        C[k] = static_cast<int64_t>(c[k] * scale);
+    }
+    // det = Σ A_k (B_j C_l - B_l C_j), in a 4-limb two's complement.
+    uint64_t det_tc[kLimbs] = {};
+    for (int k = 0; k < 3; ++k) {
+        const int j = (k + 1) % 3, l = (k + 2) % 3;
+        const i128 x = static_cast<i128>(B[j]) * C[l] - static_cast<i128>(B[l]) * C[j];
+        uint64_t xm[2], am[1], p[3];
+        bool xn;
+        split_i128(x, xm, xn);
+        am[0] = A[k] < 0 ? static_cast<uint64_t>(0) - static_cast<uint64_t>(A[k]) : static_cast<uint64_t>(A[k]);
+        wide_mul(am, 1, xm, 2, p);
+        wide_add(det_tc, p, 3, xn != (A[k] < 0));
+    }
+    const bool dn = (det_tc[kLimbs - 1] >> 63) != 0;
+    uint64_t d[kLimbs] = {};
+    wide_add(d, det_tc, kLimbs, dn);  // |det|
+    if ((d[0] | d[1] | d[2]) == 0) return true;  // det == 0: every term is 0
+    const int ev = e[0] + e[1] + e[2];
+    if (mask & (1u << kV)) acc[kV].add_wide(d, 3, dn, ev);
+    int64_t s[3];
+    for (int k = 0; k < 3; ++k) s[k] = A[k] + B[k] + C[k];  // |s| < 2^62
+    for (int k = 0; k < 3; ++k) {
+        if (!(mask & (1u << (kMx + k)))) continue;
+        const uint64_t sm[1] = {s[k] < 0 ? static_cast<uint64_t>(0) - static_cast<uint64_t>(s[k])
+                                         : static_cast<uint64_t>(s[k])};
+        uint64_t p[4];
+        wide_mul(d, 3, sm, 1, p);
+        acc[kMx + k].add_wide(p, 4, dn != (s[k] < 0), ev + e[k]);
+    }
+    constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
+    for (int k = 0; k < 6; ++k) {
+        if (!(mask & (1u << (kSxx + k)))) continue;
+        const int x = I[k], y = J[k];
+        const i128 q = static_cast<i128>(A[x]) * A[y] + static_cast<i128>(B[x]) * B[y] +
+                       static_cast<i128>(C[x]) * C[y] + static_cast<i128>(s[x]) * s[y];  // |q| < 2^125
+        uint64_t qm[2], p[5];
+        bool qn;
+        split_i128(q, qm, qn);
+        wide_mul(d, 3, qm, 2, p);
+        acc[kSxx + k].add_wide(p, 5, dn != qn, ev + e[x] + e[y]);
+    }
+    return true;
+}
+
+// ---- exact terms ------------------------------------------------------------
+
+// Builds a compressed nonoverlapping expansion of the sum of n doubles.
+int expansion_of(const double* x, int n, double* h) {
+    int len = 0;
+    for (int i = 0; i < n; ++i) len = exact::grow_expansion(len, h, x[i], h);
+    return exact::compress(len, h, h);
+}
+
+template <bool kFma>
+POLYVOL_INLINE void add_product(const double* x, int nx, const double* y, int ny, ExactSum& acc) {
+    for (int i = 0; i < nx; ++i) {
+        for (int j = 0; j < ny; ++j) {
+            double p, e;
+            two_prod_t<kFma>(x[i], y[j], p, e);
+            acc.add(p);
+            acc.add(e);
+        }
+    }
+}
+
+template <bool kFma>
+void exact_block(const Block& b, uint32_t mask, ExactSum* acc) {
+    for (int i = 0; i < b.n; ++i) {
+        const double a[3] = {b.c[0][i], b.c[1][i], b.c[2][i]};
+        const double bb[3] = {b.c[3][i], b.c[4][i], b.c[5][i]};
+        const double cc[3] = {b.c[6][i], b.c[7][i], b.c[8][i]};
+        if (integer_triangle(a, bb, cc, mask, acc)) continue;
+        double d[exact::kDetTerms];
+        const int nd = exact::det3_exact<kFma>(a, bb, cc, d);
+        if (nd == 1 && d[0] == 0) continue;
+        if (mask & (1u << kV)) acc[kV].add(std::span<const double>(d, static_cast<std::size_t>(nd)));
+        if ((mask >> kMx) == 0) continue;
+        double s[3][3];
+        int ns[3];
+        for (int k = 0; k < 3; ++k) {
+            const double raw[3] = {a[k], bb[k], cc[k]};
+            ns[k] = expansion_of(raw, 3, s[k]);
+            if (mask & (1u << (kMx + k))) add_product<kFma>(d, nd, s[k], ns[k], acc[kMx + k]);
+        }
+        constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
+        for (int k = 0; k < 6; ++k) {
+            if (!(mask & (1u << (kSxx + k)))) continue;
+            const int x = I[k], y = J[k];
+            double raw[6 + 18];
+            int n = 0;
+            two_prod_t<kFma>(a[x], a[y], raw[0], raw[1]);
+            two_prod_t<kFma>(bb[x], bb[y], raw[2], raw[3]);
+            two_prod_t<kFma>(cc[x], cc[y], raw[4], raw[5]);
+            n = 6;
+            for (int p = 0; p < ns[x]; ++p)
+                for (int r = 0; r < ns[y]; ++r, n += 2) two_prod_t<kFma>(s[x][p], s[y][r], raw[n], raw[n + 1]);
+            double q[32];
+            const int nq = expansion_of(raw, n, q);
+            add_product<kFma>(d, nd, q, nq, acc[kSxx + k]);
+        }
+    }
+}
+
+#if POLYVOL_HAVE_FMA_CLONE
+__attribute__((target("avx2,fma"))) void exact_block_fma(const Block& b, uint32_t mask, ExactSum* acc) {
+    exact_block<true>(b, mask, acc);
+}
+#endif
+
+// ---- big integers -------------------------------------------------------------
+
+struct Mpz {
+    mpz_t z;
+    Mpz() { mpz_init(z); }
+    Mpz(const Mpz&) = delete;
+    Mpz& operator=(const Mpz&) = delete;
+    ~Mpz() { mpz_clear(z); }
+};
+
+// x = m 2^e with m an odd integer (x != 0, finite): returns e.
+int lowest_bit_exponent(double x) {
+    int e;
+    const double m = std::frexp(x, &e);  // x = m 2^e, 0.5 <= |m| < 1
+    auto mant = static_cast<uint64_t>(std::ldexp(std::fabs(m), 53));
+    return e - 53 + std::countr_zero(mant);
+}
+
+// z = x 2^-e0 (an integer: e0 <= lowest_bit_exponent(x)).
+void to_integer(double x, int e0, mpz_t z) {
+    if (x == 0) {
+        mpz_set_ui(z, 0);
+        return;
+    }
+    int e;
+    const double m = std::frexp(x, &e);
+    mpz_set_d(z, std::ldexp(m, 53));  // exact integer, |.| < 2^53
+    const int shift = e - 53 - e0;
+    if (shift >= 0) {
+        mpz_mul_2exp(z, z, static_cast<mp_bitcnt_t>(shift));
+    } else {
+        mpz_tdiv_q_2exp(z, z, static_cast<mp_bitcnt_t>(-shift));  // exact: low bits are zero
+    }
+}
+
+}  // namespace
+
+void force_baseline_kernels(bool on) {
+#if POLYVOL_HAVE_FMA_CLONE
+    g_force_baseline.store(on, std::memory_order_relaxed);
+#else
+    (void)on;
+#endif
+}
+
+Range coordinate_range(const MeshView& mesh) {
+    // One vectorisable pass: the extreme magnitudes (zeros ignored).
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    bool nan = false;
+    for (double x : mesh.positions) {
+        const double ax = std::fabs(x);
+        nan |= x != x;
+        hi = ax > hi ? ax : hi;
+        lo = (ax < lo && ax != 0) ? ax : lo;
+    }
+    if (nan || std::isinf(hi)) return Range::nonfinite;
+    if (hi > 0x1p190 || lo < 0x1p-160) return hi == 0 ? Range::safe : Range::unsafe;
+    return Range::safe;
+}
+
+ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision) {
+    const bool dd = precision == Precision::double_double;
+    return count == 1 ? filtered_impl<1>(mesh, dd) : filtered_impl<kSumCount>(mesh, dd);
+}
+
+void exact_sums(const MeshView& mesh, uint32_t mask, ConeSums& sums) {
+    const Accumulator<kSumCount> acc = reduce_blocks<Accumulator<kSumCount>>(mesh, [mask](const Block& b, Accumulator<kSumCount>& a) {
+#if POLYVOL_HAVE_FMA_CLONE
+        if (cpu_has_fma()) {
+            exact_block_fma(b, mask, a.sum);
+            return;
+        }
+#endif
+        exact_block<false>(b, mask, a.sum);
+    });
+    for (int k = 0; k < sums.count; ++k) {
+        if (mask & (1u << k)) {
+            sums.sum[k] = acc.sum[k];
+            sums.bound[k] = 0;
+        }
+    }
+}
+
+RationalSums gmp_sums(const MeshView& mesh, int count) {
+    RationalSums out;
+    // The common scale: the lowest set bit of any coordinate of a used vertex.
+    int e0 = std::numeric_limits<int>::max();
+    bool any = false;
+    for_each_block(mesh, 0, mesh.face_count(), [&](const Block& b) {
+        for (int r = 0; r < 9; ++r)
+            for (int i = 0; i < b.n; ++i) {
+                const double x = b.c[r][i];
+                if (!std::isfinite(x)) {
+                    out.ok = false;
+                } else if (x != 0) {
+                    e0 = std::min(e0, lowest_bit_exponent(x));
+                    any = true;
+                }
+            }
+    });
+    if (!out.ok || !any) return out;  // not finite, or every sum is 0
+
+    Mpz sums[kSumCount];
+    Mpz c[9], det, s[3], t1, t2, q;
+    for_each_block(mesh, 0, mesh.face_count(), [&](const Block& b) {
+        for (int i = 0; i < b.n; ++i) {
+            for (int r = 0; r < 9; ++r) to_integer(b.c[r][i], e0, c[r].z);
+            mpz_ptr A[3] = {c[0].z, c[1].z, c[2].z}, B[3] = {c[3].z, c[4].z, c[5].z},
+                    C[3] = {c[6].z, c[7].z, c[8].z};
+            mpz_set_ui(det.z, 0);
+            for (int k = 0; k < 3; ++k) {
+                const int j = (k + 1) % 3, l = (k + 2) % 3;
+                mpz_mul(t1.z, B[j], C[l]);
+                mpz_submul(t1.z, B[l], C[j]);
+                mpz_addmul(det.z, A[k], t1.z);
+            }
+            mpz_add(sums[kV].z, sums[kV].z, det.z);
+            if (count == 1) continue;
+            for (int k = 0; k < 3; ++k) {
+                mpz_add(s[k].z, A[k], B[k]);
+                mpz_add(s[k].z, s[k].z, C[k]);
+                mpz_addmul(sums[kMx + k].z, det.z, s[k].z);
+            }
+            constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
+            for (int k = 0; k < 6; ++k) {
+                const int x = I[k], y = J[k];
+                mpz_mul(q.z, A[x], A[y]);
+                mpz_addmul(q.z, B[x], B[y]);
+                mpz_addmul(q.z, C[x], C[y]);
+                mpz_addmul(q.z, s[x].z, s[y].z);
+                mpz_addmul(sums[kSxx + k].z, det.z, q.z);
+            }
+        }
+    });
+    for (int k = 0; k < count; ++k) {
+        const int degree = k == kV ? 3 : (k <= kMz ? 4 : 5);
+        mpq_ptr r = out.sum[k].get();
+        mpq_set_z(r, sums[k].z);
+        const long shift = static_cast<long>(degree) * e0;
+        if (shift >= 0) {
+            mpq_mul_2exp(r, r, static_cast<mp_bitcnt_t>(shift));
+        } else {
+            mpq_div_2exp(r, r, static_cast<mp_bitcnt_t>(-shift));
+        }
+    }
+    return out;
+}
+
+}  // namespace polyvol::measure::cone

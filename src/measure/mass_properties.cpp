@@ -1,0 +1,386 @@
+// measure/mass_properties.cpp — polyvol/measure.hpp: volume and mass
+// properties from the cone rule's sums (measure/cone.hpp), the other volume
+// formulas (measure/methods.hpp), and the guarantees reported with them.
+//
+// From sums to results. The ten sums are known as intervals: the exact sum
+// of the filtered approximations ± a rigorous bound (or a point when exact).
+// Every result is a rational function of the sums:
+//   V = ΣV/6, ∫x_i = ΣM_i/24, ∫x_i x_j = ΣS_ij/120, centroid_i = ΣM_i/(4 ΣV),
+//   central second moment c_ij = ΣS_ij/120 - ΣM_i ΣM_j / (96 ΣV)
+//   (the parallel axis theorem, here in exact rational interval arithmetic:
+//   no cancellation error), inertia xx = c_yy + c_zz, xy = -c_xy, ...
+// evaluated in exact rational interval arithmetic (GMP), a few dozen
+// operations per mesh. For Accuracy::correctly_rounded a result is decided
+// when both ends of its interval round to the same double; the sums that an
+// undecided result depends on are then recomputed exactly (their interval
+// becomes a point) and the results re-evaluated: every result is the exact
+// value rounded once. For Accuracy::fast the results are the point values
+// and the error bounds are the intervals' half-widths (rounded up).
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "exact/rational.hpp"
+#include "measure/cone.hpp"
+#include "measure/methods.hpp"
+#include "polyvol/measure.hpp"
+
+namespace polyvol {
+namespace {
+
+using exact::Rational;
+using namespace measure::cone;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A closed interval of rationals; unbounded when it came from a division by
+// an interval containing 0.
+struct Interval {
+    Rational lo, hi;
+    bool bounded = true;
+};
+
+Interval point(const Rational& x) { return {x, x, true}; }
+
+Interval operator+(const Interval& a, const Interval& b) {
+    return {a.lo + b.lo, a.hi + b.hi, a.bounded && b.bounded};
+}
+Interval operator-(const Interval& a, const Interval& b) {
+    return {a.lo - b.hi, a.hi - b.lo, a.bounded && b.bounded};
+}
+Interval operator-(const Interval& a) { return {-a.hi, -a.lo, a.bounded}; }
+Interval operator*(const Interval& a, const Interval& b) {
+    const Rational p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+    Interval r{p[0], p[0], a.bounded && b.bounded};
+    for (const Rational& x : p) {
+        if (x < r.lo) r.lo = x;
+        if (r.hi < x) r.hi = x;
+    }
+    return r;
+}
+Interval operator/(const Interval& a, const Interval& b) {
+    if (b.lo.sign() <= 0 && b.hi.sign() >= 0) return {Rational(), Rational(), false};
+    const Rational one(1L);
+    return a * Interval{one / b.hi, one / b.lo, b.bounded};
+}
+Interval operator*(const Interval& a, const Rational& c) { return a * point(c); }
+
+// One result: its interval and the sums it depends on (a bit mask).
+struct Result {
+    Interval iv;
+    uint32_t deps = 0;
+    bool nan = false;  // exactly undefined (centroid of a zero volume)
+};
+
+enum ResultIndex : int {
+    kVolume = 0,
+    kMass,
+    kFirst,                 // 3
+    kCentroid = kFirst + 3,  // 3
+    kSecond = kCentroid + 3,  // 6
+    kInertiaOrigin = kSecond + 6,
+    kInertiaCentroid = kInertiaOrigin + 6,
+    kResultCount = kInertiaCentroid + 6
+};
+
+constexpr uint32_t bit(int k) { return 1u << k; }
+
+// The results as intervals from the sums' intervals (count == 1: volume and
+// mass only). density: a finite density (mass, moments and inertia scale).
+std::vector<Result> evaluate(const std::array<Interval, kSumCount>& s, int count, const Rational& density) {
+    std::vector<Result> r(count == 1 ? 2 : kResultCount);
+    const Rational sixth(1L, 6), r24(1L, 24), r120(1L, 120);
+    r[kVolume] = {s[kV] * sixth, bit(kV)};
+    r[kMass] = {s[kV] * sixth * density, bit(kV)};
+    if (count == 1) return r;
+    const bool v_zero = s[kV].lo.sign() == 0 && s[kV].hi.sign() == 0;
+    const Interval four_v = s[kV] * Rational(4L);
+    const Interval v96 = s[kV] * Rational(96L);
+    for (int i = 0; i < 3; ++i) {
+        r[kFirst + i] = {s[kMx + i] * r24 * density, bit(kMx + i)};
+        if (v_zero) {
+            r[kCentroid + i] = {point(Rational()), bit(kV), true};
+        } else {
+            r[kCentroid + i] = {s[kMx + i] / four_v, bit(kMx + i) | bit(kV)};
+        }
+    }
+    Interval second[6];
+    for (int k = 0; k < 6; ++k) {
+        second[k] = s[kSxx + k] * r120;
+        r[kSecond + k] = {second[k] * density, bit(kSxx + k)};
+    }
+    // Inertia from second moments {xx,yy,zz,xy,yz,zx}.
+    constexpr int A[3] = {1, 0, 0}, B[3] = {2, 2, 1};
+    for (int k = 0; k < 3; ++k) {
+        r[kInertiaOrigin + k] = {(second[A[k]] + second[B[k]]) * density, bit(kSxx + A[k]) | bit(kSxx + B[k])};
+        r[kInertiaOrigin + 3 + k] = {-second[3 + k] * density, bit(kSxx + 3 + k)};
+    }
+    // Central second moments c_ij = S_ij/120 - M_i M_j / (96 ΣV).
+    constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
+    Interval central[6];
+    uint32_t central_deps[6];
+    for (int k = 0; k < 6; ++k) {
+        const int i = I[k], j = J[k];
+        if (!v_zero) central[k] = second[k] - (s[kMx + i] * s[kMx + j]) / v96;
+        central_deps[k] = bit(kSxx + k) | bit(kMx + i) | bit(kMx + j) | bit(kV);
+    }
+    for (int k = 0; k < 3; ++k) {
+        if (v_zero) {
+            r[kInertiaCentroid + k] = {point(Rational()), bit(kV), true};
+            r[kInertiaCentroid + 3 + k] = {point(Rational()), bit(kV), true};
+            continue;
+        }
+        r[kInertiaCentroid + k] = {(central[A[k]] + central[B[k]]) * density, central_deps[A[k]] | central_deps[B[k]]};
+        r[kInertiaCentroid + 3 + k] = {-central[3 + k] * density, central_deps[3 + k]};
+    }
+    return r;
+}
+
+// The nearest double to a result, when both ends of its interval agree.
+std::optional<double> decided(const Result& r) {
+    if (r.nan) return kNaN;
+    if (!r.iv.bounded) return std::nullopt;
+    const double lo = r.iv.lo.to_double();
+    const double hi = r.iv.hi.to_double();
+    if (std::bit_cast<uint64_t>(lo) != std::bit_cast<uint64_t>(hi)) return std::nullopt;
+    return lo;
+}
+
+// An upper bound (a double) on max(|x - lo|, |hi - x|).
+double error_bound(const Result& r, double x) {
+    if (r.nan) return 0;
+    if (!r.iv.bounded || !std::isfinite(x)) return kInf;
+    const Rational rx(x);
+    const Rational d1 = rx - r.iv.lo, d2 = r.iv.hi - rx;
+    const Rational& d = d1 < d2 ? d2 : d1;
+    double e = d.to_double();
+    if (Rational(e) < d) e = std::nextafter(e, kInf);
+    return e;
+}
+
+// The cone rule's results with their guarantees.
+struct ConeResults {
+    std::vector<double> value;
+    std::vector<double> bound;  // absolute error bounds (0 when correctly rounded)
+    bool correctly_rounded = false;
+};
+
+// Volume only, without GMP: round((sum ± bound) / 6) with the superaccumulator.
+std::optional<double> volume_decided(const ConeSums& sums) {
+    if (sums.bound[kV] == 0) return sums.sum[kV].round_div(6);
+    exact::ExactSum lo = sums.sum[kV], hi = sums.sum[kV];
+    lo.add(-sums.bound[kV]);
+    hi.add(sums.bound[kV]);
+    const double a = lo.round_div(6), b = hi.round_div(6);
+    if (std::bit_cast<uint64_t>(a) != std::bit_cast<uint64_t>(b)) return std::nullopt;
+    return a;
+}
+
+ConeResults cone_results(const MeshView& mesh, int count, Accuracy accuracy, double density) {
+    if (count == 1 && accuracy == Accuracy::correctly_rounded && density == 1 &&
+        coordinate_range(mesh) == Range::safe) {
+        // The common signed_volume call: no rationals needed.
+        ConeSums sums = filtered_sums(mesh, 1, Precision::double_double);
+        std::optional<double> v = volume_decided(sums);
+        if (!v) {
+            exact_sums(mesh, bit(kV), sums);
+            v = volume_decided(sums);
+        }
+        ConeResults out;
+        out.value = {*v, *v};
+        out.bound = {0.0, 0.0};
+        out.correctly_rounded = true;
+        return out;
+    }
+    const bool finite_density = std::isfinite(density);
+    const Rational rho(finite_density ? density : 1.0);
+    const int results = count == 1 ? 2 : kResultCount;
+    ConeResults out;
+    out.value.assign(static_cast<std::size_t>(results), 0.0);
+    out.bound.assign(static_cast<std::size_t>(results), 0.0);
+
+    std::array<Interval, kSumCount> iv;
+    auto finish = [&](const std::vector<Result>& res, bool cr) {
+        for (int k = 0; k < results; ++k) {
+            const auto d = decided(res[k]);
+            out.value[k] = d ? *d : kNaN;
+        }
+        out.correctly_rounded = cr;
+    };
+
+    const Range range = coordinate_range(mesh);
+    if (range != Range::safe) {
+        // Outside the range where expansions are exact: big integers.
+        RationalSums rs = gmp_sums(mesh, count);
+        if (!rs.ok) {
+            out.value.assign(static_cast<std::size_t>(results), kNaN);
+            out.bound.assign(static_cast<std::size_t>(results), kNaN);
+            return out;
+        }
+        for (int k = 0; k < count; ++k) iv[k] = point(rs.sum[k]);
+        finish(evaluate(iv, count, rho), true);
+    } else {
+        const bool fast = accuracy == Accuracy::fast;
+        ConeSums sums = filtered_sums(mesh, count, fast ? Precision::fast : Precision::double_double);
+        auto intervals = [&](bool with_bounds) {
+            for (int k = 0; k < count; ++k) {
+                const Rational c(sums.sum[k]);
+                if (with_bounds && sums.bound[k] > 0) {
+                    const Rational e(sums.bound[k]);
+                    iv[k] = {c - e, c + e, true};
+                } else {
+                    iv[k] = point(c);
+                }
+            }
+        };
+        intervals(true);
+        std::vector<Result> res = evaluate(iv, count, rho);
+        if (fast) {
+            intervals(false);
+            const std::vector<Result> pt = evaluate(iv, count, rho);
+            for (int k = 0; k < results; ++k) {
+                const auto d = decided(pt[k]);
+                out.value[k] = d ? *d : kNaN;  // a point: always decided (or NaN)
+                out.bound[k] = error_bound(res[k], out.value[k]);
+            }
+        } else {
+            uint32_t need = 0;
+            for (int k = 0; k < results; ++k)
+                if (!decided(res[k])) need |= res[k].deps;
+            if (need != 0) {
+                exact_sums(mesh, need, sums);
+                intervals(true);
+                res = evaluate(iv, count, rho);
+            }
+            finish(res, true);
+        }
+    }
+    if (!finite_density) {
+        // density NaN or ±inf: scale in double (no exactness to keep).
+        for (int k = 0; k < results; ++k) {
+            const bool scaled = k == kMass || (k >= kFirst && k < kCentroid) || k >= kSecond;
+            if (scaled) out.value[k] *= density;
+        }
+    }
+    return out;
+}
+
+double relative(const ConeResults& r, int first, int n) {
+    double err = 0, mag = 0;
+    for (int k = first; k < first + n; ++k) {
+        err = std::max(err, r.bound[k]);
+        mag = std::max(mag, std::fabs(r.value[k]));
+    }
+    if (err == 0) return 0;
+    if (!(mag > 0)) return kInf;
+    const double q = err / mag;
+    return std::nextafter(q, kInf);  // err/mag rounded up
+}
+
+double relative_bound(const measure::SumWithBound& s) {
+    if (s.error_bound == 0) return 0;
+    if (s.value == 0) return kInf;
+    return std::nextafter(s.error_bound / std::fabs(s.value), kInf);
+}
+
+}  // namespace
+
+std::string_view method_name(Method m) {
+    switch (m) {
+        case Method::cone: return "cone";
+        case Method::prism: return "prism";
+        case Method::pyramid: return "pyramid";
+        case Method::vtnb: return "vtnb";
+    }
+    return "?";
+}
+
+std::string_view accuracy_name(Accuracy a) {
+    switch (a) {
+        case Accuracy::correctly_rounded: return "correctly-rounded";
+        case Accuracy::fast: return "fast";
+    }
+    return "?";
+}
+
+std::array<double, 6> inertia_from_second_moments(const std::array<double, 6>& m) {
+    return {m[1] + m[2], m[0] + m[2], m[0] + m[1], -m[3], -m[4], -m[5]};
+}
+
+MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& options) {
+    MassProperties p;
+    p.method = options.method;
+    p.accuracy = options.accuracy;
+    const ConeResults c = cone_results(mesh, kSumCount, options.accuracy, options.density);
+    auto copy = [&](auto& dst, int first) {
+        for (std::size_t i = 0; i < dst.size(); ++i) dst[i] = c.value[static_cast<std::size_t>(first) + i];
+    };
+    copy(p.first_moments, kFirst);
+    copy(p.centroid, kCentroid);
+    copy(p.second_moments, kSecond);
+    copy(p.inertia_origin, kInertiaOrigin);
+    copy(p.inertia_centroid, kInertiaCentroid);
+    p.moments_correctly_rounded = c.correctly_rounded;
+    if (c.correctly_rounded) {
+        p.moments_relative_error = 0x1p-53;
+    } else {
+        p.moments_relative_error = std::max({relative(c, kFirst, 3), relative(c, kCentroid, 3), relative(c, kSecond, 6),
+                                             relative(c, kInertiaOrigin, 6), relative(c, kInertiaCentroid, 6)});
+    }
+
+    measure::SumWithBound area{}, length{};
+    switch (options.method) {
+        case Method::cone:
+            p.volume = c.value[kVolume];
+            p.mass = c.value[kMass];
+            p.volume_correctly_rounded = c.correctly_rounded;
+            p.volume_error_bound = c.bound[kVolume];
+            break;
+        case Method::prism:
+        case Method::pyramid: {
+            const measure::SumWithBound v =
+                options.method == Method::prism ? measure::prism_volume(mesh) : measure::pyramid_volume(mesh);
+            p.volume = v.value;
+            p.volume_error_bound = v.error_bound;
+            break;
+        }
+        case Method::vtnb: {
+            const measure::VtnbResult v = measure::vtnb_measures(mesh);
+            p.volume = v.volume.value;
+            p.volume_error_bound = v.volume.error_bound;
+            area = v.area;
+            length = v.length;
+            break;
+        }
+    }
+    if (options.method != Method::cone) p.mass = options.density * p.volume;
+    if (options.method != Method::vtnb) {
+        area = measure::fan_area(mesh);
+        length = measure::welded_edge_length(mesh);
+    }
+    p.area = area.value;
+    p.area_relative_error = relative_bound(area);
+    p.edge_length = length.value;
+    p.edge_length_relative_error = relative_bound(length);
+    return p;
+}
+
+double signed_volume(const MeshView& mesh, Method method, Accuracy accuracy) {
+    switch (method) {
+        case Method::cone: return cone_results(mesh, 1, accuracy, 1.0).value[kVolume];
+        case Method::prism: return measure::prism_volume(mesh).value;
+        case Method::pyramid: return measure::pyramid_volume(mesh).value;
+        case Method::vtnb: return measure::vtnb_measures(mesh).volume.value;
+    }
+    return kNaN;
+}
+
+double surface_area(const MeshView& mesh) { return measure::fan_area(mesh).value; }
+
+double total_edge_length(const MeshView& mesh) { return measure::welded_edge_length(mesh).value; }
+
+}  // namespace polyvol
