@@ -166,6 +166,7 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["second_moments"] = matrix3(m.second_moments);
         j["inertia"] = matrix3(m.inertia_centroid);
         j["inertia_origin"] = matrix3(m.inertia_origin);
+        j["moments_accuracy"] = m.moments_correctly_rounded ? "correctly-rounded" : "error-bound";
         j["moments_relative_error"] = m.moments_relative_error;
         j["edge_length"] = number(m.edge_length);
         j["edge_length_relative_error"] = m.edge_length_relative_error;
@@ -202,7 +203,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     out << "method: " << method_name(request.measure.method) << ". ";
     if (any_rounded) out << "Volumes without ± are correctly rounded: the exact volume of the coordinates as read, rounded once. ";
     if (any_bound) out << "± is a rigorous absolute error bound. ";
-    out << "Area and centroid carry relative error bounds (see `polyvol measure`).\n";
+    out << "Area carries a relative error bound; centroid and inertia: see `polyvol measure`.\n";
     return out.str();
 }
 
@@ -232,8 +233,11 @@ std::string measure_report(const FileResult& r, const Request& request) {
     tensor("second moments about the origin (density × ∫ x_i x_j):", m.second_moments);
     tensor("inertia tensor about the origin:", m.inertia_origin);
     tensor("inertia tensor about the centroid:", m.inertia_centroid);
-    out << "  centroid, moments and inertia: relative error <= " << shortest(m.moments_relative_error)
-        << " (of the largest magnitude involved)\n";
+    if (m.moments_correctly_rounded)
+        out << "  centroid, moments and inertia: correctly rounded (exact values of the coordinates as read, rounded once)\n";
+    else
+        out << "  centroid, moments and inertia: relative error <= " << shortest(m.moments_relative_error)
+            << " (of the largest magnitude in the same quantity)\n";
     if (!r.warning.empty()) out << "  warning: " << r.warning << "\n";
     return out.str();
 }
