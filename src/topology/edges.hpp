@@ -1,0 +1,44 @@
+// The undirected edge table of the polygon mesh.
+//
+// Each polygon side (a, b) between different welded vertices is one use of
+// the undirected edge {a, b}, in direction a->b; a side whose ends weld
+// together is a degenerate use and belongs to no edge. Fan diagonals are not
+// edges. The table is built by a counting sort on the smaller end followed by
+// a sort of each (small) bucket on the larger end: O(n) expected, O(n log n)
+// worst case, no per-face allocation.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "topology/union_find.hpp"
+#include "topology/welded.hpp"
+
+namespace polyvol::topology {
+
+enum EdgeFlag : uint8_t {
+    kBoundary = 1,     // used once
+    kNonmanifold = 2,  // used more than twice
+    kMisoriented = 4,  // used twice in the same direction
+    kUnbalanced = 8,   // uses a->b != uses b->a
+};
+
+struct EdgeTable {
+    std::vector<uint32_t> polygon;  // polygon[e]: one polygon using edge e
+    std::vector<uint8_t> flags;     // flags[e]: EdgeFlag bits
+    std::size_t degenerate_uses = 0;
+    // The first unbalanced edge in (min, max) id order, from the end it
+    // leaves more often to the other (dense ids).
+    std::optional<std::array<uint32_t, 2>> unbalanced_example;
+
+    std::size_t size() const { return flags.size(); }
+};
+
+// Builds the table and unites, in polygon_sets (one element per polygon),
+// the polygons that share an edge.
+EdgeTable build_edge_table(const WeldedMesh& mesh, UnionFind& polygon_sets);
+
+}  // namespace polyvol::topology

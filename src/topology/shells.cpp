@@ -1,0 +1,204 @@
+#include "topology/shells.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "exact/eft.hpp"
+#include "exact/exact_sum.hpp"
+#include "exact/expansion.hpp"
+
+namespace polyvol::topology {
+
+ShellLabels label_shells(UnionFind& polygon_sets) {
+    ShellLabels s;
+    const std::size_t n = polygon_sets.size();
+    s.of_polygon.assign(n, kNone);
+    // Roots get their label when first met, so shells are numbered by first polygon.
+    std::vector<uint32_t> label_of_root(n, kNone);
+    for (uint32_t p = 0; p < n; ++p) {
+        uint32_t& label = label_of_root[polygon_sets.find(p)];
+        if (label == kNone) label = static_cast<uint32_t>(s.count++);
+        s.of_polygon[p] = label;
+    }
+    return s;
+}
+
+ShellTriangles gather_shell_triangles(const WeldedMesh& m, const ShellLabels& shells) {
+    ShellTriangles t;
+    t.offsets.assign(shells.count + 1, 0);
+    m.for_each_polygon([&](uint32_t p, std::span<const uint32_t> c) {
+        t.offsets[shells.of_polygon[p] + 1] += c.size() - 2;
+    });
+    for (std::size_t s = 0; s < shells.count; ++s) t.offsets[s + 1] += t.offsets[s];
+    t.tris.resize(t.offsets[shells.count]);
+    std::vector<std::size_t> fill(t.offsets.begin(), t.offsets.end() - 1);
+    m.for_each_polygon([&](uint32_t p, std::span<const uint32_t> c) {
+        std::size_t& at = fill[shells.of_polygon[p]];
+        const uint32_t a = m.id[c[0]];
+        for (std::size_t i = 1; i + 1 < c.size(); ++i) t.tris[at++] = {a, m.id[c[i]], m.id[c[i + 1]]};
+    });
+    return t;
+}
+
+namespace {
+
+// Nonmanifold and misoriented edges per shell (for the genus only).
+struct EdgeDefects {
+    std::vector<std::size_t> nonmanifold, misoriented;
+};
+
+EdgeDefects count_shell_edges(const ShellLabels& shells, const EdgeTable& edges,
+                              std::vector<ShellGeometry>& out) {
+    EdgeDefects d{std::vector<std::size_t>(shells.count), std::vector<std::size_t>(shells.count)};
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+        const uint32_t s = shells.of_polygon[edges.polygon[e]];
+        const uint8_t f = edges.flags[e];
+        Shell& r = out[s].report;
+        ++r.edges;
+        r.boundary_edges += (f & kBoundary) != 0;
+        r.unbalanced_edges += (f & kUnbalanced) != 0;
+        d.nonmanifold[s] += (f & kNonmanifold) != 0;
+        d.misoriented[s] += (f & kMisoriented) != 0;
+    }
+    return d;
+}
+
+// Every coordinate is 0 or 2^-160 <= |x| <= 2^190: then the error-free
+// products of det3_exact neither underflow nor overflow (as in measure's
+// cone rule), so the expansion is exact.
+bool in_safe_range(const double* p) {
+    for (int k = 0; k < 3; ++k) {
+        const double x = std::abs(p[k]);
+        if (!(x == 0 || (x >= 0x1p-160 && x <= 0x1p+190))) return false;
+    }
+    return true;
+}
+
+// Σ det(a, b, c) / 6 over the triangles, rounded once: each det as an exact
+// expansion (Shewchuk), summed in a superaccumulator. About the origin,
+// which for a balanced shell gives the origin-free value too.
+// Large shells are split into blocks summed in parallel; the merge is exact,
+// so the result does not depend on the split.
+double exact_cone_volume(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris) {
+    const auto add_block = [&](std::size_t begin, std::size_t end, exact::ExactSum& sum) {
+        double det[exact::kDetTerms];
+        for (std::size_t i = begin; i < end; ++i) {
+            const auto& t = tris[i];
+            const int n = exact::det3_exact<false>(m.position(t[0]), m.position(t[1]), m.position(t[2]), det);
+            for (int k = 0; k < n; ++k) sum.add(det[k]);
+        }
+    };
+    constexpr std::size_t kBlock = 1 << 14;
+    if (tris.size() <= kBlock) {
+        exact::ExactSum sum;
+        add_block(0, tris.size(), sum);
+        return sum.round_div(6);
+    }
+    const exact::ExactSum total = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, tris.size(), kBlock), exact::ExactSum{},
+        [&](const tbb::blocked_range<std::size_t>& r, exact::ExactSum sum) {
+            add_block(r.begin(), r.end(), sum);
+            return sum;
+        },
+        [](exact::ExactSum a, const exact::ExactSum& b) {
+            a.merge(b);
+            return a;
+        });
+    return total.round_div(6);
+}
+
+// Fallback outside the safe range: Σ det(a - o, b - o, c - o) / 6 in doubles,
+// compensated (Neumaier), o one of the shell's vertices when it is balanced
+// (same value, fewer cancellations), the origin otherwise.
+double compensated_cone_volume(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris,
+                               bool balanced) {
+    static constexpr double kOrigin[3] = {0, 0, 0};
+    const double* o = balanced && !tris.empty() ? m.position(tris[0][0]) : kOrigin;
+    double sum = 0, compensation = 0;
+    for (const auto& t : tris) {
+        const double *a = m.position(t[0]), *b = m.position(t[1]), *c = m.position(t[2]);
+        const double ax = a[0] - o[0], ay = a[1] - o[1], az = a[2] - o[2];
+        const double bx = b[0] - o[0], by = b[1] - o[1], bz = b[2] - o[2];
+        const double cx = c[0] - o[0], cy = c[1] - o[1], cz = c[2] - o[2];
+        const double det = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
+        double s, e;
+        exact::two_sum(sum, det, s, e);
+        sum = s;
+        compensation += e;
+    }
+    return (sum + compensation) / 6;
+}
+
+// Twice the squared area of triangle (a, b, c), up to a factor: |(b-a)×(c-a)|².
+double cross_norm2(const double* a, const double* b, const double* c) {
+    const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+    const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+    const double x = uy * vz - uz * vy, y = uz * vx - ux * vz, z = ux * vy - uy * vx;
+    return x * x + y * y + z * z;
+}
+
+// Volume, probe point and bounding box of a shell from its triangles.
+void measure_geometry(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris,
+                      ShellGeometry& g) {
+    double largest = -1;
+    bool safe = true;
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    g.box = {inf, inf, inf, -inf, -inf, -inf};
+    for (const auto& t : tris) {
+        const double *a = m.position(t[0]), *b = m.position(t[1]), *c = m.position(t[2]);
+        const double n2 = cross_norm2(a, b, c);
+        if (n2 > largest) {
+            largest = n2;
+            for (int k = 0; k < 3; ++k) g.probe[k] = (a[k] + b[k] + c[k]) / 3.0;
+        }
+        for (const double* p : {a, b, c}) {
+            safe = safe && in_safe_range(p);
+            for (int k = 0; k < 3; ++k) {
+                g.box[k] = std::min(g.box[k], p[k]);
+                g.box[k + 3] = std::max(g.box[k + 3], p[k]);
+            }
+        }
+    }
+    g.report.signed_volume = safe ? exact_cone_volume(m, tris) : compensated_cone_volume(m, tris, g.balanced());
+}
+
+}  // namespace
+
+std::vector<ShellGeometry> measure_shells(const WeldedMesh& m, const ShellLabels& shells,
+                                          const EdgeTable& edges, const ShellTriangles& triangles) {
+    std::vector<ShellGeometry> out(shells.count);
+    for (uint32_t s : shells.of_polygon) ++out[s].report.faces;
+    const EdgeDefects defects = count_shell_edges(shells, edges, out);
+
+    const auto shell_tris = [&](std::size_t s) {
+        return std::span(triangles.tris).subspan(triangles.offsets[s], triangles.offsets[s + 1] - triangles.offsets[s]);
+    };
+    // Distinct vertices per shell: stamp each vertex with the last shell that counted it.
+    std::vector<uint32_t> stamp(m.referenced(), kNone);
+    for (std::size_t s = 0; s < shells.count; ++s) {
+        const auto tris = shell_tris(s);
+        Shell& r = out[s].report;
+        for (const auto& t : tris)
+            for (uint32_t v : t)
+                if (stamp[v] != s) {
+                    stamp[v] = static_cast<uint32_t>(s);
+                    ++r.vertices;
+                }
+        r.euler_characteristic = static_cast<int64_t>(r.vertices) - static_cast<int64_t>(r.edges) +
+                                 static_cast<int64_t>(r.faces);
+        // χ = 2 - 2g for a closed orientable surface; an even χ <= 2 is
+        // required too (pinched vertices can break it).
+        if (r.boundary_edges == 0 && defects.nonmanifold[s] == 0 && defects.misoriented[s] == 0 &&
+            r.euler_characteristic <= 2 && r.euler_characteristic % 2 == 0)
+            r.genus = (2 - r.euler_characteristic) / 2;
+    }
+    tbb::parallel_for(std::size_t{0}, shells.count, [&](std::size_t s) { measure_geometry(m, shell_tris(s), out[s]); });
+    return out;
+}
+
+}  // namespace polyvol::topology
