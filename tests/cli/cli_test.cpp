@@ -189,7 +189,7 @@ TEST(Cli, CheckReportsTopology) {
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("boundary"), std::string::npos);
     EXPECT_NE(r.out.find("closed 2-cycle  no"), std::string::npos) << r.out;
-    const CliRun j = polyvol("check --json " + corpus("libcgal-demo/tetrahedron.off"));
+    const CliRun j = polyvol("check --json " + corpus("stl-models/tetrahedron.min.ascii.stl"));
     ASSERT_EQ(j.code, 0);
     const json f = json::parse(j.out)[0];
     EXPECT_EQ(f["euler_characteristic"], 2);

@@ -76,6 +76,7 @@ struct Scale {
 };
 Scale scale_of(const json& e) {
     Scale s;
+    if (!e.contains("bbox") || e["bbox"].is_null()) return s;  // no vertices
     double d2 = 0;
     for (int k = 0; k < 3; ++k) {
         const double lo = e["bbox"]["min"][k].get<double>(), hi = e["bbox"]["max"][k].get<double>();
@@ -152,12 +153,23 @@ TEST_P(Corpus, TopologyMatches) {
 // The default volume is the exact volume rounded once: bit for bit the
 // manifest's correctly rounded double (the cone-rule sum about the origin is
 // well defined for open surfaces too, so they are compared as well).
+//
+// Exception: 3MF build or component transforms. The manifest applies them in
+// exact rational arithmetic, so its vertices are not doubles; polyvol rounds
+// each transformed coordinate to a double (as every reader that stores
+// doubles must) and is then exact for those coordinates, which may differ from
+// the manifest's figure in the last bits.
 TEST_P(Corpus, VolumeIsCorrectlyRounded) {
     if (invalid() || !entry().value("exact", false)) GTEST_SKIP();
     const auto& l = load(GetParam());
     const auto m = polyvol::mass_properties(l.mesh.mesh.view());
     EXPECT_TRUE(m.volume_correctly_rounded);
-    EXPECT_EQ(m.volume, ref(entry()["volume"])) << std::hexfloat << m.volume << " vs " << ref(entry()["volume"]);
+    const double want = ref(entry()["volume"]);
+    const auto& quirks = entry()["quirks"];
+    if (std::find(quirks.begin(), quirks.end(), "3mf-transform") != quirks.end())
+        EXPECT_NEAR(m.volume, want, 1e-14 * std::abs(want));
+    else
+        EXPECT_EQ(m.volume, want) << std::hexfloat << m.volume << " vs " << want;
 }
 
 TEST_P(Corpus, MassPropertiesMatch) {
@@ -172,7 +184,7 @@ TEST_P(Corpus, MassPropertiesMatch) {
         const char* ax = kSym[k];
         const double key = ref(e["first_moments"][std::string(1, ax[0])]);
         EXPECT_NEAR(m.first_moments[k], key, kRel * std::max(std::abs(key), aV * s.reach)) << "first moment " << k;
-        if (V != 0) {
+        if (V != 0 && e.contains("centroid") && !e["centroid"].is_null()) {
             const double c = ref(e["centroid"][std::string(1, ax[0])]);
             EXPECT_NEAR(m.centroid[k], c, kRel * std::max(std::abs(c), s.reach)) << "centroid " << k;
         }
@@ -187,7 +199,7 @@ TEST_P(Corpus, MassPropertiesMatch) {
     };
     tensor("second_moments", m.second_moments);
     tensor("inertia_origin", m.inertia_origin);
-    if (V != 0) tensor("inertia_centroid", m.inertia_centroid);
+    if (V != 0 && e.contains("inertia_centroid") && !e["inertia_centroid"].is_null()) tensor("inertia_centroid", m.inertia_centroid);
     const double area = e["surface_area"]["double"].get<double>();
     EXPECT_NEAR(m.area, area, kRel * area);
     const double len = e["edge_length"]["double"].get<double>();
