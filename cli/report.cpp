@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <sstream>
 
 namespace polyvol::cli {
@@ -178,27 +179,30 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
 }
 
 std::string volume_table(const std::vector<FileResult>& results, const Request& request) {
+    // Column widths from the content, so long paths keep the columns aligned.
+    std::size_t name_w = 4;
+    for (const auto& r : results) name_w = std::max(name_w, r.file.size());
+    auto pad = [](std::string s, std::size_t w) {
+        if (s.size() < w) s.append(w - s.size(), ' ');
+        return s;
+    };
     std::ostringstream out;
-    char line[512];
-    std::snprintf(line, sizeof line, "%-32s %10s  %-24s %-24s %s\n", "file", "triangles", "volume", "area", "centroid");
-    out << line;
+    out << pad("file", name_w) << "  " << pad("triangles", 10) << "  " << pad("volume", 24) << "  " << pad("area", 24)
+        << "  centroid\n";
     bool any_rounded = false, any_bound = false;
     for (const auto& r : results) {
-        std::string name = r.file;
+        const std::string tris = r.loaded ? std::to_string(r.loaded->mesh.view().triangle_count()) : "-";
+        out << pad(r.file, name_w) << "  " << pad(tris, 10) << "  ";
         if (!r.mass) {
-            std::snprintf(line, sizeof line, "%-32s %10s  %s\n", name.c_str(),
-                          r.loaded ? std::to_string(r.loaded->mesh.view().triangle_count()).c_str() : "-",
-                          r.exit_code == Exit::invalid ? "open surface: not measured" : "unreadable");
-            out << line;
+            out << (r.exit_code == Exit::invalid ? "open surface: not measured" : "unreadable") << "\n";
             continue;
         }
         const auto& m = *r.mass;
         (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
-        std::string vol = shortest(m.volume) + (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
-        std::snprintf(line, sizeof line, "%-32s %10zu  %-24s %-24s %s\n", name.c_str(),
-                      r.loaded->mesh.view().triangle_count(), vol.c_str(), shortest(m.area).c_str(),
-                      point_text(m.centroid[0], m.centroid[1], m.centroid[2]).c_str());
-        out << line;
+        const std::string vol =
+            shortest(m.volume) + (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
+        out << pad(vol, 24) << "  " << pad(shortest(m.area), 24) << "  "
+            << point_text(m.centroid[0], m.centroid[1], m.centroid[2]) << "\n";
     }
     out << "method: " << method_name(request.measure.method) << ". ";
     if (any_rounded) out << "Volumes without ± are correctly rounded: the exact volume of the coordinates as read, rounded once. ";
