@@ -10,6 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "common/shapes.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace polyvol::fixtures {
@@ -67,18 +68,7 @@ inline Mesh box(double x0, double y0, double z0, double x1, double y1, double z1
     return m;
 }
 
-inline Mesh unit_tetrahedron() {
-    Mesh m;
-    m.add_vertex(0, 0, 0);
-    m.add_vertex(1, 0, 0);
-    m.add_vertex(0, 1, 0);
-    m.add_vertex(0, 0, 1);
-    m.add_triangle(0, 2, 1);
-    m.add_triangle(0, 1, 3);
-    m.add_triangle(0, 3, 2);
-    m.add_triangle(1, 2, 3);
-    return m;
-}
+inline Mesh unit_tetrahedron() { return polyvol::test::unit_tetrahedron(); }
 
 // |x| + |y| + |z| <= r, outward.
 inline Mesh octahedron(double r = 1) {

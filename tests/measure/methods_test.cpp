@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "measure/methods.hpp"
+#include "common/shapes.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/mesh.hpp"
 
@@ -58,18 +59,7 @@ Mesh box(double x0, double y0, double z0, double x1, double y1, double z1, bool 
     return m;
 }
 
-Mesh unit_tetrahedron() {
-    Mesh m;
-    m.add_vertex(0, 0, 0);
-    m.add_vertex(1, 0, 0);
-    m.add_vertex(0, 1, 0);
-    m.add_vertex(0, 0, 1);
-    m.add_triangle(0, 2, 1);
-    m.add_triangle(0, 1, 3);
-    m.add_triangle(0, 3, 2);
-    m.add_triangle(1, 2, 3);
-    return m;
-}
+Mesh unit_tetrahedron() { return polyvol::test::unit_tetrahedron(); }
 
 // Every polygon replaced by its fan (v0, vi, vi+1), explicitly.
 Mesh explicit_fan(const Mesh& in) {

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "common/shapes.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace polyvol::test {
@@ -47,18 +48,7 @@ inline Mesh box(std::array<double, 3> lo, std::array<double, 3> hi, BoxOptions o
 inline Mesh unit_cube(BoxOptions o = {}) { return box({0, 0, 0}, {1, 1, 1}, o); }
 
 // The corner tetrahedron (0, e1, e2, e3), outward: volume 1/6.
-inline Mesh tetrahedron() {
-    Mesh m;
-    m.add_vertex(0, 0, 0);
-    m.add_vertex(1, 0, 0);
-    m.add_vertex(0, 1, 0);
-    m.add_vertex(0, 0, 1);
-    m.add_triangle(0, 2, 1);
-    m.add_triangle(0, 1, 3);
-    m.add_triangle(0, 3, 2);
-    m.add_triangle(1, 2, 3);
-    return m;
-}
+inline Mesh tetrahedron() { return polyvol::test::unit_tetrahedron(); }
 
 // A torus of n × k quads (major radius 2, minor 0.5), outward.
 inline Mesh quad_torus(uint32_t n, uint32_t k) {
