@@ -1,0 +1,429 @@
+// `polyvol grid MESH... [--cells N | --cell-size H | --dims NX NY NZ]
+//   [--bounds XMIN YMIN ZMIN XMAX YMAX ZMAX] [-o OUT] [--json] ...`
+//
+// Reads every mesh (exit 2 if one is unreadable), checks each is a closed
+// 2-cycle (exit 3 otherwise), builds the grid, computes the volume of each
+// body in every cell (polyvol/grid.hpp) and writes what was asked:
+//   OUT.npy   float64, shape (nx, ny, nz), or (bodies, nx, ny, nz); index
+//             [i][j][k] is the cell whose lower corner is (x_i, y_j, z_k)
+//   OUT.vti   VTK ImageData with a cell array per body (+ the union's with
+//             several bodies); OUT.vtr the same as RectilinearGrid (any planes)
+//   OUT.json  the summary only (as --json prints it)
+// Progress goes to stderr when the computation takes more than a second.
+#include "grid_command.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "polyvol/grid.hpp"
+#include "polyvol/grid_io.hpp"
+#include "polyvol/io.hpp"
+#include "polyvol/measure.hpp"
+#include "polyvol/topology.hpp"
+#include "report.hpp"
+
+namespace polyvol::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string extension(const std::string& path) {
+    std::string e = std::filesystem::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return e;
+}
+
+int usage_error(const std::string& message) {
+    std::cerr << "polyvol grid: " << message << "\n";
+    return Exit::usage;
+}
+
+bool strictly_increasing(const std::vector<double>& c) {
+    if (c.size() < 2) return false;
+    for (std::size_t i = 0; i < c.size(); ++i)
+        if (!std::isfinite(c[i]) || (i > 0 && !(c[i] > c[i - 1]))) return false;
+    return true;
+}
+
+struct Slice {
+    int axis = 2;
+    double value = 0;
+    bool given = false;
+};
+
+std::optional<Slice> parse_slice(const std::string& s) {
+    Slice r;
+    if (s.empty()) return r;
+    if (s.size() < 3 || s[1] != '=' || (s[0] != 'x' && s[0] != 'y' && s[0] != 'z')) return std::nullopt;
+    r.axis = s[0] - 'x';
+    try {
+        std::size_t used = 0;
+        r.value = std::stod(s.substr(2), &used);
+        if (used != s.size() - 2 || !std::isfinite(r.value)) return std::nullopt;
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+    r.given = true;
+    return r;
+}
+
+// The picture of one slice: fractions of the union (or the single body) in
+// the cells the plane passes through. Columns run along the first remaining
+// axis, rows along the second, upwards.
+void write_slice_png(const std::string& path, const GridAxes& g, std::span<const double> occupancy, Slice slice) {
+    const std::vector<double>* axes[3] = {&g.x, &g.y, &g.z};
+    const std::vector<double>& c = *axes[slice.axis];
+    if (!slice.given) slice.value = 0.5 * (c.front() + c.back());
+    std::size_t s = static_cast<std::size_t>(std::upper_bound(c.begin(), c.end(), slice.value) - c.begin());
+    s = s == 0 ? 0 : std::min(s - 1, c.size() - 2);
+    const int a = slice.axis == 0 ? 1 : 0, b = slice.axis == 2 ? 1 : 2;  // picture's column and row axes
+    const std::size_t n[3] = {g.nx(), g.ny(), g.nz()};
+    const std::size_t w = n[a], h = n[b];
+    std::vector<double> field(w * h);
+    for (std::size_t row = 0; row < h; ++row)
+        for (std::size_t col = 0; col < w; ++col) {
+            std::size_t idx[3];
+            idx[slice.axis] = s;
+            idx[a] = col;
+            idx[b] = h - 1 - row;
+            field[row * w + col] = occupancy[g.cell(idx[0], idx[1], idx[2])] / g.cell_volume(idx[0], idx[1], idx[2]);
+        }
+    const int scale = static_cast<int>(std::clamp<std::size_t>(768 / std::max(w, h), 1, 16));
+    write_png_field(path, field, w, h, 0.0, 1.0, scale);
+}
+
+nlohmann::json summary_json(const std::vector<std::string>& files, const std::vector<double>& mesh_volumes,
+                            const GridAxes& g, const GridSummary& s, double seconds) {
+    nlohmann::json j;
+    nlohmann::json grid{{"dims", {g.nx(), g.ny(), g.nz()}}, {"bounds", g.bounds()}, {"cells", g.cell_count()},
+                        {"uniform", g.uniform()}};
+    if (g.uniform())
+        grid["spacing"] = {(g.x.back() - g.x.front()) / static_cast<double>(g.nx()),
+                           (g.y.back() - g.y.front()) / static_cast<double>(g.ny()),
+                           (g.z.back() - g.z.front()) / static_cast<double>(g.nz())};
+    j["grid"] = grid;
+    nlohmann::json bodies = nlohmann::json::array(), volumes = nlohmann::json::array();
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+        const GridBodySummary& body = s.bodies[b];
+        bodies.push_back({{"file", files[b]},
+                          {"triangles", body.triangles},
+                          {"volume", body.volume},
+                          {"mesh_volume", mesh_volumes[b]},
+                          {"pieces", body.pieces},
+                          {"full_cells", body.full_cells},
+                          {"empty_cells", body.empty_cells},
+                          {"cut_cells", body.cut_cells}});
+        volumes.push_back(body.volume);
+    }
+    j["bodies"] = bodies;
+    j["body_volumes"] = volumes;
+    j["union_volume"] = s.union_volume;
+    j["union_lower"] = s.union_lower;
+    j["union_upper"] = s.union_upper;
+    j["full_cells"] = s.full_cells;
+    j["empty_cells"] = s.empty_cells;
+    j["cut_cells"] = s.cut_cells;
+    j["contact_cells"] = s.contact_cells;
+    j["seconds"] = seconds;
+    return j;
+}
+
+std::string summary_text(const std::vector<std::string>& files, const std::vector<double>& mesh_volumes,
+                         const GridAxes& g, const GridSummary& s) {
+    std::ostringstream out;
+    const auto bb = g.bounds();
+    out << "grid " << g.nx() << " x " << g.ny() << " x " << g.nz() << " cells over [" << shortest(bb[0]) << ", "
+        << shortest(bb[3]) << "] x [" << shortest(bb[1]) << ", " << shortest(bb[4]) << "] x [" << shortest(bb[2])
+        << ", " << shortest(bb[5]) << "]";
+    if (g.uniform())
+        out << ", spacing " << shortest((g.x.back() - g.x.front()) / static_cast<double>(g.nx())) << " x "
+            << shortest((g.y.back() - g.y.front()) / static_cast<double>(g.ny())) << " x "
+            << shortest((g.z.back() - g.z.front()) / static_cast<double>(g.nz()));
+    out << "\n";
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+        const GridBodySummary& body = s.bodies[b];
+        out << files[b] << ": " << body.triangles << " triangles, " << body.pieces << " pieces; volume in the grid "
+            << shortest(body.volume) << " (mesh " << shortest(mesh_volumes[b]) << "); cells: " << body.full_cells
+            << " full, " << body.cut_cells << " cut, " << body.empty_cells << " empty\n";
+    }
+    if (s.bodies.size() > 1) {
+        out << "union: " << shortest(s.union_volume);
+        if (s.contact_cells > 0)
+            out << ", between " << shortest(s.union_lower) << " and " << shortest(s.union_upper) << " ("
+                << s.contact_cells << " contact cells, where surfaces of two or more bodies meet)";
+        else
+            out << " (exact: no cell holds the surfaces of two bodies)";
+        out << "\n";
+    }
+    out << "cells: " << s.full_cells << " full, " << s.cut_cells << " cut, " << s.contact_cells << " contact, "
+        << s.empty_cells << " empty\n";
+    return out.str();
+}
+
+}  // namespace
+
+CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
+    auto* cmd = app.add_subcommand(
+        "grid", "Exact volume of the solid(s) in every cell of a rectilinear grid (default: the bounding box "
+                "padded by one cell, 128 cubic cells along the longest side)");
+    cmd->add_option("meshes", a.files, "Closed meshes; several are several bodies (per-body volumes and their union)")
+        ->required();
+    auto* cells = cmd->add_option("--cells", a.cells, "Cells along the longest side, cubic cells")
+                      ->check(CLI::Range(3u, 1u << 20))
+                      ->capture_default_str();
+    auto* size = cmd->add_option("--cell-size", a.cell_size, "Cubic cells of this edge length")
+                     ->check(CLI::PositiveNumber);
+    auto* dims = cmd->add_option("--dims", a.dims, "Cells per axis: NX NY NZ")
+                     ->expected(3)
+                     ->check(CLI::Range(1u, 1u << 20));
+    cells->excludes(size)->excludes(dims);
+    size->excludes(dims);
+    cmd->add_option("--bounds", a.bounds, "Grid box XMIN YMIN ZMIN XMAX YMAX ZMAX (default: padded bounding box)")
+        ->expected(6);
+    cmd->add_option("--x-planes", a.x_planes, "Explicit x planes, comma-separated, increasing (non-uniform grids)")
+        ->delimiter(',');
+    cmd->add_option("--y-planes", a.y_planes, "Explicit y planes")->delimiter(',');
+    cmd->add_option("--z-planes", a.z_planes, "Explicit z planes")->delimiter(',');
+    cmd->add_option("-o,--output", a.out,
+                    "OUT.npy (float64 (nx,ny,nz), body axis first with several), OUT.vti (VTK ImageData, "
+                    "ParaView), OUT.vtr (VTK RectilinearGrid) or OUT.json (summary)");
+    cmd->add_flag("--json", a.json, "Print the summary as JSON on stdout");
+    cmd->add_flag("--fractions", a.fractions, "Write volume fractions (volume / cell volume) instead of volumes");
+    cmd->add_option("--centroids", a.centroids, "Also write each cell's centroid of the solid: FILE.npy, shape (..., 3)");
+    cmd->add_option("--union", a.union_out,
+                    "Also write the union's occupancy: FILE.npy, shape (3, nx, ny, nz): estimate, lower, upper");
+    cmd->add_option("--png", a.png, "Picture of one slice of the volume fractions (viridis)");
+    cmd->add_option("--slice", a.slice, "The slice for --png: x=VALUE, y=VALUE or z=VALUE (default: middle z)");
+    return cmd;
+}
+
+int run_grid_command(const GridArgs& a) {
+    const auto t_start = Clock::now();
+    // Everything that can be checked before reading.
+    const std::string out_ext = a.out.empty() ? "" : extension(a.out);
+    if (!a.out.empty() && out_ext != ".npy" && out_ext != ".vti" && out_ext != ".vtr" && out_ext != ".json")
+        return usage_error("-o needs a .npy, .vti, .vtr or .json file, not '" + a.out + "'");
+    if (!a.centroids.empty() && extension(a.centroids) != ".npy") return usage_error("--centroids needs a .npy file");
+    if (!a.union_out.empty() && extension(a.union_out) != ".npy") return usage_error("--union needs a .npy file");
+    const std::optional<Slice> slice = parse_slice(a.slice);
+    if (!slice) return usage_error("--slice takes x=VALUE, y=VALUE or z=VALUE, not '" + a.slice + "'");
+    if (!a.slice.empty() && a.png.empty()) return usage_error("--slice goes with --png");
+    if (!a.bounds.empty()) {
+        for (int k = 0; k < 3; ++k)
+            if (!(a.bounds[k] < a.bounds[k + 3]) || !std::isfinite(a.bounds[k]) || !std::isfinite(a.bounds[k + 3]))
+                return usage_error("--bounds needs XMIN YMIN ZMIN XMAX YMAX ZMAX with each min < max");
+    }
+    const std::vector<double>* planes[3] = {&a.x_planes, &a.y_planes, &a.z_planes};
+    for (int k = 0; k < 3; ++k)
+        if (!planes[k]->empty() && !strictly_increasing(*planes[k]))
+            return usage_error(std::string("--") + static_cast<char>('x' + k) +
+                         "-planes needs at least 2 finite, strictly increasing values");
+
+    // Read and check every mesh.
+    std::vector<LoadedMesh> meshes;
+    int code = Exit::ok;
+    for (const std::string& f : a.files) {
+        try {
+            meshes.push_back(read_mesh_file(f));
+        } catch (const ReadError& e) {
+            std::cerr << "polyvol: " << e.what() << "\n";
+            code = Exit::unreadable;
+        } catch (const std::bad_alloc&) {
+            std::cerr << "polyvol: " << f << ": out of memory while reading\n";
+            code = Exit::unreadable;
+        }
+    }
+    if (code != Exit::ok) return code;
+    std::vector<MeshView> views;
+    std::vector<double> mesh_volumes;
+    for (std::size_t b = 0; b < meshes.size(); ++b) {
+        const MeshView v = meshes[b].mesh.view();
+        const TopologyReport t = analyze_topology(v);
+        if (!t.closed_2_cycle) {
+            std::cerr << "polyvol: " << a.files[b] << ": not a closed surface: " << t.unbalanced_edges
+                      << " unbalanced edge" << (t.unbalanced_edges == 1 ? "" : "s")
+                      << " (used a different number of times in its two directions); its volume per cell "
+                         "is not defined\n";
+            code = Exit::invalid;
+        }
+        views.push_back(v);
+        mesh_volumes.push_back(signed_volume(v));
+    }
+    if (code != Exit::ok) return code;
+
+    // The grid.
+    GridAxes g;
+    try {
+        GridSpec spec;
+        if (a.dims.size() == 3)
+            spec.dims = {a.dims[0], a.dims[1], a.dims[2]};
+        else if (a.cell_size > 0)
+            spec.cell_size = a.cell_size;
+        else
+            spec.cells = a.cells;
+        if (a.bounds.size() == 6)
+            spec.bounds = std::array<double, 6>{a.bounds[0], a.bounds[1], a.bounds[2],
+                                                a.bounds[3], a.bounds[4], a.bounds[5]};
+        const bool all_planes = !a.x_planes.empty() && !a.y_planes.empty() && !a.z_planes.empty();
+        if (!all_planes) g = make_grid(views, spec);
+        if (!a.x_planes.empty()) g.x = a.x_planes;
+        if (!a.y_planes.empty()) g.y = a.y_planes;
+        if (!a.z_planes.empty()) g.z = a.z_planes;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "polyvol: " << e.what() << "\n";
+        return Exit::invalid;
+    }
+    if (out_ext == ".vti" && !g.uniform()) return usage_error("the grid is not uniform: write .vtr (RectilinearGrid) instead");
+    if (slice->given) {
+        const std::vector<double>& c = slice->axis == 0 ? g.x : (slice->axis == 1 ? g.y : g.z);
+        if (slice->value < c.front() || slice->value > c.back())
+            return usage_error("--slice " + a.slice + " lies outside the grid [" + shortest(c.front()) + ", " +
+                               shortest(c.back()) + "]");
+    }
+    const std::size_t cells = g.cell_count();
+    const std::size_t nb = views.size();
+    if (cells > (std::size_t{1} << 34)) return usage_error("too many cells (" + std::to_string(cells) + ")");
+
+    // Compute.
+    std::vector<double> volumes(nb * cells), moments, lower, upper, estimate;
+    std::vector<CellClass> cls;
+    GridOutput out{.volumes = volumes};
+    if (!a.centroids.empty()) {
+        moments.resize(3 * nb * cells);
+        out.first_moments = moments;
+    }
+    const bool want_union = nb > 1 && (!a.union_out.empty() || !a.png.empty() || out_ext == ".vti" || out_ext == ".vtr");
+    if (want_union || !a.union_out.empty()) {
+        lower.resize(cells);
+        upper.resize(cells);
+        estimate.resize(cells);
+        cls.resize(cells);
+        out.union_lower = lower;
+        out.union_upper = upper;
+        out.union_estimate = estimate;
+        out.cell_class = cls;
+    }
+    const auto t_grid = Clock::now();
+    auto last_print = t_grid;
+    bool printed = false;
+    GridOptions options;
+    options.progress = [&](double fraction) {
+        const auto now = Clock::now();
+        if (seconds_since(t_grid) < 1.0 || (fraction < 1 && std::chrono::duration<double>(now - last_print).count() < 0.25))
+            return;
+        last_print = now;
+        printed = true;
+        std::fprintf(stderr, "\rpolyvol grid: %3.0f%%", 100 * fraction);
+        std::fflush(stderr);
+    };
+    GridSummary summary;
+    try {
+        summary = grid_volumes(views, g, out, options);
+    } catch (const std::invalid_argument& e) {
+        if (printed) std::cerr << "\n";
+        std::cerr << "polyvol: " << e.what() << "\n";
+        return Exit::invalid;
+    }
+    if (printed) std::cerr << "\n";
+    const double seconds = seconds_since(t_start);
+
+    // Write.
+    auto per_cell = [&](std::vector<double>& v, std::size_t arrays) {
+        if (!a.fractions) return;
+        for (std::size_t i = 0; i < g.nx(); ++i)
+            for (std::size_t j = 0; j < g.ny(); ++j)
+                for (std::size_t k = 0; k < g.nz(); ++k) {
+                    const double cv = g.cell_volume(i, j, k);
+                    for (std::size_t b = 0; b < arrays; ++b) v[b * cells + g.cell(i, j, k)] /= cv;
+                }
+    };
+    const nlohmann::json summary_j = summary_json(a.files, mesh_volumes, g, summary, seconds);
+    if (seconds_since(t_start) > 1.0 && (!a.out.empty() || !a.png.empty() || !a.centroids.empty() ||
+                                          !a.union_out.empty()))
+        std::cerr << "polyvol grid: writing " << cells << " cells\n";
+    try {
+        if (!a.png.empty()) {
+            std::span<const double> occupancy = nb > 1 ? std::span<const double>(estimate)
+                                                       : std::span<const double>(volumes);
+            write_slice_png(a.png, g, occupancy, *slice);
+        }
+        if (!a.centroids.empty()) {
+            std::vector<double> c(moments.size());
+            for (std::size_t n = 0; n < nb * cells; ++n)
+                for (int k = 0; k < 3; ++k)
+                    c[3 * n + k] = volumes[n] != 0 ? moments[3 * n + k] / volumes[n]
+                                                   : std::numeric_limits<double>::quiet_NaN();
+            std::vector<std::size_t> shape;
+            if (nb > 1) shape.push_back(nb);
+            shape.insert(shape.end(), {g.nx(), g.ny(), g.nz(), 3});
+            write_npy(a.centroids, c, shape);
+        }
+        std::vector<double> union3;
+        if (!a.union_out.empty() || (want_union && (out_ext == ".vti" || out_ext == ".vtr"))) {
+            union3.resize(3 * cells);
+            std::copy(estimate.begin(), estimate.end(), union3.begin());
+            std::copy(lower.begin(), lower.end(), union3.begin() + static_cast<std::ptrdiff_t>(cells));
+            std::copy(upper.begin(), upper.end(), union3.begin() + static_cast<std::ptrdiff_t>(2 * cells));
+            per_cell(union3, 3);
+            if (!a.union_out.empty()) {
+                const std::size_t shape[4] = {3, g.nx(), g.ny(), g.nz()};
+                write_npy(a.union_out, union3, shape);
+            }
+        }
+        per_cell(volumes, nb);
+        if (out_ext == ".npy") {
+            std::vector<std::size_t> shape;
+            if (nb > 1) shape.push_back(nb);
+            shape.insert(shape.end(), {g.nx(), g.ny(), g.nz()});
+            write_npy(a.out, volumes, shape);
+        } else if (out_ext == ".vti" || out_ext == ".vtr") {
+            const std::string what = a.fractions ? "fraction" : "volume";
+            std::vector<std::string> names;
+            std::vector<CellArray> arrays;
+            for (std::size_t b = 0; b < nb; ++b) {
+                std::string name = what;
+                if (nb > 1) name += "_" + std::to_string(b) + "_" + std::filesystem::path(a.files[b]).stem().string();
+                arrays.push_back({name, std::span<const double>(volumes).subspan(b * cells, cells), 1});
+            }
+            std::vector<double> contact;
+            if (want_union) {
+                arrays.push_back({"union_" + what, std::span<const double>(union3).first(cells), 1});
+                arrays.push_back({"union_lower", std::span<const double>(union3).subspan(cells, cells), 1});
+                arrays.push_back({"union_upper", std::span<const double>(union3).subspan(2 * cells, cells), 1});
+                contact.resize(cells);
+                for (std::size_t c = 0; c < cells; ++c) contact[c] = static_cast<double>(cls[c]);
+                arrays.push_back({"cell_class", contact, 1});  // 0 empty, 1 full, 2 cut, 3 contact
+            }
+            if (out_ext == ".vti")
+                write_vti(a.out, g.x, g.y, g.z, arrays);
+            else
+                write_vtr(a.out, g.x, g.y, g.z, arrays);
+        } else if (out_ext == ".json") {
+            std::ofstream f(a.out);
+            f << summary_j.dump(2) << "\n";
+            if (!f) throw std::runtime_error(a.out + ": write failed");
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "polyvol: " << e.what() << "\n";
+        return Exit::usage;
+    }
+    if (a.json)
+        std::cout << summary_j.dump(2) << "\n";
+    else
+        std::cout << summary_text(a.files, mesh_volumes, g, summary);
+    return Exit::ok;
+}
+
+}  // namespace polyvol::cli

@@ -1,0 +1,35 @@
+// `polyvol grid`: the volume of one or several solids in every cell of a
+// rectilinear grid, written as .npy, .vti/.vtr or a JSON summary.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace polyvol::cli {
+
+struct GridArgs {
+    std::vector<std::string> files;
+    uint32_t cells = 128;
+    double cell_size = 0;
+    std::vector<uint32_t> dims;
+    std::vector<double> bounds;
+    std::vector<double> x_planes, y_planes, z_planes;
+    std::string out;
+    bool json = false;
+    bool fractions = false;
+    std::string centroids;
+    std::string union_out;
+    std::string png;
+    std::string slice;
+};
+
+// Registers the subcommand on app; its options fill args.
+CLI::App* add_grid_command(CLI::App& app, GridArgs& args);
+
+// Runs it; returns the exit code (0 ok, 1 usage, 2 unreadable mesh, 3 open
+// mesh or nothing to grid).
+int run_grid_command(const GridArgs& args);
+
+}  // namespace polyvol::cli

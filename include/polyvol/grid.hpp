@@ -1,0 +1,201 @@
+// polyvol/grid.hpp — the exact volume of one or many solids in every cell of
+// a rectilinear grid (volume-of-fluid initialisation, ore-body and reservoir
+// models, conservative voxelization).
+//
+// The grid. Cell (i, j, k) is the box [x[i], x[i+1]] × [y[j], y[j+1]] ×
+// [z[k], z[k+1]] of GridAxes; nx = x.size() - 1, ny, nz likewise. Every
+// per-cell array below is in C order with k fastest:
+//     cell(i, j, k) = (i * ny + j) * nz + k,     cells = nx * ny * nz
+// and, with several bodies, the body axis first:
+//     volumes[b * cells + cell(i, j, k)]
+//     first_moments[(b * cells + cell(i, j, k)) * 3 + a]   (a = 0, 1, 2: ∫x, ∫y, ∫z)
+// which is a NumPy array of shape (bodies, nx, ny, nz) (and (..., 3)) with no
+// copy. The solid may reach outside the grid: only its part inside counts.
+//
+// The method (see docs/grid.md). For the cell with floor z_k and height h_k,
+// the divergence theorem with F = (0, 0, z - z_k) gives
+//     V(i,j,k) = Q(i,j,k) + h_k * A_top(i,j,k),
+//     Q = Σ over the surface pieces in the cell of ∫ (z - z_k) n_z dA,
+//     A_top = Σ over the pieces in the cells above (same column) of P,  P = ∫ n_z dA,
+// so one pass clips every triangle into pieces, one per cell it crosses, and
+// scatters (P, Q) of each piece into its cell; a reverse prefix sum down each
+// column then gives every cell — cells without surface included, with no
+// flood fill. Cost O(triangles + pieces + cells), memory O(cells + triangles),
+// both passes parallel (oneTBB), results bit-identical for any thread count.
+//
+// What "exact up to rounding" means here:
+//   * The pieces meet exactly. A triangle is split by the x planes, then each
+//     part by the y planes, then by the z planes; every new vertex is the
+//     crossing of a plane with a straight segment — an edge of the input (or
+//     of the fan of a polygon face) or a cut line inside one triangle —
+//     computed in double from that segment's two end points taken in
+//     lexicographic order, with the plane's coordinate set exactly and the
+//     others clamped to the edge being split. Both triangles of an edge (and
+//     both sides of a cut line) therefore get bit-identical points, and the
+//     pieces of a closed mesh form a closed polyhedral surface S' whose
+//     vertices are within a few units in the last place of the exact
+//     crossings (at most three interpolations deep). Grid planes through
+//     vertices, edges and faces need no special case: a point on a plane
+//     belongs to both sides and is never interpolated.
+//   * Each cell's value is the volume of S' in that cell up to the rounding
+//     of its terms: P and Q of each piece are computed in double from
+//     cell-local coordinates (x - x_i, ...), every sum (per cell and down
+//     the column) is a double-double, and V = Q + h A is formed from those
+//     in double at the end. The error is a few units of 2^-53 times
+//     h_k Σ|P| + Σ|Q| over the pieces involved: about (number of surface
+//     sheets in the column above) × 2^-50 × cell volume. (Measured against
+//     exact rational clipping of a rotated cube: <= 3.5e-16 × cell volume.)
+//   * A cell that no piece enters (its interior meets no surface; pieces
+//     lying in one of its faces do not count) is exactly w × cell volume,
+//     w = round(A_top / cell area), the winding number of the solid there:
+//     exactly 0 or exactly the cell volume for a solid.
+//   * cell volume = (x[i+1] - x[i]) * (y[j+1] - y[j]) * (z[k+1] - z[k]) in
+//     double. Totals are the exact sums of the cell values, rounded once.
+// Consequently the cells sum to the mesh volume within ~1e-15 relative for
+// meshes of ordinary size (the pieces' rounding), and a refined grid's 8
+// children sum to their parent within a few ulps of the parent's volume
+// (measured on the corpus: <= 1.4e-15 relative, and <= 9.5e-16 × cell volume).
+//
+// Several bodies (overlapping solids, each a closed mesh with outward
+// normals): each body's volume per cell as above, and the occupancy of their
+// union per cell. The union is exact (to the same rounding) in every cell
+// that at most one body's surface enters, or that some body fills
+// completely. In a "contact" cell, entered by the surfaces of two or more
+// bodies, it is only bounded:
+//     lower = max_b V_b,   upper = min(cell volume, Σ_b V_b),
+// and estimated as cell volume × (1 - Π_b (1 - V_b / cell volume)) (the
+// bodies' parts taken as independent), which lies between the bounds.
+// Contact cells lie along the curves where surfaces of different bodies
+// cross, so their number grows like 1/h and the width of the union's bound
+// shrinks like h^2 × (curve length) with the cell size h (like h × area
+// where surfaces of two bodies coincide over an area inside cells).
+//
+// Input meshes must be closed 2-cycles (polyvol::analyze_topology's
+// closed_2_cycle); for open surfaces the numbers are meaningless. A body
+// turned inside out gives negative values. Fan triangles of polygon faces
+// are used as in measure.hpp.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "polyvol/mesh.hpp"
+
+namespace polyvol {
+
+// Plane coordinates of a rectilinear grid; each axis strictly increasing,
+// finite, with at least 2 planes (1 cell). Non-uniform spacing is allowed.
+struct GridAxes {
+    std::vector<double> x, y, z;
+
+    std::size_t nx() const { return x.empty() ? 0 : x.size() - 1; }
+    std::size_t ny() const { return y.empty() ? 0 : y.size() - 1; }
+    std::size_t nz() const { return z.empty() ? 0 : z.size() - 1; }
+    std::size_t cell_count() const { return nx() * ny() * nz(); }
+    // (i * ny + j) * nz + k
+    std::size_t cell(std::size_t i, std::size_t j, std::size_t k) const { return (i * ny() + j) * nz() + k; }
+    // (x[i+1] - x[i]) * (y[j+1] - y[j]) * (z[k+1] - z[k]), in double.
+    double cell_volume(std::size_t i, std::size_t j, std::size_t k) const {
+        return (x[i + 1] - x[i]) * (y[j + 1] - y[j]) * (z[k + 1] - z[k]);
+    }
+    // {xmin, ymin, zmin, xmax, ymax, zmax}
+    std::array<double, 6> bounds() const { return {x.front(), y.front(), z.front(), x.back(), y.back(), z.back()}; }
+    // True when every axis has equal spacing up to 1e-9 relative (then the
+    // grid is a VTK ImageData).
+    bool uniform() const;
+};
+
+// n cells of equal size between lo and hi on each axis (the last plane is hi
+// exactly). Throws std::invalid_argument unless lo < hi and n >= 1.
+GridAxes uniform_axes(const std::array<double, 6>& bounds, const std::array<uint32_t, 3>& dims);
+
+// How to choose a grid for some bodies when the caller does not give planes.
+// Without bounds the grid covers the bodies' bounding box padded by (at
+// least) one cell on every side, centred; with bounds it covers them exactly.
+struct GridSpec {
+    // Cells along the longest side, cubic cells (the default: 128 cells
+    // along the longest side of the padded box). Must be >= 3 without bounds.
+    uint32_t cells = 128;
+    // > 0: cubic cells of this edge length instead (with bounds: the largest
+    // spacing <= cell_size that divides each side).
+    double cell_size = 0;
+    // All three > 0: exactly these counts instead (without bounds, each axis
+    // is padded by one of its cells when it has >= 3).
+    std::array<uint32_t, 3> dims{0, 0, 0};
+    // {xmin, ymin, zmin, xmax, ymax, zmax}; unset: the bounding box of the
+    // bodies' vertices used by faces, padded as above.
+    std::optional<std::array<double, 6>> bounds{};
+};
+
+// The grid GridSpec describes. Throws std::invalid_argument for an empty or
+// degenerate bounding box (no faces, all vertices in one point) without
+// bounds, non-finite coordinates, or counts above 2^20 per axis.
+GridAxes make_grid(std::span<const MeshView> bodies, const GridSpec& spec);
+
+// Per-cell class of the union of the bodies (GridOutput::cell_class).
+enum class CellClass : uint8_t {
+    empty = 0,    // no surface enters the cell and no body fills it
+    full = 1,     // some body fills the cell (the union is the cell)
+    cut = 2,      // exactly one body's surface enters the cell; union exact
+    contact = 3,  // two or more bodies' surfaces enter it; union only bounded
+};
+
+// Caller-sized outputs (habit: callers own bulk arrays). Empty spans are not
+// computed. Sizes are checked (std::invalid_argument).
+struct GridOutput {
+    // bodies * cells: volumes[b * cells + cell(i,j,k)] (required)
+    std::span<double> volumes{};
+    // bodies * cells * 3 or empty: first moments ∫x dV, ∫y dV, ∫z dV of each
+    // body's part in each cell, about the origin, at
+    // first_moments[(b * cells + cell(i,j,k)) * 3 + a]; the centroid of a cell's
+    // part is first_moments / volumes (undefined where the volume is 0).
+    std::span<double> first_moments{};
+    // cells each, or empty: the union's occupancy. union_estimate is exact
+    // except in contact cells (see the top of this file), where
+    // union_lower <= union <= union_upper.
+    std::span<double> union_estimate{};
+    std::span<double> union_lower{};
+    std::span<double> union_upper{};
+    std::span<CellClass> cell_class{};  // cells, or empty
+};
+
+struct GridOptions {
+    // Called now and then with the fraction of the work done (0..1], from
+    // worker threads but never concurrently. Empty: not called.
+    std::function<void(double)> progress{};
+};
+
+struct GridBodySummary {
+    double volume = 0;            // Σ of its cells (exact sum, rounded once)
+    std::size_t triangles = 0;    // fan triangles used
+    std::size_t pieces = 0;       // surface pieces (piece = triangle ∩ cell, incl. above the grid)
+    std::size_t full_cells = 0;   // no surface inside, winding number >= 1
+    std::size_t empty_cells = 0;  // no surface inside, winding number 0
+    std::size_t cut_cells = 0;    // its surface enters the cell (or winding number < 0)
+};
+
+struct GridSummary {
+    std::vector<GridBodySummary> bodies;
+    // The union: union_lower <= exact union volume (within the grid) <= union_upper;
+    // union_volume is the sum of the per-cell estimates (== both bounds when
+    // there is no contact cell, and the body volume for one body).
+    double union_volume = 0;
+    double union_lower = 0;
+    double union_upper = 0;
+    // Cells by CellClass of the union (they add up to cells).
+    std::size_t full_cells = 0, empty_cells = 0, cut_cells = 0, contact_cells = 0;
+};
+
+// The volume of each body in every cell of the grid (and its first moments
+// and the union's occupancy when asked for). Throws std::invalid_argument
+// for an invalid grid, wrongly sized outputs, a face index out of range, or
+// a non-finite coordinate on a used vertex.
+GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& grid, const GridOutput& out,
+                         const GridOptions& options = {});
+
+}  // namespace polyvol

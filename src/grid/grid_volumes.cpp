@@ -1,0 +1,452 @@
+// grid/grid_volumes.cpp — polyvol/grid.hpp: the volume of each body in every
+// cell of a grid, by clipping and a column scan (DESIGN.md, "The grid
+// without flood fill"; docs/grid.md).
+//
+// The work is cut into tiles of T × T columns. Each triangle is listed for
+// the tiles its bounding box meets (a parallel counting sort that keeps the
+// triangle order), then each tile — in parallel, one task per tile —
+//   1. clips its triangles into pieces in its columns (clip.hpp), the same
+//      pieces whichever tile computes them, and scatters each piece's (P, Q)
+//      into tile-local double-double sums (tile_sums.hpp);
+//   2. scans each of its columns from the top down (column_scan.cpp),
+//      writing the cells straight into the caller's arrays;
+//   3. with several bodies, combines them per cell (union_bounds.cpp).
+// Tiles own disjoint cells, so there are no atomics and no second copy of the
+// grid; every cell's sums run in triangle order, so the results do not depend
+// on the number of threads. Memory: the caller's outputs, the triangle lists
+// (about one entry per triangle) and one tile of sums per thread.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "exact/eft.hpp"
+#include "exact/exact_sum.hpp"
+#include "grid/axis.hpp"
+#include "grid/clip.hpp"
+#include "grid/column_scan.hpp"
+#include "grid/piece.hpp"
+#include "grid/tile_sums.hpp"
+#include "grid/union_bounds.hpp"
+#include "polyvol/grid.hpp"
+
+namespace polyvol {
+namespace {
+
+using grid::Axis;
+
+void check_axis(const std::vector<double>& c, const char* name) {
+    if (c.size() < 2) throw std::invalid_argument(std::string("grid: the ") + name + " axis needs at least 2 planes");
+    if (c.size() - 1 > (std::size_t{1} << 24))
+        throw std::invalid_argument(std::string("grid: too many planes along ") + name);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        if (!std::isfinite(c[i])) throw std::invalid_argument(std::string("grid: a non-finite ") + name + " plane");
+        if (i > 0 && !(c[i] > c[i - 1]))
+            throw std::invalid_argument(std::string("grid: the ") + name + " planes must be strictly increasing");
+    }
+}
+
+// The fan triangles (v0, vi, vi+1) of a mesh's faces, 3 indices each.
+struct Triangles {
+    std::span<const uint32_t> index;
+    std::vector<uint32_t> storage;
+    std::size_t count() const { return index.size() / 3; }
+};
+
+Triangles fan_triangles(const MeshView& m) {
+    Triangles t;
+    if (m.all_triangles()) {
+        t.index = m.indices.first(m.indices.size() / 3 * 3);
+        return t;
+    }
+    t.storage.reserve(3 * m.triangle_count());
+    for (std::size_t f = 0; f < m.face_count(); ++f) {
+        const auto face = m.face(f);
+        for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+            t.storage.push_back(face[0]);
+            t.storage.push_back(face[i]);
+            t.storage.push_back(face[i + 1]);
+        }
+    }
+    t.index = t.storage;
+    return t;
+}
+
+struct Layout {
+    int nx, ny, nz;
+    int tile;     // columns per tile side
+    int ntx, nty;
+    std::size_t tiles() const { return static_cast<std::size_t>(ntx) * nty; }
+};
+
+// Tile size from the grid's shape only (never from the thread count): tile
+// sums of at most ~8 MB, and at least ~64 tiles to share out when possible.
+Layout choose_layout(int nx, int ny, int nz, bool moments) {
+    const double bytes_per_cell = (moments ? 7 : 2) * 16.0 + 1;
+    int t = 16;
+    while (t > 1 && static_cast<double>(t) * t * (nz + 1) * bytes_per_cell > 8e6) t /= 2;
+    auto count = [&](int s) { return static_cast<double>((nx + s - 1) / s) * ((ny + s - 1) / s); };
+    while (t > 4 && count(t) < 64) t /= 2;
+    Layout l{nx, ny, nz, t, (nx + t - 1) / t, (ny + t - 1) / t};
+    return l;
+}
+
+// Triangles of one body listed per tile, in triangle order:
+// entries[offsets[tile] .. offsets[tile + 1]).
+struct Bins {
+    std::vector<std::size_t> offsets;
+    std::vector<uint32_t> entries;
+};
+
+struct TileRange {
+    int32_t tx0 = 1, tx1 = 0, ty0 = 0, ty1 = 0;  // empty when tx0 > tx1
+};
+
+enum BinError : int { kNone = 0, kIndex = 1, kNonFinite = 2 };
+
+// The tiles a triangle's bounding box meets (only those its pieces can be in).
+TileRange tile_range(const MeshView& m, const uint32_t* v, const Axis& ax, const Axis& ay, const Axis& az,
+                     const Layout& l, int& error) {
+    TileRange r;
+    const std::size_t nv = m.vertex_count();
+    if (v[0] >= nv || v[1] >= nv || v[2] >= nv) {
+        error = kIndex;
+        return r;
+    }
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+        const double p = m.positions[3 * std::size_t{v[0]} + a], q = m.positions[3 * std::size_t{v[1]} + a],
+                     s = m.positions[3 * std::size_t{v[2]} + a];
+        if (!std::isfinite(p) || !std::isfinite(q) || !std::isfinite(s)) {
+            error = kNonFinite;
+            return r;
+        }
+        lo[a] = std::min({p, q, s});
+        hi[a] = std::max({p, q, s});
+    }
+    if (hi[2] < az.plane(0)) return r;  // wholly below the grid: contributes nothing
+    int x0, x1, y0, y1;
+    ax.slab_range(lo[0], hi[0], x0, x1);
+    ay.slab_range(lo[1], hi[1], y0, y1);
+    x0 = std::max(x0, 0);
+    x1 = std::min(x1, l.nx - 1);
+    y0 = std::max(y0, 0);
+    y1 = std::min(y1, l.ny - 1);
+    if (x0 > x1 || y0 > y1) return r;
+    r.tx0 = x0 / l.tile;
+    r.tx1 = x1 / l.tile;
+    r.ty0 = y0 / l.tile;
+    r.ty1 = y1 / l.tile;
+    return r;
+}
+
+Bins bin_triangles(const MeshView& m, const Triangles& tris, const Axis& ax, const Axis& ay, const Axis& az,
+                   const Layout& l) {
+    const std::size_t n = tris.count();
+    const std::size_t ntiles = l.tiles();
+    std::vector<TileRange> range(n);
+    // chunks × tiles counters, bounded to ~16M
+    std::size_t chunks = std::clamp<std::size_t>(n / 8192, 1, std::max<std::size_t>(1, (std::size_t{1} << 24) / ntiles));
+    const std::size_t chunk = (n + chunks - 1) / std::max<std::size_t>(chunks, 1);
+    chunks = chunk == 0 ? 1 : (n + chunk - 1) / chunk;
+    std::vector<std::size_t> counts(chunks * ntiles, 0);
+    std::atomic<int> error{kNone};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& rc) {
+        for (std::size_t c = rc.begin(); c != rc.end(); ++c) {
+            std::size_t* cnt = &counts[c * ntiles];
+            int err = kNone;
+            for (std::size_t t = c * chunk; t < std::min(n, (c + 1) * chunk); ++t) {
+                const TileRange r = tile_range(m, &tris.index[3 * t], ax, ay, az, l, err);
+                range[t] = r;
+                for (int tx = r.tx0; tx <= r.tx1; ++tx)
+                    for (int ty = r.ty0; ty <= r.ty1; ++ty) ++cnt[static_cast<std::size_t>(tx) * l.nty + ty];
+            }
+            if (err != kNone) error = err;
+        }
+    });
+    if (error == kIndex) throw std::invalid_argument("grid: a face index is out of range");
+    if (error == kNonFinite) throw std::invalid_argument("grid: a vertex used by a face has a non-finite coordinate");
+    // offsets: tile-major, then chunk (so each tile's list is in triangle order)
+    Bins bins;
+    bins.offsets.assign(ntiles + 1, 0);
+    std::size_t total = 0;
+    for (std::size_t tile = 0; tile < ntiles; ++tile) {
+        bins.offsets[tile] = total;
+        for (std::size_t c = 0; c < chunks; ++c) {
+            const std::size_t k = counts[c * ntiles + tile];
+            counts[c * ntiles + tile] = total;
+            total += k;
+        }
+    }
+    bins.offsets[ntiles] = total;
+    bins.entries.resize(total);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& rc) {
+        for (std::size_t c = rc.begin(); c != rc.end(); ++c) {
+            std::size_t* next = &counts[c * ntiles];
+            for (std::size_t t = c * chunk; t < std::min(n, (c + 1) * chunk); ++t) {
+                const TileRange& r = range[t];
+                for (int tx = r.tx0; tx <= r.tx1; ++tx)
+                    for (int ty = r.ty0; ty <= r.ty1; ++ty)
+                        bins.entries[next[static_cast<std::size_t>(tx) * l.nty + ty]++] = static_cast<uint32_t>(t);
+            }
+        }
+    });
+    return bins;
+}
+
+struct Workspace {
+    grid::ClipBuffers clip;
+    grid::Polygon tri;
+    grid::TileSums sums;
+    std::vector<uint8_t> state;  // bodies × tile cells: BodyCell
+    std::vector<double> vols;    // one cell's volumes, bodies
+};
+
+struct Partial {
+    std::vector<exact::ExactSum> body_volume;
+    std::vector<std::size_t> pieces, full, empty, cut;
+    exact::ExactSum u_est, u_lo, u_hi;
+    std::size_t u_full = 0, u_empty = 0, u_cut = 0, u_contact = 0;
+    explicit Partial(std::size_t bodies)
+        : body_volume(bodies), pieces(bodies, 0), full(bodies, 0), empty(bodies, 0), cut(bodies, 0) {}
+};
+
+grid::Polygon& load_triangle(grid::Polygon& poly, const MeshView& m, const uint32_t* v) {
+    poly.n = 3;
+    for (int c = 0; c < 3; ++c)
+        for (int a = 0; a < 3; ++a) poly.p[c].v[a] = m.positions[3 * std::size_t{v[c]} + a];
+    for (int c = 0; c < 3; ++c) poly.s[c] = grid::make_segment(poly.p[c], poly.p[c == 2 ? 0 : c + 1]);
+    return poly;
+}
+
+struct Job {
+    std::span<const MeshView> bodies;
+    const GridAxes& g;
+    const GridOutput& out;
+    const Layout& l;
+    const Axis &ax, &ay, &az;
+    const std::vector<Triangles>& tris;
+    const std::vector<Bins>& bins;
+    bool moments, want_union;
+};
+
+// Clips one body's triangles listed for a tile and scatters their pieces.
+template <bool kMoments>
+std::size_t scatter_tile(const Job& job, std::size_t b, std::size_t tile, int ix0, int ix1, int iy0, int iy1,
+                         Workspace& ws) {
+    const MeshView& m = job.bodies[b];
+    const Bins& bins = job.bins[b];
+    const double* xs = job.g.x.data();
+    const double* ys = job.g.y.data();
+    const double* zs = job.g.z.data();
+    const int nz = job.l.nz;
+    std::size_t pieces = 0;
+    for (std::size_t e = bins.offsets[tile]; e < bins.offsets[tile + 1]; ++e) {
+        const uint32_t* v = &job.tris[b].index[3 * std::size_t{bins.entries[e]}];
+        grid::clip_to_cells(load_triangle(ws.tri, m, v), job.ax, job.ay, job.az, ix0, ix1, iy0, iy1, ws.clip,
+                            [&](const grid::Polygon& piece, int i, int j, int k) {
+                                const int kt = std::min(k + 1, nz);
+                                const double corner[3] = {xs[i], ys[j], zs[k]};
+                                const double far[3] = {xs[i + 1], ys[j + 1], zs[kt]};
+                                ws.sums.scatter(i - ix0, j - iy0, k,
+                                                grid::piece_integrals<kMoments>(piece, corner, far));
+                                ++pieces;
+                            });
+    }
+    return pieces;
+}
+
+// Adds the n values of a column to an exact sum. A run of m equal values
+// (full cells) is added as the exact product m v = p + e (Dekker's
+// TwoProduct, exact for 2^-900 < |v| < 2^900; otherwise one by one).
+void add_column(exact::ExactSum& sum, const double* v, int n) {
+    int k = 0;
+    while (k < n) {
+        const double x = v[k];
+        int m = 1;
+        while (k + m < n && v[k + m] == x) ++m;
+        k += m;
+        if (x == 0) continue;
+        if (m == 1 || !(std::abs(x) > 0x1p-900 && std::abs(x) < 0x1p900)) {
+            for (int r = 0; r < m; ++r) sum.add(x);
+        } else {
+            double p, e;
+            exact::two_prod_dekker(x, static_cast<double>(m), p, e);
+            sum.add(p);
+            sum.add(e);
+        }
+    }
+}
+
+void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
+    const Layout& l = job.l;
+    const int tx = static_cast<int>(tile / l.nty), ty = static_cast<int>(tile % l.nty);
+    const int ix0 = tx * l.tile, ix1 = std::min(l.nx, ix0 + l.tile) - 1;
+    const int iy0 = ty * l.tile, iy1 = std::min(l.ny, iy0 + l.tile) - 1;
+    const int tw = ix1 - ix0 + 1, th = iy1 - iy0 + 1;
+    const std::size_t nb = job.bodies.size();
+    const std::size_t tile_cells = static_cast<std::size_t>(tw) * th * l.nz;
+    const std::size_t cells = job.g.cell_count();
+    ws.state.resize(nb * tile_cells);
+    ws.vols.resize(nb);
+    for (std::size_t b = 0; b < nb; ++b) {
+        ws.sums.reset(l.tile, l.nz + 1, job.moments);
+        part.pieces[b] += job.moments ? scatter_tile<true>(job, b, tile, ix0, ix1, iy0, iy1, ws)
+                                      : scatter_tile<false>(job, b, tile, ix0, ix1, iy0, iy1, ws);
+        for (int ci = 0; ci < tw; ++ci) {
+            for (int cj = 0; cj < th; ++cj) {
+                const int i = ix0 + ci, j = iy0 + cj;
+                const std::size_t cell0 = job.g.cell(i, j, 0);
+                double* vol = &job.out.volumes[b * cells + cell0];
+                double* mom = job.moments ? &job.out.first_moments[3 * (b * cells + cell0)] : nullptr;
+                uint8_t* state = &ws.state[b * tile_cells + (static_cast<std::size_t>(ci) * th + cj) * l.nz];
+                const grid::ColumnGeometry geom{job.g.x[i], job.g.x[i + 1], job.g.y[j], job.g.y[j + 1],
+                                                job.g.z.data(), l.nz};
+                const grid::ColumnCounts counts = grid::scan_column(ws.sums, ci, cj, geom, vol, mom, state);
+                part.empty[b] += counts.empty;
+                part.full[b] += counts.full;
+                part.cut[b] += counts.cut;
+                if (counts.empty != static_cast<std::size_t>(l.nz)) add_column(part.body_volume[b], vol, l.nz);
+            }
+        }
+    }
+    if (!job.want_union) return;
+    uint8_t states[256];
+    std::vector<uint8_t> state_heap;
+    uint8_t* st = states;
+    if (nb > sizeof states) {
+        state_heap.resize(nb);
+        st = state_heap.data();
+    }
+    for (int ci = 0; ci < tw; ++ci) {
+        for (int cj = 0; cj < th; ++cj) {
+            const int i = ix0 + ci, j = iy0 + cj;
+            const std::size_t cell0 = job.g.cell(i, j, 0);
+            const std::size_t local0 = (static_cast<std::size_t>(ci) * th + cj) * l.nz;
+            for (int k = 0; k < l.nz; ++k) {
+                for (std::size_t b = 0; b < nb; ++b) {
+                    ws.vols[b] = job.out.volumes[b * cells + cell0 + k];
+                    st[b] = ws.state[b * tile_cells + local0 + k];
+                }
+                const grid::UnionCell u = grid::union_cell(ws.vols, {st, nb}, job.g.cell_volume(i, j, k));
+                const std::size_t c = cell0 + k;
+                if (!job.out.union_estimate.empty()) job.out.union_estimate[c] = u.estimate;
+                if (!job.out.union_lower.empty()) job.out.union_lower[c] = u.lower;
+                if (!job.out.union_upper.empty()) job.out.union_upper[c] = u.upper;
+                if (!job.out.cell_class.empty()) job.out.cell_class[c] = u.cls;
+                if (u.estimate != 0) part.u_est.add(u.estimate);
+                if (u.lower != 0) part.u_lo.add(u.lower);
+                if (u.upper != 0) part.u_hi.add(u.upper);
+                switch (u.cls) {
+                    case CellClass::empty: ++part.u_empty; break;
+                    case CellClass::full: ++part.u_full; break;
+                    case CellClass::cut: ++part.u_cut; break;
+                    case CellClass::contact: ++part.u_contact; break;
+                }
+            }
+        }
+    }
+}
+
+}  // namespace
+
+GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, const GridOutput& out,
+                         const GridOptions& options) {
+    check_axis(g.x, "x");
+    check_axis(g.y, "y");
+    check_axis(g.z, "z");
+    const std::size_t nb = bodies.size();
+    if (nb == 0) throw std::invalid_argument("grid: no bodies");
+    const std::size_t cells = g.cell_count();
+    if (out.volumes.size() != nb * cells)
+        throw std::invalid_argument("grid: volumes must hold bodies * cells = " + std::to_string(nb * cells) +
+                                    " values, not " + std::to_string(out.volumes.size()));
+    const bool moments = !out.first_moments.empty();
+    if (moments && out.first_moments.size() != 3 * nb * cells)
+        throw std::invalid_argument("grid: first_moments must hold 3 * bodies * cells values");
+    for (const std::size_t size : {out.union_estimate.size(), out.union_lower.size(), out.union_upper.size(),
+                                   out.cell_class.size()})
+        if (size != 0 && size != cells) throw std::invalid_argument("grid: union outputs must hold one value per cell");
+    const bool union_outputs = !out.union_estimate.empty() || !out.union_lower.empty() ||
+                               !out.union_upper.empty() || !out.cell_class.empty();
+
+    const Axis ax(g.x), ay(g.y), az(g.z);
+    const Layout layout = choose_layout(static_cast<int>(g.nx()), static_cast<int>(g.ny()),
+                                        static_cast<int>(g.nz()), moments);
+    std::vector<Triangles> tris;
+    std::vector<Bins> bins;
+    for (const MeshView& m : bodies) {
+        tris.push_back(fan_triangles(m));
+        if (tris.back().count() >= (std::size_t{1} << 32))
+            throw std::invalid_argument("grid: at most 2^32 - 1 triangles per body");
+        bins.push_back(bin_triangles(m, tris.back(), ax, ay, az, layout));
+    }
+
+    const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, nb > 1 || union_outputs};
+    tbb::enumerable_thread_specific<Workspace> workspaces;
+    tbb::enumerable_thread_specific<Partial> partials([nb] { return Partial(nb); });
+    std::atomic<std::size_t> done{0};
+    std::mutex progress_mutex;
+    std::atomic<std::size_t> reported{0};
+    const std::size_t ntiles = layout.tiles();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ntiles, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        Workspace& ws = workspaces.local();
+        Partial& part = partials.local();
+        for (std::size_t tile = r.begin(); tile != r.end(); ++tile) {
+            run_tile(job, tile, ws, part);
+            const std::size_t d = ++done;
+            if (options.progress && (d * 100 / ntiles > reported.load() * 100 / ntiles || d == ntiles)) {
+                std::lock_guard<std::mutex> lock(progress_mutex);
+                if (d > reported.load()) {
+                    reported.store(d);
+                    options.progress(static_cast<double>(d) / static_cast<double>(ntiles));
+                }
+            }
+        }
+    });
+
+    GridSummary s;
+    s.bodies.resize(nb);
+    std::vector<exact::ExactSum> body_volume(nb);
+    exact::ExactSum u_est, u_lo, u_hi;
+    for (const Partial& p : partials) {
+        for (std::size_t b = 0; b < nb; ++b) {
+            body_volume[b].merge(p.body_volume[b]);
+            s.bodies[b].pieces += p.pieces[b];
+            s.bodies[b].full_cells += p.full[b];
+            s.bodies[b].empty_cells += p.empty[b];
+            s.bodies[b].cut_cells += p.cut[b];
+        }
+        u_est.merge(p.u_est);
+        u_lo.merge(p.u_lo);
+        u_hi.merge(p.u_hi);
+        s.full_cells += p.u_full;
+        s.empty_cells += p.u_empty;
+        s.cut_cells += p.u_cut;
+        s.contact_cells += p.u_contact;
+    }
+    for (std::size_t b = 0; b < nb; ++b) {
+        s.bodies[b].volume = body_volume[b].round();
+        s.bodies[b].triangles = tris[b].count();
+    }
+    if (job.want_union) {
+        s.union_volume = u_est.round();
+        s.union_lower = u_lo.round();
+        s.union_upper = u_hi.round();
+    } else {
+        s.union_volume = s.union_lower = s.union_upper = s.bodies[0].volume;
+        s.full_cells = s.bodies[0].full_cells;
+        s.empty_cells = s.bodies[0].empty_cells;
+        s.cut_cells = s.bodies[0].cut_cells;
+    }
+    return s;
+}
+
+}  // namespace polyvol

@@ -1,0 +1,169 @@
+// io/vti_writer.cpp — VTK XML ImageData (.vti) and RectilinearGrid (.vtr)
+// with cell data (VTK file formats, "XML File Formats": a VTKFile element
+// holding one Piece whose CellData lists DataArrays).
+//
+// Arrays are written in format="ascii" as shortest round-trip decimals: the
+// file is plain, valid XML that any XML parser reads, and every value reads
+// back bit for bit. VTK orders cells with x fastest, cell (i, j, k) at
+// i + nx (j + ny k); polyvol's arrays have k fastest, so the writer
+// transposes.
+#include <charconv>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "polyvol/grid_io.hpp"
+
+namespace polyvol {
+namespace {
+
+std::string xml_escape(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&apos;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+void append_number(std::string& out, double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    out.append(buf, r.ptr);
+}
+
+class Writer {
+public:
+    explicit Writer(const std::string& path) : path_(path), f_(std::fopen(path.c_str(), "wb"), &std::fclose) {
+        if (!f_) throw std::runtime_error(path + ": cannot open for writing");
+    }
+    std::string& buffer() { return buf_; }
+    void flush_if_large() {
+        if (buf_.size() > (1u << 20)) flush();
+    }
+    void flush() {
+        if (!buf_.empty() && std::fwrite(buf_.data(), 1, buf_.size(), f_.get()) != buf_.size())
+            throw std::runtime_error(path_ + ": write failed");
+        buf_.clear();
+    }
+    void close() {
+        flush();
+        if (std::fflush(f_.get()) != 0) throw std::runtime_error(path_ + ": write failed");
+    }
+
+private:
+    std::string path_;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f_;
+    std::string buf_;
+};
+
+void check_arrays(const std::string& path, std::size_t cells, std::span<const CellArray> arrays) {
+    for (const CellArray& a : arrays)
+        if (a.components < 1 || a.values.size() != cells * static_cast<std::size_t>(a.components))
+            throw std::invalid_argument(path + ": array '" + a.name + "' does not have one value per cell");
+}
+
+void write_cell_data(Writer& w, std::size_t nx, std::size_t ny, std::size_t nz, std::span<const CellArray> arrays) {
+    std::string& b = w.buffer();
+    b += "      <CellData";
+    if (!arrays.empty()) b += " Scalars=\"" + xml_escape(arrays[0].name) + "\"";
+    b += ">\n";
+    for (const CellArray& a : arrays) {
+        b += "        <DataArray type=\"Float64\" Name=\"" + xml_escape(a.name) + "\" NumberOfComponents=\"" +
+             std::to_string(a.components) + "\" format=\"ascii\">\n";
+        const auto nc = static_cast<std::size_t>(a.components);
+        for (std::size_t k = 0; k < nz; ++k)
+            for (std::size_t j = 0; j < ny; ++j) {
+                for (std::size_t i = 0; i < nx; ++i)
+                    for (std::size_t c = 0; c < nc; ++c) {
+                        append_number(b, a.values[((i * ny + j) * nz + k) * nc + c]);
+                        b += ' ';
+                    }
+                b += '\n';
+                w.flush_if_large();
+            }
+        b += "        </DataArray>\n";
+    }
+    b += "      </CellData>\n";
+}
+
+std::string extent(std::size_t nx, std::size_t ny, std::size_t nz) {
+    return "0 " + std::to_string(nx) + " 0 " + std::to_string(ny) + " 0 " + std::to_string(nz);
+}
+
+std::string numbers(std::initializer_list<double> v) {
+    std::string s;
+    for (double x : v) {
+        if (!s.empty()) s += ' ';
+        append_number(s, x);
+    }
+    return s;
+}
+
+void check_planes(const std::string& path, std::span<const double> c) {
+    if (c.size() < 2) throw std::invalid_argument(path + ": each axis needs at least 2 planes");
+}
+
+}  // namespace
+
+void write_vti(const std::string& path, std::span<const double> x, std::span<const double> y,
+               std::span<const double> z, std::span<const CellArray> arrays) {
+    check_planes(path, x);
+    check_planes(path, y);
+    check_planes(path, z);
+    const std::size_t nx = x.size() - 1, ny = y.size() - 1, nz = z.size() - 1;
+    check_arrays(path, nx * ny * nz, arrays);
+    Writer w(path);
+    const std::string ext = extent(nx, ny, nz);
+    const double sx = (x.back() - x.front()) / static_cast<double>(nx);
+    const double sy = (y.back() - y.front()) / static_cast<double>(ny);
+    const double sz = (z.back() - z.front()) / static_cast<double>(nz);
+    w.buffer() += "<?xml version=\"1.0\"?>\n"
+                  "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+                  "  <ImageData WholeExtent=\"" + ext + "\" Origin=\"" + numbers({x.front(), y.front(), z.front()}) +
+                  "\" Spacing=\"" + numbers({sx, sy, sz}) + "\">\n"
+                  "    <Piece Extent=\"" + ext + "\">\n";
+    write_cell_data(w, nx, ny, nz, arrays);
+    w.buffer() += "    </Piece>\n  </ImageData>\n</VTKFile>\n";
+    w.close();
+}
+
+void write_vtr(const std::string& path, std::span<const double> x, std::span<const double> y,
+               std::span<const double> z, std::span<const CellArray> arrays) {
+    check_planes(path, x);
+    check_planes(path, y);
+    check_planes(path, z);
+    const std::size_t nx = x.size() - 1, ny = y.size() - 1, nz = z.size() - 1;
+    check_arrays(path, nx * ny * nz, arrays);
+    Writer w(path);
+    const std::string ext = extent(nx, ny, nz);
+    w.buffer() += "<?xml version=\"1.0\"?>\n"
+                  "<VTKFile type=\"RectilinearGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+                  "header_type=\"UInt64\">\n"
+                  "  <RectilinearGrid WholeExtent=\"" + ext + "\">\n"
+                  "    <Piece Extent=\"" + ext + "\">\n";
+    write_cell_data(w, nx, ny, nz, arrays);
+    std::string& b = w.buffer();
+    b += "      <Coordinates>\n";
+    const char* names[3] = {"x", "y", "z"};
+    const std::span<const double> axes[3] = {x, y, z};
+    for (int a = 0; a < 3; ++a) {
+        b += std::string("        <DataArray type=\"Float64\" Name=\"") + names[a] + "\" format=\"ascii\">\n";
+        for (double v : axes[a]) {
+            append_number(b, v);
+            b += ' ';
+        }
+        b += "\n        </DataArray>\n";
+    }
+    b += "      </Coordinates>\n    </Piece>\n  </RectilinearGrid>\n</VTKFile>\n";
+    w.close();
+}
+
+}  // namespace polyvol

@@ -1,0 +1,241 @@
+// `polyvol grid` as users run it: the .npy header and shape, the .vti as
+// XML with the right extent and values, the JSON summary's keys, the PNG,
+// and the exit codes.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <pugixml.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kCorpus = POLYVOL_CORPUS_DIR;
+
+struct CliRun {
+    int code = -1;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+fs::path scratch_dir() { return fs::temp_directory_path() / ("polyvol_grid_cli_" + std::to_string(::getpid())); }
+
+fs::path scratch(const std::string& name) {
+    fs::create_directories(scratch_dir());
+    return scratch_dir() / name;
+}
+
+// Removes the scratch files when the test program ends.
+struct ScratchCleanup {
+    ~ScratchCleanup() {
+        std::error_code ec;
+        fs::remove_all(scratch_dir(), ec);
+    }
+} scratch_cleanup;
+
+CliRun polyvol(const std::string& args) {
+    const fs::path err = scratch("stderr.txt");
+    const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
+    CliRun r;
+    FILE* p = ::popen(cmd.c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    const int status = ::pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.err = slurp(err);
+    return r;
+}
+
+std::string corpus(const std::string& rel) { return "'" + (kCorpus / "meshes" / rel).string() + "'"; }
+
+struct Npy {
+    std::string header;
+    std::vector<double> data;
+    std::size_t data_offset = 0;
+};
+
+Npy read_npy(const fs::path& p) {
+    const std::string bytes = slurp(p);
+    Npy n;
+    EXPECT_GE(bytes.size(), 10u);
+    if (bytes.size() < 10) return n;
+    EXPECT_EQ(bytes.substr(0, 6), "\x93NUMPY");
+    EXPECT_EQ(bytes[6], 1);
+    EXPECT_EQ(bytes[7], 0);
+    const std::size_t len = static_cast<unsigned char>(bytes[8]) | (static_cast<std::size_t>(static_cast<unsigned char>(bytes[9])) << 8);
+    n.header = bytes.substr(10, len);
+    n.data_offset = 10 + len;
+    EXPECT_EQ(n.data_offset % 64, 0u);
+    EXPECT_EQ(n.header.back(), '\n');
+    EXPECT_EQ((bytes.size() - n.data_offset) % 8, 0u);
+    n.data.resize((bytes.size() - n.data_offset) / 8);
+    std::memcpy(n.data.data(), bytes.data() + n.data_offset, 8 * n.data.size());
+    return n;
+}
+
+double sum(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return s;
+}
+
+TEST(GridCli, NpyHasTheHeaderShapeAndValues) {
+    const fs::path out = scratch("cube.npy");
+    const CliRun r = polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " --cells 10 -o '" + out.string() + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Npy n = read_npy(out);
+    EXPECT_NE(n.header.find("'descr': '<f8'"), std::string::npos) << n.header;
+    EXPECT_NE(n.header.find("'fortran_order': False"), std::string::npos) << n.header;
+    EXPECT_NE(n.header.find("'shape': (10, 10, 10)"), std::string::npos) << n.header;
+    ASSERT_EQ(n.data.size(), 1000u);
+    EXPECT_NEAR(sum(n.data), 1.0, 1e-15);
+    // the cube [0,1]^3 padded by one cell of 1/8: cell [1][1][1] is full, [0][..] empty
+    EXPECT_EQ(n.data[(1 * 10 + 1) * 10 + 1], 1.0 / 512);
+    EXPECT_EQ(n.data[0], 0.0);
+}
+
+TEST(GridCli, SeveralBodiesPutTheBodyAxisFirstAndFractions) {
+    const fs::path out = scratch("two.npy");
+    const fs::path uni = scratch("union.npy");
+    const CliRun r = polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " " +
+                          corpus("stl-models/tetrahedron.min.ascii.stl") + " --dims 4 5 6 --bounds 0 0 0 1 1 1" +
+                          " --fractions -o '" + out.string() + "' --union '" + uni.string() + "' --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Npy n = read_npy(out);
+    EXPECT_NE(n.header.find("'shape': (2, 4, 5, 6)"), std::string::npos) << n.header;
+    ASSERT_EQ(n.data.size(), 240u);
+    for (std::size_t c = 0; c < 120; ++c) EXPECT_EQ(n.data[c], 1.0);  // the cube fills the grid
+    const Npy u = read_npy(uni);
+    EXPECT_NE(u.header.find("'shape': (3, 4, 5, 6)"), std::string::npos) << u.header;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["body_volumes"].size(), 2u);
+    EXPECT_NEAR(j["body_volumes"][1].get<double>(), 1.0 / 6, 1e-16);
+    EXPECT_NEAR(j["union_volume"].get<double>(), 1.0, 1e-15);
+}
+
+TEST(GridCli, JsonSummaryHasEveryKey) {
+    const CliRun r = polyvol("grid " + corpus("libcgal-demo/sphere.off") + " --cells 16 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    for (const char* key : {"grid", "bodies", "body_volumes", "union_volume", "union_lower", "union_upper",
+                            "full_cells", "empty_cells", "cut_cells", "contact_cells"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j["grid"]["dims"], json::array({16, 16, 16}));
+    EXPECT_EQ(j["grid"]["bounds"].size(), 6u);
+    EXPECT_NEAR(j["body_volumes"][0].get<double>(), 0.5059521479273688, 1e-15);
+    EXPECT_EQ(j["union_volume"], j["body_volumes"][0]);
+    EXPECT_EQ(j["contact_cells"], 0);
+    EXPECT_EQ(j["full_cells"].get<int>() + j["empty_cells"].get<int>() + j["cut_cells"].get<int>(), 16 * 16 * 16);
+    // the same summary in a .json file
+    const fs::path out = scratch("summary.json");
+    const CliRun f = polyvol("grid " + corpus("libcgal-demo/sphere.off") + " --cells 16 -o '" + out.string() + "'");
+    ASSERT_EQ(f.code, 0) << f.err;
+    const json k = json::parse(slurp(out));
+    EXPECT_EQ(k["body_volumes"], j["body_volumes"]);
+}
+
+TEST(GridCli, VtiIsXmlWithTheExtentAndOneValuePerCell) {
+    const fs::path out = scratch("sphere.vti");
+    const CliRun r = polyvol("grid " + corpus("libcgal-demo/sphere.off") + " --dims 7 6 5 -o '" + out.string() + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_file(out.c_str()));
+    const pugi::xml_node file = doc.child("VTKFile");
+    EXPECT_STREQ(file.attribute("type").value(), "ImageData");
+    const pugi::xml_node image = file.child("ImageData");
+    EXPECT_STREQ(image.attribute("WholeExtent").value(), "0 7 0 6 0 5");
+    EXPECT_STREQ(image.child("Piece").attribute("Extent").value(), "0 7 0 6 0 5");
+    const pugi::xml_node array = image.child("Piece").child("CellData").child("DataArray");
+    EXPECT_STREQ(array.attribute("Name").value(), "volume");
+    std::istringstream values(array.child_value());
+    std::vector<double> v;
+    double x;
+    while (values >> x) v.push_back(x);
+    EXPECT_EQ(v.size(), 7u * 6 * 5);
+    EXPECT_NEAR(sum(v), 0.5059521479273688, 1e-14);
+    // a non-uniform grid cannot be ImageData; .vtr takes it
+    const CliRun bad = polyvol("grid " + corpus("libcgal-demo/sphere.off") +
+                            " --x-planes -1,-0.2,0.1,1 -o '" + out.string() + "'");
+    EXPECT_EQ(bad.code, 1);
+    const fs::path vtr = scratch("sphere.vtr");
+    const CliRun ok = polyvol("grid " + corpus("libcgal-demo/sphere.off") + " --cells 8 --x-planes -1,-0.2,0.1,1 -o '" +
+                           vtr.string() + "'");
+    ASSERT_EQ(ok.code, 0) << ok.err;
+    pugi::xml_document rect;
+    ASSERT_TRUE(rect.load_file(vtr.c_str()));
+    EXPECT_STREQ(rect.child("VTKFile").attribute("type").value(), "RectilinearGrid");
+    EXPECT_STREQ(rect.child("VTKFile").child("RectilinearGrid").attribute("WholeExtent").value(), "0 3 0 8 0 8");
+}
+
+TEST(GridCli, PngSliceIsWritten) {
+    const fs::path png = scratch("slice.png");
+    const CliRun r = polyvol("grid " + corpus("libcgal-demo/sphere.off") + " --cells 20 --png '" + png.string() +
+                          "' --slice z=0.1");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string bytes = slurp(png);
+    ASSERT_GT(bytes.size(), 24u);
+    EXPECT_EQ(bytes.substr(0, 8), "\x89PNG\r\n\x1a\n");
+    auto be32 = [&](std::size_t at) {
+        return (static_cast<uint32_t>(static_cast<unsigned char>(bytes[at])) << 24) |
+               (static_cast<uint32_t>(static_cast<unsigned char>(bytes[at + 1])) << 16) |
+               (static_cast<uint32_t>(static_cast<unsigned char>(bytes[at + 2])) << 8) |
+               static_cast<uint32_t>(static_cast<unsigned char>(bytes[at + 3]));
+    };
+    // IHDR: 20 x 20 cells, at least one pixel per cell
+    EXPECT_EQ(be32(16) % 20, 0u);
+    EXPECT_GE(be32(16), 20u);
+    EXPECT_EQ(be32(20), be32(16));
+}
+
+TEST(GridCli, ExitCodes) {
+    // 3: an open surface
+    const CliRun open = polyvol("grid " + corpus("stl-models/missingFace.ascii.stl") + " --cells 8");
+    EXPECT_EQ(open.code, 3);
+    EXPECT_NE(open.err.find("not a closed surface"), std::string::npos) << open.err;
+    // 2: unreadable
+    const CliRun missing = polyvol("grid /nonexistent/mesh.stl");
+    EXPECT_EQ(missing.code, 2);
+    // 1: usage
+    EXPECT_EQ(polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " -o out.txt").code, 1);
+    EXPECT_EQ(polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " --cells 8 --dims 2 2 2").code, 1);
+    EXPECT_EQ(polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " --bounds 0 0 0 1 -1 1").code, 1);
+    EXPECT_EQ(polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " --png x.png --slice w=3").code, 1);
+    EXPECT_EQ(polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " --png x.png --slice z=7").code, 1);
+    EXPECT_EQ(polyvol("grid").code, 1);
+    // 3: nothing to grid
+    EXPECT_EQ(polyvol("grid " + corpus("stl-models/faceless.ascii.stl")).code, 3);
+}
+
+TEST(GridCli, CentroidsOfACube) {
+    const fs::path out = scratch("centroids.npy");
+    const CliRun r = polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") +
+                          " --dims 2 2 2 --bounds 0 0 0 1 1 1 --centroids '" + out.string() + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Npy n = read_npy(out);
+    EXPECT_NE(n.header.find("'shape': (2, 2, 2, 3)"), std::string::npos) << n.header;
+    ASSERT_EQ(n.data.size(), 24u);
+    EXPECT_EQ(n.data[0], 0.25);
+    EXPECT_EQ(n.data[23], 0.75);
+}
+
+}  // namespace
