@@ -1,6 +1,7 @@
 // Closed test meshes generated in memory for the benchmarks.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -40,6 +41,38 @@ inline Mesh sphere_with_triangles(std::size_t n, double offset = 0) {
     const auto seg = static_cast<uint32_t>(std::sqrt(static_cast<double>(n)));
     const uint32_t rings = static_cast<uint32_t>(n / (2 * seg)) + 1;
     return uv_sphere(rings, seg, 1.0, offset, offset, offset);
+}
+
+// A torus around the z axis centred at the origin: tube radius r around a
+// circle of radius R, `around` segments along the circle and `tube` around
+// the tube, 2 * around * tube triangles, closed and outward.
+inline Mesh torus(uint32_t around, uint32_t tube, double R = 1.0, double r = 0.42) {
+    Mesh m;
+    m.positions.reserve(3 * std::size_t{around} * tube);
+    for (uint32_t i = 0; i < around; ++i) {
+        const double u = 2 * std::numbers::pi * i / around;
+        for (uint32_t j = 0; j < tube; ++j) {
+            const double v = 2 * std::numbers::pi * j / tube;
+            const double w = R + r * std::cos(v);
+            m.add_vertex(w * std::cos(u), w * std::sin(u), r * std::sin(v));
+        }
+    }
+    auto at = [&](uint32_t i, uint32_t j) { return (i % around) * tube + j % tube; };
+    m.indices.reserve(6 * std::size_t{around} * tube);
+    for (uint32_t i = 0; i < around; ++i)
+        for (uint32_t j = 0; j < tube; ++j) {
+            m.add_triangle(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            m.add_triangle(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    return m;
+}
+
+// About n triangles, segments in the ratio of the circle's and the tube's lengths.
+inline Mesh torus_with_triangles(std::size_t n, double R = 1.0, double r = 0.42) {
+    const double half = static_cast<double>(n) / 2;
+    const auto tube = static_cast<uint32_t>(std::max(3.0, std::round(std::sqrt(half * r / R))));
+    const auto around = static_cast<uint32_t>(std::max(3.0, std::round(half / tube)));
+    return torus(around, tube, R, r);
 }
 
 }  // namespace polyvol::bench

@@ -3,6 +3,10 @@
 //   polyvol volume FILE...   one row per file (or --json: an array of objects)
 //   polyvol measure FILE...  every mass property, with its guarantee
 //   polyvol check FILE...    the topology report
+//   polyvol ndim FILE        volume of a boundary chain in R^n (ndim_command.cpp)
+//   polyvol area FILE        area of plane polygons with holes
+//   polyvol grid MESH...     volume of the solid(s) in every cell of a grid (grid_command.cpp)
+//   polyvol implicit EXPR    volume of {F <= 0} in R^n from a PL surface (implicit_command.cpp)
 //
 // Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid
 // for the request; with several files the highest of theirs, every file still
@@ -15,6 +19,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "ndim_command.hpp"
+#include "grid_command.hpp"
+#include "implicit_command.hpp"
 #include "report.hpp"
 
 namespace {
@@ -29,6 +36,7 @@ struct Common {
     std::string method = "cone";
     std::string accuracy = "correctly-rounded";
     double density = 1.0;
+    bool stream = false;  // volume --stream: JSON from the streaming path too
 };
 
 void add_measure_options(CLI::App* cmd, Common& c) {
@@ -66,7 +74,11 @@ Request make_request(const Common& c, bool need_mass) {
 enum class Command { volume, measure, check };
 
 int run(Command command, const Common& c) {
-    const Request request = make_request(c, command != Command::check);
+    Request request = make_request(c, command != Command::check);
+    // Binary STL through the streaming path: the table always, JSON only with
+    // --stream (the streaming path has no second moments, inertia, edge
+    // length or components: README).
+    request.stream = command == Command::volume && (!c.json || c.stream);
     std::vector<FileResult> results;
     int code = Exit::ok;
     const bool progress = c.files.size() > 1;
@@ -107,6 +119,9 @@ int main(int argc, char** argv) {
     Common volume_opts, measure_opts, check_opts;
     auto* volume = app.add_subcommand("volume", "Volume, area and centroid, one row per file");
     add_measure_options(volume, volume_opts);
+    volume->add_flag("--stream", volume_opts.stream,
+                     "With --json: measure binary STL by streaming it too (constant memory; only the keys the "
+                     "streaming path computes). The table always streams binary STL.");
     auto* measure = app.add_subcommand("measure", "All mass properties (volume, area, edge length, centroid, "
                                                   "second moments, inertia) with their guarantees");
     add_measure_options(measure, measure_opts);
@@ -114,6 +129,12 @@ int main(int argc, char** argv) {
                                               "unbalanced edges, shells and how they nest");
     check->add_option("files", check_opts.files, "Mesh files; - reads stdin")->required();
     check->add_flag("--json", check_opts.json, "Print JSON");
+    NdimCommands ndim_commands;
+    add_ndim_commands(app, ndim_commands);
+    GridArgs grid_args;
+    auto* grid = add_grid_command(app, grid_args);
+    ImplicitArgs implicit_args;
+    auto* implicit = add_implicit_command(app, implicit_args);
 
     try {
         app.parse(argc, argv);
@@ -124,6 +145,9 @@ int main(int argc, char** argv) {
         return Exit::usage;
     }
     try {
+        if (const int code = run_ndim_commands(ndim_commands); code >= 0) return code;
+        if (*grid) return run_grid_command(grid_args);
+        if (*implicit) return run_implicit_command(implicit_args);
         if (*volume) return run(Command::volume, volume_opts);
         if (*measure) return run(Command::measure, measure_opts);
         return run(Command::check, check_opts);

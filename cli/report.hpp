@@ -10,6 +10,7 @@
 
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
+#include "polyvol/soup.hpp"
 #include "polyvol/topology.hpp"
 
 namespace polyvol::cli {
@@ -27,12 +28,20 @@ struct FileResult {
     std::optional<MassProperties> mass;      // when measured
     std::string warning;                     // e.g. the origin dependence with --allow-open
     double seconds_read = 0, seconds_measure = 0;
+    // Set instead of loaded/topology/mass when a binary STL went through the
+    // streaming path (Request::stream): nothing was loaded or welded.
+    std::optional<SoupResult> streamed;
 };
 
 struct Request {
     MeasureOptions measure;
     bool allow_open = false;
     bool need_mass = true;  // false for `check`
+    // `volume`: a binary STL (by the size rule) is measured by streaming it
+    // (polyvol/soup.hpp: constant memory, volume, area, centroid, closedness
+    // fingerprint) when the method is cone; a nonzero fingerprint falls back
+    // to the full path, which names the unbalanced edges.
+    bool stream = false;
 };
 
 // Reads, analyses and measures one file; never throws.

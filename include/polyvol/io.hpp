@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -69,5 +70,43 @@ LoadedMesh read_mesh_file(const std::string& path);
 // format hint; hint overrides the extension when not unknown. Throws ReadError.
 LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& name,
                             Format hint = Format::unknown);
+
+// ---- Streaming binary STL (src/io/stl_stream.cpp) --------------------------
+// For files too large to hold: the 50-byte triangle records are handed to the
+// caller window by window, read with pread into a fixed buffer per thread, so
+// memory stays constant (about threads × window_bytes) whatever the file size.
+
+struct BinaryStlProbe {
+    bool binary_stl = false;      // what read_mesh_file would read as binary STL
+    uint64_t triangles = 0;       // n from bytes 80..83 (== (size - 84) / 50)
+    uint64_t file_bytes = 0;
+    bool header_starts_with_solid = false;
+};
+
+// Decides as read_mesh_file's detection does (docs at the top of this file):
+// not gzip, not zip, not PLY, and size == 84 + 50 n. Reads 84 bytes. A path
+// that is not a regular file ("-", a pipe) is never binary STL here. Throws
+// ReadError when the file cannot be opened.
+BinaryStlProbe probe_binary_stl(const std::string& path);
+
+struct StlStreamOptions {
+    // Bytes per window; rounded down to a whole number of 32 records (1600
+    // bytes), at least one such group. Windows start at triangle indices that
+    // are multiples of 32 (what polyvol::SoupAccumulator needs).
+    std::size_t window_bytes = 50 * 4096;
+    // Read and call back on several threads at once (oneTBB). The callback
+    // must then be thread-safe; windows arrive in no particular order.
+    bool parallel = true;
+};
+
+// records: whole 50-byte records; first_triangle: index of the first one.
+using StlWindowFn = std::function<void(std::span<const std::byte> records, uint64_t first_triangle)>;
+
+// Streams every record of a binary STL file through fn. Throws ReadError
+// (file, byte offset, message) when the file is not binary STL by the size
+// rule (byte offset 80, as read_mesh_file), cannot be read, or ends early
+// while being read (the offset where the data stopped). Exceptions thrown by
+// fn propagate (other windows may still have been called).
+void for_each_stl_window(const std::string& path, const StlWindowFn& fn, const StlStreamOptions& options = {});
 
 }  // namespace polyvol

@@ -18,6 +18,17 @@
 // element. Every other element and property, lists included, is skipped.
 // Counts are checked against the bytes left before anything is allocated
 // from them.
+//
+// Large bodies are read in parallel (chunks.hpp), with the serial reader's
+// results and errors:
+//   * ascii: chunks of lines; a first pass counts each chunk's lines that
+//     hold a token, so a chunk knows which row of which element it starts
+//     at. This needs one row per line (PLY lets rows share or span lines):
+//     a chunk meeting anything else is irregular and the file is read
+//     serially (PlyChunk).
+//   * binary: an element whose rows all have the layout of its first row
+//     (lists as long as the first row's: faces of one size) is cut into row
+//     ranges; other elements are read serially (parallel_binary_element).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -25,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/chunks.hpp"
 #include "io/readers.hpp"
 #include "io/text.hpp"
 
@@ -115,9 +127,182 @@ struct Element {
 
 enum class Encoding { ascii, binary_le, binary_be };
 
+// The messages of the ascii body, shared by the serial reader and the chunks.
+std::string rows_too_many(const Element& e, std::size_t remaining) {
+    return "element '" + std::string(e.name) + "' declares " + std::to_string(e.count) + " rows but only " +
+           std::to_string(remaining) + " bytes follow";
+}
+std::string bad_value_message(std::string_view t, const Element& e, uint64_t row, const Property& p) {
+    return "expected a number for property '" + std::string(p.name) + "' of " + std::string(e.name) + " " +
+           std::to_string(row) + ", found " + found(t);
+}
+std::string list_too_long(int64_t k, std::size_t remaining) {
+    return "list of " + std::to_string(k) + " values but only " + std::to_string(remaining) + " bytes follow";
+}
+std::string index_out_of_range(uint64_t row, int64_t i, uint64_t nv) {
+    return "face " + std::to_string(row) + " index " + std::to_string(i) + " out of range (file has " +
+           std::to_string(nv) + " vertices)";
+}
+std::string non_finite_vertex(uint64_t row) { return "non-finite coordinate in vertex " + std::to_string(row); }
+std::string binary_index_message(uint64_t row, const std::string& index, uint64_t nv) {
+    return "face " + std::to_string(row) + " index " + index + " out of range (file has " + std::to_string(nv) +
+           " vertices)";
+}
+
+// An ascii vertex index: an integer, or a double with an integral value.
+bool parse_index(std::string_view t, int64_t& i) {
+    if (text::parse_int(t, i)) return true;
+    double d = 0;
+    if (!text::parse_double(t, d) || d != std::floor(d) || !(std::fabs(d) < 1e18)) return false;
+    i = static_cast<int64_t>(d);
+    return true;
+}
+
+// The ascii body's rows of one element: the elements that have properties
+// and rows, in order; row r of the body (0-based, over these elements) is
+// row r - first of the element.
+struct RowSpan {
+    const Element* e;
+    uint64_t first;
+};
+
+// A chunk of the ascii body read on its own. Parallel reading needs the
+// body to be line-regular: every line that holds a token holds exactly one
+// row with all of its values and nothing else (the serial reader reads
+// values across lines, so a row may run onto the next line or start on the
+// line of the one before). A chunk that meets a row that is not alone on
+// its line is irregular, and the whole file is read serially. The first
+// pass counts each chunk's data lines, so a chunk knows its first row.
+class PlyChunk {
+public:
+    struct Stop {};  // thrown once the outcome is decided
+
+    // body: the whole body (rows before a chunk's start are found in it).
+    PlyChunk(std::string_view body, std::size_t at, std::size_t size, std::size_t text_end_offset,
+             uint64_t first_row, const std::vector<RowSpan>& spans, uint64_t rows, uint64_t nv, double* positions)
+        : body_(body), at_(at), cur_(body.substr(at, size)), text_end_(text_end_offset), row_(first_row),
+          spans_(spans), rows_(rows), nv_(nv), positions_(positions) {}
+
+    void run() {
+        try {
+            std::size_t span = 0;
+            while (span + 1 < spans_.size() && spans_[span + 1].first <= row_) ++span;
+            for (; row_ < rows_; ++row_) {
+                const std::size_t before = cur_.offset();
+                const uint64_t line_before = cur_.line();
+                const std::string_view t = cur_.next();
+                if (t.empty()) break;
+                while (span + 1 < spans_.size() && spans_[span + 1].first <= row_) ++span;
+                const Element& e = *spans_[span].e;
+                const uint64_t r = row_ - spans_[span].first;
+                if (r == 0) element_start(e, before, line_before);
+                read_row(e, r, t);
+                if (row_ + 1 == rows_) {
+                    // After the last row anything is trailing data.
+                    if (!cur_.next_on_line().empty()) trailing = true;
+                } else if (!cur_.next_on_line().empty()) {
+                    irregular();
+                }
+            }
+        } catch (const Stop&) {
+        }
+    }
+
+    Mesh faces;             // the chunk's faces (global indices)
+    bool trailing = false;  // a value after the last row on its line
+    chunks::Outcome outcome;
+
+private:
+    // The serial reader checks an element's row count against the bytes
+    // left where the element starts: just after the last value of the row
+    // before (or at the body's start). That is `before` (a position in the
+    // chunk) moved back over blanks and line ends, maybe into earlier chunks.
+    void element_start(const Element& e, std::size_t before, uint64_t line_before) {
+        const std::size_t from = at_ + before;
+        std::size_t p = from;
+        while (p > 0 && text::is_space(body_[p - 1])) --p;
+        const std::size_t remaining = text_end_ - p;
+        if (e.count > (remaining + 1) / (2 * e.props.size())) {
+            const uint64_t back = chunks::count_line_ends(body_.substr(p, from - p));
+            fail(static_cast<int64_t>(line_before) - static_cast<int64_t>(back), rows_too_many(e, remaining));
+        }
+    }
+
+    void read_row(const Element& e, uint64_t r, std::string_view t) {
+        for (std::size_t pi = 0; pi < e.props.size(); ++pi) {
+            const Property& p = e.props[pi];
+            if (pi > 0) t = on_line();
+            if (!p.is_list) {
+                double v = 0;
+                if (!text::parse_double(t, v)) fail(bad_value_message(t, e, r, p));
+                if (p.role != Role::skip) {
+                    if (!std::isfinite(v)) fail("non-finite coordinate " + text::quote(t));
+                    positions_[3 * r + static_cast<std::size_t>(p.role) - 1] = v;
+                }
+                continue;
+            }
+            int64_t k = 0;
+            if (!text::parse_int(t, k) || k < 0) fail(bad_value_message(t, e, r, p));
+            const std::size_t remaining = text_end_ - at_ - cur_.offset();
+            if (static_cast<uint64_t>(k) > remaining / 2 + 1) fail(list_too_long(k, remaining));
+            // The chunk's indices are fewer than half its bytes: reserve once
+            // (pages never written cost nothing).
+            if (p.role == Role::indices && faces.indices.capacity() == 0)
+                faces.indices.reserve((cur_.remaining() + 2) / 2);
+            face_.clear();
+            for (int64_t j = 0; j < k; ++j) {
+                t = on_line();
+                if (p.role == Role::indices) {
+                    int64_t i = 0;
+                    if (!parse_index(t, i)) fail(bad_value_message(t, e, r, p));
+                    if (i < 0 || static_cast<uint64_t>(i) >= nv_) fail(index_out_of_range(r, i, nv_));
+                    face_.push_back(static_cast<uint32_t>(i));
+                } else {
+                    double d = 0;
+                    if (!text::parse_double(t, d)) fail(bad_value_message(t, e, r, p));
+                }
+            }
+            if (p.role == Role::indices) {
+                if (face_.size() == 3) faces.add_triangle(face_[0], face_[1], face_[2]);
+                else faces.add_face(face_);
+            }
+        }
+    }
+
+    // The next value of the row: the serial reader would look on the next
+    // line when this one has none.
+    std::string_view on_line() {
+        const std::string_view t = cur_.next_on_line();
+        if (t.empty()) irregular();
+        return t;
+    }
+
+    [[noreturn]] void irregular() {
+        outcome.status = chunks::Outcome::Status::irregular;
+        throw Stop{};
+    }
+    [[noreturn]] void fail(std::string message) { fail(static_cast<int64_t>(cur_.line()), std::move(message)); }
+    [[noreturn]] void fail(int64_t line, std::string message) {
+        outcome.fail(line, std::move(message));
+        throw Stop{};
+    }
+
+    std::string_view body_;
+    std::size_t at_;          // the chunk's offset in the body
+    text::Cursor cur_;
+    std::size_t text_end_;    // the body's size: remaining = text_end_ - offset in the body
+    uint64_t row_;
+    const std::vector<RowSpan>& spans_;
+    uint64_t rows_;
+    uint64_t nv_;
+    double* positions_;
+    std::vector<uint32_t> face_;
+};
+
 class PlyReader {
 public:
-    PlyReader(Bytes data, const std::string& name) : data_(data), s_(text::as_text(data)), name_(name) {}
+    PlyReader(Bytes data, const std::string& name, const ParseOptions& options)
+        : data_(data), s_(text::as_text(data)), name_(name), options_(options) {}
 
     LoadedMesh read() {
         out_.format = Format::ply;
@@ -271,6 +456,7 @@ private:
             const bool is_vertex = &e == vertex_;
             const bool is_face = &e == face_;
             if (is_vertex) m.positions.resize(3 * e.count);
+            if (parallel_binary_element(e, pos)) continue;
             if (is_face) m.indices.reserve(std::min<uint64_t>(3 * e.count, (size - pos) / 2));
             for (uint64_t r = 0; r < e.count; ++r) {
                 for (const Property& p : e.props) {
@@ -279,8 +465,7 @@ private:
                         if (size - pos < n) truncated(pos, e, r, p);
                         if (p.role != Role::skip) {
                             const double v = load(base + pos, p.type, be);
-                            if (!std::isfinite(v))
-                                throw ReadError::at_byte(name_, pos, "non-finite coordinate in vertex " + std::to_string(r));
+                            if (!std::isfinite(v)) throw ReadError::at_byte(name_, pos, non_finite_vertex(r));
                             m.positions[3 * r + static_cast<std::size_t>(p.role) - 1] = v;
                         }
                         pos += n;
@@ -301,10 +486,7 @@ private:
                         for (std::size_t j = 0; j < k; ++j) {
                             const double iv = load(base + pos + j * n, p.type, be);
                             if (!(iv >= 0 && iv < static_cast<double>(nv)) || iv != std::floor(iv))
-                                throw ReadError::at_byte(name_, pos + j * n,
-                                                         "face " + std::to_string(r) + " index " + index_text(iv) +
-                                                             " out of range (file has " + std::to_string(nv) +
-                                                             " vertices)");
+                                throw ReadError::at_byte(name_, pos + j * n, binary_index_message(r, index_text(iv), nv));
                             face_buf_.push_back(static_cast<uint32_t>(iv));
                         }
                         add_face();
@@ -316,6 +498,122 @@ private:
         if (pos < size) text::add_note(out_, "ply-trailing-data");
     }
 
+    // A binary element read in row ranges on several threads, when every row
+    // has the layout of its first: scalar properties, and list properties as
+    // long as in the first row (faces of one size, the usual case). Row r
+    // then starts at pos + r * row_bytes. A range that finds a list of
+    // another length is irregular: the element is then read serially (its
+    // faces dropped first). Otherwise the first range that failed has the
+    // error the serial loop meets first. Returns false, having changed
+    // nothing that the serial loop does not redo, when the element is read
+    // serially; else advances pos past it.
+    bool parallel_binary_element(const Element& e, std::size_t& pos) {
+        const std::size_t size = data_.size();
+        if (!chunks::use_parallel(options_, size - pos) || e.count < 2) return false;
+        const bool be = encoding_ == Encoding::binary_be;
+        const std::byte* base = data_.data();
+        // The layout of row 0, checked as the serial loop checks it.
+        std::vector<std::size_t> lens;  // per list property
+        std::size_t row_bytes = 0;
+        std::size_t face_size = 0;
+        for (const Property& p : e.props) {
+            if (!p.is_list) {
+                row_bytes += type_size(p.type);
+                continue;
+            }
+            const std::size_t cn = type_size(p.count_type), n = type_size(p.type);
+            if (size - pos - row_bytes < cn) return false;
+            const double cd = load(base + pos + row_bytes, p.count_type, be);
+            if (!(cd >= 0) || cd != std::floor(cd) || cd > 4294967295.0) return false;
+            const auto k = static_cast<std::size_t>(cd);
+            row_bytes += cn;
+            if (k > (size - pos - row_bytes) / n) return false;
+            row_bytes += k * n;
+            lens.push_back(k);
+            if (p.role == Role::indices) face_size = k;
+        }
+        if (row_bytes == 0 || e.count > (size - pos) / row_bytes) return false;  // not all rows of this layout fit
+
+        const bool is_face = &e == face_;
+        Mesh& m = out_.mesh;
+        if (is_face) {
+            // What add_face / add_triangle build for count faces of one size.
+            m.indices.resize(static_cast<std::size_t>(e.count) * face_size);
+            if (face_size != 3) {
+                m.face_offsets.resize(static_cast<std::size_t>(e.count) + 1);
+                for (std::size_t f = 0; f <= e.count; ++f) m.face_offsets[f] = static_cast<uint32_t>(f * face_size);
+            }
+        }
+        const uint64_t rows_per =
+            std::max<uint64_t>(1, chunks::chunk_size(options_.chunk_bytes, size - pos) / row_bytes);
+        const std::size_t ranges = static_cast<std::size_t>((e.count + rows_per - 1) / rows_per);
+        struct RangeOutcome {
+            chunks::Outcome::Status status = chunks::Outcome::Status::ok;
+            std::size_t offset = 0;
+            std::string message;
+        };
+        std::vector<RangeOutcome> outcomes(ranges);
+        const uint64_t nv = vertex_->count;
+        const std::size_t start = pos;
+        chunks::for_each(ranges, [&](std::size_t i) {
+            RangeOutcome& o = outcomes[i];
+            const uint64_t r0 = i * rows_per, r1 = std::min<uint64_t>(e.count, r0 + rows_per);
+            std::size_t at = start + static_cast<std::size_t>(r0) * row_bytes;
+            for (uint64_t r = r0; r < r1; ++r) {
+                std::size_t li = 0;
+                for (const Property& p : e.props) {
+                    if (!p.is_list) {
+                        if (p.role != Role::skip) {
+                            const double v = load(base + at, p.type, be);
+                            if (!std::isfinite(v)) {
+                                o = {chunks::Outcome::Status::error, at, non_finite_vertex(r)};
+                                return;
+                            }
+                            m.positions[3 * r + static_cast<std::size_t>(p.role) - 1] = v;
+                        }
+                        at += type_size(p.type);
+                        continue;
+                    }
+                    const std::size_t k = lens[li++];
+                    if (load(base + at, p.count_type, be) != static_cast<double>(k)) {
+                        o.status = chunks::Outcome::Status::irregular;
+                        return;
+                    }
+                    at += type_size(p.count_type);
+                    const std::size_t n = type_size(p.type);
+                    if (p.role == Role::indices) {
+                        uint32_t* out = m.indices.data() + static_cast<std::size_t>(r) * k;
+                        for (std::size_t j = 0; j < k; ++j) {
+                            const double iv = load(base + at + j * n, p.type, be);
+                            if (!(iv >= 0 && iv < static_cast<double>(nv)) || iv != std::floor(iv)) {
+                                o = {chunks::Outcome::Status::error, at + j * n,
+                                     binary_index_message(r, index_text(iv), nv)};
+                                return;
+                            }
+                            out[j] = static_cast<uint32_t>(iv);
+                        }
+                    }
+                    at += k * n;
+                }
+            }
+        });
+        ParseReport& report = thread_parse_report();
+        report.chunks = std::max(report.chunks, ranges);
+        for (const RangeOutcome& o : outcomes) {
+            if (o.status == chunks::Outcome::Status::error) throw ReadError::at_byte(name_, o.offset, o.message);
+            if (o.status == chunks::Outcome::Status::irregular) {
+                report.serial_fallback = true;
+                if (is_face) {
+                    m.indices.clear();
+                    m.face_offsets.clear();
+                }
+                return false;
+            }
+        }
+        pos += static_cast<std::size_t>(e.count) * row_bytes;
+        return true;
+    }
+
     [[noreturn]] void truncated(std::size_t pos, const Element& e, uint64_t row, const Property& p) const {
         throw ReadError::at_byte(name_, pos,
                                  "truncated PLY body: expected property '" + std::string(p.name) + "' of " +
@@ -323,16 +621,80 @@ private:
     }
 
     // ---- ascii body -----------------------------------------------------
+    // The ascii body read in chunks: see PlyChunk. Returns false, having
+    // changed nothing, when the body is to be read serially: small, without
+    // rows, with fewer data lines than rows, or not line-regular.
+    bool parallel_ascii_body() {
+        const std::string_view body = s_.substr(body_);
+        if (!chunks::use_parallel(options_, body.size())) return false;
+        const std::vector<std::size_t> starts =
+            chunks::split(body, options_.chunk_bytes, [](std::string_view, std::size_t) { return true; });
+        const std::size_t n = starts.size() - 1;
+        if (n < 2) return false;
+        ParseReport& report = thread_parse_report();
+        report.chunks = n;
+        report.serial_fallback = true;  // until the chunks agree
+        std::vector<chunks::LineCounts> counts(n);
+        chunks::for_each(n, [&](std::size_t i) {
+            counts[i] = chunks::count_lines(body.substr(starts[i], starts[i + 1] - starts[i]), '\0');
+        });
+        uint64_t data_lines = 0;
+        for (const chunks::LineCounts& c : counts) data_lines += c.data_lines;
+        std::vector<RowSpan> spans;
+        uint64_t rows = 0;
+        for (const Element& e : elements_) {
+            if (e.props.empty() || e.count == 0) continue;
+            if (e.count > data_lines - rows) return false;  // some row spans lines, or the file is short
+            spans.push_back({&e, rows});
+            rows += e.count;
+        }
+        if (rows == 0) return false;
+
+        const uint64_t nv = vertex_->count;  // <= rows <= data lines
+        std::vector<double> positions(3 * static_cast<std::size_t>(vertex_->props.empty() ? 0 : nv));
+        std::vector<PlyChunk> pieces;
+        pieces.reserve(n);
+        uint64_t first = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            pieces.emplace_back(body, starts[i], starts[i + 1] - starts[i], body.size(), first, spans, rows, nv,
+                                positions.data());
+            first += counts[i].data_lines;
+        }
+        chunks::for_each(n, [&](std::size_t i) { pieces[i].run(); });
+
+        uint64_t line = header_lines_ + 1;  // the line of the chunk's start
+        for (std::size_t i = 0; i < n; ++i) {
+            const chunks::Outcome& o = pieces[i].outcome;
+            if (o.status == chunks::Outcome::Status::irregular) return false;
+            if (o.status == chunks::Outcome::Status::error) {
+                report.serial_fallback = false;
+                throw ReadError(name_, static_cast<uint64_t>(static_cast<int64_t>(line) + o.line - 1), o.message);
+            }
+            line += counts[i].line_ends;
+        }
+        report.serial_fallback = false;
+        bool trailing = data_lines > rows;
+        std::vector<Mesh> faces;
+        faces.reserve(n);
+        for (PlyChunk& c : pieces) {
+            trailing = trailing || c.trailing;
+            faces.push_back(std::move(c.faces));
+        }
+        out_.mesh.positions = std::move(positions);
+        chunks::concat(faces, out_.mesh, false);
+        if (trailing) text::add_note(out_, "ply-trailing-data");
+        return true;
+    }
+
     void ascii_body() {
+        if (parallel_ascii_body()) return;
         text::Cursor cur(s_.substr(body_));
         Mesh& m = out_.mesh;
         const uint64_t nv = vertex_->count;
         for (const Element& e : elements_) {
             if (e.props.empty() || e.count == 0) continue;
             // Each value takes at least 2 bytes (a digit and a separator).
-            if (e.count > (cur.remaining() + 1) / (2 * e.props.size()))
-                fail_text(cur, "element '" + std::string(e.name) + "' declares " + std::to_string(e.count) +
-                                   " rows but only " + std::to_string(cur.remaining()) + " bytes follow");
+            if (e.count > (cur.remaining() + 1) / (2 * e.props.size())) fail_text(cur, rows_too_many(e, cur.remaining()));
             const bool is_vertex = &e == vertex_;
             const bool is_face = &e == face_;
             if (is_vertex) m.positions.resize(3 * e.count);
@@ -351,23 +713,14 @@ private:
                     }
                     int64_t k = 0;
                     if (!text::parse_int(t, k) || k < 0) bad_value(cur, t, e, r, p);
-                    if (static_cast<uint64_t>(k) > cur.remaining() / 2 + 1)
-                        fail_text(cur, "list of " + std::to_string(k) + " values but only " +
-                                           std::to_string(cur.remaining()) + " bytes follow");
+                    if (static_cast<uint64_t>(k) > cur.remaining() / 2 + 1) fail_text(cur, list_too_long(k, cur.remaining()));
                     face_buf_.clear();
                     for (int64_t j = 0; j < k; ++j) {
                         t = cur.next();
                         if (p.role == Role::indices) {
                             int64_t i = 0;
-                            if (!text::parse_int(t, i)) {
-                                double d = 0;
-                                if (!text::parse_double(t, d) || d != std::floor(d) || !(std::fabs(d) < 1e18))
-                                    bad_value(cur, t, e, r, p);
-                                i = static_cast<int64_t>(d);
-                            }
-                            if (i < 0 || static_cast<uint64_t>(i) >= nv)
-                                fail_text(cur, "face " + std::to_string(r) + " index " + std::to_string(i) +
-                                                   " out of range (file has " + std::to_string(nv) + " vertices)");
+                            if (!parse_index(t, i)) bad_value(cur, t, e, r, p);
+                            if (i < 0 || static_cast<uint64_t>(i) >= nv) fail_text(cur, index_out_of_range(r, i, nv));
                             face_buf_.push_back(static_cast<uint32_t>(i));
                         } else {
                             double d = 0;
@@ -383,8 +736,7 @@ private:
 
     [[noreturn]] void bad_value(const text::Cursor& cur, std::string_view t, const Element& e, uint64_t row,
                                 const Property& p) const {
-        fail_text(cur, "expected a number for property '" + std::string(p.name) + "' of " + std::string(e.name) +
-                           " " + std::to_string(row) + ", found " + found(t));
+        fail_text(cur, bad_value_message(t, e, row, p));
     }
 
     [[noreturn]] void fail_text(const text::Cursor& cur, const std::string& message) const {
@@ -408,6 +760,7 @@ private:
     Bytes data_;
     std::string_view s_;
     const std::string& name_;
+    const ParseOptions& options_;
     LoadedMesh out_;
     Encoding encoding_ = Encoding::ascii;
     std::vector<Element> elements_;
@@ -421,6 +774,11 @@ private:
 
 }  // namespace
 
-LoadedMesh read_ply(Bytes data, const std::string& name) { return PlyReader(data, name).read(); }
+LoadedMesh read_ply(Bytes data, const std::string& name) { return read_ply(data, name, thread_parse_options()); }
+
+LoadedMesh read_ply(Bytes data, const std::string& name, const ParseOptions& options) {
+    thread_parse_report() = {};
+    return PlyReader(data, name, options).read();
+}
 
 }  // namespace polyvol::io

@@ -17,6 +17,12 @@
 // endsolid with another name, a facet without or with an unreadable normal
 // are tolerated and noted. Keywords are matched case-insensitively.
 //
+// Large ASCII files are read in parallel (chunks.hpp) with the serial
+// reader's results and errors: chunks start at lines whose first token is
+// 'facet' or 'endsolid' and are read as inside a solid (StlPiece); the file
+// is read serially when a chunk turns out not to start inside a solid or a
+// facet runs past its chunk's end (both happen only in odd files).
+//
 // Either way the result is a triangle soup: every facet adds its own
 // vertices (nothing is welded), and facet normals are ignored. A loop of k
 // vertices becomes one face of k vertices (k = 3 almost always; a 4-vertex
@@ -25,6 +31,7 @@
 #include <cstring>
 #include <string>
 
+#include "io/chunks.hpp"
 #include "io/readers.hpp"
 #include "io/text.hpp"
 
@@ -84,57 +91,95 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n) {
     return out;
 }
 
-class AsciiStl {
+// One piece of ASCII STL text read on its own: the whole text when serial,
+// else a chunk (chunks.hpp). A chunk other than the first starts at a line
+// whose first token is 'facet' or 'endsolid', and is read as the serial
+// reader reads inside a solid; the join checks that the chunk before it
+// ended inside a solid (else the file is read serially). Its vertices are
+// numbered from 0; the join shifts them.
+class StlPiece {
 public:
-    AsciiStl(Bytes data, const std::string& name) : cur_(text::as_text(data)), name_(name) {}
+    // Where the piece's tokens ran out.
+    enum class End { in_solid, top_level, done };
+    // A note, or (name_check) the name after an 'endsolid' that closes a
+    // solid opened before the piece, to compare with that solid's name.
+    struct Event {
+        bool name_check = false;
+        std::string text;
+    };
 
-    LoadedMesh read() {
-        out_.format = Format::stl;
-        out_.encoding = "ascii";
-        // A rough bound for the soup from the file size (a vertex line takes
-        // at least 12 bytes); only a hint for reserve.
-        const std::size_t guess = cur_.remaining() / 200;
-        out_.mesh.positions.reserve(9 * guess);
-        out_.mesh.indices.reserve(3 * guess);
+    StlPiece(std::string_view piece, const char* text_end, bool first, bool last)
+        : cur_(piece), begin_(piece.data()), text_end_(text_end), first_(first), last_(last) {}
 
-        std::string_view tok = cur_.next();
-        std::size_t solids = 0;
-        while (!tok.empty()) {
-            if (!iequals(tok, "solid")) {
-                if (solids > 0 && only_nul_and_space(tok)) {
-                    text::add_note(out_, "stl-trailing-nul-bytes");
-                    break;
-                }
-                fail(solids == 0 ? "expected 'solid', found " + found(tok)
-                                 : "expected 'solid' or end of file after 'endsolid', found " +
-                                       found(tok));
-            }
-            ++solids;
-            tok = read_solid();
+    void run() {
+        // Facets from the size, only a hint for reserve: a triangle facet
+        // as usually written takes 150 to 300 bytes, so this guess seldom
+        // needs a second allocation (pages reserved and never written cost
+        // nothing).
+        const std::size_t guess = cur_.remaining() / 128;
+        mesh.positions.reserve(9 * guess);
+        mesh.indices.reserve(3 * guess);
+        try {
+            top_level(first_ ? cur_.next() : solid_body(false, {}));
+        } catch (const ReadError& e) {
+            // Stopped by the end of the chunk: the serial reader would have
+            // read on into the next one.
+            if (!last_ && cur_.at_end()) outcome.status = chunks::Outcome::Status::irregular;
+            else outcome.fail(static_cast<int64_t>(e.line), e.message);
         }
-        if (solids > 1) out_.notes.push_back("stl-multiple-solids(" + std::to_string(solids) + ")");
-        return std::move(out_);
     }
 
+    Mesh mesh;
+    std::vector<Event> events;
+    std::size_t solids = 0;                 // solids opened in the piece
+    bool named = false;                     // whether a solid was opened (last_name is set)
+    std::string_view last_name;             // the name of the last solid opened
+    End end = End::in_solid;
+    chunks::Outcome outcome;
+
 private:
-    // After "solid": reads the block; returns the token after it ("solid" of
-    // the next block, or empty at the end of the input).
-    std::string_view read_solid() {
-        const std::string_view solid_name = cur_.rest_of_line();
+    void top_level(std::string_view tok) {
+        while (!tok.empty()) {
+            if (!iequals(tok, "solid")) {
+                // A piece after the first starts inside a solid: one was opened.
+                const bool after_solid = !first_ || solids > 0;
+                if (after_solid && only_nul_and_space(tok)) {
+                    note("stl-trailing-nul-bytes");
+                    end = End::done;
+                    return;
+                }
+                fail(!after_solid ? "expected 'solid', found " + found(tok)
+                                  : "expected 'solid' or end of file after 'endsolid', found " + found(tok));
+            }
+            ++solids;
+            last_name = cur_.rest_of_line();
+            named = true;
+            tok = solid_body(true, last_name);
+        }
+    }
+
+    // After "solid NAME" (or at the start of a later chunk, where the name
+    // is not known): reads the block; returns the token after it ("solid"
+    // of the next block, or empty at the end of the piece).
+    std::string_view solid_body(bool name_known, std::string_view solid_name) {
         for (;;) {
             std::string_view tok = cur_.next();
             if (tok.empty()) {
-                text::add_note(out_, "stl-missing-endsolid");
+                end = End::in_solid;
+                if (last_) note("stl-missing-endsolid");
                 return tok;
             }
             if (iequals(tok, "endsolid")) {
                 const std::string_view end_name = cur_.rest_of_line();
-                if (!end_name.empty() && end_name != solid_name)
-                    text::add_note(out_, "stl-endsolid-name-mismatch");
+                if (!end_name.empty()) {
+                    if (!name_known) events.push_back({true, std::string(end_name)});
+                    else if (end_name != solid_name) note("stl-endsolid-name-mismatch");
+                }
+                end = End::top_level;
                 return cur_.next();
             }
             if (iequals(tok, "solid")) {
-                text::add_note(out_, "stl-missing-endsolid");
+                note("stl-missing-endsolid");
                 return tok;
             }
             if (!iequals(tok, "facet")) fail("expected 'facet' or 'endsolid', found " + found(tok));
@@ -155,9 +200,9 @@ private:
                 double v;
                 if (!text::parse_double(tok, v)) ok = false;
             }
-            if (!ok || count != 3) text::add_note(out_, "stl-unparseable-normal");
+            if (!ok || count != 3) note("stl-unparseable-normal");
         } else if (iequals(tok, "outer")) {
-            text::add_note(out_, "stl-facet-without-normal");
+            note("stl-facet-without-normal");
         } else {
             fail("expected 'normal' or 'outer loop' after 'facet', found " + found(tok));
         }
@@ -165,7 +210,7 @@ private:
         tok = cur_.next();
         if (!iequals(tok, "loop")) fail("expected 'loop' after 'outer', found " + found(tok));
 
-        Mesh& m = out_.mesh;
+        Mesh& m = mesh;
         const auto first = static_cast<uint32_t>(m.vertex_count());
         uint32_t k = 0;
         for (tok = cur_.next(); iequals(tok, "vertex"); tok = cur_.next()) {
@@ -175,6 +220,8 @@ private:
                 if (!text::parse_double(num, c)) fail("expected a number after 'vertex', found " + found(num));
                 if (!std::isfinite(c)) fail("non-finite coordinate " + text::quote(num));
             }
+            // The count is the piece's; the join reads serially when all
+            // pieces together pass the limit.
             if (m.vertex_count() >= UINT32_MAX) fail("too many vertices");
             m.add_vertex(xyz[0], xyz[1], xyz[2]);
             ++k;
@@ -185,34 +232,128 @@ private:
         if (k == 3) {
             m.add_triangle(first, first + 1, first + 2);
         } else {
-            text::add_note(out_, "stl-loop-with-" + std::to_string(k) + "-vertices");
+            note("stl-loop-with-" + std::to_string(k) + "-vertices");
             face_.clear();
             for (uint32_t i = 0; i < k; ++i) face_.push_back(first + i);
             m.add_face(face_);
         }
     }
 
-    bool only_nul_and_space(std::string_view tok) {
+    // tok and everything after it in the whole text is NUL bytes and blanks.
+    bool only_nul_and_space(std::string_view tok) const {
         for (char c : tok)
             if (c != '\0') return false;
-        for (char c : cur_.rest())
-            if (c != '\0' && !text::is_space(c)) return false;
+        for (const char* p = begin_ + cur_.offset(); p < text_end_; ++p)
+            if (*p != '\0' && !text::is_space(*p)) return false;
         return true;
     }
 
-    [[noreturn]] void fail(const std::string& message) const {
-        throw ReadError(name_, cur_.line(), message);
+    void note(std::string n) {
+        for (const Event& e : events)
+            if (!e.name_check && e.text == n) return;
+        events.push_back({false, std::move(n)});
     }
 
+    [[noreturn]] void fail(const std::string& message) const { throw ReadError(std::string(), cur_.line(), message); }
+
     text::Cursor cur_;
-    const std::string& name_;
-    LoadedMesh out_;
+    const char* begin_;
+    const char* text_end_;
+    bool first_, last_;
     std::vector<uint32_t> face_;
 };
 
+// Whether a chunk may start at pos: its line's first token is 'facet' or
+// 'endsolid' (between facets, whatever the case).
+bool stl_chunk_start(std::string_view s, std::size_t pos) {
+    while (pos < s.size() && text::is_blank(s[pos])) ++pos;
+    for (std::string_view kw : {std::string_view("facet"), std::string_view("endsolid")}) {
+        if (s.size() - pos >= kw.size() && iequals(s.substr(pos, kw.size()), kw) &&
+            (s.size() - pos == kw.size() || text::is_space(s[pos + kw.size()])))
+            return true;
+    }
+    return false;
+}
+
+// Whether the pieces read like the serial reader: each piece after the
+// first starts inside a solid, none is irregular, and together they stay
+// below the vertex limit. Returns false when the file must be read serially
+// instead; throws the serial reader's error when a piece failed.
+bool pieces_agree(const std::vector<StlPiece>& pieces, std::string_view s, const std::vector<std::size_t>& starts,
+                  const std::string& name) {
+    std::size_t vertices = 0;
+    for (const StlPiece& p : pieces) vertices += p.mesh.vertex_count();
+    if (vertices >= UINT32_MAX) return false;  // the serial reader says where it stops
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+        if (i > 0 && pieces[i - 1].end != StlPiece::End::in_solid) return false;
+        const chunks::Outcome& o = pieces[i].outcome;
+        if (o.status == chunks::Outcome::Status::irregular) return false;
+        if (o.status == chunks::Outcome::Status::error) {
+            const auto before = static_cast<int64_t>(chunks::count_line_ends(s.substr(0, starts[i])));
+            throw ReadError(name, static_cast<uint64_t>(before + o.line), o.message);
+        }
+    }
+    return true;
+}
+
+// The pieces joined: the mesh, and the notes in the serial reader's order.
+void join_stl(std::vector<StlPiece>& pieces, LoadedMesh& out) {
+    std::string_view open_name;  // the solid open at the start of the piece
+    std::size_t solids = 0;
+    for (const StlPiece& p : pieces) {
+        for (const StlPiece::Event& e : p.events) {
+            if (!e.name_check) text::add_note(out, e.text);
+            else if (e.text != open_name) text::add_note(out, "stl-endsolid-name-mismatch");
+        }
+        if (p.named) open_name = p.last_name;
+        solids += p.solids;
+    }
+    if (solids > 1) out.notes.push_back("stl-multiple-solids(" + std::to_string(solids) + ")");
+    std::vector<Mesh> parts;
+    parts.reserve(pieces.size());
+    for (StlPiece& p : pieces) parts.push_back(std::move(p.mesh));
+    chunks::concat(parts, out.mesh, true);
+}
+
+LoadedMesh read_ascii_stl(Bytes data, const std::string& name, const ParseOptions& options) {
+    const std::string_view s = text::as_text(data);
+    LoadedMesh out;
+    out.format = Format::stl;
+    out.encoding = "ascii";
+    ParseReport& report = thread_parse_report();
+    if (chunks::use_parallel(options, s.size())) {
+        const std::vector<std::size_t> starts = chunks::split(s, options.chunk_bytes, stl_chunk_start);
+        const std::size_t n = starts.size() - 1;
+        if (n > 1) {
+            std::vector<StlPiece> pieces;
+            pieces.reserve(n);
+            for (std::size_t i = 0; i < n; ++i)
+                pieces.emplace_back(s.substr(starts[i], starts[i + 1] - starts[i]), s.data() + s.size(), i == 0,
+                                    i + 1 == n);
+            report.chunks = n;
+            chunks::for_each(n, [&](std::size_t i) { pieces[i].run(); });
+            if (pieces_agree(pieces, s, starts, name)) {
+                join_stl(pieces, out);
+                return out;
+            }
+            report.serial_fallback = true;
+        }
+    }
+    std::vector<StlPiece> whole;
+    whole.emplace_back(s, s.data() + s.size(), true, true);
+    whole[0].run();
+    const chunks::Outcome& o = whole[0].outcome;
+    if (o.status != chunks::Outcome::Status::ok) throw ReadError(name, static_cast<uint64_t>(o.line), o.message);
+    join_stl(whole, out);
+    return out;
+}
+
 }  // namespace
 
-LoadedMesh read_stl(Bytes data, const std::string& name) {
+LoadedMesh read_stl(Bytes data, const std::string& name) { return read_stl(data, name, thread_parse_options()); }
+
+LoadedMesh read_stl(Bytes data, const std::string& name, const ParseOptions& options) {
+    thread_parse_report() = {};
     const std::size_t size = data.size();
     if (size >= 84) {
         const uint64_t n = load_u32_le(data.data() + 80);
@@ -225,7 +366,7 @@ LoadedMesh read_stl(Bytes data, const std::string& name) {
     std::size_t lead = 0;
     while (lead < s.size() && text::is_space(s[lead])) ++lead;
     if (starts_with_solid(s.substr(lead)) && s.substr(0, 84).find('\0') == std::string_view::npos)
-        return AsciiStl(data, name).read();
+        return read_ascii_stl(data, name, options);
     if (size < 84)
         throw ReadError::whole_file(name, "file too short for binary STL (" + std::to_string(size) +
                                               " bytes) and it does not start with 'solid'");

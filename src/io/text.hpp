@@ -73,6 +73,22 @@ inline bool parse_int(std::string_view tok, int64_t& out) {
         if (first != last && *first == '-') return false;
     }
     if (first == last) return false;
+    // Fast path, same result as std::from_chars: an optional '-' and at
+    // most 18 digits (which cannot overflow). Face indices are almost
+    // always this.
+    const bool negative = *first == '-';
+    const char* digits = first + (negative ? 1 : 0);
+    const auto n = last - digits;
+    if (n >= 1 && n <= 18) {
+        uint64_t v = 0;
+        for (const char* p = digits; p < last; ++p) {
+            const auto d = static_cast<unsigned>(static_cast<unsigned char>(*p)) - unsigned{'0'};
+            if (d > 9) return false;
+            v = 10 * v + d;
+        }
+        out = negative ? -static_cast<int64_t>(v) : static_cast<int64_t>(v);
+        return true;
+    }
     const auto r = std::from_chars(first, last, out);
     return r.ec == std::errc() && r.ptr == last;
 }

@@ -83,12 +83,10 @@ constexpr int kPerLane = 8;
 constexpr int kBlock = kLanes * kPerLane;  // triangles per block
 constexpr double kU = 0x1p-53;
 
-// Fan triangles of a block as structure of arrays: coordinate k of vertex v
-// of triangle i is c[3*v + k][i]; unused slots are zero (they add exactly 0).
-struct Block {
-    alignas(64) double c[9][kBlock];
-    int n = 0;
-};
+// Fan triangles of a block as structure of arrays (cone.hpp): coordinate k
+// of vertex v of triangle i is c[3*v + k][i]; unused slots are zero.
+static_assert(kBlock == kBlockTriangles);
+using Block = TriangleBlock;
 
 // Per-triangle terms of a block: term k of triangle i is h[k][i] + l[k][i],
 // with magnitude m[k][i] (the bound is K u² Σ m, see the top of this file).
@@ -297,7 +295,7 @@ struct Accumulator {
 
 // Sum2 in 4 lanes of 8, then each lane's (sum, error) into the superaccumulator.
 template <int N>
-void accumulate(const Terms<N>& t, bool dd, Accumulator<N>& acc) {
+void accumulate_into(const Terms<N>& t, bool dd, ExactSum* sum, ExactSum* magnitude) {
     for (int k = 0; k < N; ++k) {
         double s[kLanes] = {}, e[kLanes] = {}, m[kLanes] = {};
         if (dd) {
@@ -321,11 +319,16 @@ void accumulate(const Terms<N>& t, bool dd, Accumulator<N>& acc) {
             }
         }
         for (int j = 0; j < kLanes; ++j) {
-            acc.sum[k].add(s[j]);
-            if (dd) acc.sum[k].add(e[j]);
+            sum[k].add(s[j]);
+            if (dd) sum[k].add(e[j]);
         }
-        acc.magnitude[k].add((m[0] + m[1]) + (m[2] + m[3]));
+        magnitude[k].add((m[0] + m[1]) + (m[2] + m[3]));
     }
+}
+
+template <int N>
+void accumulate(const Terms<N>& t, bool dd, Accumulator<N>& acc) {
+    accumulate_into<N>(t, dd, acc.sum, acc.magnitude);
 }
 
 // ---- walking the fan triangles --------------------------------------------
@@ -404,12 +407,7 @@ ConeSums filtered_impl(const MeshView& mesh, bool dd) {
     out.triangles = acc.triangles;
     for (int k = 0; k < N; ++k) {
         out.sum[k] = acc.sum[k];
-        const double K = k == kV ? (dd ? 512 : 32) : (k <= kMz ? (dd ? 768 : 40) : (dd ? 1024 : 56));
-        const double unit = dd ? kU * kU : kU;
-        const double mag = acc.magnitude[k].round();
-        // + 2^-1060 covers the rounding of a bound in the subnormal range (any
-        // error is a multiple of 2^-1060 in the safe range).
-        out.bound[k] = mag > 0 ? K * unit * mag * (1 + 0x1p-10) + 0x1p-1060 : 0.0;
+        out.bound[k] = filtered_bound(k, dd ? Precision::double_double : Precision::fast, acc.magnitude[k].round());
     }
     return out;
 }
@@ -649,6 +647,31 @@ void to_integer(double x, int e0, mpz_t z) {
 }
 
 }  // namespace
+
+double filtered_bound(int k, Precision precision, double magnitude) {
+    const bool dd = precision == Precision::double_double;
+    const double K = k == kV ? (dd ? 512 : 32) : (k <= kMz ? (dd ? 768 : 40) : (dd ? 1024 : 56));
+    const double unit = dd ? kU * kU : kU;
+    // + 2^-1060 covers the rounding of a bound in the subnormal range (any
+    // error is a multiple of 2^-1060 in the safe range).
+    return magnitude > 0 ? K * unit * magnitude * (1 + 0x1p-10) + 0x1p-1060 : 0.0;
+}
+
+void filtered_volume_block(const TriangleBlock& b, ExactSum& sum, ExactSum& magnitude) {
+    Terms<1> t;
+    compute_terms<1>(b, t, true);
+    accumulate_into<1>(t, true, &sum, &magnitude);
+}
+
+void exact_block_sums(const TriangleBlock& b, uint32_t mask, ExactSum* acc) {
+#if POLYVOL_HAVE_FMA_CLONE
+    if (cpu_has_fma()) {
+        exact_block_fma(b, mask, acc);
+        return;
+    }
+#endif
+    exact_block<false>(b, mask, acc);
+}
 
 void force_baseline_kernels(bool on) {
 #if POLYVOL_HAVE_FMA_CLONE

@@ -71,6 +71,33 @@ struct RationalSums {
 };
 RationalSums gmp_sums(const MeshView& mesh, int count);
 
+// ---- Per-block access, for sources that are not a MeshView (measure/soup.cpp
+// streams float32 triangle records through these). ----
+
+// Up to kBlockTriangles triangles as structure of arrays: coordinate k of
+// vertex v of triangle i is c[3*v + k][i]; slots n .. kBlockTriangles-1 must
+// be zero (they then add exactly 0 to every sum).
+inline constexpr int kBlockTriangles = 32;
+struct TriangleBlock {
+    alignas(64) double c[9][kBlockTriangles];
+    int n = 0;
+};
+
+// The double-double filtered volume term of one block (the kernel of
+// filtered_sums(mesh, 1, Precision::double_double)): adds the exact sum of the
+// block's approximated det terms to sum and their magnitudes to magnitude.
+// |Σ det - sum| <= filtered_bound(kV, double_double, magnitude.round()).
+// Needs Range::safe (every finite float32 is in it).
+void filtered_volume_block(const TriangleBlock& b, exact::ExactSum& sum, exact::ExactSum& magnitude);
+
+// The rigorous bound on |sum - exact sum| for sum k from the rounded sum of
+// magnitudes (what filtered_sums reports in ConeSums::bound).
+double filtered_bound(int k, Precision precision, double magnitude);
+
+// Adds the exact terms of one block to acc[k] for every k with bit k of mask
+// set (the kernel of exact_sums; needs Range::safe).
+void exact_block_sums(const TriangleBlock& b, uint32_t mask, exact::ExactSum* acc);
+
 // For tests: use the baseline kernels (no FMA: Dekker's two_prod) even on a
 // CPU with AVX2 + FMA.
 void force_baseline_kernels(bool on);

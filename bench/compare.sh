@@ -1,0 +1,187 @@
+#!/usr/bin/env bash
+# Whole-process comparison (docs/benchmarks.md, "Whole-process volume"), in one run:
+#   * builds Release with the peers (-DPOLYVOL_PEERS=ON: CGAL, VTK, Open3D from Debian);
+#   * generates UV spheres of ~1M and ~8M triangles (build/bench/make_mesh) as
+#     binary STL, ASCII STL, binary PLY and OBJ in a temporary directory
+#     (deleted at the end);
+#   * runs `polyvol volume`, naive_stl_volume (binary STL only), peer_cgal,
+#     peer_vtk and peer_open3d (1M files only: its watertightness check is
+#     quadratic) RUNS times each and prints the median wall seconds, the
+#     median peak RSS, the volumes, and the ratios polyvol/naive and
+#     peer/polyvol;
+#   * prints the in-memory volume call of each peer (their own median) and
+#     polyvol's (polyvol_bench);
+#   * measures peak RSS of `polyvol volume` (and of the naive mmap loop) on a
+#     BIG_TRIANGLES-triangle binary STL (default 60M = 3 GB).
+# Usage: bench/compare.sh [BUILD_DIR]      (env: RUNS=5, TIMEOUT=600, JOBS=2,
+#        BIG_TRIANGLES=60000000, OFFSET=0, SIZES="1000000 8000000",
+#        SKIP_BUILD=1 to reuse BUILD_DIR; Open3D runs on the smallest size only,
+#        with OPEN3D_TIMEOUT=120 per run)
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-$here/build-bench}
+RUNS=${RUNS:-5}
+TIMEOUT=${TIMEOUT:-600}
+JOBS=${JOBS:-2}
+BIG_TRIANGLES=${BIG_TRIANGLES:-60000000}
+OFFSET=${OFFSET:-0}
+SIZES=${SIZES:-"1000000 8000000"}
+OPEN3D_TIMEOUT=${OPEN3D_TIMEOUT:-120}
+
+echo "## machine"
+echo "nproc: $(nproc); CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //'); $(grep MemTotal /proc/meminfo | tr -s ' ')"
+echo "command: $0 $*  (RUNS=$RUNS TIMEOUT=$TIMEOUT JOBS=$JOBS BIG_TRIANGLES=$BIG_TRIANGLES OFFSET=$OFFSET SIZES=\"$SIZES\")"
+echo "date: $(date -u +%Y-%m-%dT%H:%MZ); load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+
+if [ "${SKIP_BUILD:-0}" != 1 ]; then
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPOLYVOL_PEERS=ON >/dev/null
+  cmake --build "$build" -j"$JOBS" --target polyvol_cli polyvol_bench make_mesh naive_stl_volume \
+    peer_cgal peer_vtk peer_open3d >/dev/null
+fi
+
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/polyvol-compare.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+
+tags=""
+for n in $SIZES; do
+  if [ "$n" -ge 1000000 ]; then tag=$((n / 1000000))m; else tag=$((n / 1000))k; fi
+  tags="$tags $tag"
+  for ext in stl ascii.stl ply obj; do
+    "$build/bench/make_mesh" "$n" "$OFFSET" "$tmp/sphere$tag.$ext"
+  done
+done
+ls -l "$tmp" | sed 's/^/    /'
+
+python3 - "$build" "$tmp" "$RUNS" "$TIMEOUT" "$BIG_TRIANGLES" "$OFFSET" "$tags" "$OPEN3D_TIMEOUT" <<'PY'
+import os, subprocess, sys, time, statistics, signal
+
+build, tmp, runs, timeout, big, offset = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4]), int(sys.argv[5]), sys.argv[6]
+tags = sys.argv[7].split()
+open3d_timeout = float(sys.argv[8])
+B = lambda *p: os.path.join(build, *p)
+
+def run_wait4(cmd, timeout=timeout):
+    """Wall seconds, peak RSS (KB, from wait4), stdout, exit code (None on timeout)."""
+    t0 = time.monotonic()
+    r, w = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(r)
+        os.dup2(w, 1)
+        dn = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(dn, 2)
+        try:
+            os.execv(cmd[0], cmd)
+        finally:
+            os._exit(127)
+    os.close(w)
+    chunks = []
+    deadline = t0 + timeout
+    import select
+    killed = False
+    while True:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            os.kill(pid, signal.SIGKILL)
+            killed = True
+            break
+        ready, _, _ = select.select([r], [], [], min(left, 1.0))
+        if ready:
+            b = os.read(r, 65536)
+            if not b:
+                break
+            chunks.append(b)
+    _, status, ru = os.wait4(pid, 0)
+    wall = time.monotonic() - t0
+    os.close(r)
+    if killed:
+        return wall, ru.ru_maxrss, "", None
+    return wall, ru.ru_maxrss, b"".join(chunks).decode(errors="replace"), os.waitstatus_to_exitcode(status)
+
+def bench(cmd, n=runs, limit=timeout):
+    walls, rss, out, code = [], [], "", 0
+    for _ in range(n):
+        w, m, o, c = run_wait4(cmd, limit)
+        if c is None:
+            return None
+        walls.append(w); rss.append(m); out, code = o, c
+    return statistics.median(walls), statistics.median(rss), out, code
+
+def volume_of(tool, out):
+    try:
+        if tool == "polyvol":
+            line = out.splitlines()[1]
+            return float(line.split()[2])
+        if tool == "naive":
+            return float(out.split()[0])
+        return float(out.split()[1])
+    except Exception:
+        return float("nan")
+
+def inmem_of(tool, out):
+    try:
+        return float(out.split()[3]) if tool not in ("polyvol", "naive") else None
+    except Exception:
+        return None
+
+rows = []
+for tag in tags:
+    for ext in ("stl", "ascii.stl", "ply", "obj"):
+        f = os.path.join(tmp, f"sphere{tag}.{ext}")
+        tools = [("polyvol", [B("polyvol"), "volume", f])]
+        if ext == "stl":
+            tools.append(("naive", [B("bench", "naive_stl_volume"), f]))
+        tools += [("cgal", [B("bench", "peer_cgal"), f]), ("vtk", [B("bench", "peer_vtk"), f])]
+        if tag == tags[0]:
+            tools.append(("open3d", [B("bench", "peer_open3d"), f]))
+        res = {}
+        for name, cmd in tools:
+            limit = min(timeout, open3d_timeout) if name == "open3d" else timeout
+            r = bench(cmd, runs, limit)
+            res[name] = r
+            if r is None:
+                print(f"    {tag} {ext:9} {name:8} timeout (> {limit:.0f} s)", flush=True)
+            else:
+                print(f"    {tag} {ext:9} {name:8} {r[0]:8.3f} s  {r[1]/1024:8.1f} MB  exit {r[3]}  volume {volume_of(name, r[2])!r}"
+                      + (f"  in-memory {inmem_of(name, r[2]):.4f} s" if inmem_of(name, r[2]) is not None else ""), flush=True)
+        rows.append((tag, ext, res))
+
+print()
+print("| mesh | format | tool | median wall s | median peak RSS MB | ratio to polyvol | volume | peer in-memory volume call s |")
+print("|---|---|---|---|---|---|---|---|")
+for tag, ext, res in rows:
+    pv = res.get("polyvol")
+    for name, r in res.items():
+        if r is None:
+            lim = min(timeout, open3d_timeout) if name == "open3d" else timeout
+            print(f"| {tag} | {ext} | {name} | timeout > {lim:.0f} | | | | |")
+            continue
+        ratio = "" if pv is None or name == "polyvol" else f"{r[0] / pv[0]:.2f}"
+        im = inmem_of(name, r[2])
+        print(f"| {tag} | {ext} | {name} | {r[0]:.3f} | {r[1]/1024:.1f} | {ratio} | {volume_of(name, r[2])!r} | {'' if im is None else f'{im:.4f}'} |")
+print()
+for tag, ext, res in rows:
+    if ext == "stl" and res.get("polyvol") and res.get("naive"):
+        print(f"polyvol/naive ({tag} binary STL, median wall): {res['polyvol'][0] / res['naive'][0]:.2f}")
+
+print()
+print("## in-memory volume call, polyvol (polyvol_bench)")
+sys.stdout.flush()
+subprocess.run([B("bench", "polyvol_bench"), "--benchmark_filter=SoupVolume|NaiveRecords|Volume<.*cone.*correctly", "--benchmark_repetitions=3",
+                "--benchmark_report_aggregates_only=true"], check=False)
+
+print()
+print(f"## peak RSS on a {big}-triangle binary STL")
+bigf = os.path.join(tmp, "big.stl")
+t0 = time.monotonic()
+subprocess.run([B("bench", "make_mesh"), str(big), offset, bigf], check=True)
+print(f"    generated {os.path.getsize(bigf) / 1e9:.2f} GB in {time.monotonic() - t0:.1f} s; MemAvailable "
+      + open("/proc/meminfo").read().split("MemAvailable:")[1].split("\n")[0].strip())
+for name, cmd in (("polyvol volume", [B("polyvol"), "volume", bigf]), ("naive (mmap)", [B("bench", "naive_stl_volume"), bigf])):
+    r = bench(cmd, 3)
+    if r is None:
+        print(f"    {name}: timeout")
+    else:
+        print(f"    {name}: median wall {r[0]:.3f} s, median peak RSS {r[1]/1024:.1f} MB, volume {volume_of('polyvol' if name.startswith('polyvol') else 'naive', r[2])!r}")
+PY
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

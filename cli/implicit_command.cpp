@@ -1,0 +1,263 @@
+// `polyvol implicit EXPR --box LO:HI [--dim N] [--h H] [--json] [--stl OUT]`.
+//
+// Prints the volume of {F <= 0} within the box (the Richardson extrapolation
+// from the lattices of spacing h and 2h), its error estimate, the number of
+// boundary simplices of the PL surface at h and the time. Exit codes: 0 ok,
+// 1 usage, 2 an expression that does not parse, 3 F is NaN at a lattice vertex
+// / the solid reaches the box with --box-rule error / the lattice is too large.
+#include "implicit_command.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "polyvol/implicit.hpp"
+#include "report.hpp"
+
+namespace polyvol::cli {
+
+namespace {
+
+// "LO:HI" or "LO:HI,LO:HI,..."; false when malformed.
+bool parse_box(const std::string& text, std::vector<double>& lo, std::vector<double>& hi) {
+    std::stringstream all(text);
+    std::string item;
+    while (std::getline(all, item, ',')) {
+        const auto colon = item.find(':');
+        if (colon == std::string::npos) return false;
+        try {
+            std::size_t used = 0;
+            const std::string a = item.substr(0, colon), b = item.substr(colon + 1);
+            lo.push_back(std::stod(a, &used));
+            if (used != a.size()) return false;
+            hi.push_back(std::stod(b, &used));
+            if (used != b.size()) return false;
+        } catch (const std::exception&) {
+            return false;
+        }
+    }
+    return !lo.empty();
+}
+
+bool parse_point(const std::string& text, std::vector<double>& out) {
+    std::stringstream all(text);
+    std::string item;
+    while (std::getline(all, item, ',')) {
+        try {
+            std::size_t used = 0;
+            out.push_back(std::stod(item, &used));
+            if (used != item.size()) return false;
+        } catch (const std::exception&) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// Binary STL of a 3D chain (triangles counter-clockwise seen from outside).
+bool write_stl(const std::string& path, const Chain& chain) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) return false;
+    char header[80] = "polyvol implicit: PL surface";
+    out.write(header, sizeof header);
+    const auto count = static_cast<uint32_t>(chain.simplex_count());
+    out.write(reinterpret_cast<const char*>(&count), 4);
+    for (std::size_t s = 0; s < chain.simplex_count(); ++s) {
+        float v[4][3];
+        for (int i = 0; i < 3; ++i)
+            for (int k = 0; k < 3; ++k) v[i + 1][k] = static_cast<float>(chain.coordinates[3 * chain.simplices[3 * s + i] + k]);
+        const double a[3] = {double(v[2][0]) - v[1][0], double(v[2][1]) - v[1][1], double(v[2][2]) - v[1][2]};
+        const double b[3] = {double(v[3][0]) - v[1][0], double(v[3][1]) - v[1][1], double(v[3][2]) - v[1][2]};
+        double nrm[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+        const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        for (int k = 0; k < 3; ++k) v[0][k] = len > 0 ? static_cast<float>(nrm[k] / len) : 0.0f;
+        out.write(reinterpret_cast<const char*>(v), sizeof v);
+        const uint16_t attribute = 0;
+        out.write(reinterpret_cast<const char*>(&attribute), 2);
+    }
+    return static_cast<bool>(out);
+}
+
+nlohmann::json pass_json(const ImplicitPass& p) {
+    return {{"spacing", p.spacing},
+            {"cells", p.cells},
+            {"volume", p.volume},
+            {"rounding_error_bound", p.rounding_error_bound},
+            {"boundary_simplices", p.boundary_simplices},
+            {"crossed_simplices", p.crossed_simplices},
+            {"face_simplices", p.face_simplices},
+            {"function_evaluations", p.function_evaluations},
+            {"components", p.components},
+            {"box_vertices_inside", p.box_vertices_inside},
+            {"seconds", p.seconds}};
+}
+
+// The shortest text that reads back as x.
+std::string number(double x) {
+    char buf[64];
+    for (int digits = 15; digits <= 17; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+        if (std::strtod(buf, nullptr) == x) break;
+    }
+    return buf;
+}
+
+std::string short_number(double x) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return buf;
+}
+
+}  // namespace
+
+CLI::App* add_implicit_command(CLI::App& app, ImplicitArgs& a) {
+    auto* cmd = app.add_subcommand(
+        "implicit",
+        "Volume of {x : F(x) <= 0} in R^n from a piecewise-linear approximation of F = 0 on a Kuhn "
+        "triangulation (Richardson estimate from spacings h and 2h). In EXPR, x, y, z are the first "
+        "three coordinates and x1 .. xn all of them; pi and muparser's functions (sqrt, sin, exp, abs, "
+        "min, max, ...) are known.");
+    cmd->add_option("expression", a.expression, "F as an expression, e.g. 'x^2 + y^2 + z^2 - 1'")->required();
+    cmd->add_option("--dim", a.dimension,
+                    "Dimension n, 2 .. 8 (default: the highest coordinate EXPR names, at least 2)")
+        ->check(CLI::Range(2, kImplicitMaxDimension));
+    cmd->add_option("--box", a.box, "The box: LO:HI for every axis, or LO:HI,LO:HI,... one per axis")->required();
+    cmd->add_option("--h", a.h,
+                    "Lattice spacing (default: the widest side / 512, 96, 32, 16, 12 cells for n = 2 .. 6; "
+                    "the spacing used is <= h, an even number of cells per side)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--coarse-cells", a.coarse_cells,
+                    "Cells per axis of the coarse seeding scan (default: 256, 48, 16, 10, 6 for n = 2 .. 6; "
+                    "-1: none, seeds only)")
+        ->check(CLI::Range(-1, 1 << 20));
+    cmd->add_option("--seed", a.seeds, "A seed point x1,x2,...: the surface first met along +x1 from it is "
+                                        "walked too (repeatable)");
+    cmd->add_option("--box-rule", a.box_rule,
+                    "clip: F counts as +inf outside the box, the solid is clipped by it (default); error: "
+                    "exit 3 when the solid reaches the box boundary")
+        ->check(CLI::IsMember({"clip", "error"}))
+        ->capture_default_str();
+    cmd->add_option("--formula", a.formula, "Chain volume formula: cone (2.1) or prism (2.2)")
+        ->check(CLI::IsMember({"cone", "prism"}))
+        ->capture_default_str();
+    cmd->add_flag("--no-estimate", a.no_estimate, "Skip the 2h lattice: volume of the PL solid at h only");
+    cmd->add_flag("--json", a.json, "Print one JSON object");
+    cmd->add_option("--stl", a.stl, "3D only: write the PL surface at h (marching tetrahedra) as binary STL");
+    return cmd;
+}
+
+int run_implicit_command(const ImplicitArgs& a) {
+    int dimension = a.dimension;
+    try {
+        if (dimension == 0) dimension = std::max(2, expression_coordinates(a.expression));
+    } catch (const ExpressionError& e) {
+        std::cerr << "polyvol: " << e.what() << "\n";
+        return Exit::unreadable;
+    }
+    if (dimension > kImplicitMaxDimension) {
+        std::cerr << "polyvol: the expression names coordinate x" << dimension << "; at most "
+                  << kImplicitMaxDimension << " dimensions are supported\n";
+        return Exit::usage;
+    }
+    ImplicitOptions o;
+    o.dimension = dimension;
+    o.lo.clear();
+    o.hi.clear();
+    if (!parse_box(a.box, o.lo, o.hi) || (o.lo.size() != 1 && o.lo.size() != static_cast<std::size_t>(dimension))) {
+        std::cerr << "polyvol: --box wants LO:HI or " << dimension << " comma-separated LO:HI ranges, got '" << a.box
+                  << "'\n";
+        return Exit::usage;
+    }
+    o.h = a.h;
+    o.coarse_cells = a.coarse_cells;
+    for (const std::string& s : a.seeds) {
+        std::vector<double> p;
+        if (!parse_point(s, p) || p.size() != static_cast<std::size_t>(dimension)) {
+            std::cerr << "polyvol: --seed wants " << dimension << " comma-separated coordinates, got '" << s << "'\n";
+            return Exit::usage;
+        }
+        o.seeds.insert(o.seeds.end(), p.begin(), p.end());
+    }
+    o.box_rule = a.box_rule == "error" ? BoxRule::error : BoxRule::clip;
+    o.formula = a.formula == "prism" ? SimplexFormula::prism : SimplexFormula::cone;
+    o.error_estimate = !a.no_estimate;
+    if (!a.stl.empty() && dimension != 3) {
+        std::cerr << "polyvol: --stl needs --dim 3 (this is " << dimension << "-dimensional)\n";
+        return Exit::usage;
+    }
+    o.keep_chain = !a.stl.empty();
+
+    ImplicitVolume r;
+    try {
+        const ImplicitFunction f = parse_implicit_expression(a.expression, dimension);
+        r = implicit_volume(f, o);
+    } catch (const ExpressionError& e) {
+        std::cerr << "polyvol: " << e.what();
+        if (e.position() >= 0) std::cerr << " (at character " << e.position() + 1 << ")";
+        std::cerr << "\n";
+        return Exit::unreadable;
+    } catch (const ImplicitError& e) {
+        std::cerr << "polyvol: " << e.what() << "\n";
+        return Exit::invalid;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "polyvol: " << e.what() << "\n";
+        return Exit::usage;
+    }
+    if (!a.stl.empty() && (!r.chain || !write_stl(a.stl, *r.chain))) {
+        std::cerr << "polyvol: cannot write " << a.stl << "\n";
+        return Exit::unreadable;
+    }
+    if (r.clipped)
+        std::cerr << "polyvol: warning: the solid reaches the box boundary (" << r.fine.box_vertices_inside
+                  << " boundary lattice vertices with F <= 0): it is clipped by the box\n";
+
+    const bool estimate = o.error_estimate;
+    if (a.json) {
+        nlohmann::json j = {{"expression", a.expression},
+                            {"dimension", r.dimension},
+                            {"h", r.h},
+                            {"spacing", r.fine.spacing},
+                            {"volume", r.volume},
+                            {"volume_pl", r.fine.volume},
+                            {"error_estimate", estimate ? nlohmann::json(r.error_estimate) : nlohmann::json()},
+                            {"boundary_simplices", r.fine.boundary_simplices},
+                            {"clipped", r.clipped},
+                            {"box_rule", a.box_rule},
+                            {"formula", a.formula},
+                            {"seconds", r.seconds},
+                            {"fine", pass_json(r.fine)}};
+        if (r.coarse) {
+            j["volume_pl_2h"] = r.coarse->volume;
+            j["coarse"] = pass_json(*r.coarse);
+        }
+        std::cout << j.dump(2) << "\n";
+        return Exit::ok;
+    }
+    std::cout << "dimension           " << r.dimension << "\n";
+    std::cout << "h                   " << number(r.h) << "  (lattice";
+    for (std::size_t k = 0; k < r.fine.cells.size(); ++k) std::cout << (k ? " x " : " ") << r.fine.cells[k];
+    std::cout << " cells)\n";
+    if (estimate) {
+        std::cout << "volume              " << number(r.volume) << "  (Richardson extrapolation from h and 2h)\n";
+        std::cout << "error estimate      " << short_number(r.error_estimate)
+                  << "  (|V(h) - V(2h)| / 3: the estimated error of the PL volume at h)\n";
+        std::cout << "volume of PL solid  " << number(r.fine.volume) << " at h, " << number(r.coarse->volume)
+                  << " at 2h\n";
+    } else {
+        std::cout << "volume              " << number(r.volume) << "  (the PL solid at h; no error estimate)\n";
+    }
+    std::cout << "boundary simplices  " << r.fine.boundary_simplices << "  (" << r.fine.crossed_simplices
+              << " crossed " << r.dimension << "-simplices, " << r.fine.face_simplices << " in the box faces)\n";
+    std::cout << "seconds             " << short_number(r.seconds) << "\n";
+    if (!a.stl.empty()) std::cout << "surface written     " << a.stl << "\n";
+    return Exit::ok;
+}
+
+}  // namespace polyvol::cli

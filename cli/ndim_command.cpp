@@ -1,0 +1,277 @@
+// `polyvol ndim FILE` and `polyvol area FILE`: read, validate, measure, print
+// (a report for people, or one JSON object). Exit codes as the rest of the
+// command: 0 ok, 1 usage, 2 unreadable input, 3 a chain with unmatched faces
+// (its volume would depend on the origin) unless --allow-open.
+#include "ndim_command.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <new>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "polyvol/chain.hpp"
+#include "polyvol/simplicial.hpp"
+#include "report.hpp"
+
+namespace polyvol::cli {
+
+namespace {
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+ChainOptions chain_options(const NdimOptions& o) {
+    ChainOptions c;
+    c.formula = o.formula == "prism" ? SimplexFormula::prism : SimplexFormula::cone;
+    c.accuracy = o.accuracy == "exact"     ? ChainAccuracy::exact
+                 : o.accuracy == "bounded" ? ChainAccuracy::bounded
+                                           : ChainAccuracy::automatic;
+    c.traversal = o.traversal == "refactor" ? Traversal::refactor : Traversal::rank_one;
+    return c;
+}
+
+void add_common(CLI::App* cmd, NdimOptions& o) {
+    cmd->add_option("--formula", o.formula,
+                    "cone: Allgower-Schmidt (2.1), det/n! per simplex; prism: (2.2), mean last coordinate "
+                    "times the projected simplex")
+        ->check(CLI::IsMember({"cone", "prism"}))
+        ->capture_default_str();
+    cmd->add_option("--accuracy", o.accuracy,
+                    "auto (correctly rounded for n <= 3, rigorous error bound for n >= 4), bounded, or exact "
+                    "(correctly rounded for any n, GMP: slow)")
+        ->check(CLI::IsMember({"auto", "bounded", "exact"}))
+        ->capture_default_str();
+    cmd->add_flag("--json", o.json, "Print one JSON object");
+    cmd->add_flag("--orient", o.orient,
+                  "Orient first: consistent within each component, outer boundaries outward, cavities and "
+                  "holes inward (by nesting)");
+}
+
+std::string unmatched_text(const ChainReport& r) {
+    std::ostringstream s;
+    s << r.unmatched_faces << " unmatched (n-2)-face" << (r.unmatched_faces == 1 ? "" : "s") << " ("
+      << r.boundary_faces << " boundary, " << r.misoriented_faces << " misoriented, " << r.nonmanifold_faces
+      << " non-manifold)";
+    if (r.unmatched_example) {
+        const UnmatchedFace& e = *r.unmatched_example;
+        s << ", e.g. the face (";
+        for (std::size_t i = 0; i < e.vertices.size(); ++i) s << (i ? " " : "") << e.vertices[i];
+        s << ") of simplex " << e.simplex << ", used " << e.same << " time" << (e.same == 1 ? "" : "s")
+          << " with that orientation and " << e.opposite << " the other way";
+    }
+    return s.str();
+}
+
+std::string point_text(const std::vector<double>& c) {
+    std::string s = "(";
+    for (std::size_t i = 0; i < c.size(); ++i) s += (i ? ", " : "") + shortest(c[i]);
+    return s + ")";
+}
+
+struct Outcome {
+    int code = Exit::ok;
+    std::string error, warning;
+};
+
+nlohmann::json to_json(const std::string& file, const ChainVolume* v, const ChainReport& r,
+                       const NdimOptions& o, const Outcome& out) {
+    nlohmann::json j;
+    j["file"] = file;
+    j["dimension"] = r.dimension;
+    j["vertices"] = r.vertices;
+    j["vertices_welded"] = r.vertices_welded;
+    j["simplices"] = r.simplices;
+    j["degenerate_simplices"] = r.degenerate_simplices;
+    j["faces"] = r.faces;
+    j["unmatched_faces"] = r.unmatched_faces;
+    j["boundary_faces"] = r.boundary_faces;
+    j["misoriented_faces"] = r.misoriented_faces;
+    j["nonmanifold_faces"] = r.nonmanifold_faces;
+    j["components"] = r.components;
+    if (r.unmatched_example) {
+        const UnmatchedFace& e = *r.unmatched_example;
+        j["unmatched_example"] = {{"vertices", e.vertices}, {"simplex", e.simplex}, {"same", e.same},
+                                  {"opposite", e.opposite}};
+    }
+    j["formula"] = o.formula;
+    if (v) {
+        j["accuracy"] = v->volume_correctly_rounded ? "correctly-rounded" : "error-bound";
+        j["volume"] = num(v->volume);
+        j["error_bound"] = std::isfinite(v->volume_error_bound) ? nlohmann::json(v->volume_error_bound)
+                                                                : nlohmann::json(nullptr);
+        j["correctly_rounded"] = v->volume_correctly_rounded;
+        nlohmann::json c = nlohmann::json::array();
+        for (double x : v->centroid) c.push_back(num(x));
+        j["centroid"] = c;
+        j["centroid_error_bound"] = num(v->centroid_error_bound);
+        j["centroid_correctly_rounded"] = v->centroid_correctly_rounded;
+        if (v->accuracy == ChainAccuracy::bounded) {
+            j["traversal"] = std::string(traversal_name(v->traversal));
+            const ChainStats& s = v->stats;
+            j["stats"] = {{"factorizations", s.factorizations},
+                          {"updates", s.updates},
+                          {"jumps", s.jumps},
+                          {"stability_refactors", s.stability_refactors},
+                          {"pass_throughs", s.pass_throughs},
+                          {"elimination_steps", s.elimination_steps},
+                          {"max_backward_error", s.max_backward_error},
+                          {"seconds_topology", s.seconds_topology},
+                          {"seconds_sweep", s.seconds_sweep}};
+        }
+    } else {
+        j["volume"] = nullptr;
+        j["error_bound"] = nullptr;
+        j["centroid"] = nullptr;
+    }
+    if (!out.warning.empty()) j["warning"] = out.warning;
+    if (!out.error.empty()) j["error"] = out.error;
+    j["exit_code"] = out.code;
+    return j;
+}
+
+std::string report_text(const std::string& file, const std::string& what, const ChainVolume* v,
+                        const ChainReport& r, const NdimOptions& o, const std::vector<std::string>& extra) {
+    std::ostringstream s;
+    s << "file        " << file << " (" << what << ")\n";
+    s << "dimension   " << r.dimension << "\n";
+    s << "simplices   " << r.simplices << " (" << r.degenerate_simplices << " degenerate), vertices " << r.vertices
+      << " (" << r.vertices_welded << " distinct)\n";
+    s << "faces       " << r.faces << " (n-2)-faces: unmatched " << r.unmatched_faces << ", boundary "
+      << r.boundary_faces << ", misoriented " << r.misoriented_faces << ", non-manifold " << r.nonmanifold_faces
+      << "; " << r.components << " component" << (r.components == 1 ? "" : "s") << "\n";
+    for (const auto& line : extra) s << line << "\n";
+    s << "formula     " << o.formula << (o.formula == "prism" ? " (Allgower-Schmidt 2.2)" : " (Allgower-Schmidt 2.1)")
+      << "\n";
+    if (!v) return s.str();
+    const std::string name = r.dimension == 2 ? "area" : "volume";
+    s << (name == "area" ? "area        " : "volume      ") << shortest(v->volume);
+    if (v->volume_correctly_rounded) {
+        s << "  (correctly rounded: the exact " << name << " of the coordinates as read, rounded once)\n";
+    } else {
+        s << " ± " << shortest(v->volume_error_bound) << "  (rigorous absolute error bound)\n";
+    }
+    s << "centroid    " << point_text(v->centroid);
+    if (v->centroid_correctly_rounded) {
+        s << "  (each coordinate correctly rounded)\n";
+    } else {
+        s << " ± " << shortest(v->centroid_error_bound) << "\n";
+    }
+    if (v->accuracy == ChainAccuracy::bounded) {
+        const ChainStats& st = v->stats;
+        s << "traversal   " << traversal_name(v->traversal) << ": " << st.updates << " column replacements, "
+          << st.factorizations << " fresh LU factorisation" << (st.factorizations == 1 ? "" : "s") << " ("
+          << st.jumps << " after jumps, " << st.stability_refactors << " for stability), " << st.pass_throughs
+          << " pass-throughs\n";
+    }
+    return s.str();
+}
+
+// The shared tail: orient, measure, judge, print.
+int measure_and_print(const std::string& file, const std::string& what, Chain& chain, bool force_orient,
+                      const NdimOptions& o, std::vector<std::string> extra) {
+    Outcome out;
+    if (o.orient || force_orient) {
+        const OrientResult orr = orient_chain(chain);
+        std::ostringstream s;
+        s << "oriented    ";
+        if (!orr.orientable) {
+            s << "not orientable: left as read";
+        } else {
+            s << orr.flipped << " simplices flipped in " << orr.components << " component"
+              << (orr.components == 1 ? "" : "s");
+            if (orr.undecided) s << " (" << orr.undecided << " undecided)";
+        }
+        extra.push_back(s.str());
+    }
+    const ChainVolume v = chain_volume(chain.view(), chain_options(o));
+    const ChainReport& r = v.topology;
+    const bool show = r.closed() || o.allow_open;
+    if (!r.closed()) {
+        if (o.allow_open) {
+            out.warning = file + ": " + unmatched_text(r) +
+                          ": the chain is not closed, so the figures depend on the origin (they are the sums about 0)";
+        } else {
+            out.code = Exit::invalid;
+            out.error = file + ": " + unmatched_text(r) + ": the volume would depend on the origin";
+        }
+    }
+    if (!out.error.empty()) std::cerr << "polyvol: " << out.error << "\n";
+    if (!out.warning.empty()) std::cerr << "polyvol: warning: " << out.warning << "\n";
+    if (o.json) {
+        nlohmann::json j = to_json(file, show ? &v : nullptr, r, o, out);
+        j["format"] = what;
+        if (r.dimension == 2 && show) j["area"] = num(v.volume);
+        std::cout << j.dump(2) << "\n";
+    } else {
+        std::cout << report_text(file, what, show ? &v : nullptr, r, o, extra);
+    }
+    return out.code;
+}
+
+int run_ndim(const NdimOptions& o) {
+    LoadedChain loaded;
+    try {
+        loaded = read_chain_file(o.file);
+    } catch (const ReadError& e) {
+        std::cerr << "polyvol: " << e.what() << "\n";
+        return Exit::unreadable;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "polyvol: " << o.file << ": out of memory while reading\n";
+        return Exit::unreadable;
+    }
+    std::vector<std::string> extra;
+    if (loaded.format == ChainFormat::qhull) {
+        std::ostringstream s;
+        s << "qhull       " << loaded.qhull_facets << " facets, " << loaded.facets_reoriented
+          << " turned outward, " << loaded.facets_undecided << " flat ones oriented by their neighbours";
+        extra.push_back(s.str());
+    }
+    return measure_and_print(o.file, std::string(chain_format_name(loaded.format)), loaded.chain,
+                             loaded.facets_undecided > 0, o, std::move(extra));
+}
+
+int run_area(const NdimOptions& o) {
+    Polygons p;
+    try {
+        p = read_polygons_file(o.file);
+    } catch (const ReadError& e) {
+        std::cerr << "polyvol: " << e.what() << "\n";
+        return Exit::unreadable;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "polyvol: " << o.file << ": out of memory while reading\n";
+        return Exit::unreadable;
+    }
+    Chain c = polygon_chain(p.view());
+    std::vector<std::string> extra{"loops       " + std::to_string(p.loop_count())};
+    return measure_and_print(o.file, "polygons", c, false, o, std::move(extra));
+}
+
+}  // namespace
+
+void add_ndim_commands(CLI::App& app, NdimCommands& c) {
+    c.ndim = app.add_subcommand("ndim", "Volume and centroid of a polyhedron in R^n from its oriented simplicial "
+                                        "boundary (.chain, or the output of `qconvex o Qt`), with its guarantee");
+    c.ndim->add_option("file", c.ndim_options.file, "A .chain file or qhull's OFF output; - reads stdin")->required();
+    add_common(c.ndim, c.ndim_options);
+    c.ndim->add_option("--traversal", c.ndim_options.traversal,
+                       "rank-one (LU column-replacement updates along a walk of adjacent simplices) or refactor "
+                       "(a fresh LU per simplex)")
+        ->check(CLI::IsMember({"rank-one", "refactor"}))
+        ->capture_default_str();
+    c.ndim->add_flag("--allow-open", c.ndim_options.allow_open,
+                     "Measure chains with unmatched faces anyway (the result then depends on the origin)");
+    c.area = app.add_subcommand("area", "Area and centroid of plane polygons with holes and islands (one vertex "
+                                        "loop per line: x0 y0 x1 y1 ...), correctly rounded");
+    c.area->add_option("file", c.area_options.file, "Polygon file; - reads stdin")->required();
+    add_common(c.area, c.area_options);
+}
+
+int run_ndim_commands(const NdimCommands& c) {
+    if (c.ndim && *c.ndim) return run_ndim(c.ndim_options);
+    if (c.area && *c.area) return run_area(c.area_options);
+    return -1;
+}
+
+}  // namespace polyvol::cli

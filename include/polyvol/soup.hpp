@@ -1,0 +1,140 @@
+// polyvol/soup.hpp — volume, centroid, area and closedness of a triangle soup
+// given as float32 records, accumulated window by window in constant memory.
+//
+// The input is any array of triangles whose nine coordinates are float32
+// (little-endian, as in binary STL — measure never knows the file format; the
+// caller says where the floats are):
+//   coordinate k of vertex v of triangle t is the float32 at
+//     data + t * stride + offset + 12 * v + 4 * k        (v, k in 0..2)
+//   (binary STL records: stride 50, offset 12; unaligned is fine)
+// Triangles are counter-clockwise seen from outside; nothing is welded.
+//
+// What is accumulated (same conventions as measure.hpp, density 1):
+//   volume         Σ det(a,b,c)/6, correctly rounded (the exact value of the
+//                  coordinates as read, rounded once to nearest, ties to even);
+//   first moments  Σ det·(a_i+b_i+c_i)/24 with a rigorous absolute bound;
+//   centroid       first moments / volume, with a rigorous absolute bound;
+//   area           Σ |(b-a)×(c-a)|/2 with a rigorous relative bound;
+//   triangles, whether a coordinate is NaN or infinite, and
+//   a closedness fingerprint (below).
+//
+// Closedness fingerprint. The surface is a closed 2-cycle iff every
+// undirected edge {a,b} (a, b distinct welded points: bit-identical float32
+// triples, -0.0 = +0.0) is used as often a→b as b→a (topology.hpp). With
+// H a keyed hash of a point into the field F_p, p = 2^31 - 1, each triangle
+// adds the Vandermonde determinant
+//     (H(b) - H(a)) (H(c) - H(a)) (H(c) - H(b))
+//   = Σ over its directed edges x→y of  H(x) H(y)^2 - H(x)^2 H(y)   (mod p).
+// The edge term is antisymmetric, so a balanced surface sums to exactly 0
+// (a degenerate triangle, two corners at one point, adds 0 as well).
+// Otherwise the sum is the polynomial Σ_{a→b} m_ab (H_a H_b^2 - H_a^2 H_b)
+// in the values H_v, m_ab the net use count of an unbalanced edge
+// (0 < |m_ab| < 2^31 for fewer than 2^31 triangles): the monomial H_a H_b^2
+// has coefficient m_ab ≢ 0, so the polynomial is nonzero, of degree 3. If H
+// behaves as a random function of the point — the 96 bits through three AES
+// rounds (or two multiply-xor rounds without AES-NI) keyed from
+// std::random_device at construction, so no input can be chosen against the
+// key — each H value takes any residue with probability <= 2^-30 (31 hash
+// bits, the all-ones pattern being ≡ 0), and the Schwartz–Zippel lemma bounds
+// the chance that an unclosed surface sums to 0 by 3 · 2^-30 per lane. Four
+// lanes (the four 32-bit words of the 128-bit hash, independent under the
+// same assumption):
+//     P(fingerprint == 0 | not a closed 2-cycle) <= 81 · 2^-120 < 2^-113.
+// A zero fingerprint is therefore "closed with overwhelming probability"; a
+// nonzero one is certain proof of an unbalanced edge (its count and an example
+// need the welded topology: polyvol::analyze_topology).
+//
+// Passes. The volume is decided by a filter: pass 1 (float32-exact products,
+// double-double sums, error <= 512 u² Σ 6 M_b³ n_b, M_b the largest |coordinate|
+// of a block of n_b <= 32 triangles — decides unless the mesh is far from the
+// origin compared with its size), pass 2 (measure/cone.cpp's translated
+// double-double kernel), pass 3 (exact). Area, moments, counts and the
+// fingerprint come from pass 1. After feeding every triangle once, call
+// next_pass(): when it returns true, feed the same triangles again (in any
+// windows), then call it again.
+//
+// Determinism. Blocks are triangles [32 j, 32 j + 32) of the whole input, so
+// every window must start at a triangle index that is a multiple of 32;
+// every sum across blocks is exact (a superaccumulator) and the fingerprint
+// is a sum mod p, so the results are bit-identical for any window sizes, any
+// order of the windows and any number of threads.
+//
+// Thread safety: add() may be called concurrently (different windows);
+// next_pass() and result() must not run concurrently with add().
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+namespace polyvol {
+
+// Where the float32 coordinates are (see the top of this file).
+struct Float32Triangles {
+    const std::byte* data = nullptr;
+    std::size_t count = 0;    // triangles
+    std::size_t stride = 50;  // bytes from one triangle to the next (>= 36)
+    std::size_t offset = 12;  // bytes from a triangle's start to its first coordinate
+};
+
+// Binary STL records (50 bytes each: normal, 3 vertices, 2 attribute bytes).
+inline Float32Triangles stl_records(std::span<const std::byte> records) {
+    return {records.data(), records.size() / 50, 50, 12};
+}
+
+struct SoupResult {
+    uint64_t triangles = 0;
+    bool nonfinite = false;        // some coordinate is NaN or ±inf (then every figure below is NaN)
+    // Fingerprint lanes (mod 2^31 - 1); all zero iff the surface is closed, up to
+    // the probability above. Keyed per accumulator, so the values mean nothing else.
+    std::array<uint64_t, 4> fingerprint{};
+    bool closed = false;           // fingerprint all zero and !nonfinite
+
+    double volume = 0;             // correctly rounded (when volume_correctly_rounded)
+    bool volume_correctly_rounded = false;
+    int passes = 0;                // passes over the input that the volume needed (1..3)
+
+    std::array<double, 3> first_moments{};  // ∫x, ∫y, ∫z
+    double first_moments_error_bound = 0;   // absolute, each component
+    std::array<double, 3> centroid{};       // NaN when the volume is 0
+    double centroid_error_bound = 0;        // absolute, each component (inf when the volume is 0)
+    double area = 0;
+    double area_relative_error = 0;
+};
+
+class SoupAccumulator {
+public:
+    // Keys from std::random_device.
+    SoupAccumulator();
+    // Keys derived from seed (reproducible fingerprints, for tests).
+    explicit SoupAccumulator(uint64_t seed);
+    ~SoupAccumulator();
+    SoupAccumulator(const SoupAccumulator&) = delete;
+    SoupAccumulator& operator=(const SoupAccumulator&) = delete;
+
+    // Adds triangles first_triangle .. first_triangle + t.count - 1 of the
+    // input. first_triangle must be a multiple of 32 (std::invalid_argument
+    // otherwise). Large spans are processed in parallel (oneTBB).
+    void add(const Float32Triangles& t, uint64_t first_triangle);
+
+    // Ends a pass. true: feed every triangle again. Throws std::logic_error
+    // when a later pass saw a different number of triangles than the first.
+    bool next_pass();
+
+    // After next_pass() returned false.
+    const SoupResult& result() const;
+
+    int pass() const;  // 1, 2 or 3: the pass being fed
+
+private:
+    struct State;
+    std::unique_ptr<State> s_;
+};
+
+// All passes over triangles held in memory.
+SoupResult soup_properties(const Float32Triangles& t);
+SoupResult soup_properties(const Float32Triangles& t, uint64_t seed);
+
+}  // namespace polyvol

@@ -1,0 +1,145 @@
+// The volume of {F <= 0}: one PL surface per lattice, its chain volume
+// (simplicial.hpp), and the Richardson estimate from the lattices of spacing
+// h and 2h.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "implicit/surface.hpp"
+#include "polyvol/implicit.hpp"
+#include "polyvol/simplicial.hpp"
+
+namespace polyvol {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+struct Box {
+    std::vector<double> lo, hi;
+};
+
+Box checked_box(const ImplicitOptions& o) {
+    if (o.dimension < 2 || o.dimension > kImplicitMaxDimension)
+        throw std::invalid_argument("implicit: dimension must be 2 .. " + std::to_string(kImplicitMaxDimension));
+    const auto n = static_cast<std::size_t>(o.dimension);
+    auto widen = [&](const std::vector<double>& v, const char* name) {
+        if (v.size() == 1) return std::vector<double>(n, v[0]);
+        if (v.size() != n)
+            throw std::invalid_argument(std::string("implicit: box ") + name + " needs 1 or " + std::to_string(n) +
+                                        " entries");
+        return v;
+    };
+    Box b{widen(o.lo, "lo"), widen(o.hi, "hi")};
+    for (std::size_t k = 0; k < n; ++k)
+        if (!std::isfinite(b.lo[k]) || !std::isfinite(b.hi[k]) || !(b.lo[k] < b.hi[k]))
+            throw std::invalid_argument("implicit: the box needs finite lo < hi on every axis");
+    if (!(o.h >= 0) || !std::isfinite(o.h)) throw std::invalid_argument("implicit: h must be > 0 (or 0: default)");
+    if (o.seeds.size() % n != 0) throw std::invalid_argument("implicit: seeds must hold n coordinates per point");
+    return b;
+}
+
+double resolved_h(const ImplicitOptions& o, const Box& b) {
+    if (o.h > 0) return o.h;
+    double widest = 0;
+    for (std::size_t k = 0; k < b.lo.size(); ++k) widest = std::max(widest, b.hi[k] - b.lo[k]);
+    return widest / default_cells(o.dimension);
+}
+
+// One pass on the lattice with the given cells per axis.
+Chain run_pass(const ImplicitFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
+               ImplicitPass& pass) {
+    const auto t0 = Clock::now();
+    const implicit::Lattice lattice(o.dimension, b.lo, b.hi, cells);
+    implicit::Sampler sampler(lattice, f, o.box_rule);
+    implicit::SurfaceBuilder builder(lattice, sampler, o.max_boundary_simplices);
+    const int coarse = o.coarse_cells == 0 ? default_coarse_cells(o.dimension) : o.coarse_cells;
+    implicit::seed_and_walk(lattice, sampler, builder, coarse, o.seeds);
+    pass.components = builder.surface_walks();
+    pass.face_walks = builder.face_walks();
+    pass.face_simplices = builder.face_simplices();
+    pass.spacing.assign(lattice.spacing.begin(), lattice.spacing.begin() + o.dimension);
+    pass.cells.assign(cells.begin(), cells.end());
+    pass.crossed_simplices = builder.crossed_simplices();
+    pass.function_evaluations = sampler.evaluations();
+    pass.box_vertices_inside = sampler.box_vertices_inside();
+    Chain chain = builder.take_chain();
+    pass.boundary_simplices = chain.simplex_count();
+    pass.seconds = seconds_since(t0);
+    return chain;
+}
+
+void measure_pass(const Chain& chain, const ImplicitOptions& o, ImplicitPass& pass) {
+    const auto t0 = Clock::now();
+    ChainOptions co;
+    co.formula = o.formula;
+    co.centroid = false;
+    const ChainVolume v = chain_volume(chain.view(), co);
+    pass.volume = v.volume;
+    pass.rounding_error_bound = v.volume_error_bound;
+    pass.seconds += seconds_since(t0);
+}
+
+}  // namespace
+
+int default_cells(int dimension) {
+    static constexpr int kCells[] = {512, 96, 32, 16, 12, 8, 8};
+    return kCells[std::clamp(dimension, 2, kImplicitMaxDimension) - 2];
+}
+
+int default_coarse_cells(int dimension) {
+    static constexpr int kCells[] = {256, 48, 16, 10, 6, 5, 4};
+    return kCells[std::clamp(dimension, 2, kImplicitMaxDimension) - 2];
+}
+
+Richardson richardson(double fine, double coarse, double ratio, double order) {
+    const double factor = std::pow(ratio, order);
+    return {(factor * fine - coarse) / (factor - 1), std::fabs(fine - coarse) / (factor - 1)};
+}
+
+Chain implicit_surface(const ImplicitFunction& f, const ImplicitOptions& options, ImplicitPass* pass) {
+    const Box b = checked_box(options);
+    const std::vector<int32_t> cells = implicit::lattice_cells(b.lo, b.hi, resolved_h(options, b));
+    ImplicitPass local;
+    return run_pass(f, options, b, cells, pass ? *pass : local);
+}
+
+ImplicitVolume implicit_volume(const ImplicitFunction& f, const ImplicitOptions& options) {
+    const auto t0 = Clock::now();
+    const Box b = checked_box(options);
+    ImplicitVolume r;
+    r.dimension = options.dimension;
+    r.h = resolved_h(options, b);
+    const std::vector<int32_t> cells = implicit::lattice_cells(b.lo, b.hi, r.h);
+    {
+        Chain chain = run_pass(f, options, b, cells, r.fine);
+        measure_pass(chain, options, r.fine);
+        if (options.keep_chain) r.chain = std::move(chain);
+    }
+    r.clipped = r.fine.box_vertices_inside > 0;
+    if (options.error_estimate) {
+        std::vector<int32_t> half(cells);
+        for (auto& c : half) c /= 2;  // even, so spacing exactly 2 h_k
+        ImplicitPass coarse;
+        const Chain chain = run_pass(f, options, b, half, coarse);
+        measure_pass(chain, options, coarse);
+        const Richardson e = richardson(r.fine.volume, coarse.volume);
+        r.volume_extrapolated = e.extrapolated;
+        r.volume = e.extrapolated;
+        r.error_estimate = e.error_of_fine + r.fine.rounding_error_bound + coarse.rounding_error_bound;
+        r.coarse = std::move(coarse);
+    } else {
+        r.volume = r.fine.volume;
+        r.volume_extrapolated = std::numeric_limits<double>::quiet_NaN();
+        r.error_estimate = std::numeric_limits<double>::quiet_NaN();
+    }
+    r.seconds = seconds_since(t0);
+    return r;
+}
+
+}  // namespace polyvol

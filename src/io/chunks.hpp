@@ -1,0 +1,164 @@
+// Parallel parsing of the text formats (ASCII STL, OBJ, OFF, ASCII PLY);
+// binary PLY uses the options and the report too (see ply.cpp).
+//
+// The buffer is cut into chunks of about ParseOptions::chunk_bytes at line
+// starts that a chunk can recognise on its own; one oneTBB task parses each
+// chunk into its own arrays and the pieces are joined in file order.
+//
+// The contract: for every input, valid or not, the parallel path gives what
+// the serial reader gives -- the same positions (bit for bit), the same
+// faces in the same order, the same notes in the same order, and for bad
+// input the same ReadError (file, 1-based line, message). How:
+//   * a chunk runs the serial grammar; what depends on earlier chunks (the
+//     number of vertices or records before it, the name of the open STL
+//     solid) comes from a cheap first pass over every chunk or is resolved
+//     when the pieces are joined;
+//   * a chunk that meets something it cannot decide alone -- a record that
+//     runs past its chunk, a line that does not hold exactly one record --
+//     reports "irregular", and the whole input is then read serially;
+//   * an error is kept with its chunk-relative line. The first chunk (in
+//     file order) that did not parse cleanly decides: if it failed, every
+//     chunk before it parsed cleanly, so the serial reader would have
+//     stopped at the same place with the same message; its line is made
+//     global by counting the line ends before the chunk. If it was
+//     irregular, the serial reader runs.
+// Line ends are those of text::Cursor: "\n", "\r\n" or a lone "\r".
+//
+// Where a chunk may start, per format (the reader files say more):
+//   ASCII STL   a line whose first token is 'facet' or 'endsolid'
+//   OBJ         a line after one that does not end with '\' (a statement)
+//   OFF, PLY    any line of the body (the header is read serially)
+// Inputs below ParseOptions::min_parallel_bytes are read serially.
+//
+// This header includes only the public headers, so the benchmarks can use
+// ParseOptions without the private include path.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "polyvol/io.hpp"
+
+namespace polyvol::io {
+
+struct ParseOptions {
+    // Parse large inputs in chunks on several threads (oneTBB): ASCII STL,
+    // OBJ, OFF, PLY (ascii and binary bodies). false selects the serial
+    // readers.
+    bool parallel = true;
+    // Bytes per chunk: a chunk ends at the first suitable line start at
+    // least this far from its beginning (at least 1), or an eighth of the
+    // input when that is less, so every parallel read has several chunks.
+    std::size_t chunk_bytes = std::size_t{2} << 20;
+    // Inputs smaller than this (for OFF and PLY: what follows the header;
+    // binary PLY: what is left at an element's start) are read serially,
+    // where splitting would cost more than it saves.
+    std::size_t min_parallel_bytes = std::size_t{1} << 20;
+};
+
+// The options of the calling thread, used by the readers when they are
+// called without options (read_mesh_memory, read_mesh_file). Tests and
+// benchmarks change them with ScopedParseOptions.
+ParseOptions& thread_parse_options();
+
+class ScopedParseOptions {
+public:
+    explicit ScopedParseOptions(const ParseOptions& o) : saved_(thread_parse_options()) {
+        thread_parse_options() = o;
+    }
+    ~ScopedParseOptions() { thread_parse_options() = saved_; }
+    ScopedParseOptions(const ScopedParseOptions&) = delete;
+    ScopedParseOptions& operator=(const ScopedParseOptions&) = delete;
+
+private:
+    ParseOptions saved_;
+};
+
+// What the last text reader called on this thread did, for tests and
+// benchmarks (reset by every call of read_stl/obj/off/ply).
+struct ParseReport {
+    std::size_t chunks = 0;        // chunks read in parallel (0: read serially)
+    bool serial_fallback = false;  // the chunks could not decide alone; then read serially
+};
+ParseReport& thread_parse_report();
+
+// The text readers with explicit options (readers.hpp's overloads use
+// thread_parse_options()). read_stl still reads binary STL by the size rule.
+LoadedMesh read_stl(std::span<const std::byte> data, const std::string& name, const ParseOptions& options);
+LoadedMesh read_obj(std::span<const std::byte> data, const std::string& name, const ParseOptions& options);
+LoadedMesh read_off(std::span<const std::byte> data, const std::string& name, const ParseOptions& options);
+LoadedMesh read_ply(std::span<const std::byte> data, const std::string& name, const ParseOptions& options);
+
+namespace chunks {
+
+// Whether an input of `bytes` bytes goes through the parallel path.
+inline bool use_parallel(const ParseOptions& o, std::size_t bytes) {
+    return o.parallel && bytes >= o.min_parallel_bytes && bytes > 0;
+}
+
+// Where a chunk may start: `pos` is a line start of `text` (pos > 0).
+using AcceptFn = bool (*)(std::string_view text, std::size_t pos);
+
+// Chunk boundaries: 0, then line starts at least min(target, size / 8)
+// bytes after the previous boundary for which accept holds, then
+// text.size(). Chunk i is [result[i], result[i+1]).
+std::vector<std::size_t> split(std::string_view text, std::size_t target, AcceptFn accept);
+
+// The bytes per chunk for an input of `bytes` bytes (see ParseOptions).
+inline std::size_t chunk_size(std::size_t target, std::size_t bytes) {
+    const std::size_t eighth = bytes / 8;
+    const std::size_t t = target < eighth ? target : eighth;
+    return t > 0 ? t : 1;
+}
+
+// The start of the line after the one holding text[p] (text.size() if none).
+std::size_t next_line_start(std::string_view text, std::size_t p);
+
+// Line ends in text ("\r\n" counts once). When text ends at a line start,
+// this is the number of lines it holds.
+uint64_t count_line_ends(std::string_view text);
+
+// Line ends, and lines that hold a token (not only blanks, and when
+// `comment` is not '\0', not only blanks then a comment).
+struct LineCounts {
+    uint64_t line_ends = 0;
+    uint64_t data_lines = 0;
+};
+LineCounts count_lines(std::string_view text, char comment);
+
+// How a chunk went. line is relative to the chunk (1 = its first line) and
+// may be 0 or negative when the error is at a position before the chunk.
+struct Outcome {
+    enum class Status { ok, error, irregular };
+    Status status = Status::ok;
+    int64_t line = 0;
+    std::string message;
+
+    void fail(int64_t at, std::string what) {
+        status = Status::error;
+        line = at;
+        message = std::move(what);
+    }
+};
+
+// Calls f(i) for i in [0, n) on oneTBB's threads.
+void for_each(std::size_t n, const std::function<void(std::size_t)>& f);
+
+// Appends the parts in order to out: positions concatenated; faces
+// concatenated, their indices raised by the number of vertices before the
+// part when shift_indices (parts numbered their vertices from 0), and
+// compressed rows built exactly as Mesh::add_face would (empty while every
+// face is a triangle). The parts are left empty.
+void concat(std::vector<Mesh>& parts, Mesh& out, bool shift_indices);
+
+// Adds a note once, keeping the order of first occurrence.
+void note_once(std::vector<std::string>& notes, std::string note);
+
+}  // namespace chunks
+}  // namespace polyvol::io

@@ -1,0 +1,158 @@
+// Streaming binary STL (polyvol/io.hpp): the records of a file too large to
+// hold, handed over window by window.
+//
+// How: pread(2) into one fixed buffer per thread (a window, ~200 KB by
+// default, so it stays in the core's L2 cache while the caller works on it),
+// windows spread over threads by oneTBB. Nothing else is allocated, so the
+// resident memory is about threads × window_bytes whatever the file size.
+// (mmap was measured too: faulting the pages in cost more than pread's copy
+// on the machine of docs/benchmarks.md, and its resident set grows with the
+// window unless pages are dropped; posix_fadvise(SEQUENTIAL) asks for
+// read-ahead when the file is not cached.)
+//
+// Detection is read_mesh_file's (detect.cpp), restricted to what decides
+// binary STL: gzip, zip and PLY content win over the size rule; then the
+// size must be 84 + 50 n, n the count at bytes 80..83.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include <cerrno>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "polyvol/io.hpp"
+
+namespace polyvol {
+namespace {
+
+constexpr uint64_t kRecord = 50;
+constexpr uint64_t kGroup = 32;  // records per alignment group
+
+struct Fd {
+    int fd = -1;
+    ~Fd() {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
+bool is_space(unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
+
+uint32_t load_u32_le(const unsigned char* b) {
+    return uint32_t{b[0]} | uint32_t{b[1]} << 8 | uint32_t{b[2]} << 16 | uint32_t{b[3]} << 24;
+}
+
+// Reads exactly len bytes at offset (fewer only at the end of the file);
+// returns the number read. Throws ReadError on an I/O error.
+std::size_t read_at(int fd, std::byte* dst, std::size_t len, uint64_t offset, const std::string& name) {
+    std::size_t got = 0;
+    while (got < len) {
+        const ssize_t r = ::pread(fd, dst + got, len - got, static_cast<off_t>(offset + got));
+        if (r < 0) {
+            if (errno == EINTR) continue;
+            throw ReadError::at_byte(name, offset + got, std::string("cannot read: ") + std::strerror(errno));
+        }
+        if (r == 0) break;
+        got += static_cast<std::size_t>(r);
+    }
+    return got;
+}
+
+// The probe on an open descriptor; head receives the first bytes.
+BinaryStlProbe probe_fd(int fd, const std::string& name, unsigned char (&head)[84], std::size_t& head_len) {
+    BinaryStlProbe p;
+    head_len = 0;
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) throw ReadError::whole_file(name, std::string("cannot stat: ") + std::strerror(errno));
+    if (!S_ISREG(st.st_mode)) return p;
+    p.file_bytes = static_cast<uint64_t>(st.st_size);
+    head_len = read_at(fd, reinterpret_cast<std::byte*>(head), sizeof head, 0, name);
+    if (head_len >= 2 && head[0] == 0x1f && head[1] == 0x8b) return p;  // gzip
+    if (head_len >= 4 && std::memcmp(head, "PK\x03\x04", 4) == 0) return p;  // zip: 3MF / AMF
+    if (head_len >= 3 && std::memcmp(head, "ply", 3) == 0 && (head_len == 3 || is_space(head[3]))) return p;
+    if (head_len < 84) return p;
+    p.triangles = load_u32_le(head + 80);
+    p.header_starts_with_solid = std::memcmp(head, "solid", 5) == 0;
+    p.binary_stl = 84 + kRecord * p.triangles == p.file_bytes;
+    return p;
+}
+
+Fd open_file(const std::string& path) {
+    Fd f;
+    f.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (f.fd < 0) throw ReadError::whole_file(path, std::string("cannot open: ") + std::strerror(errno));
+    return f;
+}
+
+}  // namespace
+
+BinaryStlProbe probe_binary_stl(const std::string& path) {
+    if (path == "-") return {};
+    const Fd f = open_file(path);
+    unsigned char head[84];
+    std::size_t head_len;
+    return probe_fd(f.fd, path, head, head_len);
+}
+
+void for_each_stl_window(const std::string& path, const StlWindowFn& fn, const StlStreamOptions& options) {
+    const Fd f = open_file(path);
+    unsigned char head[84];
+    std::size_t head_len;
+    const BinaryStlProbe p = probe_fd(f.fd, path, head, head_len);
+    if (!p.binary_stl) {
+        const bool regular = p.file_bytes > 0 || head_len > 0;
+        const bool other_format = head_len >= 2 && ((head[0] == 0x1f && head[1] == 0x8b) ||
+                                                     (head_len >= 4 && std::memcmp(head, "PK\x03\x04", 4) == 0) ||
+                                                     std::memcmp(head, "ply", 3) == 0);
+        if (!regular) throw ReadError::whole_file(path, "not a regular, non-empty file: cannot stream it as binary STL");
+        if (other_format) throw ReadError::whole_file(path, "not binary STL (gzip, zip or PLY content)");
+        if (p.file_bytes < 84)
+            throw ReadError::whole_file(path, "file too short for binary STL (" + std::to_string(p.file_bytes) + " bytes)");
+        throw ReadError::at_byte(path, 80,
+                                 "binary STL size mismatch: header declares " + std::to_string(p.triangles) +
+                                     " triangles (" + std::to_string(84 + kRecord * p.triangles) +
+                                     " bytes) but file has " + std::to_string(p.file_bytes) + " bytes");
+    }
+    const uint64_t n = p.triangles;
+    if (n == 0) return;
+    (void)::posix_fadvise(f.fd, 0, 0, POSIX_FADV_SEQUENTIAL);
+    const uint64_t groups = std::max<uint64_t>(1, options.window_bytes / (kRecord * kGroup));
+    const uint64_t per_window = groups * kGroup;  // records
+    const uint64_t windows = (n + per_window - 1) / per_window;
+
+    auto window = [&](uint64_t w, std::vector<std::byte>& buf) {
+        const uint64_t first = w * per_window;
+        const uint64_t count = std::min(per_window, n - first);
+        const std::size_t bytes = static_cast<std::size_t>(count * kRecord);
+        if (buf.size() < bytes) buf.resize(static_cast<std::size_t>(per_window * kRecord));
+        const uint64_t offset = 84 + first * kRecord;
+        const std::size_t got = read_at(f.fd, buf.data(), bytes, offset, path);
+        if (got < bytes)
+            throw ReadError::at_byte(path, offset + got,
+                                     "unexpected end of file: expected " + std::to_string(84 + n * kRecord) +
+                                         " bytes for " + std::to_string(n) + " triangles (the file shrank while being read)");
+        fn(std::span<const std::byte>(buf.data(), bytes), first);
+    };
+
+    if (!options.parallel || windows == 1) {
+        std::vector<std::byte> buf;
+        for (uint64_t w = 0; w < windows; ++w) window(w, buf);
+        return;
+    }
+    tbb::enumerable_thread_specific<std::vector<std::byte>> buffers;
+    tbb::parallel_for(
+        tbb::blocked_range<uint64_t>(0, windows, 1),
+        [&](const tbb::blocked_range<uint64_t>& r) {
+            std::vector<std::byte>& buf = buffers.local();
+            for (uint64_t w = r.begin(); w < r.end(); ++w) window(w, buf);
+        },
+        tbb::simple_partitioner());
+}
+
+}  // namespace polyvol

@@ -1,0 +1,807 @@
+// measure/soup.cpp — polyvol/soup.hpp: volume, first moments, area and a
+// closedness fingerprint of float32 triangle records, in constant memory.
+//
+// Error analysis of pass 1 (u = 2^-53). Coordinates are float32 values
+// widened exactly; every value below is a multiple of 2^-447 and below 2^520,
+// so no operation underflows or overflows and each rounding is relative.
+//   Volume, per triangle (a, b, c), det = Σ_k a_k (b_j c_l - b_l c_j):
+//     p_k = b_j c_l, q_k = b_l c_j        exact (24-bit × 24-bit significands)
+//     n_k + t_k = p_k - q_k               exact (two_sum), |t_k| <= u |n_k|
+//     P_k + Q_k = a_k n_k                 exact (two_prod)
+//     h + g1 + g2 = P_0 + P_1 + P_2       exact (two two_sums)
+//     lo = fl(g1 + g2 + Q_0 + Q_1 + Q_2 + fl(a_0 t_0) + fl(a_1 t_1) + fl(a_2 t_2))
+//   With A_k = |a_k| (|p_k| + |q_k|), S = Σ A_k <= 6 M^3 (M >= every |coordinate|):
+//   the eight small terms total <= 4.001 u S, so summing them costs
+//   <= γ7 · 4.001 u S <= 28.1 u² S and the three products fl(a_k t_k) <= 1.01 u² S:
+//     |det - (h + lo)| <= 29.2 u² S.
+//   The pairs (h, lo) of a block are summed by Sum2 (Ogita–Rump–Oishi) in 8
+//   lanes of 4: <= 2·4 (1.01·4 + 3.1) u² Σ S <= 57.2 u² Σ S; the lanes' sums
+//   are then combined by two_sum (exact) and their error terms (the lanes'
+//   e: <= 4.01 u Σ S of lo and <= 3.01 u Σ S of two_sum errors; seven more
+//   two_sum errors <= 7.01 u Σ S) added in double (14 additions):
+//   <= γ14 · 14.1 u Σ S <= 198 u² Σ S; the block's (sum, error) pair goes
+//   exactly into a superaccumulator.
+//   Total <= (29.2 + 57.2 + 198) u² Σ S < 285 u² Σ S.
+//   Bound used: 512 u² (1 + 2^-10) Σ_blocks 6 M_b^3 n_b (a factor 1.8 of safety;
+//   (1 + 2^-10) covers the rounding of the block magnitudes and of the bound).
+//   Blocks far from the origin compared with their size (M_b^3 much larger
+//   than the volume they enclose) defeat this filter: pass 2 then uses
+//   cone.cpp's kernel, which translates each triangle to its first vertex.
+//   First moments, per triangle: d = fl(h + lo), s_i = fl(fl(a_i + b_i) + c_i),
+//   m_i = fl(d s_i); with σ_i = |a_i| + |b_i| + |c_i| <= 3M,
+//     |m_i - det (a_i + b_i + c_i)| <= 4.01 u σ_i |d| + 525 u² M^4,
+//   plus <= γ6 Σ|m_i| for the sum of a block (8 lanes of 4, then the lanes
+//   pairwise: depth 6; 9.01 u is used below).
+//   Bound used: 16 u (1 + 2^-10) Σ_blocks (3 M_b Σ|d| + 2^-43 M_b^4 n_b), /24.
+//   Area, per triangle: t = |fl(fl(b-a) × fl(c-a))| with error <= γ5 t + γ4 X,
+//   X = Σ|products| of the cross product (the analysis of area.cpp); a block's
+//   sum adds <= γ6 Σ t (9 u is used below). Bound used: 15 u A + 5 u ΣX (A = Σ of block sums),
+//   then halving is exact and the final rounding adds u.
+//
+// Fingerprint: see soup.hpp. Arithmetic mod p = 2^31 - 1 in 64-bit words,
+// reduced lazily (2^31 ≡ 1): differences are formed as x + p - y (<= 2p <
+// 2^32), products (< 2^64) folded as (x mod 2^31) + (x >> 31). Vectorised:
+// 32 x 32 -> 64-bit multiplies on the even and the odd 32-bit lanes apart.
+#include "polyvol/soup.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "exact/eft.hpp"
+#include "exact/exact_sum.hpp"
+#include "measure/cone.hpp"
+#include "measure/soup_testing.hpp"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define POLYVOL_SOUP_X86 1
+#else
+#define POLYVOL_SOUP_X86 0
+#endif
+
+namespace polyvol {
+namespace {
+
+using exact::ExactSum;
+using exact::two_prod_t;
+using exact::two_sum;
+namespace cone = measure::cone;
+
+constexpr int kB = cone::kBlockTriangles;  // triangles per block (32)
+constexpr uint64_t kP = (uint64_t{1} << 31) - 1;  // the fingerprint field F_p
+constexpr int kFpLanes = 4;
+constexpr double kU = 0x1p-53;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::size_t kChunk = 8192;  // triangles per parallel task (a multiple of kB)
+static_assert(kChunk % kB == 0);
+
+__extension__ typedef unsigned __int128 u128;
+
+// ---- the fingerprint ---------------------------------------------------------
+
+struct Keys {
+    alignas(16) uint64_t aes[4][2];  // AES: whitening key, then three round keys
+    uint64_t mix[2][4];              // portable hash: four keys per lane
+};
+
+POLYVOL_INLINE uint64_t fold(uint64_t x) { return (x & kP) + (x >> 31); }  // ≡ x (mod p)
+
+// (hb - ha)(hc - ha)(hc - hb) mod p as a value < 2^34 congruent to it (h* <= p).
+POLYVOL_INLINE uint64_t vandermonde(uint64_t ha, uint64_t hb, uint64_t hc) {
+    const uint64_t d1 = hb + kP - ha, d2 = hc + kP - ha, d3 = hc + kP - hb;  // <= 2p < 2^32
+    const uint64_t x = fold(fold(d1 * d2));                                  // < 2^31 + 8
+    return fold(x * d3);                                                     // < 2^31 + 2^33
+}
+
+POLYVOL_INLINE uint64_t reduce(uint64_t x) {  // x mod p
+    x = fold(fold(x));
+    return x >= kP ? x - kP : x;
+}
+
+POLYVOL_INLINE uint64_t mum(uint64_t a, uint64_t b) {
+    const u128 r = static_cast<u128>(a) * b;
+    return static_cast<uint64_t>(r) ^ static_cast<uint64_t>(r >> 64);
+}
+
+// Words of a block: w[i][3 v + k] is the canonical bit pattern of coordinate
+// k of vertex v of triangle i (-0.0 mapped to +0.0).
+using Words = uint32_t[kB][9];
+
+// Portable vertex hash: two multiply-xor rounds (wyhash's mixing) for each
+// 64-bit half; the four 32-bit quarters cut to 31 bits are the four lanes.
+void fingerprint_portable(const Words& w, int n, const Keys& key, uint64_t out[kFpLanes]) {
+    uint64_t acc[kFpLanes] = {};
+    for (int i = 0; i < n; ++i) {
+        uint64_t h[3][kFpLanes];
+        for (int v = 0; v < 3; ++v) {
+            const uint64_t w0 = w[i][3 * v] | static_cast<uint64_t>(w[i][3 * v + 1]) << 32;
+            const uint64_t w1 = w[i][3 * v + 2];
+            for (int half = 0; half < 2; ++half) {
+                const uint64_t* k = key.mix[half];
+                const uint64_t x = mum(mum(w0 ^ k[0], w1 ^ k[1]) ^ k[2], w0 ^ k[3]);
+                h[v][2 * half] = x & kP;
+                h[v][2 * half + 1] = (x >> 32) & kP;
+            }
+        }
+        for (int l = 0; l < kFpLanes; ++l) acc[l] += vandermonde(h[0][l], h[1][l], h[2][l]);
+    }
+    for (int l = 0; l < kFpLanes; ++l) out[l] = reduce(acc[l]);
+}
+
+// ---- pass 1 arithmetic -------------------------------------------------------
+
+// Coordinates of a block as doubles: c[3 v + k][i]; unused slots zero.
+struct Coords {
+    alignas(64) double c[9][kB];
+};
+
+// Per-block results of pass 1 before they go into the superaccumulators.
+struct Pass1Block {
+    double vs, ve;                  // volume: Sum2 (sum, error) of 6 V
+    double mom[3];                  // Σ d s_i (24 ∫x_i)
+    double abs_d;                   // Σ |d|
+    double area2;                   // Σ |n| (2 A)
+    double cross;                   // Σ X (the products of the cross products)
+};
+
+constexpr int kSumLanes = 8;  // lanes of the per-block sums (kB / kSumLanes terms each)
+static_assert(kB == 4 * kSumLanes);
+
+// Σ of 8 values, pairwise.
+POLYVOL_INLINE double lane_sum8(const double* a) { return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7])); }
+
+// Eight doubles as one vector (GCC/Clang vector extension; lowered to what
+// the target has: -ffp-contract=off keeps every operation a rounded IEEE one).
+typedef double V8 __attribute__((vector_size(64)));
+POLYVOL_INLINE void load8(V8& v, const double* p) { std::memcpy(&v, p, sizeof v); }
+
+// Σ of a block's kB values: lane j sums j, j + 8, j + 16, j + 24, then the
+// lanes pairwise: depth 6.
+POLYVOL_INLINE double lane_sum(const double* v) {
+    V8 v0, v1, v2, v3;
+    load8(v0, v);
+    load8(v1, v + 8);
+    load8(v2, v + 16);
+    load8(v3, v + 24);
+    const V8 a8 = ((v0 + v1) + v2) + v3;
+    alignas(64) double a[kSumLanes];
+    std::memcpy(a, &a8, sizeof a);
+    return lane_sum8(a);
+}
+
+template <bool kFma>
+POLYVOL_INLINE void pass1_arith(const Coords& co, Pass1Block& out, double* t2) {
+    const auto& c = co.c;
+    alignas(64) double h[kB], lo[kB], m[3][kB], ad[kB], x[kB];
+    for (int i = 0; i < kB; ++i) {
+        const double ax = c[0][i], ay = c[1][i], az = c[2][i];
+        const double bx = c[3][i], by = c[4][i], bz = c[5][i];
+        const double cx = c[6][i], cy = c[7][i], cz = c[8][i];
+        // b × c: the products are exact (float32 significands).
+        double n0, t0, n1, t1, n2, tt2;
+        two_sum(by * cz, -(bz * cy), n0, t0);
+        two_sum(bz * cx, -(bx * cz), n1, t1);
+        two_sum(bx * cy, -(by * cx), n2, tt2);
+        double P0, Q0, P1, Q1, P2, Q2;
+        two_prod_t<kFma>(ax, n0, P0, Q0);
+        two_prod_t<kFma>(ay, n1, P1, Q1);
+        two_prod_t<kFma>(az, n2, P2, Q2);
+        double h1, g1, hh, g2;
+        two_sum(P0, P1, h1, g1);
+        two_sum(h1, P2, hh, g2);
+        h[i] = hh;
+        lo[i] = ((g1 + g2) + ((Q0 + Q1) + Q2)) + ((ax * t0 + ay * t1) + az * tt2);
+    }
+    for (int i = 0; i < kB; ++i) {
+        // First moments.
+        const double d = h[i] + lo[i];
+        ad[i] = std::fabs(d);
+        m[0][i] = d * ((c[0][i] + c[3][i]) + c[6][i]);
+        m[1][i] = d * ((c[1][i] + c[4][i]) + c[7][i]);
+        m[2][i] = d * ((c[2][i] + c[5][i]) + c[8][i]);
+    }
+    for (int i = 0; i < kB; ++i) {
+        // Area: |(b - a) × (c - a)|.
+        const double ux = c[3][i] - c[0][i], uy = c[4][i] - c[1][i], uz = c[5][i] - c[2][i];
+        const double wx = c[6][i] - c[0][i], wy = c[7][i] - c[1][i], wz = c[8][i] - c[2][i];
+        const double p0 = uy * wz, q0 = uz * wy, p1 = uz * wx, q1 = ux * wz, p2 = ux * wy, q2 = uy * wx;
+        const double e0 = p0 - q0, e1 = p1 - q1, e2 = p2 - q2;
+        t2[i] = (e0 * e0 + e1 * e1) + e2 * e2;
+        x[i] = ((std::fabs(p0) + std::fabs(q0)) + (std::fabs(p1) + std::fabs(q1))) + (std::fabs(p2) + std::fabs(q2));
+    }
+    // Volume: Sum2 in 8 lanes of 4 (lane j holds triangles j, j+8, j+16,
+    // j+24), written with vectors of 8 doubles (elementwise IEEE operations:
+    // the same results on every target), then the lanes into one pair.
+    V8 S, E;
+    load8(S, h);
+    load8(E, lo);
+    for (int r = 1; r < kB / kSumLanes; ++r) {
+        V8 H, L;
+        load8(H, h + r * kSumLanes);
+        load8(L, lo + r * kSumLanes);
+        const V8 ns = S + H;
+        const V8 bb = ns - S;
+        const V8 ne = (S - (ns - bb)) + (H - bb);  // two_sum(S, H)
+        S = ns;
+        E += ne + L;
+    }
+    alignas(64) double s[kSumLanes], e[kSumLanes];
+    std::memcpy(s, &S, sizeof s);
+    std::memcpy(e, &E, sizeof e);
+    double vs = s[0], ve = lane_sum8(e);
+    for (int j = 1; j < kSumLanes; ++j) {
+        double ns, ne;
+        two_sum(vs, s[j], ns, ne);
+        vs = ns;
+        ve += ne;
+    }
+    out.vs = vs;
+    out.ve = ve;
+    for (int k = 0; k < 3; ++k) out.mom[k] = lane_sum(m[k]);
+    out.abs_d = lane_sum(ad);
+    out.cross = lane_sum(x);
+}
+
+
+void pass1_arith_base(const Coords& c, Pass1Block& out) {
+    alignas(64) double t2[kB], t[kB];
+    pass1_arith<false>(c, out, t2);
+#if POLYVOL_SOUP_X86
+    for (int i = 0; i < kB; i += 2) _mm_store_pd(t + i, _mm_sqrt_pd(_mm_load_pd(t2 + i)));
+#else
+    for (int i = 0; i < kB; ++i) t[i] = std::sqrt(t2[i]);
+#endif
+    out.area2 = lane_sum(t);
+}
+
+// The whole of pass 1 for one block, portable (see pass1_fast).
+uint32_t pass1_portable(const std::byte* base, std::size_t stride, int n, const Keys& key, Pass1Block& out,
+                        uint64_t fp[kFpLanes]) {
+    Words w;
+    Coords co;
+    uint32_t mx = 0;
+    for (int i = 0; i < n; ++i) {
+        std::memcpy(w[i], base + static_cast<std::size_t>(i) * stride, 36);
+        for (int k = 0; k < 9; ++k) {
+            uint32_t bits = w[i][k];
+            bits = bits == 0x80000000u ? 0u : bits;
+            w[i][k] = bits;
+            mx = std::max(mx, bits & 0x7FFFFFFFu);
+            co.c[k][i] = static_cast<double>(std::bit_cast<float>(bits));
+        }
+    }
+    for (int k = 0; k < 9; ++k)
+        for (int i = n; i < kB; ++i) co.c[k][i] = 0;
+    if (mx >= 0x7F800000u) return mx;
+    fingerprint_portable(w, n, key, fp);
+    pass1_arith_base(co, out);
+    return mx;
+}
+
+#if POLYVOL_SOUP_X86
+// ---- x86 kernels: AVX2 + FMA + AES-NI, and AVX-512 + VAES where present ----
+
+// Instruction sets, decided once: 0 portable, 1 AVX2 + FMA + AES-NI,
+// 2 that and AVX-512 (F, VL, DQ, BW) + VAES.
+std::atomic<bool> g_force_portable{false};
+
+int isa_level() {
+    if (g_force_portable.load(std::memory_order_relaxed)) return 0;
+    static const int level = [] {
+        __builtin_cpu_init();
+        if (!(__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("aes")))
+            return 0;
+        if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("vaes"))
+            return 2;
+        return 1;
+    }();
+    return level;
+}
+
+// Loads a block from the records (base: first coordinate of triangle 0) into
+// structure of arrays: 8 rows of coordinates 0..7 per 8 triangles, an 8x8
+// transpose, coordinate 8 apart. Returns the largest
+// |coordinate| bit pattern (>= 0x7F800000: NaN or infinity).
+__attribute__((target("avx2"), always_inline)) inline uint32_t load_block_avx2(const std::byte* base, std::size_t stride,
+                                                                            int n, Coords& co) {
+    const __m256i absmask = _mm256_set1_epi32(0x7FFFFFFF);
+    __m256i mx = _mm256_setzero_si256();
+    for (int i0 = 0; i0 < kB; i0 += 8) {
+        const int m = std::min(8, n - i0);
+        __m256 row[8];
+        float last[8];
+        for (int j = 0; j < 8; ++j) {
+            if (j < m) {
+                const std::byte* r = base + static_cast<std::size_t>(i0 + j) * stride;
+                row[j] = _mm256_loadu_ps(reinterpret_cast<const float*>(r));
+                std::memcpy(&last[j], r + 32, 4);
+            } else {
+                row[j] = _mm256_setzero_ps();
+                last[j] = 0;
+            }
+        }
+        const __m256 t0 = _mm256_unpacklo_ps(row[0], row[1]), t1 = _mm256_unpackhi_ps(row[0], row[1]);
+        const __m256 t2 = _mm256_unpacklo_ps(row[2], row[3]), t3 = _mm256_unpackhi_ps(row[2], row[3]);
+        const __m256 t4 = _mm256_unpacklo_ps(row[4], row[5]), t5 = _mm256_unpackhi_ps(row[4], row[5]);
+        const __m256 t6 = _mm256_unpacklo_ps(row[6], row[7]), t7 = _mm256_unpackhi_ps(row[6], row[7]);
+        const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+        const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
+        const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xEE);
+        const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xEE);
+        const __m256 col[9] = {_mm256_permute2f128_ps(u0, u4, 0x20), _mm256_permute2f128_ps(u1, u5, 0x20),
+                               _mm256_permute2f128_ps(u2, u6, 0x20), _mm256_permute2f128_ps(u3, u7, 0x20),
+                               _mm256_permute2f128_ps(u0, u4, 0x31), _mm256_permute2f128_ps(u1, u5, 0x31),
+                               _mm256_permute2f128_ps(u2, u6, 0x31), _mm256_permute2f128_ps(u3, u7, 0x31),
+                               _mm256_loadu_ps(last)};
+        for (int k = 0; k < 9; ++k) {
+            // (-0.0 stays: it adds the same exact 0 to every sum as +0.0.)
+            mx = _mm256_max_epu32(mx, _mm256_and_si256(_mm256_castps_si256(col[k]), absmask));
+            _mm256_store_pd(&co.c[k][i0], _mm256_cvtps_pd(_mm256_castps256_ps128(col[k])));
+            _mm256_store_pd(&co.c[k][i0 + 4], _mm256_cvtps_pd(_mm256_extractf128_ps(col[k], 1)));
+        }
+    }
+    __m128i m4 = _mm_max_epu32(_mm256_castsi256_si128(mx), _mm256_extracti128_si256(mx, 1));
+    m4 = _mm_max_epu32(m4, _mm_shuffle_epi32(m4, 0x4E));
+    m4 = _mm_max_epu32(m4, _mm_shuffle_epi32(m4, 0xB1));
+    return static_cast<uint32_t>(_mm_cvtsi128_si32(m4));
+}
+
+// Load + arithmetic of pass 1, compiled for AVX2 and for AVX-512.
+__attribute__((target("avx2,fma"))) uint32_t arith_avx2(const std::byte* base, std::size_t stride, int n,
+                                                        Pass1Block& out) {
+    Coords co;
+    const uint32_t mx = load_block_avx2(base, stride, n, co);
+    if (mx >= 0x7F800000u) return mx;
+    alignas(64) double t2[kB], t[kB];
+    pass1_arith<true>(co, out, t2);
+    for (int i = 0; i < kB; i += 4) _mm256_store_pd(t + i, _mm256_sqrt_pd(_mm256_load_pd(t2 + i)));
+    out.area2 = lane_sum(t);
+    return mx;
+}
+
+__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,prefer-vector-width=512"))) uint32_t arith_avx512(
+    const std::byte* base, std::size_t stride, int n, Pass1Block& out) {
+    Coords co;
+    const uint32_t mx = load_block_avx2(base, stride, n, co);
+    if (mx >= 0x7F800000u) return mx;
+    alignas(64) double t2[kB], t[kB];
+    pass1_arith<true>(co, out, t2);
+    // (256-bit: GCC 12 warns falsely inside _mm512_sqrt_pd.)
+    for (int i = 0; i < kB; i += 4) _mm256_store_pd(t + i, _mm256_sqrt_pd(_mm256_load_pd(t2 + i)));
+    out.area2 = lane_sum(t);
+    return mx;
+}
+
+// The vertices of triangle r (r: its first coordinate) at bytes [0,12),
+// [12,24), [24,36) as 128-bit values with a zero top word, -0.0 mapped to
+// +0.0; no load leaves [0, 36).
+__attribute__((target("avx2"), always_inline)) inline void vertices(const std::byte* r, __m128i& a, __m128i& b, __m128i& c) {
+    const __m128i low96 = _mm_set_epi32(0, -1, -1, -1);
+    const __m128i sign = _mm_set1_epi32(static_cast<int>(0x80000000u));
+    a = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r)), low96);
+    b = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r + 12)), low96);
+    c = _mm_srli_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r + 20)), 4);
+    a = _mm_andnot_si128(_mm_cmpeq_epi32(a, sign), a);
+    b = _mm_andnot_si128(_mm_cmpeq_epi32(b, sign), b);
+    c = _mm_andnot_si128(_mm_cmpeq_epi32(c, sign), c);
+}
+
+// x ≡ fold(x) (mod p) on 64-bit lanes.
+__attribute__((target("avx2"), always_inline)) inline __m256i fold4(__m256i x) {
+    return _mm256_add_epi64(_mm256_and_si256(x, _mm256_set1_epi64x(static_cast<long long>(kP))), _mm256_srli_epi64(x, 31));
+}
+
+// Vandermonde products of two triangles at once (one per 128-bit half; four
+// 31-bit lanes each), mod p: differences + p (<= 2p < 2^32), 32 x 32 -> 64-bit
+// products of the even and odd lanes apart, folded mod p.
+__attribute__((target("avx2"), always_inline)) inline void vandermonde8(__m256i A, __m256i B, __m256i C, __m256i& even,
+                                                                      __m256i& odd) {
+    const __m256i P = _mm256_set1_epi32(static_cast<int>(kP));
+    const __m256i d1 = _mm256_add_epi32(_mm256_sub_epi32(B, A), P);
+    const __m256i d2 = _mm256_add_epi32(_mm256_sub_epi32(C, A), P);
+    const __m256i d3 = _mm256_add_epi32(_mm256_sub_epi32(C, B), P);
+    __m256i e = fold4(fold4(_mm256_mul_epu32(d1, d2)));  // < 2^31 + 8
+    __m256i o = fold4(fold4(_mm256_mul_epu32(_mm256_srli_epi64(d1, 32), _mm256_srli_epi64(d2, 32))));
+    even = _mm256_add_epi64(even, fold4(_mm256_mul_epu32(e, d3)));  // each < 2^31 + 2^33
+    odd = _mm256_add_epi64(odd, fold4(_mm256_mul_epu32(o, _mm256_srli_epi64(d3, 32))));
+}
+
+__attribute__((target("avx2"), always_inline)) inline void finish_lanes(__m256i even, __m256i odd, uint64_t fp[kFpLanes]) {
+    alignas(32) uint64_t ev[4], od[4];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(ev), even);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(od), odd);
+    // 64-bit element j of `even` is lane 2 (j mod 2) of the triangle in half j / 2.
+    fp[0] = reduce(ev[0] + ev[2]);
+    fp[1] = reduce(od[0] + od[2]);
+    fp[2] = reduce(ev[1] + ev[3]);
+    fp[3] = reduce(od[1] + od[3]);
+}
+
+// The fingerprint of a block with AES-NI: each vertex through three AES
+// rounds (after whitening), the four 32-bit words cut to 31 bits as lanes.
+__attribute__((target("avx2,aes"))) void fingerprint_aesni(const std::byte* base, std::size_t stride, int n,
+                                                           const Keys& key, uint64_t fp[kFpLanes]) {
+    const __m128i k0 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[0]));
+    const __m128i k1 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[1]));
+    const __m128i k2 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[2]));
+    const __m128i k3 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[3]));
+    const __m128i P = _mm_set1_epi32(static_cast<int>(kP));
+    __m256i even = _mm256_setzero_si256(), odd = _mm256_setzero_si256();
+    for (int i = 0; i < n; i += 2) {
+        __m128i v[2][3];
+        for (int h = 0; h < 2; ++h) {
+            if (i + h < n) {
+                vertices(base + static_cast<std::size_t>(i + h) * stride, v[h][0], v[h][1], v[h][2]);
+                for (int j = 0; j < 3; ++j) {
+                    __m128i x = _mm_aesenc_si128(_mm_xor_si128(v[h][j], k0), k1);
+                    x = _mm_aesenc_si128(x, k2);
+                    v[h][j] = _mm_and_si128(_mm_aesenc_si128(x, k3), P);
+                }
+            } else {
+                v[h][0] = v[h][1] = v[h][2] = _mm_setzero_si128();  // a degenerate triangle adds 0
+            }
+        }
+        vandermonde8(_mm256_set_m128i(v[1][0], v[0][0]), _mm256_set_m128i(v[1][1], v[0][1]),
+                     _mm256_set_m128i(v[1][2], v[0][2]), even, odd);
+    }
+    finish_lanes(even, odd, fp);
+}
+
+// GCC 12's AVX-512 intrinsics pass an undefined vector as the unused
+// merge operand, which -Wmaybe-uninitialized reports falsely.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+// The same with AVX-512 and VAES: four triangles per 512-bit vector, four
+// vertices per AES instruction (identical values to fingerprint_aesni).
+__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2"), always_inline)) inline __m512i fold16(__m512i x) {
+    return _mm512_add_epi64(_mm512_and_si512(x, _mm512_set1_epi64(static_cast<long long>(kP))), _mm512_srli_epi64(x, 31));
+}
+
+// A 128-bit round key in all four 128-bit quarters.
+__attribute__((target("avx512f"), always_inline)) inline __m512i key512(const uint64_t k[2]) {
+    const auto lo = static_cast<long long>(k[0]), hi = static_cast<long long>(k[1]);
+    return _mm512_set_epi64(hi, lo, hi, lo, hi, lo, hi, lo);
+}
+
+__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,aes,vaes"))) void fingerprint_vaes512(
+    const std::byte* base, std::size_t stride, int n, const Keys& key, uint64_t fp[kFpLanes]) {
+    const __m512i k0 = key512(key.aes[0]);
+    const __m512i k1 = key512(key.aes[1]);
+    const __m512i k2 = key512(key.aes[2]);
+    const __m512i k3 = key512(key.aes[3]);
+    const __m512i P = _mm512_set1_epi32(static_cast<int>(kP));
+    __m512i even = _mm512_setzero_si512(), odd = _mm512_setzero_si512();
+    for (int i = 0; i < n; i += 4) {
+        __m128i v[4][3];
+        for (int h = 0; h < 4; ++h) {
+            if (i + h < n) {
+                vertices(base + static_cast<std::size_t>(i + h) * stride, v[h][0], v[h][1], v[h][2]);
+            } else {
+                v[h][0] = v[h][1] = v[h][2] = v[0][0];  // a degenerate triangle adds 0
+            }
+        }
+        __m512i w[3];
+        for (int j = 0; j < 3; ++j) {
+            __m512i x = _mm512_zextsi128_si512(v[0][j]);
+            x = _mm512_inserti32x4(x, v[1][j], 1);
+            x = _mm512_inserti32x4(x, v[2][j], 2);
+            x = _mm512_inserti32x4(x, v[3][j], 3);
+            x = _mm512_aesenc_epi128(_mm512_xor_si512(x, k0), k1);
+            x = _mm512_aesenc_epi128(x, k2);
+            w[j] = _mm512_and_si512(_mm512_aesenc_epi128(x, k3), P);
+        }
+        const __m512i d1 = _mm512_add_epi32(_mm512_sub_epi32(w[1], w[0]), P);
+        const __m512i d2 = _mm512_add_epi32(_mm512_sub_epi32(w[2], w[0]), P);
+        const __m512i d3 = _mm512_add_epi32(_mm512_sub_epi32(w[2], w[1]), P);
+        const __m512i e = fold16(fold16(_mm512_mul_epu32(d1, d2)));
+        const __m512i o = fold16(fold16(_mm512_mul_epu32(_mm512_srli_epi64(d1, 32), _mm512_srli_epi64(d2, 32))));
+        even = _mm512_add_epi64(even, fold16(_mm512_mul_epu32(e, d3)));
+        odd = _mm512_add_epi64(odd, fold16(_mm512_mul_epu32(o, _mm512_srli_epi64(d3, 32))));
+    }
+    alignas(64) uint64_t ev[8], od[8];
+    _mm512_store_si512(ev, even);
+    _mm512_store_si512(od, odd);
+    // 64-bit element j is lane 2 (j mod 2) (even) or 2 (j mod 2) + 1 (odd) of triangle j / 2.
+    fp[0] = reduce((ev[0] + ev[2]) + (ev[4] + ev[6]));
+    fp[1] = reduce((od[0] + od[2]) + (od[4] + od[6]));
+    fp[2] = reduce((ev[1] + ev[3]) + (ev[5] + ev[7]));
+    fp[3] = reduce((od[1] + od[3]) + (od[5] + od[7]));
+}
+
+#pragma GCC diagnostic pop
+#endif
+
+// ---- per-thread sums ------------------------------------------------------------
+
+struct Partial {
+    ExactSum vol, vol_mag;        // 6 V: the current pass's sum and magnitudes
+    ExactSum mom[3], mom_mag;     // pass 1: 24 ∫x_i and the bound's magnitudes
+    ExactSum area2, cross;        // pass 1: 2 A and Σ X
+    uint64_t fp[kFpLanes] = {};   // mod p
+    uint64_t triangles = 0;
+    bool nonfinite = false;
+
+    void merge(const Partial& o) {
+        vol.merge(o.vol);
+        vol_mag.merge(o.vol_mag);
+        for (int k = 0; k < 3; ++k) mom[k].merge(o.mom[k]);
+        mom_mag.merge(o.mom_mag);
+        area2.merge(o.area2);
+        cross.merge(o.cross);
+        for (int l = 0; l < kFpLanes; ++l) {
+            fp[l] += o.fp[l];
+            if (fp[l] >= kP) fp[l] -= kP;
+        }
+        triangles += o.triangles;
+        nonfinite = nonfinite || o.nonfinite;
+    }
+};
+
+std::optional<double> decide_volume(const ExactSum& sum, double bound) {
+    if (bound == 0) return sum.round_div(6);
+    ExactSum lo = sum, hi = sum;
+    lo.add(-bound);
+    hi.add(bound);
+    const double a = lo.round_div(6), b = hi.round_div(6);
+    if (std::bit_cast<uint64_t>(a) != std::bit_cast<uint64_t>(b)) return std::nullopt;
+    return a;
+}
+
+double up(double x) { return std::nextafter(x, kInf); }
+
+uint64_t splitmix(uint64_t& s) {
+    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+}  // namespace
+
+void measure::force_portable_soup_kernels(bool on) {
+#if POLYVOL_SOUP_X86
+    g_force_portable.store(on, std::memory_order_relaxed);
+#else
+    (void)on;
+#endif
+}
+
+struct SoupAccumulator::State {
+    Keys keys{};
+    int pass = 1;
+    bool done = false;
+    tbb::enumerable_thread_specific<Partial> tls;
+    uint64_t pass1_triangles = 0;
+    SoupResult result;
+
+    explicit State(uint64_t seed) {
+        uint64_t s = seed;
+        for (auto& k : keys.aes)
+            for (auto& x : k) x = splitmix(s);
+        for (auto& k : keys.mix)
+            for (auto& x : k) x = splitmix(s) | 1;
+    }
+
+    // One block: triangles [first, first + n) of t, n <= kB, relative index
+    // (first is a multiple of kB in the whole input).
+    void block(const Float32Triangles& t, std::size_t first, int n, Partial& p) const {
+        const std::byte* base = t.data + first * t.stride + t.offset;
+        if (pass == 1) {
+            p.triangles += static_cast<uint64_t>(n);
+            uint64_t fp[kFpLanes];
+            Pass1Block r;
+            uint32_t mx;
+#if POLYVOL_SOUP_X86
+            if (const int level = isa_level(); level > 0) {
+                mx = level == 2 ? arith_avx512(base, t.stride, n, r) : arith_avx2(base, t.stride, n, r);
+                if (mx < 0x7F800000u) {
+                    if (level == 2) {
+                        fingerprint_vaes512(base, t.stride, n, keys, fp);
+                    } else {
+                        fingerprint_aesni(base, t.stride, n, keys, fp);
+                    }
+                }
+            } else
+#endif
+            {
+                mx = pass1_portable(base, t.stride, n, keys, r, fp);
+            }
+            if (mx >= 0x7F800000u) {  // NaN or infinity: nothing else is meaningful
+                p.nonfinite = true;
+                return;
+            }
+            for (int l = 0; l < kFpLanes; ++l) {
+                p.fp[l] += fp[l];
+                if (p.fp[l] >= kP) p.fp[l] -= kP;
+            }
+            p.vol.add(r.vs);
+            p.vol.add(r.ve);
+            const double M = static_cast<double>(std::bit_cast<float>(mx));
+            const double nn = static_cast<double>(n);
+            p.vol_mag.add(6 * (M * M * M) * nn);
+            for (int k = 0; k < 3; ++k) p.mom[k].add(r.mom[k]);
+            p.mom_mag.add(3 * M * r.abs_d + 0x1p-43 * ((M * M) * (M * M)) * nn);
+            p.area2.add(r.area2);
+            p.cross.add(r.cross);
+            return;
+        }
+        cone::TriangleBlock b;
+        for (int i = 0; i < n; ++i) {
+            float f[9];
+            std::memcpy(f, base + static_cast<std::size_t>(i) * t.stride, 36);
+            for (int k = 0; k < 9; ++k) b.c[k][i] = static_cast<double>(f[k]);
+        }
+        for (int k = 0; k < 9; ++k)
+            for (int i = n; i < kB; ++i) b.c[k][i] = 0;
+        b.n = n;
+        p.triangles += static_cast<uint64_t>(n);
+        if (pass == 2) {
+            cone::filtered_volume_block(b, p.vol, p.vol_mag);
+        } else {
+            cone::exact_block_sums(b, 1u << cone::kV, &p.vol);
+        }
+    }
+
+    void range(const Float32Triangles& t, std::size_t begin, std::size_t end) {
+        Partial& p = tls.local();
+        for (std::size_t i = begin; i < end; i += kB) block(t, i, static_cast<int>(std::min<std::size_t>(kB, end - i)), p);
+    }
+};
+
+SoupAccumulator::SoupAccumulator() {
+    std::random_device rd;
+    uint64_t seed = 0;
+    for (int i = 0; i < 4; ++i) seed = (seed << 16) ^ (static_cast<uint64_t>(rd()) * 0x9E3779B97F4A7C15ull) ^ (seed >> 7);
+    // More entropy than one 64-bit seed for the keys themselves.
+    s_ = std::make_unique<State>(seed);
+    for (auto& k : s_->keys.aes)
+        for (auto& x : k) x ^= static_cast<uint64_t>(rd()) << 32 | rd();
+    for (auto& k : s_->keys.mix)
+        for (auto& x : k) x ^= (static_cast<uint64_t>(rd()) << 32 | rd()) | 1;
+}
+
+SoupAccumulator::SoupAccumulator(uint64_t seed) : s_(std::make_unique<State>(seed)) {}
+
+SoupAccumulator::~SoupAccumulator() = default;
+
+int SoupAccumulator::pass() const { return s_->pass; }
+
+void SoupAccumulator::add(const Float32Triangles& t, uint64_t first_triangle) {
+    if (first_triangle % kB != 0)
+        throw std::invalid_argument("SoupAccumulator::add: first_triangle " + std::to_string(first_triangle) +
+                                    " is not a multiple of " + std::to_string(kB));
+    if (t.count > 0 && (t.data == nullptr || t.stride < 36))
+        throw std::invalid_argument("SoupAccumulator::add: no data, or a stride below 36 bytes");
+    if (s_->done) throw std::logic_error("SoupAccumulator::add after the last pass");
+    const std::size_t n = t.count;
+    if (n <= kChunk) {
+        s_->range(t, 0, n);
+        return;
+    }
+    const std::size_t chunks = (n + kChunk - 1) / kChunk;
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, chunks, 1),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t c = r.begin(); c < r.end(); ++c) s_->range(t, c * kChunk, std::min(n, (c + 1) * kChunk));
+        },
+        tbb::simple_partitioner());
+}
+
+bool SoupAccumulator::next_pass() {
+    State& s = *s_;
+    if (s.done) return false;
+    Partial all;
+    for (const Partial& p : s.tls) all.merge(p);
+    s.tls.clear();
+    SoupResult& r = s.result;
+    if (s.pass == 1) {
+        s.pass1_triangles = all.triangles;
+        r.triangles = all.triangles;
+        r.nonfinite = all.nonfinite;
+        r.fingerprint = {all.fp[0], all.fp[1], all.fp[2], all.fp[3]};
+        r.closed = !all.nonfinite && all.fp[0] == 0 && all.fp[1] == 0 && all.fp[2] == 0 && all.fp[3] == 0;
+        if (all.nonfinite) {
+            r.volume = r.area = kNaN;
+            r.first_moments = r.centroid = {kNaN, kNaN, kNaN};
+            r.first_moments_error_bound = r.centroid_error_bound = r.area_relative_error = kNaN;
+            r.passes = 1;
+            s.done = true;
+            return false;
+        }
+        // Area.
+        const double a2 = all.area2.round();
+        const double cross = all.cross.round();
+        r.area = a2 / 2;
+        r.area_relative_error =
+            a2 > 0 ? up(up(up(up(15 * kU * a2) + up(5 * kU * cross)) / a2) + kU) : (cross > 0 ? kInf : 0.0);
+        // First moments (the centroid needs the volume: below).
+        const double mom_bound = up(up(16 * kU * up(all.mom_mag.round() * (1 + 0x1p-10))) / 24);
+        double emax = 0;
+        for (int k = 0; k < 3; ++k) {
+            r.first_moments[k] = all.mom[k].round_div(24);
+            emax = std::max(emax, up(mom_bound + up(kU * std::fabs(r.first_moments[k]))));
+        }
+        r.first_moments_error_bound = emax;
+        const double bound = up(512 * kU * kU * up(all.vol_mag.round() * (1 + 0x1p-10)));
+        if (const auto v = decide_volume(all.vol, bound)) {
+            r.volume = *v;
+        } else {
+            s.pass = 2;
+            return true;
+        }
+    } else {
+        if (all.triangles != s.pass1_triangles)
+            throw std::logic_error("SoupAccumulator: pass " + std::to_string(s.pass) + " saw " +
+                                   std::to_string(all.triangles) + " triangles, pass 1 saw " +
+                                   std::to_string(s.pass1_triangles));
+        const double bound =
+            s.pass == 2 ? cone::filtered_bound(cone::kV, cone::Precision::double_double, all.vol_mag.round()) : 0.0;
+        if (const auto v = decide_volume(all.vol, bound)) {
+            r.volume = *v;
+        } else {
+            s.pass = 3;  // only from pass 2: the exact sum always decides
+            return true;
+        }
+    }
+    r.volume_correctly_rounded = true;
+    r.passes = s.pass;
+    // Centroid c_i = F_i / V with F_i ± E (first moments) and V correctly
+    // rounded (|V - V*| <= u |V|): |c - c*| <= (E + 1.01 u (|F| + E)) / |V| + u |c|.
+    const double V = r.volume;
+    double cmax = 0;
+    for (int k = 0; k < 3; ++k) {
+        if (V == 0) {
+            r.centroid[k] = kNaN;
+            continue;
+        }
+        const double F = r.first_moments[k], E = r.first_moments_error_bound;
+        r.centroid[k] = F / V;
+        const double num = up(E + up(1.01 * kU * up(std::fabs(F) + E)));
+        cmax = std::max(cmax, up(up(num / std::fabs(V)) + up(kU * std::fabs(r.centroid[k]))));
+    }
+    r.centroid_error_bound = V == 0 ? kInf : cmax;
+    s.done = true;
+    return false;
+}
+
+const SoupResult& SoupAccumulator::result() const {
+    if (!s_->done) throw std::logic_error("SoupAccumulator::result before the last pass ended");
+    return s_->result;
+}
+
+namespace {
+SoupResult run_all(SoupAccumulator& acc, const Float32Triangles& t) {
+    do {
+        acc.add(t, 0);
+    } while (acc.next_pass());
+    return acc.result();
+}
+}  // namespace
+
+SoupResult soup_properties(const Float32Triangles& t) {
+    SoupAccumulator acc;
+    return run_all(acc, t);
+}
+
+SoupResult soup_properties(const Float32Triangles& t, uint64_t seed) {
+    SoupAccumulator acc(seed);
+    return run_all(acc, t);
+}
+
+}  // namespace polyvol

@@ -1,0 +1,120 @@
+// `polyvol implicit` as users run it: JSON keys, exit codes (0 ok, 1 usage,
+// 2 an expression that does not parse, 3 NaN / the solid reaching the box with
+// --box-rule error), the clipping warning, and --stl.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct CliResult {
+    int code = -1;
+    std::string out, err;
+};
+
+CliResult polyvol(const std::string& args) {
+    const fs::path err = fs::temp_directory_path() / ("polyvol_implicit_cli_" + std::to_string(::getpid()) + ".err");
+    const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
+    CliResult r;
+    FILE* p = ::popen(cmd.c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    const int status = ::pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(err);
+    r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    fs::remove(err);
+    return r;
+}
+
+TEST(ImplicitCli, JsonHasTheKeysAndTheBallVolume) {
+    const CliResult r = polyvol("implicit 'x^2 + y^2 + z^2 - 1' --dim 3 --box -1.25:1.25 --h 0.0625 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    for (const char* key : {"dimension", "h", "volume", "error_estimate", "boundary_simplices", "seconds",
+                            "volume_pl", "volume_pl_2h", "spacing", "clipped"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j["dimension"], 3);
+    EXPECT_EQ(j["h"].get<double>(), 0.0625);
+    const double exact = 4.0 / 3.0 * std::numbers::pi;
+    EXPECT_NEAR(j["volume"].get<double>(), exact, 1e-3 * exact);
+    EXPECT_LE(std::fabs(j["volume"].get<double>() - exact), j["error_estimate"].get<double>());
+    EXPECT_GT(j["boundary_simplices"].get<int>(), 1000);
+    EXPECT_FALSE(j["clipped"].get<bool>());
+}
+
+TEST(ImplicitCli, TableAndDimensionFromTheExpression) {
+    const CliResult r = polyvol("implicit 'x1^2 + x2^2 + x3^2 + x4^2 - 1' --box 0:1.2 --h 0.2");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("dimension           4"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("error estimate"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("boundary simplices"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("clipped"), std::string::npos) << r.err;  // the orthant: clipped, with a warning
+}
+
+TEST(ImplicitCli, PerAxisBoxAndNoEstimate) {
+    const CliResult r = polyvol("implicit 'x^2/4 + y^2 - 1' --box -2.5:2.5,-1.5:1.5 --h 0.01 --no-estimate --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["dimension"], 2);
+    EXPECT_TRUE(j["error_estimate"].is_null());
+    EXPECT_NEAR(j["volume"].get<double>(), 2 * std::numbers::pi, 1e-3);
+}
+
+TEST(ImplicitCli, ExitCodes) {
+    EXPECT_EQ(polyvol("implicit 'x^2 + ' --dim 2 --box -1:1").code, 2);            // does not parse
+    EXPECT_EQ(polyvol("implicit 'x + foo' --dim 2 --box -1:1").code, 2);           // unknown name
+    EXPECT_EQ(polyvol("implicit 'x + z' --dim 2 --box -1:1").code, 2);             // z beyond n = 2
+    EXPECT_EQ(polyvol("implicit 'x^2 + y^2 - 1' --dim 2 --box 1").code, 1);        // bad box
+    EXPECT_EQ(polyvol("implicit 'x^2 + y^2 - 1' --dim 2 --box 1:-1").code, 1);     // empty box
+    EXPECT_EQ(polyvol("implicit 'x^2 + y^2 - 1' --dim 2 --box -2:2 --stl /dev/null").code, 1);  // --stl is 3D
+    const CliResult nan = polyvol("implicit 'sqrt(x) - 0.5' --dim 2 --box -1:1 --h 0.1");
+    EXPECT_EQ(nan.code, 3);
+    EXPECT_NE(nan.err.find("NaN"), std::string::npos) << nan.err;
+    const CliResult touch = polyvol("implicit 'x^2 + y^2 - 1' --dim 2 --box -1:1 --h 0.1 --box-rule error");
+    EXPECT_EQ(touch.code, 3);
+    EXPECT_NE(touch.err.find("box"), std::string::npos) << touch.err;
+    const CliResult clip = polyvol("implicit 'x^2 + y^2 - 1' --dim 2 --box 0:1 --h 0.01 --json");
+    EXPECT_EQ(clip.code, 0);
+    EXPECT_NEAR(json::parse(clip.out)["volume"].get<double>(), std::numbers::pi / 4, 1e-4);
+}
+
+TEST(ImplicitCli, EmptySet) {
+    const CliResult r = polyvol("implicit 'x^2 + y^2 + z^2 + 1' --box -1:1 --h 0.1 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["volume"].get<double>(), 0.0);
+    EXPECT_EQ(j["boundary_simplices"], 0);
+}
+
+TEST(ImplicitCli, StlIsTheSurface) {
+    const fs::path stl = fs::temp_directory_path() / ("polyvol_implicit_" + std::to_string(::getpid()) + ".stl");
+    const CliResult r = polyvol("implicit 'x^2 + y^2 + z^2 - 1' --box -1.5:1.5 --h 0.1 --json --stl '" + stl.string() + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto triangles = json::parse(r.out)["boundary_simplices"].get<std::uintmax_t>();
+    EXPECT_EQ(fs::file_size(stl), 84 + 50 * triangles);
+    // The STL measures like the PL solid it came from.
+    const CliResult m = polyvol("volume --json '" + stl.string() + "'");
+    EXPECT_EQ(m.code, 0) << m.err;
+    EXPECT_NEAR(json::parse(m.out)[0]["volume"].get<double>(), json::parse(r.out)["volume_pl"].get<double>(), 1e-5);
+    fs::remove(stl);
+}
+
+}  // namespace

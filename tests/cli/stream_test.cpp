@@ -1,0 +1,123 @@
+// `polyvol volume` on binary STL through the streaming path: the table, JSON
+// with --stream, and the fall-back to the full path for open surfaces.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kCorpus = POLYVOL_CORPUS_DIR;
+
+struct CliRun {
+    int code = -1;
+    std::string out, err;
+};
+
+CliRun polyvol(const std::string& args) {
+    const fs::path err = fs::temp_directory_path() / ("polyvol_stream_cli_" + std::to_string(::getpid()) + ".err");
+    const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
+    CliRun r;
+    FILE* p = ::popen(cmd.c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    const int status = ::pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(err);
+    r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    fs::remove(err);
+    return r;
+}
+
+std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+TEST(CliStream, EveryClosedBinaryStlStreamsToTheManifestVolume) {
+    std::ifstream in(kCorpus / "manifest.json");
+    ASSERT_TRUE(in) << "corpus missing at " << kCorpus;
+    const auto manifest = json::parse(in);
+    int streamed = 0, open = 0;
+    for (const auto& e : manifest) {
+        if (e.value("format", "") != "stl" || e.value("encoding", "") != "binary_le") continue;
+        const std::string rel = e["path"].get<std::string>();
+        SCOPED_TRACE(rel);
+        const double volume = std::strtod(e["volume"]["hex"].get<std::string>().c_str(), nullptr);
+        const CliRun r = polyvol("volume --json --stream " + quoted(kCorpus / rel));
+        const json j = json::parse(r.out)[0];
+        if (e["topology"]["closed_2_cycle"].get<bool>()) {
+            ++streamed;
+            ASSERT_EQ(r.code, 0) << r.err;
+            EXPECT_TRUE(j.value("streamed", false));
+            EXPECT_EQ(j["volume"].get<double>(), volume);
+            EXPECT_EQ(j["accuracy"], "correctly-rounded");
+            EXPECT_EQ(j["triangles"], e["counts"]["triangles"]);
+            for (const char* key : {"area", "area_relative_error", "centroid", "centroid_error_bound", "first_moments"})
+                EXPECT_TRUE(j.contains(key)) << key;
+        } else {
+            // Open: the fingerprint says so, the full path names the edges.
+            ++open;
+            EXPECT_EQ(r.code, 3);
+            EXPECT_FALSE(j.contains("streamed"));
+            EXPECT_EQ(j["unbalanced_edges"], e["topology"]["unbalanced_edges"]);
+            EXPECT_NE(r.err.find("unbalanced edge"), std::string::npos) << r.err;
+        }
+    }
+    EXPECT_GE(streamed, 10);
+    EXPECT_GE(open, 3);
+}
+
+TEST(CliStream, TableStreamsAndStatesTheGuarantees) {
+    const fs::path torus = kCorpus / "meshes/prusa-slicer/torus.stl";
+    const CliRun r = polyvol("volume " + quoted(torus));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("Streamed binary STL"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("correctly rounded"), std::string::npos);
+    EXPECT_NE(r.out.find("area relative error <="), std::string::npos);
+    EXPECT_NE(r.out.find("centroid within +-"), std::string::npos);
+    // The same volume as the full path prints.
+    const CliRun full = polyvol("volume --json " + quoted(torus));
+    ASSERT_EQ(full.code, 0);
+    const json j = json::parse(full.out)[0];
+    EXPECT_FALSE(j.contains("streamed"));
+    EXPECT_TRUE(j.contains("second_moments"));
+    char shortest[64];
+    std::snprintf(shortest, sizeof shortest, "%.17g", j["volume"].get<double>());
+    const CliRun again = polyvol("volume --json --stream " + quoted(torus));
+    EXPECT_EQ(json::parse(again.out)[0]["volume"].get<double>(), j["volume"].get<double>()) << shortest;
+}
+
+TEST(CliStream, OpenSurfaceInTheTableIsCheckedInFull) {
+    const CliRun r = polyvol("volume " + quoted(kCorpus / "meshes/stl-models/bunny.bin.stl"));
+    EXPECT_EQ(r.code, 3);
+    EXPECT_NE(r.err.find("unbalanced edge"), std::string::npos) << r.err;
+    EXPECT_NE(r.out.find("open surface"), std::string::npos) << r.out;
+    // --allow-open measures it anyway, through the full path.
+    const CliRun allowed = polyvol("volume --allow-open " + quoted(kCorpus / "meshes/stl-models/bunny.bin.stl"));
+    EXPECT_EQ(allowed.code, 0) << allowed.err;
+    EXPECT_EQ(allowed.out.find("Streamed binary STL"), std::string::npos);
+}
+
+TEST(CliStream, OtherMethodsAndFormatsUseTheFullPath) {
+    const CliRun prism = polyvol("volume --method prism " + quoted(kCorpus / "meshes/prusa-slicer/torus.stl"));
+    EXPECT_EQ(prism.code, 0);
+    EXPECT_EQ(prism.out.find("Streamed binary STL"), std::string::npos);
+    const CliRun ascii = polyvol("volume " + quoted(kCorpus / "meshes/stl-models/unitCube.ascii.stl"));
+    EXPECT_EQ(ascii.code, 0);
+    EXPECT_EQ(ascii.out.find("Streamed binary STL"), std::string::npos);
+}
+
+}  // namespace

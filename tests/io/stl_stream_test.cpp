@@ -1,0 +1,174 @@
+// Streaming binary STL (polyvol/io.hpp: probe_binary_stl, for_each_stl_window):
+// detection as read_mesh_file decides it, windows that cover every record
+// once at multiples of 32, and errors with the byte offset.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io_helpers.hpp"
+#include "polyvol/io.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace polyvol;
+
+const fs::path kCorpus = POLYVOL_CORPUS_DIR;
+
+std::vector<std::byte> slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::vector<char> c((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<std::byte> out(c.size());
+    std::memcpy(out.data(), c.data(), c.size());
+    return out;
+}
+
+// A temporary file removed at the end of the test.
+struct TempFile {
+    fs::path path;
+    explicit TempFile(const std::string& name)
+        : path(fs::temp_directory_path() / ("polyvol_stream_" + std::to_string(::getpid()) + "_" + name)) {}
+    ~TempFile() { fs::remove(path); }
+    void write(const std::vector<std::byte>& bytes) const {
+        std::ofstream out(path, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    }
+};
+
+// A binary STL of n records whose bytes encode their index (so order and
+// coverage can be checked).
+std::vector<std::byte> numbered_stl(uint32_t n) {
+    std::vector<std::byte> b(84 + 50 * std::size_t{n});
+    std::memcpy(b.data(), "numbered", 8);
+    std::memcpy(&b[80], &n, 4);
+    for (uint32_t t = 0; t < n; ++t)
+        for (int k = 0; k < 50; ++k) b[84 + 50 * std::size_t{t} + k] = static_cast<std::byte>((t * 7 + k) & 0xFF);
+    return b;
+}
+
+// Streams path and returns the records put back in order (checks the windows).
+std::vector<std::byte> collect(const std::string& path, const StlStreamOptions& options) {
+    const BinaryStlProbe p = probe_binary_stl(path);
+    std::vector<std::byte> out(50 * p.triangles);
+    std::vector<int> seen(p.triangles, 0);
+    std::mutex m;
+    for_each_stl_window(
+        path,
+        [&](std::span<const std::byte> records, uint64_t first) {
+            EXPECT_EQ(first % 32, 0u);
+            EXPECT_EQ(records.size() % 50, 0u);
+            std::lock_guard<std::mutex> lock(m);
+            std::memcpy(out.data() + 50 * first, records.data(), records.size());
+            for (uint64_t t = first; t < first + records.size() / 50; ++t) ++seen[t];
+        },
+        options);
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+    return out;
+}
+
+TEST(StlStream, ProbeAgreesWithTheManifestOnEveryStl) {
+    std::ifstream in(kCorpus / "manifest.json");
+    ASSERT_TRUE(in) << "corpus missing at " << kCorpus;
+    const auto manifest = nlohmann::json::parse(in);
+    int binary = 0;
+    for (const auto& e : manifest) {
+        const std::string rel = e["path"].get<std::string>();
+        const fs::path path = kCorpus / rel;
+        SCOPED_TRACE(rel);
+        const BinaryStlProbe p = probe_binary_stl(path.string());
+        const bool expect = e.value("format", "") == "stl" && e.value("encoding", "") == "binary_le";
+        EXPECT_EQ(p.binary_stl, expect);
+        if (!expect) continue;
+        ++binary;
+        EXPECT_EQ(p.triangles, e["counts"]["triangles"].get<uint64_t>());
+        EXPECT_EQ(p.file_bytes, e["bytes"].get<uint64_t>());
+        // Every record, in windows of several sizes, serial and parallel.
+        const auto bytes = slurp(path);
+        const std::vector<std::byte> want(bytes.begin() + 84, bytes.end());
+        for (std::size_t w : {std::size_t{1}, std::size_t{1600}, std::size_t{50 * 4096}, std::size_t{1} << 24})
+            for (bool parallel : {false, true}) EXPECT_EQ(collect(path.string(), {w, parallel}), want);
+    }
+    EXPECT_GE(binary, 15);
+}
+
+TEST(StlStream, WindowsCoverALargerFileExactlyOnce) {
+    TempFile f("numbered.stl");
+    const auto b = numbered_stl(100003);
+    f.write(b);
+    const std::vector<std::byte> want(b.begin() + 84, b.end());
+    for (std::size_t w : {std::size_t{0}, std::size_t{3200}, std::size_t{50 * 4096 + 17}})
+        for (bool parallel : {false, true}) EXPECT_EQ(collect(f.path.string(), {w, parallel}), want);
+}
+
+TEST(StlStream, NotBinaryStl) {
+    EXPECT_FALSE(probe_binary_stl("-").binary_stl);
+    EXPECT_FALSE(probe_binary_stl((kCorpus / "meshes/stl-models/unitCube.ascii.stl").string()).binary_stl);
+    const ReadError missing = iotest::expect_error([] { (void)probe_binary_stl("/nonexistent/x.stl"); });
+    EXPECT_NE(std::string(missing.what()).find("cannot open"), std::string::npos);
+
+    // Truncated: the size rule fails; the error names byte 80 as read_mesh_file does.
+    TempFile f("truncated.stl");
+    auto b = numbered_stl(1000);
+    b.resize(b.size() - 7);
+    f.write(b);
+    EXPECT_FALSE(probe_binary_stl(f.path.string()).binary_stl);
+    const ReadError e = iotest::expect_error([&] { for_each_stl_window(f.path.string(), [](auto, uint64_t) {}); });
+    EXPECT_TRUE(e.has_byte_offset);
+    EXPECT_EQ(e.byte_offset, 80u);
+    EXPECT_NE(e.message.find("declares 1000 triangles"), std::string::npos) << e.message;
+    const ReadError full = iotest::expect_error([&] { (void)read_mesh_file(f.path.string()); });
+    EXPECT_EQ(full.byte_offset, e.byte_offset);
+
+    TempFile s("short.stl");
+    s.write(std::vector<std::byte>(40, std::byte{0}));
+    const ReadError short_error = iotest::expect_error([&] { for_each_stl_window(s.path.string(), [](auto, uint64_t) {}); });
+    EXPECT_NE(short_error.message.find("too short"), std::string::npos);
+
+    // gzip magic wins over the size rule, as in read_mesh_file.
+    TempFile g("gz.stl");
+    auto gz = numbered_stl(10);
+    gz[0] = std::byte{0x1f};
+    gz[1] = std::byte{0x8b};
+    g.write(gz);
+    EXPECT_FALSE(probe_binary_stl(g.path.string()).binary_stl);
+}
+
+TEST(StlStream, AFileThatShrinksWhileReadErrorsWithTheOffset) {
+    TempFile f("shrinking.stl");
+    f.write(numbered_stl(10000));
+    bool first = true;
+    const ReadError e = iotest::expect_error([&] {
+        for_each_stl_window(
+            f.path.string(),
+            [&](std::span<const std::byte>, uint64_t) {
+                if (first) fs::resize_file(f.path, 84 + 50 * 5000 + 20);
+                first = false;
+            },
+            {50 * 1024, false});
+    });
+    EXPECT_TRUE(e.has_byte_offset);
+    EXPECT_EQ(e.byte_offset, 84u + 50 * 5000 + 20);
+    EXPECT_NE(e.message.find("unexpected end of file"), std::string::npos) << e.message;
+}
+
+TEST(StlStream, CallbackExceptionsPropagate) {
+    TempFile f("throws.stl");
+    f.write(numbered_stl(5000));
+    for (bool parallel : {false, true})
+        EXPECT_THROW(for_each_stl_window(
+                         f.path.string(), [](std::span<const std::byte>, uint64_t) { throw std::runtime_error("stop"); },
+                         {1600, parallel}),
+                     std::runtime_error);
+}
+
+}  // namespace

@@ -1,0 +1,322 @@
+// The streaming soup accumulator (polyvol/soup.hpp) against the corpus'
+// exact figures and the full path (mass_properties), window splits, far
+// offsets, exact ties, non-finite input and the closedness fingerprint.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "measure/soup_testing.hpp"
+#include "polyvol/io.hpp"
+#include "polyvol/measure.hpp"
+#include "polyvol/soup.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace polyvol;
+
+const fs::path kCorpus = POLYVOL_CORPUS_DIR;
+
+std::vector<std::byte> slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::vector<char> c((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<std::byte> out(c.size());
+    std::memcpy(out.data(), c.data(), c.size());
+    return out;
+}
+
+uint64_t bits(double x) { return std::bit_cast<uint64_t>(x); }
+
+// Binary STL records (no header) from float triangles (9 floats each).
+std::vector<std::byte> records_of(const std::vector<float>& tri) {
+    const std::size_t n = tri.size() / 9;
+    std::vector<std::byte> out(50 * n);
+    for (std::size_t t = 0; t < n; ++t) std::memcpy(&out[50 * t + 12], &tri[9 * t], 36);
+    return out;
+}
+
+// The same triangles as a soup Mesh (float32 widened exactly).
+Mesh mesh_of(const std::vector<float>& tri) {
+    Mesh m;
+    for (std::size_t t = 0; t < tri.size() / 9; ++t) {
+        const uint32_t a = m.add_vertex(tri[9 * t], tri[9 * t + 1], tri[9 * t + 2]);
+        const uint32_t b = m.add_vertex(tri[9 * t + 3], tri[9 * t + 4], tri[9 * t + 5]);
+        const uint32_t c = m.add_vertex(tri[9 * t + 6], tri[9 * t + 7], tri[9 * t + 8]);
+        m.add_triangle(a, b, c);
+    }
+    return m;
+}
+
+// A closed UV sphere as float triangles (radius r, centre (o, o, o)).
+std::vector<float> sphere(int rings, int segments, double r, double o) {
+    auto P = [&](int i, double ph) {  // ring i of rings (the poles exactly on the axis)
+        const double th = std::numbers::pi * i / rings;
+        const double st = i == 0 || i == rings ? 0.0 : std::sin(th);
+        const double ct = i == 0 ? 1.0 : (i == rings ? -1.0 : std::cos(th));
+        return std::array<float, 3>{static_cast<float>(o + r * st * std::cos(ph)),
+                                    static_cast<float>(o + r * st * std::sin(ph)), static_cast<float>(o + r * ct)};
+    };
+    std::vector<float> out;
+    auto tri = [&](const std::array<float, 3>& a, const std::array<float, 3>& b, const std::array<float, 3>& c) {
+        out.insert(out.end(), a.begin(), a.end());
+        out.insert(out.end(), b.begin(), b.end());
+        out.insert(out.end(), c.begin(), c.end());
+    };
+    const double pi = std::numbers::pi;
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const double p0 = 2 * pi * j / segments, p1 = 2 * pi * ((j + 1) % segments) / segments;
+            if (i > 0) tri(P(i, p0), P(i + 1, p0), P(i, p1));
+            if (i + 1 < rings) tri(P(i, p1), P(i + 1, p0), P(i + 1, p1));
+        }
+    return out;
+}
+
+void expect_same(const SoupResult& a, const SoupResult& b) {
+    EXPECT_EQ(a.triangles, b.triangles);
+    EXPECT_EQ(a.closed, b.closed);
+    EXPECT_EQ(a.passes, b.passes);
+    EXPECT_EQ(bits(a.volume), bits(b.volume));
+    EXPECT_EQ(bits(a.area), bits(b.area));
+    EXPECT_EQ(bits(a.area_relative_error), bits(b.area_relative_error));
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(bits(a.first_moments[k]), bits(b.first_moments[k]));
+        EXPECT_EQ(bits(a.centroid[k]), bits(b.centroid[k]));
+    }
+    EXPECT_EQ(bits(a.first_moments_error_bound), bits(b.first_moments_error_bound));
+    EXPECT_EQ(bits(a.centroid_error_bound), bits(b.centroid_error_bound));
+}
+
+// Feeds rec in windows of `window` triangles (a multiple of 32), in a shuffled order.
+SoupResult windowed(const std::vector<std::byte>& rec, std::size_t window, uint64_t seed) {
+    SoupAccumulator acc(seed);
+    const std::size_t n = rec.size() / 50;
+    std::vector<std::size_t> starts;
+    for (std::size_t s = 0; s < n; s += window) starts.push_back(s);
+    std::mt19937 rng(static_cast<unsigned>(window));
+    std::shuffle(starts.begin(), starts.end(), rng);
+    do {
+        for (std::size_t s : starts) {
+            const std::size_t k = std::min(window, n - s);
+            acc.add(stl_records(std::span<const std::byte>(rec).subspan(50 * s, 50 * k)), s);
+        }
+    } while (acc.next_pass());
+    return acc.result();
+}
+
+struct CorpusStl {
+    std::string path;
+    bool closed = false;
+    double volume = 0;
+    double area = 0;
+    std::array<double, 3> centroid{};
+    bool has_centroid = false;
+};
+
+std::vector<CorpusStl> corpus_binary_stls() {
+    std::ifstream in(kCorpus / "manifest.json");
+    const auto manifest = nlohmann::json::parse(in);
+    std::vector<CorpusStl> out;
+    for (const auto& e : manifest) {
+        if (e.value("format", "") != "stl" || e.value("encoding", "") != "binary_le") continue;
+        CorpusStl c;
+        c.path = e["path"].get<std::string>();
+        c.closed = e["topology"]["closed_2_cycle"].get<bool>();
+        c.volume = std::strtod(e["volume"]["hex"].get<std::string>().c_str(), nullptr);
+        c.area = std::strtod(e["surface_area"]["decimal30"].get<std::string>().c_str(), nullptr);
+        if (e["centroid"].is_object()) {
+            c.has_centroid = true;
+            const char* axes[3] = {"x", "y", "z"};
+            for (int k = 0; k < 3; ++k)
+                c.centroid[k] = std::strtod(e["centroid"][axes[k]]["hex"].get<std::string>().c_str(), nullptr);
+        }
+        out.push_back(c);
+    }
+    return out;
+}
+
+TEST(Soup, EveryCorpusBinaryStlMatchesTheManifestAndTheFullPath) {
+    const auto files = corpus_binary_stls();
+    ASSERT_GE(files.size(), 15u) << "corpus missing at " << kCorpus;
+    int closed = 0;
+    for (const CorpusStl& c : files) {
+        SCOPED_TRACE(c.path);
+        const auto bytes = slurp(kCorpus / c.path);
+        ASSERT_GE(bytes.size(), 84u);
+        const auto rec = std::span<const std::byte>(bytes).subspan(84);
+        const SoupResult s = soup_properties(stl_records(rec), 7);
+        // The fingerprint is zero exactly for the closed 2-cycles.
+        EXPECT_EQ(s.closed, c.closed);
+        EXPECT_FALSE(s.nonfinite);
+        // The volume (about the origin, also for open surfaces) is the exact value rounded once.
+        EXPECT_TRUE(s.volume_correctly_rounded);
+        EXPECT_EQ(bits(s.volume), bits(c.volume)) << s.volume << " vs " << c.volume;
+        const LoadedMesh full = read_mesh_file((kCorpus / c.path).string());
+        const MassProperties mp = mass_properties(full.mesh.view());
+        EXPECT_EQ(bits(s.volume), bits(mp.volume));
+        EXPECT_EQ(s.triangles, full.mesh.face_count());
+        // Area and centroid within their stated bounds of the exact figures.
+        EXPECT_LE(std::fabs(s.area - c.area), s.area_relative_error * c.area);
+        EXPECT_LT(s.area_relative_error, 1e-13);
+        if (c.has_centroid && c.volume != 0) {
+            for (int k = 0; k < 3; ++k)
+                EXPECT_LE(std::fabs(s.centroid[k] - c.centroid[k]), s.centroid_error_bound) << "axis " << k;
+        }
+        if (c.closed) ++closed;
+        // Another key gives the same verdict.
+        EXPECT_EQ(soup_properties(stl_records(rec), 12345).closed, c.closed);
+    }
+    EXPECT_GE(closed, 10);
+}
+
+TEST(Soup, PortableKernelsAgreeWithTheFastOnes) {
+    for (const CorpusStl& c : corpus_binary_stls()) {
+        SCOPED_TRACE(c.path);
+        const auto bytes = slurp(kCorpus / c.path);
+        const auto rec = std::span<const std::byte>(bytes).subspan(84);
+        const SoupResult fast = soup_properties(stl_records(rec), 3);
+        measure::force_portable_soup_kernels(true);
+        const SoupResult portable = soup_properties(stl_records(rec), 3);
+        measure::force_portable_soup_kernels(false);
+        expect_same(fast, portable);  // the fingerprints differ (other hash), their zero-ness not
+    }
+}
+
+TEST(Soup, WindowSizesAndOrderGiveIdenticalBits) {
+    const auto tri = sphere(120, 200, 3.5, 17.25);  // 47600 triangles
+    const auto rec = records_of(tri);
+    const SoupResult whole = soup_properties(stl_records(rec), 99);
+    EXPECT_TRUE(whole.closed);
+    for (std::size_t w : {32u, 96u, 4096u, 8192u, 40000u}) {
+        SCOPED_TRACE(w);
+        const SoupResult s = windowed(rec, w, 99);
+        expect_same(whole, s);
+        EXPECT_EQ(s.fingerprint, whole.fingerprint);
+    }
+    EXPECT_EQ(bits(whole.volume), bits(mass_properties(mesh_of(tri).view()).volume));
+}
+
+TEST(Soup, FarFromTheOriginIsStillExact) {
+    // Radius 100 at 1e6: float32 steps of 1/16, terms ~1e18 cancelling to ~4e6.
+    const auto tri = sphere(60, 90, 100, 1e6);
+    const auto rec = records_of(tri);
+    const SoupResult s = soup_properties(stl_records(rec), 5);
+    EXPECT_TRUE(s.closed);
+    EXPECT_TRUE(s.volume_correctly_rounded);
+    EXPECT_GE(s.passes, 2);  // the float32 filter cannot decide this one
+    const MassProperties mp = mass_properties(mesh_of(tri).view());
+    EXPECT_EQ(bits(s.volume), bits(mp.volume));
+    EXPECT_GT(s.volume, 3e6);
+    for (int k = 0; k < 3; ++k) EXPECT_LE(std::fabs(s.centroid[k] - mp.centroid[k]), s.centroid_error_bound);
+    EXPECT_LE(std::fabs(s.area - mp.area), s.area_relative_error * mp.area + mp.area_relative_error * mp.area);
+}
+
+TEST(Soup, AnExactZeroNeedsTheExactPass) {
+    // A tetrahedron and its inside-out copy: closed, volume exactly 0.
+    const std::vector<float> t = {0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+                                  0, 0, 0, 0, 0, 1, 0, 1, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    std::vector<float> both = t;
+    for (std::size_t f = 0; f < t.size(); f += 9) {  // reversed copy
+        both.insert(both.end(), t.begin() + static_cast<long>(f), t.begin() + static_cast<long>(f) + 3);
+        both.insert(both.end(), t.begin() + static_cast<long>(f) + 6, t.begin() + static_cast<long>(f) + 9);
+        both.insert(both.end(), t.begin() + static_cast<long>(f) + 3, t.begin() + static_cast<long>(f) + 6);
+    }
+    const auto rec = records_of(both);
+    const SoupResult s = soup_properties(stl_records(rec), 1);
+    EXPECT_TRUE(s.closed);
+    EXPECT_EQ(s.passes, 3);
+    EXPECT_EQ(bits(s.volume), bits(0.0));
+    EXPECT_TRUE(std::isnan(s.centroid[0]));
+    // The single tetrahedron: 1/6 in one pass.
+    const auto one = records_of(t);
+    const SoupResult u = soup_properties(stl_records(one), 1);
+    EXPECT_TRUE(u.closed);
+    EXPECT_EQ(u.passes, 1);
+    EXPECT_EQ(u.volume, 1.0 / 6);
+    EXPECT_LE(std::fabs(u.area - (1.5 + std::sqrt(3.0) / 2)), 4 * u.area_relative_error * u.area + 1e-15);
+    EXPECT_LE(std::fabs(u.centroid[0] - 0.25), u.centroid_error_bound);
+}
+
+TEST(Soup, FingerprintSeesEveryKindOfUnbalancedEdge) {
+    const auto closed = sphere(10, 16, 1, 0);
+    ASSERT_TRUE(soup_properties(stl_records(records_of(closed)), 11).closed);
+    // One triangle flipped (two edges used twice the same way), removed (a
+    // hole), or duplicated (three edges unbalanced by 1), a duplicated flipped pair
+    // (balanced: still closed), and -0.0 for +0.0 (the same point).
+    auto flip = closed;
+    std::swap_ranges(flip.begin() + 3, flip.begin() + 6, flip.begin() + 6);
+    auto hole = closed;
+    hole.erase(hole.begin(), hole.begin() + 9);
+    auto dup = closed;
+    dup.insert(dup.end(), closed.begin(), closed.begin() + 9);
+    auto pair = closed;
+    pair.insert(pair.end(), closed.begin(), closed.begin() + 9);
+    pair.insert(pair.end(), flip.begin(), flip.begin() + 9);
+    auto twice = closed;  // every triangle twice: balanced
+    twice.insert(twice.end(), closed.begin(), closed.end());
+    for (uint64_t seed : {1u, 2u, 3u}) {
+        EXPECT_FALSE(soup_properties(stl_records(records_of(flip)), seed).closed);
+        EXPECT_FALSE(soup_properties(stl_records(records_of(hole)), seed).closed);
+        EXPECT_FALSE(soup_properties(stl_records(records_of(dup)), seed).closed);
+        EXPECT_TRUE(soup_properties(stl_records(records_of(pair)), seed).closed);
+        EXPECT_TRUE(soup_properties(stl_records(records_of(twice)), seed).closed);
+    }
+    // The poles of the sphere lie on the z axis: x = y = 0; writing -0.0 in
+    // one copy of a vertex must not open the surface.
+    auto signed_zero = closed;
+    int changed = 0;
+    for (float& x : signed_zero)
+        if (x == 0 && changed < 5) {
+            x = -0.0f;
+            ++changed;
+        }
+    ASSERT_GT(changed, 0);
+    EXPECT_TRUE(soup_properties(stl_records(records_of(signed_zero)), 4).closed);
+    // And the random key (std::random_device) agrees.
+    EXPECT_TRUE(soup_properties(stl_records(records_of(closed))).closed);
+    EXPECT_FALSE(soup_properties(stl_records(records_of(flip))).closed);
+}
+
+TEST(Soup, NonFiniteCoordinatesAreFlagged) {
+    auto tri = sphere(6, 8, 1, 0);
+    tri[40] = std::numeric_limits<float>::quiet_NaN();
+    SoupResult s = soup_properties(stl_records(records_of(tri)), 1);
+    EXPECT_TRUE(s.nonfinite);
+    EXPECT_FALSE(s.closed);
+    EXPECT_TRUE(std::isnan(s.volume));
+    tri[40] = std::numeric_limits<float>::infinity();
+    s = soup_properties(stl_records(records_of(tri)), 1);
+    EXPECT_TRUE(s.nonfinite);
+    EXPECT_TRUE(std::isnan(s.volume));
+}
+
+TEST(Soup, ContractErrors) {
+    const auto rec = records_of(sphere(6, 8, 1, 0));
+    SoupAccumulator acc(1);
+    EXPECT_THROW(acc.add(stl_records(rec), 5), std::invalid_argument);
+    EXPECT_THROW(acc.add(Float32Triangles{rec.data(), 3, 20, 0}, 0), std::invalid_argument);
+    EXPECT_THROW((void)acc.result(), std::logic_error);
+    acc.add(stl_records(rec), 0);
+    EXPECT_FALSE(acc.next_pass());
+    EXPECT_EQ(acc.result().triangles, rec.size() / 50);
+    // No triangles: volume 0, closed.
+    const SoupResult empty = soup_properties(Float32Triangles{}, 1);
+    EXPECT_EQ(empty.triangles, 0u);
+    EXPECT_TRUE(empty.closed);
+    EXPECT_EQ(empty.volume, 0.0);
+}
+
+}  // namespace
