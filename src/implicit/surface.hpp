@@ -118,6 +118,11 @@ public:
     Chain take_chain() { return std::move(chain_); }
 
 private:
+    struct Pending {
+        KuhnSimplex s;
+        std::array<double, kMaxDim + 1> f;  // F at its vertices, except vertex `fresh`
+        int fresh;                          // the vertex to sample; -1: all of them
+    };
     struct FaceSimplex {
         KuhnSimplex s;  // corner on the face; perm[0 .. n-2] the face's axes
         int axis = 0;   // the face is x_axis = lo (corner[axis] == 0) or hi (== N_axis)
@@ -144,7 +149,7 @@ private:
     FlatMap<uint8_t> visited_;
     FlatMap<uint8_t> face_visited_;  // face_key
     FlatMap<uint32_t> point_vertex_;
-    std::vector<KuhnSimplex> stack_;
+    std::vector<Pending> stack_;
     std::vector<FaceSimplex> face_stack_;
     std::size_t boundary_done_ = 0;
     std::size_t surface_walks_ = 0, face_walks_ = 0;  // sampler_.boundary_inside() entries used as seeds

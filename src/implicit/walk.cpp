@@ -30,16 +30,17 @@ bool SurfaceBuilder::walk_from(const KuhnSimplex& seed) {
     ++surface_walks_;
     const int n = lattice_.n;
     const uint32_t all = (1u << (n + 1)) - 1;
-    stack_.push_back(seed);
+    stack_.push_back({seed, {}, -1});
     std::array<Index, kMaxDim + 1> v;
-    std::array<double, kMaxDim + 1> f;
     while (!stack_.empty()) {
-        const KuhnSimplex s = stack_.back();
+        const Pending p = stack_.back();
         stack_.pop_back();
+        const KuhnSimplex& s = p.s;
+        std::array<double, kMaxDim + 1> f = p.f;
         kuhn_vertices(s, n, v);
         uint32_t mask = 0;  // bit j: vertex j positive
         for (int j = 0; j <= n; ++j) {
-            f[j] = sampler_.value(v[j]);
+            if (p.fresh < 0 || j == p.fresh) f[j] = sampler_.value(v[j]);
             if (f[j] > 0) mask |= 1u << j;
         }
         if (mask == 0 || mask == all) continue;  // a seed that is not crossed
@@ -47,9 +48,22 @@ bool SurfaceBuilder::walk_from(const KuhnSimplex& seed) {
         for (int j = 0; j <= n; ++j) {
             const uint32_t facet = all & ~(1u << j);
             if ((mask & facet) == 0 || (mask & facet) == facet) continue;  // facet not crossed
-            const KuhnSimplex t = kuhn_neighbour(s, n, j);
-            if (!lattice_.is_real(t)) continue;  // a box facet: closed by close_faces
-            if (visited_.insert(lattice_.simplex_key(t), 1).second) stack_.push_back(t);
+            Pending t{kuhn_neighbour(s, n, j), {}, j};
+            if (!lattice_.is_real(t.s)) continue;  // a box facet: closed by close_faces
+            if (!visited_.insert(lattice_.simplex_key(t.s), 1).second) continue;
+            // The neighbour's vertices in order (kuhn_neighbour): j = 0 drops v_0
+            // and appends one, j = n prepends one and drops v_n, otherwise v_j is
+            // replaced; the n shared values come along, one is sampled.
+            if (j == 0) {
+                for (int i = 0; i < n; ++i) t.f[i] = f[i + 1];
+                t.fresh = n;
+            } else if (j == n) {
+                for (int i = 0; i < n; ++i) t.f[i + 1] = f[i];
+                t.fresh = 0;
+            } else {
+                t.f = f;
+            }
+            stack_.push_back(t);
         }
     }
     return true;
