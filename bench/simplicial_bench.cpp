@@ -1,6 +1,6 @@
 // n-D chains: the rank-one (LU column replacement) traversal against a fresh
 // LU factorisation per simplex (docs/benchmarks.md, "n-D chains").
-//   ./build/bench/polyvol_bench --benchmark_filter=Chain
+//   ./build/bench/polyvol_bench --benchmark_filter='^Chain(RankOne|Refactor|BareLu)/'
 // Chains: the boundary of the cross-polytope in R^n (2^n simplices), grown by
 // random stellar subdivisions (a simplex replaced by the cone from a point
 // just outside its centroid: n - 1 more simplices, still closed) to the
@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <map>
 #include <random>
 #include <utility>
@@ -84,6 +85,7 @@ void ChainSweep(benchmark::State& state, Traversal traversal) {
     ChainOptions o;
     o.accuracy = ChainAccuracy::bounded;
     o.traversal = traversal;
+    o.centroid = false;  // the determinants, their bounds and the sum only
     ChainVolume v;
     for (auto _ : state) {
         v = chain_volume(c.view(), o);
@@ -103,6 +105,50 @@ void ChainSweep(benchmark::State& state, Traversal traversal) {
     state.counters["rel_bound"] = v.volume_error_bound / std::abs(v.volume);
 }
 
+// The bare baseline: the cone rule with a plain Gaussian elimination (partial
+// pivoting) per simplex on the raw coordinates, summed in double: no error
+// bound, no topology, no moments — what a naive implementation pays.
+void ChainBareLu(benchmark::State& state) {
+    const int n = static_cast<int>(state.range(0));
+    const Chain& c = chain(n, static_cast<std::size_t>(state.range(1)));
+    std::vector<double> m(static_cast<std::size_t>(n) * n);
+    double volume = 0;
+    for (auto _ : state) {
+        const std::clock_t t0 = std::clock();
+        double sum = 0;
+        for (std::size_t s = 0; s < c.simplex_count(); ++s) {
+            for (int j = 0; j < n; ++j) {
+                const double* x = &c.coordinates[std::size_t{c.simplices[s * n + j]} * n];
+                for (int i = 0; i < n; ++i) m[i * n + j] = x[i];
+            }
+            double det = 1;
+            for (int k = 0; k < n; ++k) {
+                int p = k;
+                for (int r = k + 1; r < n; ++r)
+                    if (std::abs(m[r * n + k]) > std::abs(m[p * n + k])) p = r;
+                if (p != k) {
+                    for (int j = 0; j < n; ++j) std::swap(m[k * n + j], m[p * n + j]);
+                    det = -det;
+                }
+                const double piv = m[k * n + k];
+                det *= piv;
+                if (piv == 0) break;
+                for (int r = k + 1; r < n; ++r) {
+                    const double l = m[r * n + k] / piv;
+                    for (int j = k + 1; j < n; ++j) m[r * n + j] -= l * m[k * n + j];
+                }
+            }
+            sum += det;
+        }
+        volume = sum;
+        benchmark::DoNotOptimize(volume);
+        state.SetIterationTime(std::max(static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC, 1e-6));
+    }
+    const double k = static_cast<double>(c.simplex_count());
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * c.simplex_count()));
+    state.counters["simplices"] = k;
+}
+
 // Sizes: 10^4 .. 10^6 for n = 4, 8, 12; 10^5, 10^6 for n = 16 (its
 // cross-polytope alone has 65536 simplices); 2^20 for n = 20. Then a
 // dimension sweep at about 10^5 simplices for the crossover. Both traversals
@@ -115,7 +161,7 @@ const bool registered = [] {
     for (int64_t k : {100000, 1000000}) sizes.push_back({16, k});
     sizes.push_back({20, 1 << 20});
     for (int n : {3, 5, 6, 7, 10}) sizes.push_back({n, 100000});
-    for (const auto& [n, k] : sizes)
+    for (const auto& [n, k] : sizes) {
         for (Traversal t : {Traversal::rank_one, Traversal::refactor})
             benchmark::RegisterBenchmark(t == Traversal::rank_one ? "ChainRankOne" : "ChainRefactor", ChainSweep, t)
                 ->Args({n, k})
@@ -124,6 +170,14 @@ const bool registered = [] {
                 ->Repetitions(3)
                 ->ReportAggregatesOnly(true)
                 ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark("ChainBareLu", ChainBareLu)
+            ->Args({n, k})
+            ->UseManualTime()
+            ->Iterations(1)
+            ->Repetitions(3)
+            ->ReportAggregatesOnly(true)
+            ->Unit(benchmark::kMillisecond);
+    }
     return true;
 }();
 

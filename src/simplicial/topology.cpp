@@ -2,11 +2,13 @@
 #include "simplicial/topology.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <random>
-#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -80,10 +82,17 @@ void sort_by_hash(std::vector<FaceUse>& a) {
 // built to make two different faces collide.
 std::array<uint64_t, 2> hash_keys() {
     static const std::array<uint64_t, 2> keys = [] {
-        std::random_device rd;
-        const uint64_t a = (uint64_t{rd()} << 32) ^ rd();
-        const uint64_t b = (uint64_t{rd()} << 32) ^ rd();
-        return std::array<uint64_t, 2>{a, b ^ 0x5851F42D4C957F2Dull};
+        uint64_t a = 0, b = 0;
+        try {
+            std::random_device rd;
+            a = (uint64_t{rd()} << 32) ^ rd();
+            b = (uint64_t{rd()} << 32) ^ rd();
+        } catch (...) {  // no entropy source: the clock and an address
+        }
+        const auto t = static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+        a = mix64(a ^ t);
+        b = mix64(b ^ reinterpret_cast<uintptr_t>(&a) ^ 0x5851F42D4C957F2Dull);
+        return std::array<uint64_t, 2>{a, b};
     }();
     return keys;
 }

@@ -269,10 +269,14 @@ void gmp_exact(const ChainView& c, const Topology& t, const ChainOptions& opt, C
 // stays until the next fresh factorisation; each v - o is rounded once, an
 // error of at most u ||v - o|| in its column, added to that column's
 // backward-error bound. A walk that drifts away from o makes the columns
-// long again: the refactorisation test compares the current bound with the
-// fresh one through both factors of the bound, eta (relative backward error)
-// and Hadamard's product:
-//   refactor when (eta / eta_fresh) * (prod ||a_c|| / prod_fresh) > refactor_growth.
+// long again. So the factors are computed afresh (with a new o) when
+//   eta > refactor_growth * eta_fresh       (eta = sum_c eps_c / ||a_c||, the
+//                                            relative backward error), or
+//   ||entering column|| > 4 * max_c ||a_c|| at the last fresh factorisation
+//                                           (the walk left the neighbourhood
+//                                            of o), or
+//   2^20 updates have passed               (bounds stay sums of < 2^30 terms),
+// besides after every jump of the walk.
 class BoundedSweep {
 public:
     BoundedSweep(const ChainView& c, const Topology& t, const ChainOptions& opt)

@@ -800,6 +800,13 @@ TEST(ParallelFallback, SmallInputsAreReadSerially) {
     const Outcome o = read_with(s, "small.obj", ParseOptions{});
     ASSERT_TRUE(o.ok);
     EXPECT_EQ(o.report.chunks, 0u);
+    // Past the threshold, even when smaller than one default chunk, an
+    // input is cut into several.
+    const std::string mid = big_obj(std::size_t{3} << 19, 40);
+    const Outcome m = read_with(mid, "mid.obj", ParseOptions{});
+    ASSERT_TRUE(m.ok) << m.what;
+    EXPECT_GE(m.report.chunks, 8u);
+    EXPECT_FALSE(m.report.serial_fallback);
 }
 
 }  // namespace

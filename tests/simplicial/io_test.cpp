@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <random>
 #include <string>
 
 #include "polyvol/chain.hpp"
@@ -129,5 +130,44 @@ TEST(PolygonReader, OneLoopPerLine) {
         ADD_FAILURE();
     } catch (const ReadError& e) {
         EXPECT_EQ(e.line, 1u);
+    }
+}
+
+TEST(ChainReader, MutatedInputsFailCleanly) {
+    // Byte flips, insertions and deletions in valid .chain, qhull and polygon
+    // texts: every result is a chain the library accepts, or a ReadError.
+    const std::string qhull =
+        "3\n5 6 9\n0 0 0\n2 0 0\n2 2 0\n0 2 0\n1 1 1\n3 0 1 2\n3 0 2 3\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n";
+    const std::string polygons = "0 0 10 0 10 10 0 10\n2 2 2 8 8 8 8 2\n";
+    std::mt19937_64 rng(99);
+    const char alphabet[] = "0123456789 -+.eE#\n\r\tx";
+    for (const std::string* base : {&kTetra, &qhull, &polygons}) {
+        for (int trial = 0; trial < 600; ++trial) {
+            std::string s = *base;
+            const int edits = 1 + static_cast<int>(rng() % 4);
+            for (int e = 0; e < edits && !s.empty(); ++e) {
+                const std::size_t at = rng() % s.size();
+                const char ch = alphabet[rng() % (sizeof alphabet - 1)];
+                switch (rng() % 3) {
+                    case 0: s[at] = ch; break;
+                    case 1: s.insert(s.begin() + static_cast<std::ptrdiff_t>(at), ch); break;
+                    default: s.erase(at, 1); break;
+                }
+            }
+            try {
+                if (base == &polygons) {
+                    const Polygons p = read_polygons_memory(bytes(s), "fuzz");
+                    (void)polygon_area(p.view());
+                } else {
+                    const LoadedChain l = chain(s);
+                    ChainOptions o;
+                    o.accuracy = trial % 2 ? ChainAccuracy::bounded : ChainAccuracy::automatic;
+                    (void)chain_volume(l.chain.view(), o);
+                    Chain c = l.chain;
+                    (void)orient_chain(c);
+                }
+            } catch (const ReadError&) {
+            }
+        }
     }
 }
