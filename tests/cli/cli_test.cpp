@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/run_cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -23,32 +25,8 @@ using nlohmann::json;
 const fs::path kCorpus = POLYVOL_CORPUS_DIR;
 const fs::path kExamples = fs::path(POLYVOL_TEST_DATA).parent_path().parent_path() / "examples";
 
-struct CliRun {
-    int code = -1;
-    std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// Runs `polyvol ARGS` through the shell (so ARGS may redirect stdin).
-CliRun polyvol(const std::string& args) {
-    const fs::path err = fs::temp_directory_path() / ("polyvol_cli_test_" + std::to_string(::getpid()) + ".err");
-    const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
-    CliRun r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    const int status = ::pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.err = slurp(err);
-    fs::remove(err);
-    return r;
-}
+using cli_test::CliRun;
+CliRun polyvol(const std::string& args) { return cli_test::run_polyvol(args); }
 
 // The corpus file, quoted for the shell.
 std::string corpus(const std::string& rel) {

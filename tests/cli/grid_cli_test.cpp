@@ -19,6 +19,8 @@
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
+#include "cli/run_cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -26,10 +28,7 @@ using nlohmann::json;
 
 const fs::path kCorpus = POLYVOL_CORPUS_DIR;
 
-struct CliRun {
-    int code = -1;
-    std::string out, err;
-};
+using cli_test::CliRun;
 
 std::string slurp(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -51,20 +50,7 @@ struct ScratchCleanup {
     }
 } scratch_cleanup;
 
-CliRun polyvol(const std::string& args) {
-    const fs::path err = scratch("stderr.txt");
-    const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
-    CliRun r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    const int status = ::pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.err = slurp(err);
-    return r;
-}
+CliRun polyvol(const std::string& args) { return cli_test::run_polyvol(args); }
 
 std::string corpus(const std::string& rel) { return "'" + (kCorpus / "meshes" / rel).string() + "'"; }
 

@@ -17,32 +17,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/run_cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct CliResult {
-    int code = -1;
-    std::string out, err;
-};
+using CliResult = cli_test::CliRun;
 
-CliResult polyvol(const std::string& args) {
-    const fs::path err = fs::temp_directory_path() / ("polyvol_implicit_cli_" + std::to_string(::getpid()) + ".err");
-    const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
-    CliResult r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    const int status = ::pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err);
-    r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    fs::remove(err);
-    return r;
-}
+CliResult polyvol(const std::string& args) { return cli_test::run_polyvol(args); }
 
 TEST(ImplicitCli, JsonHasTheKeysAndTheBallVolume) {
     const CliResult r = polyvol("implicit 'x^2 + y^2 + z^2 - 1' --dim 3 --box -1.25:1.25 --h 0.0625 --json");
