@@ -297,10 +297,9 @@ uint32_t pass1_portable(const std::byte* base, std::size_t stride, int n, const 
 
 // Instruction sets, decided once: 0 portable, 1 AVX2 + FMA + AES-NI,
 // 2 that and AVX-512 (F, VL, DQ, BW) + VAES.
-std::atomic<bool> g_force_portable{false};
+std::atomic<int> g_level_cap{-1};
 
 int isa_level() {
-    if (g_force_portable.load(std::memory_order_relaxed)) return 0;
     static const int level = [] {
         __builtin_cpu_init();
         if (!(__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("aes")))
@@ -310,7 +309,8 @@ int isa_level() {
             return 2;
         return 1;
     }();
-    return level;
+    const int cap = g_level_cap.load(std::memory_order_relaxed);
+    return cap >= 0 && cap < level ? cap : level;
 }
 
 // Loads a block from the records (base: first coordinate of triangle 0) into
@@ -574,11 +574,11 @@ uint64_t splitmix(uint64_t& s) {
 
 }  // namespace
 
-void measure::force_portable_soup_kernels(bool on) {
+void measure::cap_soup_kernels(int max_level) {
 #if POLYVOL_SOUP_X86
-    g_force_portable.store(on, std::memory_order_relaxed);
+    g_level_cap.store(max_level, std::memory_order_relaxed);
 #else
-    (void)on;
+    (void)max_level;
 #endif
 }
 

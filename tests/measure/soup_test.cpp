@@ -182,17 +182,31 @@ TEST(Soup, EveryCorpusBinaryStlMatchesTheManifestAndTheFullPath) {
     EXPECT_GE(closed, 10);
 }
 
-TEST(Soup, PortableKernelsAgreeWithTheFastOnes) {
-    for (const CorpusStl& c : corpus_binary_stls()) {
-        SCOPED_TRACE(c.path);
+TEST(Soup, EveryKernelLevelGivesTheSameBits) {
+    // 0 portable, 1 AVX2 + FMA + AES-NI, 2 AVX-512 + VAES (capped to what the CPU has).
+    auto files = corpus_binary_stls();
+    std::vector<std::vector<std::byte>> inputs;
+    for (const CorpusStl& c : files) {
         const auto bytes = slurp(kCorpus / c.path);
-        const auto rec = std::span<const std::byte>(bytes).subspan(84);
-        const SoupResult fast = soup_properties(stl_records(rec), 3);
-        measure::force_portable_soup_kernels(true);
-        const SoupResult portable = soup_properties(stl_records(rec), 3);
-        measure::force_portable_soup_kernels(false);
-        expect_same(fast, portable);  // the fingerprints differ (other hash), their zero-ness not
+        inputs.emplace_back(bytes.begin() + 84, bytes.end());
     }
+    inputs.push_back(records_of(sphere(40, 70, 2, 0.5)));  // also a block count that is not a multiple of 4
+    inputs.push_back(records_of(sphere(7, 5, 1, 0)));
+    for (const auto& rec : inputs) {
+        measure::cap_soup_kernels(-1);
+        const SoupResult best = soup_properties(stl_records(rec), 3);
+        for (int level : {0, 1, 2}) {
+            SCOPED_TRACE(level);
+            measure::cap_soup_kernels(level);
+            const SoupResult s = soup_properties(stl_records(rec), 3);
+            expect_same(best, s);
+            // The AES kernels hash alike, so their fingerprints agree too.
+            if (level > 0) {
+                EXPECT_EQ(s.fingerprint, best.fingerprint);
+            }
+        }
+    }
+    measure::cap_soup_kernels(-1);
 }
 
 TEST(Soup, WindowSizesAndOrderGiveIdenticalBits) {
