@@ -16,32 +16,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/run_cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct CliRun {
-    int code = -1;
-    std::string out, err;
-};
+using cli_test::CliRun;
 
-CliRun polyvol(const std::string& args) {
-    const fs::path err = fs::temp_directory_path() / ("polyvol_ndim_cli_" + std::to_string(::getpid()) + ".err");
-    const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
-    CliRun r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    const int status = ::pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err);
-    r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    fs::remove(err);
-    return r;
-}
+CliRun polyvol(const std::string& args) { return cli_test::run_polyvol(args); }
 
 // The boundary of the cross-polytope in R^n as .chain text; `drop` removes
 // that simplex, `flip` reverses that one.
