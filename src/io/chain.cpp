@@ -32,32 +32,7 @@ using io::text::parse_int;
 
 constexpr int kMaxDimension = 64;
 
-std::vector<std::byte> slurp(const std::string& path, std::string& name) {
-    const bool from_stdin = path == "-";
-    name = from_stdin ? std::string("<stdin>") : path;
-    std::FILE* f = from_stdin ? stdin : std::fopen(path.c_str(), "rb");
-    if (f == nullptr) throw ReadError::whole_file(name, std::string("cannot open: ") + std::strerror(errno));
-    std::size_t cap = std::size_t{1} << 16;
-    if (!from_stdin) {
-        std::error_code ec;
-        const auto size = std::filesystem::file_size(path, ec);
-        if (!ec) cap = static_cast<std::size_t>(size) + 1;
-    }
-    std::vector<std::byte> buf(cap);
-    std::size_t used = 0;
-    for (;;) {
-        if (used == buf.size()) buf.resize(2 * buf.size());
-        const std::size_t got = std::fread(buf.data() + used, 1, buf.size() - used, f);
-        used += got;
-        if (got == 0) break;
-    }
-    const bool failed = std::ferror(f) != 0;
-    const int err = errno;
-    if (!from_stdin) std::fclose(f);
-    if (failed) throw ReadError::whole_file(name, std::string("cannot read: ") + std::strerror(err));
-    buf.resize(used);
-    return buf;
-}
+std::vector<std::byte> slurp(const std::string& path, std::string& name) { return io::read_whole_input(path, name); }
 
 bool is_gzip(std::span<const std::byte> d) {
     return d.size() >= 2 && d[0] == std::byte{0x1f} && d[1] == std::byte{0x8b};

@@ -272,9 +272,11 @@ LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& 
     return detect(data, name, hint, 0);
 }
 
-LoadedMesh read_mesh_file(const std::string& path) {
+namespace io {
+
+std::vector<std::byte> read_whole_input(const std::string& path, std::string& name) {
     const bool from_stdin = path == "-";
-    const std::string name = from_stdin ? std::string("<stdin>") : path;
+    name = from_stdin ? std::string("<stdin>") : path;
     std::FILE* f = from_stdin ? stdin : std::fopen(path.c_str(), "rb");
     if (f == nullptr) throw ReadError::whole_file(name, std::string("cannot open: ") + std::strerror(errno));
     // Sized from the real file size when there is one (plus a byte, so the
@@ -298,7 +300,15 @@ LoadedMesh read_mesh_file(const std::string& path) {
     if (!from_stdin) std::fclose(f);
     if (failed) throw ReadError::whole_file(name, std::string("cannot read: ") + std::strerror(err));
     buf.resize(used);
-    return read_mesh_memory(buf, from_stdin ? std::string("<stdin>") : path, Format::unknown);
+    return buf;
+}
+
+}  // namespace io
+
+LoadedMesh read_mesh_file(const std::string& path) {
+    std::string name;
+    const std::vector<std::byte> buf = io::read_whole_input(path, name);
+    return read_mesh_memory(buf, name, Format::unknown);
 }
 
 }  // namespace polyvol

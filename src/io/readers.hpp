@@ -23,6 +23,10 @@ LoadedMesh read_3mf_xml(Bytes data, const std::string& name);  // the model part
 LoadedMesh read_amf_xml(Bytes data, const std::string& name);
 LoadedMesh read_amf_zip(Bytes data, const std::string& name);
 
+// The whole content of a file, or of standard input for "-"; name is set to
+// the name for messages ("<stdin>" or the path). Throws ReadError.
+std::vector<std::byte> read_whole_input(const std::string& path, std::string& name);
+
 // zlib: the decompressed bytes of a gzip stream (throws ReadError on corrupt data).
 std::vector<std::byte> gunzip(Bytes data, const std::string& name);
 
