@@ -1,19 +1,15 @@
 # ctest driver: install the build tree into a scratch prefix, then configure,
-# build and run the consumer project against it.
+# build and run the consumer project against it. A failing step prints its
+# command's whole output.
 file(REMOVE_RECURSE "${WORK}")
-execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD}" --prefix "${WORK}/prefix" RESULT_VARIABLE rc OUTPUT_QUIET)
-if(rc)
-  message(FATAL_ERROR "install failed: ${rc}")
-endif()
-execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE}" -B "${WORK}/build" -DCMAKE_PREFIX_PATH=${WORK}/prefix -DCMAKE_BUILD_TYPE=Release RESULT_VARIABLE rc)
-if(rc)
-  message(FATAL_ERROR "configure failed: ${rc}")
-endif()
-execute_process(COMMAND ${CMAKE_COMMAND} --build "${WORK}/build" RESULT_VARIABLE rc)
-if(rc)
-  message(FATAL_ERROR "build failed: ${rc}")
-endif()
-execute_process(COMMAND "${WORK}/build/consumer" RESULT_VARIABLE rc)
-if(rc)
-  message(FATAL_ERROR "consumer returned ${rc}")
-endif()
+function(step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc)
+    message(FATAL_ERROR "consumer: ${what} failed (${rc}): ${ARGN}\n--- stdout\n${out}\n--- stderr\n${err}")
+  endif()
+endfunction()
+step(install ${CMAKE_COMMAND} --install "${BUILD}" --prefix "${WORK}/prefix")
+step(configure ${CMAKE_COMMAND} -S "${SOURCE}" -B "${WORK}/build" -DCMAKE_PREFIX_PATH=${WORK}/prefix
+     -DCMAKE_BUILD_TYPE=Release)
+step(build ${CMAKE_COMMAND} --build "${WORK}/build")
+step(run "${WORK}/build/consumer")
