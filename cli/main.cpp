@@ -79,6 +79,11 @@ int run(Command command, const Common& c) {
     // --stream (the streaming path has no second moments, inertia, edge
     // length or components: README).
     request.stream = command == Command::volume && (!c.json || c.stream);
+    request.table_only = command == Command::volume && !c.json;
+    if (request.table_only) {
+        request.measure.second_moments = false;
+        request.measure.edge_length = false;
+    }
     std::vector<FileResult> results;
     int code = Exit::ok;
     const bool progress = c.files.size() > 1;

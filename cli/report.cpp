@@ -113,7 +113,7 @@ FileResult process_file(const std::string& path, const Request& request) {
     r.seconds_read = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
     const MeshView view = r.loaded->mesh.view();
-    r.topology = analyze_topology(view);
+    r.topology = analyze_topology(view, TopologyOptions{.shells = !request.table_only});
     if (request.need_mass) {
         if (!r.topology->closed_2_cycle) {
             if (request.allow_open) {

@@ -42,6 +42,10 @@ struct Request {
     // fingerprint) when the method is cone; a nonzero fingerprint falls back
     // to the full path, which names the unbalanced edges.
     bool stream = false;
+    // `volume`'s table: only what it prints (volume, area, centroid) and the
+    // closedness it needs: topology without shells, no second moments, no
+    // edge length.
+    bool table_only = false;
 };
 
 // Reads, analyses and measures one file; never throws.

@@ -66,6 +66,11 @@ struct MeasureOptions {
     Method method = Method::cone;                   // volume formula
     Accuracy accuracy = Accuracy::correctly_rounded;
     double density = 1.0;                           // scales mass, moments, inertia
+    // What to compute besides volume, mass, area, first moments and centroid.
+    // false leaves the fields NaN (and their bounds cover only what was
+    // computed): cheaper when they are not wanted (`polyvol volume`'s table).
+    bool second_moments = true;  // second_moments, inertia_origin, inertia_centroid (7 more sums)
+    bool edge_length = true;     // edge_length (welds the vertices)
 };
 
 struct MassProperties {

@@ -106,6 +106,15 @@ struct TopologyReport {
     std::size_t cavities = 0, inside_out_shells = 0, nested_shells = 0;  // shells with those roles
 };
 
-TopologyReport analyze_topology(const MeshView& mesh);
+struct TopologyOptions {
+    // false: the edge counts only (faces, welded vertices, edges and their
+    // kinds, the unbalanced example, Euler characteristic) — enough to tell
+    // whether a volume is origin-free. Degenerate-triangle counts, components,
+    // shells and nesting are then left empty (about 3x faster: no shell
+    // volumes or winding numbers).
+    bool shells = true;
+};
+
+TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& options = {});
 
 }  // namespace polyvol

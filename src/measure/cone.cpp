@@ -156,6 +156,7 @@ POLYVOL_INLINE void terms_dd(const Block& b, int i, Terms<N>& t) {
             t.l[kMx + k][i] = m.lo;
             t.m[kMx + k][i] = perm * sigma[k];
         }
+        if constexpr (N <= kSxx) return;  // volume and first moments only
         constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
         #pragma GCC unroll 6
         for (int k = 0; k < 6; ++k) {
@@ -208,6 +209,7 @@ POLYVOL_INLINE void terms_fast(const Block& b, int i, Terms<N>& t) {
             t.h[kMx + k][i] = det * s[k];
             t.m[kMx + k][i] = perm * sigma[k];
         }
+        if constexpr (N <= kSxx) return;  // volume and first moments only
         constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
         #pragma GCC unroll 6
         for (int k = 0; k < 6; ++k) {
@@ -240,6 +242,8 @@ __attribute__((target("avx2,fma"))) void block_dd10_fma(const Block& b, Terms<kS
     block_terms<true, true, kSumCount>(b, t);
 }
 __attribute__((target("avx2,fma"))) void block_fast1_fma(const Block& b, Terms<1>& t) { block_terms<true, false, 1>(b, t); }
+__attribute__((target("avx2,fma"))) void block_dd4_fma(const Block& b, Terms<kSxx>& t) { block_terms<true, true, kSxx>(b, t); }
+__attribute__((target("avx2,fma"))) void block_fast4_fma(const Block& b, Terms<kSxx>& t) { block_terms<true, false, kSxx>(b, t); }
 __attribute__((target("avx2,fma"))) void block_fast10_fma(const Block& b, Terms<kSumCount>& t) {
     block_terms<true, false, kSumCount>(b, t);
 }
@@ -255,6 +259,8 @@ void block_dd1(const Block& b, Terms<1>& t) { block_terms<false, true, 1>(b, t);
 void block_dd10(const Block& b, Terms<kSumCount>& t) { block_terms<false, true, kSumCount>(b, t); }
 void block_fast1(const Block& b, Terms<1>& t) { block_terms<false, false, 1>(b, t); }
 void block_fast10(const Block& b, Terms<kSumCount>& t) { block_terms<false, false, kSumCount>(b, t); }
+void block_dd4(const Block& b, Terms<kSxx>& t) { block_terms<false, true, kSxx>(b, t); }
+void block_fast4(const Block& b, Terms<kSxx>& t) { block_terms<false, false, kSxx>(b, t); }
 
 template <int N>
 void compute_terms(const Block& b, Terms<N>& t, bool dd) {
@@ -262,6 +268,8 @@ void compute_terms(const Block& b, Terms<N>& t, bool dd) {
     if (cpu_has_fma()) {
         if constexpr (N == 1) {
             dd ? block_dd1_fma(b, t) : block_fast1_fma(b, t);
+        } else if constexpr (N == kSxx) {
+            dd ? block_dd4_fma(b, t) : block_fast4_fma(b, t);
         } else {
             dd ? block_dd10_fma(b, t) : block_fast10_fma(b, t);
         }
@@ -270,6 +278,8 @@ void compute_terms(const Block& b, Terms<N>& t, bool dd) {
 #endif
     if constexpr (N == 1) {
         dd ? block_dd1(b, t) : block_fast1(b, t);
+    } else if constexpr (N == kSxx) {
+        dd ? block_dd4(b, t) : block_fast4(b, t);
     } else {
         dd ? block_dd10(b, t) : block_fast10(b, t);
     }
@@ -698,7 +708,9 @@ Range coordinate_range(const MeshView& mesh) {
 
 ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision) {
     const bool dd = precision == Precision::double_double;
-    return count == 1 ? filtered_impl<1>(mesh, dd) : filtered_impl<kSumCount>(mesh, dd);
+    if (count == 1) return filtered_impl<1>(mesh, dd);
+    if (count == kSxx) return filtered_impl<kSxx>(mesh, dd);
+    return filtered_impl<kSumCount>(mesh, dd);
 }
 
 void exact_sums(const MeshView& mesh, uint32_t mask, ConeSums& sums) {
@@ -759,6 +771,7 @@ RationalSums gmp_sums(const MeshView& mesh, int count) {
                 mpz_add(s[k].z, s[k].z, C[k]);
                 mpz_addmul(sums[kMx + k].z, det.z, s[k].z);
             }
+            if (count <= kSxx) continue;
             constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
             for (int k = 0; k < 6; ++k) {
                 const int x = I[k], y = J[k];

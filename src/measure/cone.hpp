@@ -48,7 +48,8 @@ Range coordinate_range(const MeshView& mesh);
 
 enum class Precision { fast, double_double };
 
-// Sums 0..count-1 (count == 1: volume only; count == kSumCount: all).
+// Sums 0..count-1 (count == 1: volume only; kSxx: volume and first moments;
+// kSumCount: all).
 struct ConeSums {
     int count = kSumCount;
     std::array<exact::ExactSum, kSumCount> sum{};  // exact sum of the approximated terms

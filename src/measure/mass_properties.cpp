@@ -89,10 +89,14 @@ enum ResultIndex : int {
 
 constexpr uint32_t bit(int k) { return 1u << k; }
 
+// Results from the first `count` sums: volume and mass (1), and the first
+// moments and centroid (kSxx), and the rest (kSumCount).
+constexpr int result_count(int count) { return count == 1 ? 2 : count == kSxx ? int{kSecond} : int{kResultCount}; }
+
 // The results as intervals from the sums' intervals (count == 1: volume and
 // mass only). density: a finite density (mass, moments and inertia scale).
 std::vector<Result> evaluate(const std::array<Interval, kSumCount>& s, int count, const Rational& density) {
-    std::vector<Result> r(count == 1 ? 2 : kResultCount);
+    std::vector<Result> r(static_cast<std::size_t>(result_count(count)));
     const Rational sixth(1L, 6), r24(1L, 24), r120(1L, 120);
     r[kVolume] = {s[kV] * sixth, bit(kV)};
     r[kMass] = {s[kV] * sixth * density, bit(kV)};
@@ -108,6 +112,7 @@ std::vector<Result> evaluate(const std::array<Interval, kSumCount>& s, int count
             r[kCentroid + i] = {s[kMx + i] / four_v, bit(kMx + i) | bit(kV)};
         }
     }
+    if (count == kSxx) return r;
     Interval second[6];
     for (int k = 0; k < 6; ++k) {
         second[k] = s[kSxx + k] * r120;
@@ -198,7 +203,7 @@ ConeResults cone_results(const MeshView& mesh, int count, Accuracy accuracy, dou
     }
     const bool finite_density = std::isfinite(density);
     const Rational rho(finite_density ? density : 1.0);
-    const int results = count == 1 ? 2 : kResultCount;
+    const int results = result_count(count);
     ConeResults out;
     out.value.assign(static_cast<std::size_t>(results), 0.0);
     out.bound.assign(static_cast<std::size_t>(results), 0.0);
@@ -315,9 +320,11 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
     MassProperties p;
     p.method = options.method;
     p.accuracy = options.accuracy;
-    const ConeResults c = cone_results(mesh, kSumCount, options.accuracy, options.density);
+    const int count = options.second_moments ? int{kSumCount} : int{kSxx};
+    const ConeResults c = cone_results(mesh, count, options.accuracy, options.density);
     auto copy = [&](auto& dst, int first) {
-        for (std::size_t i = 0; i < dst.size(); ++i) dst[i] = c.value[static_cast<std::size_t>(first) + i];
+        for (std::size_t i = 0; i < dst.size(); ++i)
+            dst[i] = first < result_count(count) ? c.value[static_cast<std::size_t>(first) + i] : kNaN;
     };
     copy(p.first_moments, kFirst);
     copy(p.centroid, kCentroid);
@@ -328,8 +335,10 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
     if (c.correctly_rounded) {
         p.moments_relative_error = 0x1p-53;
     } else {
-        p.moments_relative_error = std::max({relative(c, kFirst, 3), relative(c, kCentroid, 3), relative(c, kSecond, 6),
-                                             relative(c, kInertiaOrigin, 6), relative(c, kInertiaCentroid, 6)});
+        p.moments_relative_error = std::max(relative(c, kFirst, 3), relative(c, kCentroid, 3));
+        if (options.second_moments)
+            p.moments_relative_error = std::max({p.moments_relative_error, relative(c, kSecond, 6),
+                                                 relative(c, kInertiaOrigin, 6), relative(c, kInertiaCentroid, 6)});
     }
 
     measure::SumWithBound area{}, length{};
@@ -360,12 +369,12 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
     if (options.method != Method::cone) p.mass = options.density * p.volume;
     if (options.method != Method::vtnb) {
         area = measure::fan_area(mesh);
-        length = measure::welded_edge_length(mesh);
+        if (options.edge_length) length = measure::welded_edge_length(mesh);
     }
     p.area = area.value;
     p.area_relative_error = relative_bound(area);
-    p.edge_length = length.value;
-    p.edge_length_relative_error = relative_bound(length);
+    p.edge_length = options.edge_length ? length.value : kNaN;
+    p.edge_length_relative_error = options.edge_length ? relative_bound(length) : kNaN;
     return p;
 }
 

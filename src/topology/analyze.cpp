@@ -80,7 +80,7 @@ std::vector<Shell> order_shells(std::vector<ShellGeometry>&& geometry, std::span
 
 }  // namespace
 
-TopologyReport analyze_topology(const MeshView& mesh) {
+TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& options) {
     topology::check_mesh_arrays(mesh);
     TopologyReport r;
     count_faces(mesh, r);
@@ -94,6 +94,7 @@ TopologyReport analyze_topology(const MeshView& mesh) {
     count_edges(m, edges, r);
     r.euler_characteristic = static_cast<int64_t>(r.vertices_referenced) -
                              static_cast<int64_t>(r.edges) + static_cast<int64_t>(m.polygons);
+    if (!options.shells) return r;
 
     const topology::DegenerateCounts degenerate = topology::count_degenerate_triangles(m);
     r.triangles_with_repeated_vertex = degenerate.triangles_with_repeated_vertex;

@@ -311,6 +311,27 @@ TEST(MassProperties, RandomMeshesMatchGmpBitForBit) {
             EXPECT_LE(std::fabs(f.second_moments[i] - p.second_moments[i]),
                       (f.moments_relative_error + 0x1p-52) * mx);
         EXPECT_EQ(signed_volume(m.view(), Method::cone, Accuracy::correctly_rounded), p.volume / 1.0);
+
+        // Without second moments and edge length (the volume table): the
+        // same bits for what is computed, NaN for the rest.
+        MeasureOptions light{.method = Method::cone, .accuracy = Accuracy::correctly_rounded, .density = density};
+        light.second_moments = false;
+        light.edge_length = false;
+        const MassProperties l = mass_properties(m.view(), light);
+        EXPECT_EQ(l.volume, p.volume);
+        EXPECT_EQ(l.mass, p.mass);
+        EXPECT_EQ(l.area, p.area);
+        EXPECT_TRUE(l.moments_correctly_rounded);
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_EQ(l.first_moments[i], p.first_moments[i]);
+            EXPECT_EQ(l.centroid[i], p.centroid[i]);
+        }
+        EXPECT_TRUE(std::isnan(l.second_moments[0]) && std::isnan(l.inertia_centroid[5]) && std::isnan(l.edge_length));
+        light.accuracy = Accuracy::fast;
+        const MassProperties lf = mass_properties(m.view(), light);
+        EXPECT_EQ(lf.volume, f.volume);
+        EXPECT_EQ(lf.centroid, f.centroid);
+        EXPECT_LE(lf.moments_relative_error, f.moments_relative_error);
     }
 }
 

@@ -95,6 +95,21 @@ TEST_P(CorpusTopology, CountsAndTopologyMatchManifest) {
     EXPECT_EQ(r.degenerate_edge_uses, t.at("degenerate_edge_uses").get<std::size_t>());
     EXPECT_EQ(r.unbalanced_example.has_value(), r.unbalanced_edges > 0);
     EXPECT_EQ(r.shells.size(), r.components_edge_connected);
+
+    // Edges only (polyvol volume's table): the same edge counts, no shells.
+    const polyvol::LoadedMesh loaded = polyvol::read_mesh_file(kCorpus + "/" + e.at("path").get<std::string>());
+    const TopologyReport light = polyvol::analyze_topology(loaded.mesh.view(), {.shells = false});
+    EXPECT_EQ(light.vertices_welded, r.vertices_welded);
+    EXPECT_EQ(light.edges, r.edges);
+    EXPECT_EQ(light.boundary_edges, r.boundary_edges);
+    EXPECT_EQ(light.nonmanifold_edges, r.nonmanifold_edges);
+    EXPECT_EQ(light.misoriented_edges, r.misoriented_edges);
+    EXPECT_EQ(light.unbalanced_edges, r.unbalanced_edges);
+    EXPECT_EQ(light.closed_2_cycle, r.closed_2_cycle);
+    EXPECT_EQ(light.euler_characteristic, r.euler_characteristic);
+    EXPECT_EQ(light.unbalanced_example, r.unbalanced_example);
+    EXPECT_TRUE(light.shells.empty());
+    EXPECT_EQ(light.components_edge_connected, 0u);
 }
 
 // Shell volumes are correctly rounded (corpus coordinates are in the safe
