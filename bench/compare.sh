@@ -36,7 +36,7 @@ echo "date: $(date -u +%Y-%m-%dT%H:%MZ); load average before: $(cut -d' ' -f1-3 
 if [ "${SKIP_BUILD:-0}" != 1 ]; then
   cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPOLYVOL_PEERS=ON >/dev/null
   cmake --build "$build" -j"$JOBS" --target polyvol_cli polyvol_bench make_mesh naive_stl_volume \
-    peer_cgal peer_vtk peer_open3d >/dev/null
+    harness_polyvol peer_cgal peer_vtk peer_open3d >/dev/null
 fi
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/polyvol-compare.XXXXXX")
@@ -99,13 +99,14 @@ def run_wait4(cmd, timeout=timeout):
     return wall, ru.ru_maxrss, b"".join(chunks).decode(errors="replace"), os.waitstatus_to_exitcode(status)
 
 def bench(cmd, n=runs, limit=timeout):
-    walls, rss, out, code = [], [], "", 0
+    walls, rss, out, code, outs = [], [], "", 0, []
     for _ in range(n):
         w, m, o, c = run_wait4(cmd, limit)
         if c is None:
             return None
         walls.append(w); rss.append(m); out, code = o, c
-    return statistics.median(walls), statistics.median(rss), out, code
+        outs.append(o)
+    return statistics.median(walls), statistics.median(rss), out, code, outs
 
 def volume_of(tool, out):
     try:
@@ -124,11 +125,18 @@ def inmem_of(tool, out):
     except Exception:
         return None
 
+def load_of(tool, out):
+    """The harnesses' LOAD_SECONDS: reading into memory plus one volume call."""
+    try:
+        return float(out.split()[2]) if tool not in ("polyvol", "naive") else None
+    except Exception:
+        return None
+
 rows = []
 for tag in tags:
     for ext in ("stl", "ascii.stl", "ply", "obj"):
         f = os.path.join(tmp, f"sphere{tag}.{ext}")
-        tools = [("polyvol", [B("polyvol"), "volume", f])]
+        tools = [("polyvol", [B("polyvol"), "volume", f]), ("polyvol-harness", [B("bench", "harness_polyvol"), f])]
         if ext == "stl":
             tools.append(("naive", [B("bench", "naive_stl_volume"), f]))
         tools += [("cgal", [B("bench", "peer_cgal"), f]), ("vtk", [B("bench", "peer_vtk"), f])]
@@ -163,6 +171,29 @@ print()
 for tag, ext, res in rows:
     if ext == "stl" and res.get("polyvol") and res.get("naive"):
         print(f"polyvol/naive ({tag} binary STL, median wall): {res['polyvol'][0] / res['naive'][0]:.2f}")
+
+print()
+print("Loading (read into memory + one volume call) and the in-memory volume call, each tool's own")
+print("harness (medians over runs of the in-process figures); ratio = fastest peer / polyvol.")
+print()
+print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+for tag, ext, res in rows:
+    h = res.get("polyvol-harness")
+    if h is None:
+        continue
+    def med(fn, name, r):
+        xs = [x for x in (fn(name, o) for o in r[4]) if x is not None]
+        return statistics.median(xs) if xs else None
+    pl, pc = med(load_of, "polyvol-harness", h), med(inmem_of, "polyvol-harness", h)
+    loads = {n: med(load_of, n, res[n]) for n in ("cgal", "vtk") if res.get(n)}
+    calls = {n: med(inmem_of, n, res[n]) for n in ("cgal", "vtk") if res.get(n)}
+    fl = min([x for x in loads.values() if x], default=None)
+    fc = min([x for x in calls.values() if x], default=None)
+    fmt = lambda x: "" if x is None else f"{x:.4f}"
+    print(f"| {tag} | {ext} | {fmt(pl)} | {fmt(loads.get('cgal'))} | {fmt(loads.get('vtk'))} | "
+          f"{'' if not (fl and pl) else f'{fl / pl:.1f}'} | {fmt(pc)} | {fmt(calls.get('cgal'))} | {fmt(calls.get('vtk'))} | "
+          f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} |")
 
 print()
 print("## in-memory volume call, polyvol (polyvol_bench)")
