@@ -30,6 +30,7 @@
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/topology.hpp"
+#include "read_input.hpp"
 #include "report.hpp"
 
 namespace polyvol::cli {
@@ -235,15 +236,10 @@ int run_grid_command(const GridArgs& a) {
     std::vector<LoadedMesh> meshes;
     int code = Exit::ok;
     for (const std::string& f : a.files) {
-        try {
-            meshes.push_back(read_mesh_file(f));
-        } catch (const ReadError& e) {
-            std::cerr << "polyvol: " << e.what() << "\n";
+        if (std::optional<LoadedMesh> m = read_or_report(f, [&] { return read_mesh_file(f); }))
+            meshes.push_back(std::move(*m));
+        else
             code = Exit::unreadable;
-        } catch (const std::bad_alloc&) {
-            std::cerr << "polyvol: " << f << ": out of memory while reading\n";
-            code = Exit::unreadable;
-        }
     }
     if (code != Exit::ok) return code;
     std::vector<MeshView> views;

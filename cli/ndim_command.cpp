@@ -6,7 +6,7 @@
 
 #include <cmath>
 #include <iostream>
-#include <new>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,6 +14,7 @@
 
 #include "polyvol/chain.hpp"
 #include "polyvol/simplicial.hpp"
+#include "read_input.hpp"
 #include "report.hpp"
 
 namespace polyvol::cli {
@@ -211,40 +212,24 @@ int measure_and_print(const std::string& file, const std::string& what, Chain& c
 }
 
 int run_ndim(const NdimOptions& o) {
-    LoadedChain loaded;
-    try {
-        loaded = read_chain_file(o.file);
-    } catch (const ReadError& e) {
-        std::cerr << "polyvol: " << e.what() << "\n";
-        return Exit::unreadable;
-    } catch (const std::bad_alloc&) {
-        std::cerr << "polyvol: " << o.file << ": out of memory while reading\n";
-        return Exit::unreadable;
-    }
+    std::optional<LoadedChain> loaded = read_or_report(o.file, [&] { return read_chain_file(o.file); });
+    if (!loaded) return Exit::unreadable;
     std::vector<std::string> extra;
-    if (loaded.format == ChainFormat::qhull) {
+    if (loaded->format == ChainFormat::qhull) {
         std::ostringstream s;
-        s << "qhull       " << loaded.qhull_facets << " facets, " << loaded.facets_reoriented
-          << " turned outward, " << loaded.facets_undecided << " flat ones oriented by their neighbours";
+        s << "qhull       " << loaded->qhull_facets << " facets, " << loaded->facets_reoriented
+          << " turned outward, " << loaded->facets_undecided << " flat ones oriented by their neighbours";
         extra.push_back(s.str());
     }
-    return measure_and_print(o.file, std::string(chain_format_name(loaded.format)), loaded.chain,
-                             loaded.facets_undecided > 0, o, std::move(extra));
+    return measure_and_print(o.file, std::string(chain_format_name(loaded->format)), loaded->chain,
+                             loaded->facets_undecided > 0, o, std::move(extra));
 }
 
 int run_area(const NdimOptions& o) {
-    Polygons p;
-    try {
-        p = read_polygons_file(o.file);
-    } catch (const ReadError& e) {
-        std::cerr << "polyvol: " << e.what() << "\n";
-        return Exit::unreadable;
-    } catch (const std::bad_alloc&) {
-        std::cerr << "polyvol: " << o.file << ": out of memory while reading\n";
-        return Exit::unreadable;
-    }
-    Chain c = polygon_chain(p.view());
-    std::vector<std::string> extra{"loops       " + std::to_string(p.loop_count())};
+    const std::optional<Polygons> p = read_or_report(o.file, [&] { return read_polygons_file(o.file); });
+    if (!p) return Exit::unreadable;
+    Chain c = polygon_chain(p->view());
+    std::vector<std::string> extra{"loops       " + std::to_string(p->loop_count())};
     return measure_and_print(o.file, "polygons", c, false, o, std::move(extra));
 }
 

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "io/readers.hpp"
+#include "io/xml_names.hpp"
 #include "io/xml_numbers.hpp"
 #include "io/zip.hpp"
 
@@ -30,19 +31,11 @@ namespace polyvol::io {
 
 namespace {
 
-std::string_view amf_local_name(const char* name) {
-    const std::string_view s(name);
-    const auto colon = s.rfind(':');
-    return colon == std::string_view::npos ? s : s.substr(colon + 1);
-}
-
-bool amf_is(pugi::xml_node n, std::string_view local) {
-    return n.type() == pugi::node_element && amf_local_name(n.name()) == local;
-}
+using xmlname::is_element;
 
 pugi::xml_node amf_child(pugi::xml_node n, std::string_view local) {
     for (pugi::xml_node c : n.children())
-        if (amf_is(c, local)) return c;
+        if (is_element(c, local)) return c;
     return {};
 }
 
@@ -61,7 +54,7 @@ public:
         }
         offsets_valid_ = r.encoding == pugi::encoding_utf8;
         const pugi::xml_node root = doc_.document_element();
-        if (!amf_is(root, "amf"))
+        if (!is_element(root, "amf"))
             fail(root, std::string("the root element is <") + root.name() + ">, expected <amf>");
 
         const std::string unit = root.attribute("unit").value();
@@ -70,17 +63,17 @@ public:
         bool constellation = false;
         Mesh& mesh = out.mesh;
         for (pugi::xml_node obj : root.children()) {
-            if (amf_is(obj, "constellation")) constellation = true;
-            if (!amf_is(obj, "object")) continue;
+            if (is_element(obj, "constellation")) constellation = true;
+            if (!is_element(obj, "object")) continue;
             ++objects;
             for (pugi::xml_node m : obj.children()) {
-                if (!amf_is(m, "mesh")) continue;
+                if (!is_element(m, "mesh")) continue;
                 const std::size_t base = mesh.vertex_count();
                 std::size_t nv = 0;
                 for (pugi::xml_node vs : m.children()) {
-                    if (!amf_is(vs, "vertices")) continue;
+                    if (!is_element(vs, "vertices")) continue;
                     for (pugi::xml_node v : vs.children()) {
-                        if (!amf_is(v, "vertex")) continue;
+                        if (!is_element(v, "vertex")) continue;
                         if (base + nv >= std::numeric_limits<uint32_t>::max())
                             fail(v, "more than 4294967295 vertices");
                         const pugi::xml_node c = amf_child(v, "coordinates");
@@ -94,10 +87,10 @@ public:
                 }
                 std::size_t volumes = 0;
                 for (pugi::xml_node vol : m.children()) {
-                    if (!amf_is(vol, "volume")) continue;
+                    if (!is_element(vol, "volume")) continue;
                     ++volumes;
                     for (pugi::xml_node t : vol.children()) {
-                        if (!amf_is(t, "triangle")) continue;
+                        if (!is_element(t, "triangle")) continue;
                         const uint32_t a = index(t, "v1", nv, base);
                         const uint32_t b = index(t, "v2", nv, base);
                         const uint32_t c = index(t, "v3", nv, base);

@@ -144,6 +144,20 @@ void for_each(std::size_t n, const std::function<void(std::size_t)>& f) {
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) { f(i); });
 }
 
+LineChunks split_line_body(std::string_view body, std::size_t target, char comment) {
+    LineChunks c;
+    c.starts = split(body, target, [](std::string_view, std::size_t) { return true; });
+    const std::size_t n = c.starts.size() - 1;
+    if (n < 2) return {};
+    ParseReport& report = thread_parse_report();
+    report.chunks = n;
+    report.serial_fallback = true;  // until the pieces agree
+    c.counts.resize(n);
+    for_each(n, [&](std::size_t i) { c.counts[i] = count_lines(c.chunk(body, i), comment); });
+    for (const LineCounts& k : c.counts) c.data_lines += k.data_lines;
+    return c;
+}
+
 void concat(std::vector<Mesh>& parts, Mesh& out, bool shift_indices) {
     if (parts.size() == 1 && out.positions.empty() && out.indices.empty()) {
         // One part, nothing before it: its vertex numbering is already global.

@@ -150,6 +150,52 @@ struct Outcome {
 // Calls f(i) for i in [0, n) on oneTBB's threads.
 void for_each(std::size_t n, const std::function<void(std::size_t)>& f);
 
+// A body of one record per line (OFF, ASCII PLY: the header read serially)
+// cut at line starts, any line start a chunk may begin at, with the line
+// counts of each chunk from a first parallel pass: the data lines before a
+// chunk number its first record, its line ends make its errors' lines global.
+struct LineChunks {
+    std::vector<std::size_t> starts;  // chunk i is [starts[i], starts[i + 1]) of the body
+    std::vector<LineCounts> counts;   // per chunk
+    uint64_t data_lines = 0;          // of the whole body
+
+    std::size_t size() const { return counts.size(); }
+    std::string_view chunk(std::string_view body, std::size_t i) const {
+        return body.substr(starts[i], starts[i + 1] - starts[i]);
+    }
+};
+
+// Cuts body into chunks of about `target` bytes (split) and counts the lines
+// of each (count_lines with `comment`). Returns no chunks when there would be
+// fewer than two: the body is then read serially. Otherwise the thread's
+// ParseReport records the chunks and a serial fallback, which
+// line_pieces_agree clears once the pieces decide.
+LineChunks split_line_body(std::string_view body, std::size_t target, char comment);
+
+// Whether the pieces parsed from the chunks of a LineChunks (each with an
+// Outcome `outcome`) stand for the serial reading: false when one was
+// irregular (the body is then read serially); the serial reader's ReadError
+// for the first that failed, its line made global from first_line (the line
+// of the body's first byte) and the line ends of the chunks before it; true
+// when every piece parsed cleanly.
+template <class Piece>
+bool line_pieces_agree(const std::vector<Piece>& pieces, const LineChunks& chunks, uint64_t first_line,
+                       const std::string& name) {
+    ParseReport& report = thread_parse_report();
+    uint64_t line = first_line;  // the line of the chunk's start
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+        const Outcome& o = pieces[i].outcome;
+        if (o.status == Outcome::Status::irregular) return false;
+        if (o.status == Outcome::Status::error) {
+            report.serial_fallback = false;
+            throw ReadError(name, static_cast<uint64_t>(static_cast<int64_t>(line) + o.line - 1), o.message);
+        }
+        line += chunks.counts[i].line_ends;
+    }
+    report.serial_fallback = false;
+    return true;
+}
+
 // Appends the parts in order to out: positions concatenated; faces
 // concatenated, their indices raised by the number of vertices before the
 // part when shift_indices (parts numbered their vertices from 0), and

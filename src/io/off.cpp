@@ -281,44 +281,22 @@ private:
         const std::size_t body_at = cur_.offset();
         const std::string_view body = text_.substr(body_at);
         if (!chunks::use_parallel(options_, body.size()) || nv + nf == 0) return false;
-        const std::vector<std::size_t> starts =
-            chunks::split(body, options_.chunk_bytes, [](std::string_view, std::size_t) { return true; });
-        const std::size_t n = starts.size() - 1;
-        if (n < 2) return false;
-        ParseReport& report = thread_parse_report();
-        report.chunks = n;
-        report.serial_fallback = true;  // until the chunks agree
-        std::vector<chunks::LineCounts> counts(n);
-        chunks::for_each(n, [&](std::size_t i) {
-            counts[i] = chunks::count_lines(body.substr(starts[i], starts[i + 1] - starts[i]), '#');
-        });
-        uint64_t data_lines = 0;
-        for (const chunks::LineCounts& c : counts) data_lines += c.data_lines;
+        const chunks::LineChunks lines = chunks::split_line_body(body, options_.chunk_bytes, '#');
+        const std::size_t n = lines.size();
+        if (n == 0) return false;
         const auto records = static_cast<uint64_t>(nv + nf);
-        if (data_lines < records) return false;  // some record spans lines, or the file is short
+        if (lines.data_lines < records) return false;  // some record spans lines, or the file is short
 
         std::vector<double> positions(3 * static_cast<std::size_t>(nv));
         std::vector<OffChunk> pieces;
         pieces.reserve(n);
         uint64_t first = 0;
         for (std::size_t i = 0; i < n; ++i) {
-            pieces.emplace_back(body.substr(starts[i], starts[i + 1] - starts[i]), text_.data() + text_.size(), first,
-                                nv, nf, positions.data());
-            first += counts[i].data_lines;
+            pieces.emplace_back(lines.chunk(body, i), text_.data() + text_.size(), first, nv, nf, positions.data());
+            first += lines.counts[i].data_lines;
         }
         chunks::for_each(n, [&](std::size_t i) { pieces[i].run(); });
-
-        uint64_t line = cur_.line();  // the line of the chunk's start
-        for (std::size_t i = 0; i < n; ++i) {
-            const chunks::Outcome& o = pieces[i].outcome;
-            if (o.status == chunks::Outcome::Status::irregular) return false;
-            if (o.status == chunks::Outcome::Status::error) {
-                report.serial_fallback = false;
-                throw ReadError(name_, static_cast<uint64_t>(static_cast<int64_t>(line) + o.line - 1), o.message);
-            }
-            line += counts[i].line_ends;
-        }
-        report.serial_fallback = false;
+        if (!chunks::line_pieces_agree(pieces, lines, cur_.line(), name_)) return false;
 
         std::size_t max_extra = 0;
         bool colours = false;
@@ -334,7 +312,7 @@ private:
         if (max_extra > 0) out_.notes.push_back("off-vertex-extra-values(" + std::to_string(max_extra) + ")");
         if (colours) out_.notes.emplace_back("off-face-colors");
         // Every data line after the last face (the serial reader counts them).
-        const uint64_t trailing = data_lines - records;
+        const uint64_t trailing = lines.data_lines - records;
         if (trailing > 0) out_.notes.push_back("off-trailing-data(" + std::to_string(trailing) + " lines)");
         return true;
     }

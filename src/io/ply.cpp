@@ -627,24 +627,14 @@ private:
     bool parallel_ascii_body() {
         const std::string_view body = s_.substr(body_);
         if (!chunks::use_parallel(options_, body.size())) return false;
-        const std::vector<std::size_t> starts =
-            chunks::split(body, options_.chunk_bytes, [](std::string_view, std::size_t) { return true; });
-        const std::size_t n = starts.size() - 1;
-        if (n < 2) return false;
-        ParseReport& report = thread_parse_report();
-        report.chunks = n;
-        report.serial_fallback = true;  // until the chunks agree
-        std::vector<chunks::LineCounts> counts(n);
-        chunks::for_each(n, [&](std::size_t i) {
-            counts[i] = chunks::count_lines(body.substr(starts[i], starts[i + 1] - starts[i]), '\0');
-        });
-        uint64_t data_lines = 0;
-        for (const chunks::LineCounts& c : counts) data_lines += c.data_lines;
+        const chunks::LineChunks lines = chunks::split_line_body(body, options_.chunk_bytes, '\0');
+        const std::size_t n = lines.size();
+        if (n == 0) return false;
         std::vector<RowSpan> spans;
         uint64_t rows = 0;
         for (const Element& e : elements_) {
             if (e.props.empty() || e.count == 0) continue;
-            if (e.count > data_lines - rows) return false;  // some row spans lines, or the file is short
+            if (e.count > lines.data_lines - rows) return false;  // some row spans lines, or the file is short
             spans.push_back({&e, rows});
             rows += e.count;
         }
@@ -656,24 +646,13 @@ private:
         pieces.reserve(n);
         uint64_t first = 0;
         for (std::size_t i = 0; i < n; ++i) {
-            pieces.emplace_back(body, starts[i], starts[i + 1] - starts[i], body.size(), first, spans, rows, nv,
-                                positions.data());
-            first += counts[i].data_lines;
+            pieces.emplace_back(body, lines.starts[i], lines.starts[i + 1] - lines.starts[i], body.size(), first, spans,
+                                rows, nv, positions.data());
+            first += lines.counts[i].data_lines;
         }
         chunks::for_each(n, [&](std::size_t i) { pieces[i].run(); });
-
-        uint64_t line = header_lines_ + 1;  // the line of the chunk's start
-        for (std::size_t i = 0; i < n; ++i) {
-            const chunks::Outcome& o = pieces[i].outcome;
-            if (o.status == chunks::Outcome::Status::irregular) return false;
-            if (o.status == chunks::Outcome::Status::error) {
-                report.serial_fallback = false;
-                throw ReadError(name_, static_cast<uint64_t>(static_cast<int64_t>(line) + o.line - 1), o.message);
-            }
-            line += counts[i].line_ends;
-        }
-        report.serial_fallback = false;
-        bool trailing = data_lines > rows;
+        if (!chunks::line_pieces_agree(pieces, lines, header_lines_ + 1, name_)) return false;
+        bool trailing = lines.data_lines > rows;
         std::vector<Mesh> faces;
         faces.reserve(n);
         for (PlyChunk& c : pieces) {

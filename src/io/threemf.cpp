@@ -51,6 +51,7 @@
 #include <vector>
 
 #include "io/readers.hpp"
+#include "io/xml_names.hpp"
 #include "io/xml_numbers.hpp"
 #include "io/zip.hpp"
 
@@ -63,15 +64,8 @@ using Affine = std::array<double, 12>;  // m00 m01 m02 m10 m11 m12 m20 m21 m22 m
 constexpr Affine kIdentity = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
 constexpr int kMaxComponentDepth = 64;
 
-std::string_view local_name(const char* name) {
-    const std::string_view s(name);
-    const auto colon = s.rfind(':');
-    return colon == std::string_view::npos ? s : s.substr(colon + 1);
-}
-
-bool is_element(pugi::xml_node n, std::string_view local) {
-    return n.type() == pugi::node_element && local_name(n.name()) == local;
-}
+using xmlname::is_element;
+using xmlname::local_name;
 
 pugi::xml_attribute attribute_local(pugi::xml_node n, std::string_view local) {
     for (pugi::xml_attribute a : n.attributes())

@@ -111,15 +111,28 @@ void check_planes(const std::string& path, std::span<const double> c) {
     if (c.size() < 2) throw std::invalid_argument(path + ": each axis needs at least 2 planes");
 }
 
+struct CellCounts {
+    std::size_t nx, ny, nz;
+};
+
+// The cells along each axis between the planes x, y, z; throws
+// std::invalid_argument unless every axis has 2 planes or more and every
+// array one value (of its components) per cell.
+CellCounts checked_cells(const std::string& path, std::span<const double> x, std::span<const double> y,
+                         std::span<const double> z, std::span<const CellArray> arrays) {
+    check_planes(path, x);
+    check_planes(path, y);
+    check_planes(path, z);
+    const CellCounts n{x.size() - 1, y.size() - 1, z.size() - 1};
+    check_arrays(path, n.nx * n.ny * n.nz, arrays);
+    return n;
+}
+
 }  // namespace
 
 void write_vti(const std::string& path, std::span<const double> x, std::span<const double> y,
                std::span<const double> z, std::span<const CellArray> arrays) {
-    check_planes(path, x);
-    check_planes(path, y);
-    check_planes(path, z);
-    const std::size_t nx = x.size() - 1, ny = y.size() - 1, nz = z.size() - 1;
-    check_arrays(path, nx * ny * nz, arrays);
+    const auto [nx, ny, nz] = checked_cells(path, x, y, z, arrays);
     Writer w(path);
     const std::string ext = extent(nx, ny, nz);
     const double sx = (x.back() - x.front()) / static_cast<double>(nx);
@@ -137,11 +150,7 @@ void write_vti(const std::string& path, std::span<const double> x, std::span<con
 
 void write_vtr(const std::string& path, std::span<const double> x, std::span<const double> y,
                std::span<const double> z, std::span<const CellArray> arrays) {
-    check_planes(path, x);
-    check_planes(path, y);
-    check_planes(path, z);
-    const std::size_t nx = x.size() - 1, ny = y.size() - 1, nz = z.size() - 1;
-    check_arrays(path, nx * ny * nz, arrays);
+    const auto [nx, ny, nz] = checked_cells(path, x, y, z, arrays);
     Writer w(path);
     const std::string ext = extent(nx, ny, nz);
     w.buffer() += "<?xml version=\"1.0\"?>\n"

@@ -9,10 +9,10 @@
 // weld_vertices in mesh.hpp); edges whose ends weld together are skipped.
 //
 // Error bounds (u = 2^-53, γ_k = k u/(1 - k u), exact quantities starred):
-//   norm3() returns |v| with relative error <= γ5 (squares of components,
-//   two additions, a square root; scaled by an exact power of two when the
-//   largest component is outside [2^-500, 2^500], so neither overflow nor
-//   underflow of the squares matters).
+//   norm3() (certified_sum.hpp) returns |v| with relative error <= γ5
+//   (squares of components, two additions, a square root; scaled by an exact
+//   power of two when the largest component is outside [2^-500, 2^500], so
+//   neither overflow nor underflow of the squares matters).
 //   Area, per fan triangle: n = fl(d1 × d2) from rounded differences, each
 //   component off by <= γ4 (|p*| + |q*|) (its two products), so
 //   |n - n*|_2 <= |n - n*|_1 <= γ4 X*, X = Σ |products|; t = norm3(n):
@@ -43,43 +43,17 @@ namespace {
 
 using namespace certified;
 
-// |(x, y, z)| with relative error <= γ5 (as in vtnb.cpp).
-double norm3(double x, double y, double z) {
-    const double m = std::max(std::max(std::fabs(x), std::fabs(y)), std::fabs(z));
-    if (m > 0x1p-500 && m < 0x1p500) return std::sqrt((x * x + y * y) + z * z);
-    if (m == 0) return 0;
-    if (!std::isfinite(m) || x != x || y != y || z != z) return std::numeric_limits<double>::quiet_NaN();
-    int e = 0;
-    std::frexp(m, &e);
-    const double xs = std::ldexp(x, -e), ys = std::ldexp(y, -e), zs = std::ldexp(z, -e);
-    return std::ldexp(std::sqrt((xs * xs + ys * ys) + zs * zs), e);
-}
-
 }  // namespace
 
 SumWithBound fan_area(const MeshView& mesh) {
-    const double* pos = mesh.positions.data();
-    const uint32_t* idx = mesh.indices.data();
     constexpr double g4 = gam(4), g5 = gam(5);
-    const Acc acc = reduce<Acc>(mesh.face_count(), [&](std::size_t f, Acc& a) {
-        const std::size_t k = mesh.face_size(f);
-        if (k < 3) return;
-        const uint32_t* v = idx + mesh.face_begin(f);
-        const double* p0 = pos + 3 * std::size_t{v[0]};
-        for (std::size_t i = 1; i + 1 < k; ++i) {
-            const double* p1 = pos + 3 * std::size_t{v[i]};
-            const double* p2 = pos + 3 * std::size_t{v[i + 1]};
-            const double d1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-            const double d2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-            const double px = d1[1] * d2[2], qx = d1[2] * d2[1];
-            const double py = d1[2] * d2[0], qy = d1[0] * d2[2];
-            const double pz = d1[0] * d2[1], qz = d1[1] * d2[0];
-            const double t = norm3(px - qx, py - qy, pz - qz);  // |(b-a)×(c-a)|
-            const double X = ((std::fabs(px) + std::fabs(qx)) + (std::fabs(py) + std::fabs(qy))) +
-                             (std::fabs(pz) + std::fabs(qz));
-            a.add(t, g5 * t + g4 * X);
-            ++a.units;
-        }
+    const Acc acc = reduce_fan<Acc>(mesh, [&](const double* p0, const double* p1, const double* p2, Acc& a) {
+        const double d1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+        const double d2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        const BoundedCross c = bounded_cross(d1, d2);
+        const double t = norm3(c.n[0], c.n[1], c.n[2]);  // |(b-a)×(c-a)|
+        a.add(t, g5 * t + g4 * c.X);
+        ++a.units;
     });
     return finish(acc, 2.0, 0);
 }

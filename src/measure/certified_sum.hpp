@@ -106,6 +106,42 @@ inline SumWithBound finish(const Acc& a, double divisor, int power, double sign 
     return r;
 }
 
+// ---- per-term pieces with stated error bounds --------------------------
+
+// |(x, y, z)| with relative error <= γ5 (squares of the components, two
+// additions, a square root): directly when the largest component is in
+// [2^-500, 2^500] (the squares then cannot overflow and lose nothing that
+// matters to underflow), else after an exact scaling by a power of two.
+// NaN for non-finite input.
+inline double norm3(double x, double y, double z) {
+    const double m = std::max(std::max(std::fabs(x), std::fabs(y)), std::fabs(z));
+    if (m > 0x1p-500 && m < 0x1p500) return std::sqrt((x * x + y * y) + z * z);
+    if (m == 0) return 0;
+    if (!std::isfinite(m) || x != x || y != y || z != z) return std::numeric_limits<double>::quiet_NaN();
+    int e = 0;
+    std::frexp(m, &e);
+    const double xs = std::ldexp(x, -e), ys = std::ldexp(y, -e), zs = std::ldexp(z, -e);
+    return std::ldexp(std::sqrt((xs * xs + ys * ys) + zs * zs), e);
+}
+
+// The cross product a × b as computed, n_x = fl(fl(a_y b_z) - fl(a_z b_y))
+// and so on, with X = Σ |products| (six of them). With a, b rounded
+// differences of exact points (each component within (1+δ) of the exact
+// one), every component of n is off by <= γ4 (|p*| + |q*|), its two exact
+// products, so |n - n*|_2 <= |n - n*|_1 <= γ4 X*; underflowing products add
+// <= 6 · 2^-1075.
+struct BoundedCross {
+    double n[3];
+    double X;
+};
+inline BoundedCross bounded_cross(const double a[3], const double b[3]) {
+    const double px = a[1] * b[2], qx = a[2] * b[1];
+    const double py = a[2] * b[0], qy = a[0] * b[2];
+    const double pz = a[0] * b[1], qz = a[1] * b[0];
+    return {{px - qx, py - qy, pz - qz},
+            ((std::fabs(px) + std::fabs(qx)) + (std::fabs(py) + std::fabs(qy))) + (std::fabs(pz) + std::fabs(qz))};
+}
+
 // Deterministic parallel reduction over 0..count-1 in fixed blocks: the
 // same input gives the same bits for any number of threads.
 inline constexpr std::size_t kGrain = 2048;
@@ -121,6 +157,23 @@ A reduce(std::size_t count, const Body& body) {
             x.merge(y);
             return x;
         });
+}
+
+// reduce() over the fan triangles (p0, p_i, p_i+1) of every face with at
+// least 3 vertices (the fan of mesh.hpp), face by face: body(a, b, c, acc)
+// gets pointers to the three vertices' x, y, z.
+template <class A, class Body>
+A reduce_fan(const MeshView& mesh, const Body& body) {
+    const double* pos = mesh.positions.data();
+    const uint32_t* idx = mesh.indices.data();
+    return reduce<A>(mesh.face_count(), [&](std::size_t f, A& acc) {
+        const std::size_t k = mesh.face_size(f);
+        if (k < 3) return;
+        const uint32_t* v = idx + mesh.face_begin(f);
+        const double* p0 = pos + 3 * std::size_t{v[0]};
+        for (std::size_t i = 1; i + 1 < k; ++i)
+            body(p0, pos + 3 * std::size_t{v[i]}, pos + 3 * std::size_t{v[i + 1]}, acc);
+    });
 }
 
 }  // namespace polyvol::measure::certified

@@ -50,27 +50,17 @@ using namespace certified;
 }  // namespace
 
 SumWithBound prism_volume(const MeshView& mesh) {
-    const double* pos = mesh.positions.data();
-    const uint32_t* idx = mesh.indices.data();
     constexpr double g7 = gam(7);
-    const Acc acc = reduce<Acc>(mesh.face_count(), [&](std::size_t f, Acc& a) {
-        const std::size_t k = mesh.face_size(f);
-        if (k < 3) return;
-        const uint32_t* v = idx + mesh.face_begin(f);
-        const double* pa = pos + 3 * std::size_t{v[0]};
-        for (std::size_t i = 1; i + 1 < k; ++i) {
-            const double* pb = pos + 3 * std::size_t{v[i]};
-            const double* pc = pos + 3 * std::size_t{v[i + 1]};
-            const double dx1 = pb[0] - pa[0], dy1 = pb[1] - pa[1];
-            const double dx2 = pc[0] - pa[0], dy2 = pc[1] - pa[1];
-            const double p = dx1 * dy2, q = dy1 * dx2;
-            const double area2 = p - q;                  // ((b-a)×(c-a))_z
-            const double zsum = (pa[2] + pb[2]) + pc[2];  // 3 · mean z
-            const double zabs = (std::fabs(pa[2]) + std::fabs(pb[2])) + std::fabs(pc[2]);
-            a.add(zsum * area2, g7 * (zabs * (std::fabs(p) + std::fabs(q))));
-            a.aux = std::max(a.aux, zabs);
-            ++a.units;
-        }
+    const Acc acc = reduce_fan<Acc>(mesh, [&](const double* pa, const double* pb, const double* pc, Acc& a) {
+        const double dx1 = pb[0] - pa[0], dy1 = pb[1] - pa[1];
+        const double dx2 = pc[0] - pa[0], dy2 = pc[1] - pa[1];
+        const double p = dx1 * dy2, q = dy1 * dx2;
+        const double area2 = p - q;                  // ((b-a)×(c-a))_z
+        const double zsum = (pa[2] + pb[2]) + pc[2];  // 3 · mean z
+        const double zabs = (std::fabs(pa[2]) + std::fabs(pb[2])) + std::fabs(pc[2]);
+        a.add(zsum * area2, g7 * (zabs * (std::fabs(p) + std::fabs(q))));
+        a.aux = std::max(a.aux, zabs);
+        ++a.units;
     });
     return finish(acc, 6.0, 1);
 }

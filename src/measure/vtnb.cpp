@@ -93,20 +93,6 @@ namespace {
 
 using namespace certified;
 
-// |(x, y, z)| with relative error <= γ5: directly when the largest component
-// is in [2^-500, 2^500] (squares then lose nothing that matters to underflow
-// and cannot overflow), else after an exact scaling by a power of two.
-double norm3(double x, double y, double z) {
-    const double m = std::max(std::max(std::fabs(x), std::fabs(y)), std::fabs(z));
-    if (m > 0x1p-500 && m < 0x1p500) return std::sqrt((x * x + y * y) + z * z);
-    if (m == 0) return 0;
-    if (!std::isfinite(m) || x != x || y != y || z != z) return std::numeric_limits<double>::quiet_NaN();
-    int e = 0;
-    std::frexp(m, &e);
-    const double xs = std::ldexp(x, -e), ys = std::ldexp(y, -e), zs = std::ldexp(z, -e);
-    return std::ldexp(std::sqrt((xs * xs + ys * ys) + zs * zs), e);
-}
-
 // u = v / |v| for v != 0 (each component within (1+θ10) of the exact one,
 // up to underflow); returns |v| (relative error <= γ5). Non-finite v gives NaN.
 double unit3(const double v[3], double out[3]) {
@@ -163,12 +149,9 @@ void add_triangle(const double p[3][3], VtnbAcc& a) {
     double e[3][3];
     for (int k = 0; k < 3; ++k)
         for (int j = 0; j < 3; ++j) e[k][j] = p[(k + 1) % 3][j] - p[k][j];
-    const double px = e[0][1] * e[1][2], qx = e[0][2] * e[1][1];
-    const double py = e[0][2] * e[1][0], qy = e[0][0] * e[1][2];
-    const double pz = e[0][0] * e[1][1], qz = e[0][1] * e[1][0];
-    double n[3] = {px - qx, py - qy, pz - qz};  // (p1-p0)×(p2-p1), outward
-    const double X = ((std::fabs(px) + std::fabs(qx)) + (std::fabs(py) + std::fabs(qy))) +
-                     (std::fabs(pz) + std::fabs(qz));
+    const BoundedCross cross = bounded_cross(e[0], e[1]);
+    const double* n = cross.n;  // (p1-p0)×(p2-p1), outward
+    const double X = cross.X;
     const double rho[3] = {norm3(p[0][0], p[0][1], p[0][2]), norm3(p[1][0], p[1][1], p[1][2]),
                            norm3(p[2][0], p[2][1], p[2][2])};
     const double rmax2 = 2 * std::max(std::max(rho[0], rho[1]), rho[2]);

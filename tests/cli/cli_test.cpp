@@ -16,13 +16,14 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/run_cli.hpp"
+#include "common/manifest.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const fs::path kCorpus = POLYVOL_CORPUS_DIR;
+const fs::path& kCorpus = polyvol::test::corpus_dir();
 const fs::path kExamples = fs::path(POLYVOL_TEST_DATA).parent_path().parent_path() / "examples";
 
 using cli_test::CliRun;
@@ -108,9 +109,8 @@ TEST(Cli, OpenSurfaceExitsThreeButStillReports) {
 }
 
 TEST(Cli, EveryInvalidCorpusFileExitsTwoWithItsName) {
-    std::ifstream in(kCorpus / "manifest.json");
-    ASSERT_TRUE(in) << "corpus missing";
-    const json m = json::parse(in);
+    const json& m = polyvol::test::corpus_manifest();
+    ASSERT_FALSE(m.empty()) << "corpus missing";
     int checked = 0;
     for (const json& e : m) {
         if (e["category"] != "invalid") continue;

@@ -16,13 +16,14 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/run_cli.hpp"
+#include "common/manifest.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const fs::path kCorpus = POLYVOL_CORPUS_DIR;
+const fs::path& kCorpus = polyvol::test::corpus_dir();
 
 using cli_test::CliRun;
 
@@ -31,15 +32,14 @@ CliRun polyvol(const std::string& args) { return cli_test::run_polyvol(args); }
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 TEST(CliStream, EveryClosedBinaryStlStreamsToTheManifestVolume) {
-    std::ifstream in(kCorpus / "manifest.json");
-    ASSERT_TRUE(in) << "corpus missing at " << kCorpus;
-    const auto manifest = json::parse(in);
+    const json& manifest = polyvol::test::corpus_manifest();
+    ASSERT_FALSE(manifest.empty()) << "corpus missing at " << kCorpus;
     int streamed = 0, open = 0;
     for (const auto& e : manifest) {
         if (e.value("format", "") != "stl" || e.value("encoding", "") != "binary_le") continue;
         const std::string rel = e["path"].get<std::string>();
         SCOPED_TRACE(rel);
-        const double volume = std::strtod(e["volume"]["hex"].get<std::string>().c_str(), nullptr);
+        const double volume = polyvol::test::corpus_reference(e["volume"]);
         const CliRun r = polyvol("volume --json --stream " + quoted(kCorpus / rel));
         const json j = json::parse(r.out)[0];
         if (e["topology"]["closed_2_cycle"].get<bool>()) {

@@ -5,15 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "common/manifest.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/topology.hpp"
@@ -23,35 +22,10 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-const fs::path kCorpus = POLYVOL_CORPUS_DIR;
-
-const json& manifest() {
-    static const json m = [] {
-        std::ifstream in(kCorpus / "manifest.json");
-        if (!in) return json::array();
-        return json::parse(in);
-    }();
-    return m;
-}
-
-std::vector<std::size_t> entries() {
-    std::vector<std::size_t> out;
-    for (std::size_t i = 0; i < manifest().size(); ++i) out.push_back(i);
-    return out;
-}
-
-std::string test_name(std::size_t i) {
-    std::string s = manifest()[i]["path"].get<std::string>().substr(std::string("meshes/").size());
-    for (char& c : s)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    return s;
-}
-
-// The reference double, from its exact hex spelling.
-double ref(const json& field) {
-    if (field.contains("hex")) return std::strtod(field["hex"].get<std::string>().c_str(), nullptr);
-    return field["double"].get<double>();
-}
+using polyvol::test::corpus_file;
+using polyvol::test::corpus_manifest;
+using polyvol::test::manifest_entry;
+constexpr auto ref = polyvol::test::corpus_reference;
 
 struct Loaded {
     polyvol::LoadedMesh mesh;
@@ -59,13 +33,13 @@ struct Loaded {
 };
 
 // Reads each file once for all the tests that need it.
-const Loaded& load(std::size_t i) {
-    static std::map<std::size_t, Loaded> cache;
-    auto it = cache.find(i);
+const Loaded& load(const std::string& path) {
+    static std::map<std::string, Loaded> cache;
+    auto it = cache.find(path);
     if (it == cache.end()) {
-        Loaded l{polyvol::read_mesh_file((kCorpus / manifest()[i]["path"].get<std::string>()).string()), {}};
+        Loaded l{polyvol::read_mesh_file(corpus_file(path)), {}};
         l.topology = polyvol::analyze_topology(l.mesh.mesh.view());
-        it = cache.emplace(i, std::move(l)).first;
+        it = cache.emplace(path, std::move(l)).first;
     }
     return it->second;
 }
@@ -90,9 +64,9 @@ Scale scale_of(const json& e) {
 constexpr double kRel = 1e-12;
 const char* const kSym[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
 
-class Corpus : public ::testing::TestWithParam<std::size_t> {
+class Corpus : public ::testing::TestWithParam<std::string> {
 protected:
-    const json& entry() const { return manifest()[GetParam()]; }
+    const json& entry() const { return manifest_entry(GetParam()); }
     bool invalid() const { return entry()["category"] == "invalid"; }
     bool measurable() const {
         return !invalid() && entry().value("exact", false) && entry()["topology"]["closed_2_cycle"].get<bool>();
@@ -108,13 +82,14 @@ protected:
 };
 
 TEST(CorpusPresence, ManifestIsThere) {
-    ASSERT_TRUE(fs::exists(kCorpus / "manifest.json")) << "corpus missing at " << kCorpus;
-    EXPECT_GE(manifest().size(), 100u);
+    ASSERT_TRUE(fs::exists(polyvol::test::corpus_dir() / "manifest.json"))
+        << "corpus missing at " << polyvol::test::corpus_dir();
+    EXPECT_GE(corpus_manifest().size(), 100u);
 }
 
 TEST_P(Corpus, InvalidFilesAreRefusedWithTheirName) {
     if (!invalid()) GTEST_SKIP() << "valid file";
-    const std::string path = (kCorpus / entry()["path"].get<std::string>()).string();
+    const std::string path = corpus_file(GetParam());
     try {
         polyvol::read_mesh_file(path);
         FAIL() << "read without error; manifest says: " << entry()["error"];
@@ -235,7 +210,7 @@ TEST_P(Corpus, VtnbAreaAndLength) {
     EXPECT_NEAR(m.edge_length, len, kRel * len);
 }
 
-INSTANTIATE_TEST_SUITE_P(Manifest, Corpus, ::testing::ValuesIn(entries()),
-                         [](const auto& param_info) { return test_name(param_info.param); });
+INSTANTIATE_TEST_SUITE_P(Manifest, Corpus, ::testing::ValuesIn(polyvol::test::manifest_paths()),
+                         polyvol::test::corpus_param_name);
 
 }  // namespace

@@ -9,19 +9,23 @@
 #include <gmpxx.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "common/manifest.hpp"
+#include "common/naive_volume.hpp"
+#include "common/shapes.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
-const fs::path kCorpus = POLYVOL_CORPUS_DIR;
+using polyvol::test::corpus_dir;
+using polyvol::test::corpus_file;
+using polyvol::test::corpus_manifest;
+using polyvol::test::invalid_entry;
+using polyvol::test::manifest_paths;
 
 // x as an exact rational.
 mpq_class exact(double x) {
@@ -84,22 +88,18 @@ bool correctly_rounded(double v, const mpq_class& x) {
 }
 
 std::vector<std::string> closed_meshes() {
-    std::vector<std::string> out;
-    std::ifstream in(kCorpus / "manifest.json");
-    if (!in) return {"missing-corpus"};
-    const auto m = nlohmann::json::parse(in);
-    for (const auto& e : m)
-        if (e["category"] != "invalid" && e.value("exact", false) && e["topology"]["closed_2_cycle"].get<bool>() &&
-            e["counts"]["triangles"].get<int>() > 0)
-            out.push_back(e["path"].get<std::string>());
-    return out;
+    if (corpus_manifest().empty()) return {"missing-corpus"};
+    return manifest_paths([](const nlohmann::json& e) {
+        return !invalid_entry(e) && e.value("exact", false) && e["topology"]["closed_2_cycle"].get<bool>() &&
+               e["counts"]["triangles"].get<int>() > 0;
+    });
 }
 
 class Offset : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Offset, TranslatedMeshVolumeIsCorrectlyRounded) {
-    ASSERT_NE(GetParam(), "missing-corpus") << "corpus missing at " << kCorpus;
-    const auto loaded = polyvol::read_mesh_file((kCorpus / GetParam()).string());
+    ASSERT_NE(GetParam(), "missing-corpus") << "corpus missing at " << corpus_dir();
+    const auto loaded = polyvol::read_mesh_file(corpus_file(GetParam()));
     for (double t : {1e6, 1e8}) {
         polyvol::Mesh m = loaded.mesh;
         for (double& x : m.positions) x += t;  // rounded to a double, as a file stores it
@@ -125,24 +125,10 @@ INSTANTIATE_TEST_SUITE_P(Corpus, Offset, ::testing::ValuesIn(closed_meshes()), [
 // A synthetic case where the naive double sum is wrong by more than 10 %:
 // a unit cube far from the origin. polyvol is exact.
 TEST(Offset, NaiveSummationFailsWherePolyvolIsExact) {
-    polyvol::Mesh m;
     const double tx = 12345678.9, ty = 23456789.1, tz = 34567890.3;
-    for (int i = 0; i < 8; ++i) m.add_vertex(tx + (i & 1) * 0.75, ty + ((i >> 1) & 1) * 1.25, tz + ((i >> 2) & 1));
-    const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) m.add_face(q);
-    double naive = 0;
+    const polyvol::Mesh m = polyvol::test::box({tx, ty, tz}, {tx + 0.75, ty + 1.25, tz + 1}, {.quads = true});
     const auto v = m.view();
-    for (std::size_t f = 0; f < v.face_count(); ++f) {
-        const auto face = v.face(f);
-        for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-            const double* a = &m.positions[3 * face[0]];
-            const double* b = &m.positions[3 * face[i]];
-            const double* c = &m.positions[3 * face[i + 1]];
-            naive += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
-                     a[2] * (b[0] * c[1] - b[1] * c[0]);
-        }
-    }
-    naive /= 6;
+    const double naive = polyvol::test::naive_volume(v);
     EXPECT_GT(std::abs(naive - 1.0), 0.1) << "naive " << naive;
     const mpq_class want = exact_volume(v);
     EXPECT_NEAR(want.get_d(), 0.9375, 1e-8);  // 0.75 x 1.25 x 1 up to the rounding of the corners

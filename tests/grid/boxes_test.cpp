@@ -14,7 +14,7 @@
 namespace {
 
 using namespace polyvol;
-using polyvol::test::box_mesh;
+using polyvol::test::box;
 using polyvol::test::box_overlap;
 using polyvol::test::run_grid;
 
@@ -33,7 +33,7 @@ void expect_box_cells(const test::GridRun& r, const GridAxes& g, const std::arra
 
 TEST(GridBoxes, BoxInsideCellsMatchesClosedForm) {
     const std::array<double, 3> lo{0.13, 0.271, 0.0905}, hi{0.77, 0.5, 0.9311};
-    const Mesh m = box_mesh(lo, hi);
+    const Mesh m = box(lo, hi);
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {7, 9, 11});
     const auto r = run_grid(m, g);
     expect_box_cells(r, g, lo, hi, 1e-15);
@@ -48,7 +48,7 @@ TEST(GridBoxes, BoxInsideCellsMatchesClosedForm) {
 TEST(GridBoxes, FacesOnGridPlanesGiveExactFullAndEmptyCellsAndNoCut) {
     // faces at planes 1/8 ... of a grid with spacing 1/8: every cell exactly 0 or 1/512
     const std::array<double, 3> lo{0.125, 0.25, 0.375}, hi{0.75, 0.625, 1.0};
-    const Mesh m = box_mesh(lo, hi);
+    const Mesh m = box(lo, hi);
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {8, 8, 8});
     const auto r = run_grid(m, g);
     expect_box_cells(r, g, lo, hi, 0);
@@ -64,7 +64,7 @@ TEST(GridBoxes, FacesOnGridPlanesGiveExactFullAndEmptyCellsAndNoCut) {
 TEST(GridBoxes, GridCoveringPartOfTheSolid) {
     // the box reaches above, below and beside the grid: only its part inside counts
     const std::array<double, 3> lo{-0.3, 0.2, -1.7}, hi{0.61, 2.5, 3.3};
-    const Mesh m = box_mesh(lo, hi);
+    const Mesh m = box(lo, hi);
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {5, 6, 7});
     const auto r = run_grid(m, g);
     expect_box_cells(r, g, lo, hi, 1e-15);
@@ -85,7 +85,7 @@ TEST(GridBoxes, GridCoveringPartOfTheSolid) {
 
 TEST(GridBoxes, NonUniformPlanes) {
     const std::array<double, 3> lo{0.05, 0.3, 0.2}, hi{0.95, 0.35, 0.8};
-    const Mesh m = box_mesh(lo, hi);
+    const Mesh m = box(lo, hi);
     GridAxes g;
     g.x = {0, 0.1, 0.35, 0.5, 0.9, 1.0};
     g.y = {0, 0.3, 0.31, 0.33, 1};
@@ -98,14 +98,14 @@ TEST(GridBoxes, NonUniformPlanes) {
 TEST(GridBoxes, QuadFacesGiveTheSameAsTriangles) {
     const std::array<double, 3> lo{0.13, 0.271, 0.0905}, hi{0.77, 0.5, 0.9311};
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {6, 5, 4});
-    const auto tri = run_grid(box_mesh(lo, hi), g);
-    const auto quad = run_grid(box_mesh(lo, hi, true), g);
+    const auto tri = run_grid(box(lo, hi), g);
+    const auto quad = run_grid(box(lo, hi, {.quads = true}), g);
     EXPECT_EQ(tri.volumes, quad.volumes);
 }
 
 TEST(GridBoxes, FirstMomentsOfBoxCellsAndTheirSum) {
     const std::array<double, 3> lo{0.13, 0.271, 0.0905}, hi{0.77, 0.5, 0.9311};
-    const Mesh m = box_mesh(lo, hi);
+    const Mesh m = box(lo, hi);
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {5, 4, 6});
     const auto r = run_grid(m, g, /*moments=*/true);
     std::array<double, 3> sum{0, 0, 0};
@@ -130,15 +130,7 @@ TEST(GridTetrahedron, PlanesThroughVerticesEdgesAndFaces) {
     // unit corner tetrahedron on 2 x 2 x 2 cells of [0,1]^3: the planes x=0, y=0,
     // z=0 hold faces, the planes at 1/2 pass through edge midpoints, and the
     // vertices lie on the grid's corners.
-    Mesh m;
-    m.add_vertex(0, 0, 0);
-    m.add_vertex(1, 0, 0);
-    m.add_vertex(0, 1, 0);
-    m.add_vertex(0, 0, 1);
-    m.add_triangle(0, 2, 1);
-    m.add_triangle(0, 1, 3);
-    m.add_triangle(0, 3, 2);
-    m.add_triangle(1, 2, 3);
+    const Mesh m = test::unit_tetrahedron();
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {2, 2, 2});
     const auto r = run_grid(m, g, true);
     const double corner = 1.0 / 48;  // a tetrahedron with legs 1/2
@@ -160,20 +152,20 @@ TEST(GridTetrahedron, PlanesThroughVerticesEdgesAndFaces) {
 
 TEST(GridBoxes, InsideOutBoxGivesNegativeCells) {
     const std::array<double, 3> lo{0.13, 0.271, 0.0905}, hi{0.77, 0.5, 0.9311};
-    Mesh m = box_mesh(lo, hi);
+    Mesh m = box(lo, hi);
     for (std::size_t t = 0; t < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {4, 4, 4});
     const auto r = run_grid(m, g);
-    const auto r_out = run_grid(box_mesh(lo, hi), g);
+    const auto r_out = run_grid(box(lo, hi), g);
     // the same up to the rounding of the pieces (reversed triangles fan differently)
     for (std::size_t c = 0; c < g.cell_count(); ++c) EXPECT_NEAR(r.volumes[c], -r_out.volumes[c], 1e-16);
     EXPECT_EQ(r.summary.bodies[0].full_cells, 0u);
 }
 
 TEST(GridBoxes, ResultsDoNotDependOnTheThreadCount) {
-    const Mesh m = box_mesh({0.13, 0.271, 0.0905}, {0.77, 0.5, 0.9311});
+    const Mesh m = box({0.13, 0.271, 0.0905}, {0.77, 0.5, 0.9311});
     Mesh two = m;
-    two.append(box_mesh({0.5, 0.1, 0.3}, {0.9, 0.45, 0.6}));
+    two.append(box({0.5, 0.1, 0.3}, {0.9, 0.45, 0.6}));
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {70, 65, 9});
     const auto many = run_grid(two, g, true);
     test::GridRun one;
@@ -185,7 +177,7 @@ TEST(GridBoxes, ResultsDoNotDependOnTheThreadCount) {
 }
 
 TEST(GridBoxes, ProgressIsReportedUpToOne) {
-    const Mesh m = box_mesh({0.13, 0.271, 0.0905}, {0.77, 0.5, 0.9311});
+    const Mesh m = box({0.13, 0.271, 0.0905}, {0.77, 0.5, 0.9311});
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {64, 64, 8});
     std::vector<double> vol(g.cell_count()), seen;
     const MeshView views[1] = {m.view()};
@@ -196,7 +188,7 @@ TEST(GridBoxes, ProgressIsReportedUpToOne) {
 }
 
 TEST(GridErrors, BadInputIsRejected) {
-    const Mesh m = box_mesh({0.1, 0.1, 0.1}, {0.9, 0.9, 0.9});
+    const Mesh m = box({0.1, 0.1, 0.1}, {0.9, 0.9, 0.9});
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {2, 2, 2});
     const MeshView views[1] = {m.view()};
     std::vector<double> small(7);
@@ -217,7 +209,7 @@ TEST(GridErrors, BadInputIsRejected) {
 }
 
 TEST(GridSpecs, DefaultPaddedCubicCells) {
-    const Mesh m = box_mesh({1, 2, 3}, {3, 3, 3.5});
+    const Mesh m = box({1, 2, 3}, {3, 3, 3.5});
     const MeshView views[1] = {m.view()};
     const GridAxes g = make_grid(views, {});
     EXPECT_EQ(g.nx(), 128u);

@@ -7,14 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "common/manifest.hpp"
 #include "grid_fixtures.hpp"
 #include "polyvol/io.hpp"
 
@@ -22,55 +20,34 @@ namespace {
 
 using namespace polyvol;
 using nlohmann::json;
-namespace fs = std::filesystem;
 
-const fs::path kCorpus = POLYVOL_CORPUS_DIR;
-
-const json& manifest() {
-    static const json m = [] {
-        std::ifstream in(kCorpus / "manifest.json");
-        if (!in) return json::array();
-        return json::parse(in);
-    }();
-    return m;
-}
+using polyvol::test::corpus_file;
+using polyvol::test::manifest_entry;
 
 // Entries read without error whose surface is a closed 2-cycle.
-std::vector<std::size_t> closed_entries() {
-    std::vector<std::size_t> out;
-    const json& m = manifest();
-    for (std::size_t i = 0; i < m.size(); ++i) {
-        const json& e = m[i];
-        if (e.value("category", "") == "invalid" || !e.contains("volume") || !e.contains("topology")) continue;
-        if (!e["topology"].value("closed_2_cycle", false)) continue;
-        out.push_back(i);
-    }
-    return out;
+std::vector<std::string> closed_paths() {
+    return test::manifest_paths([](const json& e) {
+        return !test::invalid_entry(e) && e.contains("volume") && e.contains("topology") &&
+               e["topology"].value("closed_2_cycle", false);
+    });
 }
 
-double ref(const json& field) { return std::strtod(field["hex"].get<std::string>().c_str(), nullptr); }
-
-std::string name_of(std::size_t i) {
-    std::string s = manifest()[i]["path"].get<std::string>().substr(std::string("meshes/").size());
-    for (char& c : s)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    return s;
+TEST(GridCorpus, ManifestHasClosedMeshes) {
+    EXPECT_GE(closed_paths().size(), 50u) << "corpus missing at " << test::corpus_dir();
 }
 
-TEST(GridCorpus, ManifestHasClosedMeshes) { EXPECT_GE(closed_entries().size(), 50u) << "corpus missing at " << kCorpus; }
-
-class GridCorpusMesh : public ::testing::TestWithParam<std::size_t> {};
+class GridCorpusMesh : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GridCorpusMesh, CellsSumToTheVolumeAndStayInBounds) {
-    const json& e = manifest()[GetParam()];
-    const LoadedMesh loaded = read_mesh_file((kCorpus / e["path"].get<std::string>()).string());
+    const json& e = manifest_entry(GetParam());
+    const LoadedMesh loaded = read_mesh_file(corpus_file(GetParam()));
     const MeshView view = loaded.mesh.view();
     const MeshView views[1] = {view};
     if (view.triangle_count() == 0) {
         EXPECT_THROW(make_grid(views, {.cells = 16}), std::invalid_argument);
         return;
     }
-    const double want = ref(e["volume"]);
+    const double want = test::corpus_reference(e["volume"]);
     // 24 cells along the longest side, padded, and an odd grid whose planes
     // fall anywhere
     const GridAxes grids[2] = {make_grid(views, {.cells = 24}), make_grid(views, {.cells = 17})};
@@ -117,8 +94,7 @@ std::vector<double> refine(const std::vector<double>& c) {
 }
 
 TEST_P(GridCorpusMesh, RefinedGridChildrenSumToTheirParent) {
-    const json& e = manifest()[GetParam()];
-    const LoadedMesh loaded = read_mesh_file((kCorpus / e["path"].get<std::string>()).string());
+    const LoadedMesh loaded = read_mesh_file(corpus_file(GetParam()));
     const MeshView views[1] = {loaded.mesh.view()};
     if (views[0].triangle_count() == 0) return;
     const GridAxes coarse = make_grid(views, {.cells = 11});
@@ -146,7 +122,6 @@ TEST_P(GridCorpusMesh, RefinedGridChildrenSumToTheirParent) {
             }
 }
 
-INSTANTIATE_TEST_SUITE_P(Closed, GridCorpusMesh, ::testing::ValuesIn(closed_entries()),
-                         [](const ::testing::TestParamInfo<std::size_t>& p) { return name_of(p.param); });
+INSTANTIATE_TEST_SUITE_P(Closed, GridCorpusMesh, ::testing::ValuesIn(closed_paths()), test::corpus_param_name);
 
 }  // namespace

@@ -1,32 +1,16 @@
-// Shared helpers for the grid tests: closed-form solids and a runner.
+// Shared helpers for the grid tests: closed-form cell volumes and a runner
+// (the solids are common/shapes.hpp's).
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <vector>
 
+#include "common/shapes.hpp"
 #include "polyvol/grid.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace polyvol::test {
-
-// The box [lo, hi], 12 outward triangles (or 6 quads with quads = true).
-inline Mesh box_mesh(const std::array<double, 3>& lo, const std::array<double, 3>& hi, bool quads = false) {
-    Mesh m;
-    for (int v = 0; v < 8; ++v)
-        m.add_vertex((v & 1) ? hi[0] : lo[0], (v & 2) ? hi[1] : lo[1], (v & 4) ? hi[2] : lo[2]);
-    // vertex index = ix + 2 iy + 4 iz; each face counter-clockwise seen from outside
-    const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& f : faces) {
-        if (quads) {
-            m.add_face(std::span<const uint32_t>(f, 4));
-        } else {
-            m.add_triangle(f[0], f[1], f[2]);
-            m.add_triangle(f[0], f[2], f[3]);
-        }
-    }
-    return m;
-}
 
 // Volume of [lo, hi] ∩ [c0, c1].
 inline double box_overlap(const std::array<double, 3>& lo, const std::array<double, 3>& hi, const double c0[3],

@@ -8,7 +8,7 @@
 namespace {
 
 using namespace polyvol;
-using test::box_mesh;
+using test::box;
 using test::box_overlap;
 
 // Does the surface of box [lo, hi] enter the open cell (c0, c1)?
@@ -25,7 +25,7 @@ bool surface_enters(const std::array<double, 3>& lo, const std::array<double, 3>
 TEST(GridUnion, TwoOverlappingBoxes) {
     const std::array<double, 3> alo{0.11, 0.13, 0.17}, ahi{0.63, 0.71, 0.59};
     const std::array<double, 3> blo{0.37, 0.29, 0.41}, bhi{0.93, 0.83, 0.87};
-    const Mesh a = box_mesh(alo, ahi), b = box_mesh(blo, bhi);
+    const Mesh a = box(alo, ahi), b = box(blo, bhi);
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {9, 10, 11});
     const auto r = test::run_grid({&a, &b}, g, true, true);
     const std::size_t cells = g.cell_count();
@@ -86,8 +86,8 @@ TEST(GridUnion, BoundShrinksWithTheCellSize) {
     // curves where the two surfaces cross (their count grows like 1/h), each
     // contributing at most its volume h^3. Per step it oscillates with where
     // the faces fall inside the cells, so check the trend and the constant.
-    const Mesh a = box_mesh({0.11, 0.13, 0.17}, {0.63, 0.71, 0.59});
-    const Mesh b = box_mesh({0.37, 0.29, 0.41}, {0.93, 0.83, 0.87});
+    const Mesh a = box({0.11, 0.13, 0.17}, {0.63, 0.71, 0.59});
+    const Mesh b = box({0.37, 0.29, 0.41}, {0.93, 0.83, 0.87});
     double first = 0, last = 0;
     std::size_t first_contact = 0, last_contact = 0;
     for (uint32_t n : {8u, 16u, 32u, 64u}) {
@@ -102,7 +102,7 @@ TEST(GridUnion, BoundShrinksWithTheCellSize) {
 }
 
 TEST(GridUnion, OneBodyIsItsOwnUnion) {
-    const Mesh a = box_mesh({0.11, 0.13, 0.17}, {0.63, 0.71, 0.59});
+    const Mesh a = box({0.11, 0.13, 0.17}, {0.63, 0.71, 0.59});
     const GridAxes g = uniform_axes({0, 0, 0, 1, 1, 1}, {5, 6, 7});
     const auto r = test::run_grid({&a}, g, false, true);
     EXPECT_EQ(r.estimate, r.volumes);

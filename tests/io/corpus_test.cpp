@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <string>
@@ -13,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/manifest.hpp"
 #include "polyvol/io.hpp"
 
 namespace {
@@ -20,54 +20,22 @@ namespace {
 using nlohmann::json;
 using polyvol::LoadedMesh;
 using polyvol::ReadError;
-
-const std::string kCorpus = POLYVOL_CORPUS_DIR;
-
-const json& manifest() {
-    static const json m = [] {
-        std::ifstream in(kCorpus + "/manifest.json");
-        if (!in) return json::array();
-        return json::parse(in);
-    }();
-    return m;
-}
+using polyvol::test::corpus_manifest;
+using polyvol::test::manifest_entry;
 
 bool ours(const json& e) {
     const std::string f = e.value("format", "");
     return f == "stl" || f == "obj" || f == "off" || f == "ply";
 }
 
-// The manifest paths of our formats (the test parameter: short to print).
-std::vector<std::string> entries() {
-    std::vector<std::string> v;
-    for (const json& e : manifest())
-        if (ours(e)) v.push_back(e.at("path"));
-    return v;
-}
-
-const json& entry(const std::string& path) {
-    for (const json& e : manifest())
-        if (e.at("path") == path) return e;
-    static const json none;
-    return none;
-}
-
 std::string basename(const std::string& p) { return p.substr(p.find_last_of('/') + 1); }
-
-std::string test_name(const testing::TestParamInfo<std::string>& info) {
-    std::string s = info.param;
-    s = s.substr(s.find('/') + 1);  // drop "meshes/"
-    for (char& c : s)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    return s;
-}
 
 class Corpus : public testing::TestWithParam<std::string> {};
 
 TEST(CorpusManifest, IsThereAndCoversEveryFormat) {
-    ASSERT_TRUE(manifest().is_array()) << "no manifest at " << kCorpus;
+    ASSERT_FALSE(corpus_manifest().empty()) << "no manifest at " << polyvol::test::corpus_dir();
     std::map<std::string, int> n;
-    for (const json& e : manifest()) ++n[e.value("format", "")];
+    for (const json& e : corpus_manifest()) ++n[e.value("format", "")];
     EXPECT_GE(n["stl"], 40);
     EXPECT_GE(n["obj"], 15);
     EXPECT_GE(n["off"], 30);
@@ -75,9 +43,9 @@ TEST(CorpusManifest, IsThereAndCoversEveryFormat) {
 }
 
 TEST_P(Corpus, MatchesManifest) {
-    const json& e = entry(GetParam());
+    const json& e = manifest_entry(GetParam());
     const std::string rel = e.at("path");
-    const std::string path = kCorpus + "/" + rel;
+    const std::string path = polyvol::test::corpus_file(rel);
     if (e.at("category") == "invalid") {
         try {
             (void)polyvol::read_mesh_file(path);
@@ -146,6 +114,7 @@ TEST_P(Corpus, MatchesManifest) {
     EXPECT_EQ(r.gzip, std::find(quirks.begin(), quirks.end(), "gzip-compressed") != quirks.end());
 }
 
-INSTANTIATE_TEST_SUITE_P(Manifest, Corpus, testing::ValuesIn(entries()), test_name);
+INSTANTIATE_TEST_SUITE_P(Manifest, Corpus, testing::ValuesIn(polyvol::test::manifest_paths(ours)),
+                         polyvol::test::corpus_param_name);
 
 }  // namespace

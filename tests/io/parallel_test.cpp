@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/manifest.hpp"
 #include "io/chunks.hpp"
 #include "io/text.hpp"
 #include "io_helpers.hpp"
@@ -183,8 +184,6 @@ TEST(CountLines, MatchesTheDefinition) {
 
 // ---- the corpus ------------------------------------------------------------
 
-const std::string kCorpus = POLYVOL_CORPUS_DIR;
-
 std::string slurp(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::ostringstream ss;
@@ -193,15 +192,14 @@ std::string slurp(const std::string& path) {
 }
 
 TEST(ParallelCorpus, EveryTextFileReadsAsSerially) {
-    std::ifstream in(kCorpus + "/manifest.json");
-    ASSERT_TRUE(in) << "no manifest in " << kCorpus;
-    const nlohmann::json manifest = nlohmann::json::parse(in);
+    const nlohmann::json& manifest = polyvol::test::corpus_manifest();
+    ASSERT_FALSE(manifest.empty()) << "no manifest in " << polyvol::test::corpus_dir();
     std::size_t files = 0, parallel = 0, fallback = 0;
     for (const nlohmann::json& e : manifest) {
         const std::string format = e.value("format", "");
         if (format != "stl" && format != "obj" && format != "off" && format != "ply") continue;
         const std::string rel = e.at("path");
-        const std::string data = slurp(kCorpus + "/" + rel);
+        const std::string data = slurp(polyvol::test::corpus_file(rel));
         ASSERT_FALSE(data.empty() && e.value("bytes", 0) > 0) << rel;
         for (const Outcome& o : compare(data, rel, {64, 1, 4096})) {
             parallel += o.report.chunks > 1 && !o.report.serial_fallback;

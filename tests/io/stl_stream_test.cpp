@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/files.hpp"
+#include "common/manifest.hpp"
 #include "io_helpers.hpp"
 #include "polyvol/io.hpp"
 
@@ -23,15 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace polyvol;
 
-const fs::path kCorpus = POLYVOL_CORPUS_DIR;
-
-std::vector<std::byte> slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::vector<char> c((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::vector<std::byte> out(c.size());
-    std::memcpy(out.data(), c.data(), c.size());
-    return out;
-}
+const fs::path& kCorpus = polyvol::test::corpus_dir();
 
 // A temporary file removed at the end of the test.
 struct TempFile {
@@ -77,9 +71,8 @@ std::vector<std::byte> collect(const std::string& path, const StlStreamOptions& 
 }
 
 TEST(StlStream, ProbeAgreesWithTheManifestOnEveryStl) {
-    std::ifstream in(kCorpus / "manifest.json");
-    ASSERT_TRUE(in) << "corpus missing at " << kCorpus;
-    const auto manifest = nlohmann::json::parse(in);
+    const nlohmann::json& manifest = polyvol::test::corpus_manifest();
+    ASSERT_FALSE(manifest.empty()) << "corpus missing at " << kCorpus;
     int binary = 0;
     for (const auto& e : manifest) {
         const std::string rel = e["path"].get<std::string>();
@@ -93,7 +86,7 @@ TEST(StlStream, ProbeAgreesWithTheManifestOnEveryStl) {
         EXPECT_EQ(p.triangles, e["counts"]["triangles"].get<uint64_t>());
         EXPECT_EQ(p.file_bytes, e["bytes"].get<uint64_t>());
         // Every record, in windows of several sizes, serial and parallel.
-        const auto bytes = slurp(path);
+        const auto bytes = polyvol::test::read_bytes(path);
         const std::vector<std::byte> want(bytes.begin() + 84, bytes.end());
         for (std::size_t w : {std::size_t{1}, std::size_t{1600}, std::size_t{50 * 4096}, std::size_t{1} << 24})
             for (bool parallel : {false, true}) EXPECT_EQ(collect(path.string(), {w, parallel}), want);

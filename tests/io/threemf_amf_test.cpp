@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <iterator>
 #include <set>
 #include <string>
@@ -14,6 +13,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/files.hpp"
+#include "common/manifest.hpp"
+#include "common/naive_volume.hpp"
 #include "io/readers.hpp"
 #include "io/xml_numbers.hpp"
 #include "io/zip.hpp"
@@ -29,13 +31,6 @@ Bytes to_bytes(std::string_view s) {
     Bytes b(s.size());
     if (!s.empty()) std::memcpy(b.data(), s.data(), s.size());
     return b;
-}
-
-Bytes read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot open " + path);
-    std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    return to_bytes(s);
 }
 
 // A zip archive built in memory with libzip (deflate, the default).
@@ -89,22 +84,6 @@ ReadError expect_read_error(F&& f) {
     return ReadError::whole_file("", "");
 }
 
-double signed_volume(const polyvol::Mesh& m) {
-    const auto v = m.view();
-    double vol = 0;
-    for (std::size_t f = 0; f < v.face_count(); ++f) {
-        const auto face = v.face(f);
-        for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-            const double* a = &m.positions[3 * face[0]];
-            const double* b = &m.positions[3 * face[k]];
-            const double* c = &m.positions[3 * face[k + 1]];
-            vol += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                   a[2] * (b[0] * c[1] - b[1] * c[0]);
-        }
-    }
-    return vol / 6;
-}
-
 // ---------------------------------------------------------------- corpus
 
 LoadedMesh read_direct(const std::string& format, const std::string& encoding, const Bytes& data,
@@ -117,18 +96,16 @@ LoadedMesh read_direct(const std::string& format, const std::string& encoding, c
 }
 
 TEST(ThreeMfAmfCorpus, EveryEntryMatchesTheManifest) {
-    const std::string dir = POLYVOL_CORPUS_DIR;
-    std::ifstream in(dir + "/manifest.json");
-    ASSERT_TRUE(in) << "no manifest in " << dir;
-    const nlohmann::json manifest = nlohmann::json::parse(in);
+    const nlohmann::json& manifest = polyvol::test::corpus_manifest();
+    ASSERT_FALSE(manifest.empty()) << "no manifest in " << polyvol::test::corpus_dir();
     int checked = 0, invalid = 0;
     for (const auto& e : manifest) {
         const std::string format = e.at("format").get<std::string>();
         if (format != "3mf" && format != "amf") continue;
         const std::string path = e.at("path").get<std::string>();
         SCOPED_TRACE(path);
-        const std::string name = dir + "/" + path;
-        const Bytes data = read_file(name);
+        const std::string name = polyvol::test::corpus_file(path);
+        const Bytes data = polyvol::test::read_bytes(name);
         const std::string encoding = e.value("encoding", std::string());
 
         if (e.at("category") == "invalid") {
@@ -186,7 +163,7 @@ TEST(ThreeMfAmfCorpus, EveryEntryMatchesTheManifest) {
         // A naive double volume confirms the orientation and the transforms.
         if (e.value("exact", false) && e.at("topology").at("closed_2_cycle").get<bool>()) {
             const double want = e.at("volume").at("double").get<double>();
-            EXPECT_NEAR(signed_volume(m.mesh), want, 1e-9 * std::fabs(want));
+            EXPECT_NEAR(polyvol::test::naive_volume(m.mesh.view()), want, 1e-9 * std::fabs(want));
         }
 
         // Through the dispatcher: the same mesh.
@@ -203,7 +180,7 @@ TEST(ThreeMfAmfCorpus, EveryEntryMatchesTheManifest) {
 
 TEST(ThreeMfAmfCorpus, BrokenAmfNamesTheLineAndTheNumber) {
     const std::string name = std::string(POLYVOL_CORPUS_DIR) + "/meshes/openscad-testing-data/amf_broken.amf";
-    const Bytes data = read_file(name);
+    const Bytes data = polyvol::test::read_bytes(name);
     const ReadError e = expect_read_error([&] { polyvol::io::read_amf_xml(data, name); });
     EXPECT_EQ(e.file, name);
     EXPECT_EQ(e.line, 9u);
@@ -377,7 +354,7 @@ TEST(ThreeMfReader, ComponentsTransformsAndExternalParts) {
                                                      4, 5, 6,                             //
                                                      7, 9, 8, 7, 8, 10, 7, 10, 9, 8, 9, 10}));
     // Transforms keep orientation: the two tetrahedra have volume 8/6 and 1/6.
-    EXPECT_NEAR(signed_volume(m.mesh), 9.0 / 6.0, 1e-12);
+    EXPECT_NEAR(polyvol::test::naive_volume(m.mesh.view()), 9.0 / 6.0, 1e-12);
 }
 
 TEST(ThreeMfReader, ModelPartFoundThroughRelationships) {

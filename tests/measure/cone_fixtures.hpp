@@ -52,20 +52,10 @@ inline std::array<mpq_class, 10> reference_sums(const MeshView& m) {
     return s;
 }
 
-// Axis box [x0,x1]×[y0,y1]×[z0,z1], outward, as 12 triangles or 6 quads.
+// The box [x0,x1]×[y0,y1]×[z0,z1] of common/shapes.hpp, 12 outward triangles
+// or 6 quads, by its six bounds (as the measure tests write them).
 inline Mesh box(double x0, double y0, double z0, double x1, double y1, double z1, bool quads = false) {
-    Mesh m;
-    for (int i = 0; i < 8; ++i) m.add_vertex(i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
-    const uint32_t f[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q4 : f) {
-        if (quads) {
-            m.add_face(std::span<const uint32_t>(q4, 4));
-        } else {
-            m.add_triangle(q4[0], q4[1], q4[2]);
-            m.add_triangle(q4[0], q4[2], q4[3]);
-        }
-    }
-    return m;
+    return test::box({x0, y0, z0}, {x1, y1, z1}, {.quads = quads});
 }
 
 inline Mesh unit_tetrahedron() { return polyvol::test::unit_tetrahedron(); }

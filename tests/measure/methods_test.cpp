@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <random>
@@ -25,7 +24,9 @@
 #include <nlohmann/json.hpp>
 
 #include "measure/methods.hpp"
+#include "common/manifest.hpp"
 #include "common/shapes.hpp"
+#include "cone_fixtures.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/mesh.hpp"
 
@@ -40,26 +41,8 @@ constexpr int kPrec = 512;  // bits of the mpf references
 
 // ---- meshes -------------------------------------------------------------
 
-// Axis-aligned box [x0,x1]×[y0,y1]×[z0,z1], faces counter-clockwise seen from
-// outside; vertex i = (bit 0: x, bit 1: y, bit 2: z). quads: 6 quads, else the
-// fans of those quads (12 triangles).
-Mesh box(double x0, double y0, double z0, double x1, double y1, double z1, bool quads) {
-    Mesh m;
-    for (int i = 0; i < 8; ++i) m.add_vertex(i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
-    const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                  {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : faces) {
-        if (quads) {
-            m.add_face(q);
-        } else {
-            m.add_triangle(q[0], q[1], q[2]);
-            m.add_triangle(q[0], q[2], q[3]);
-        }
-    }
-    return m;
-}
-
-Mesh unit_tetrahedron() { return polyvol::test::unit_tetrahedron(); }
+using polyvol::fixtures::box;
+using polyvol::test::unit_tetrahedron;
 
 // Every polygon replaced by its fan (v0, vi, vi+1), explicitly.
 Mesh explicit_fan(const Mesh& in) {
@@ -611,13 +594,7 @@ TEST(Methods, SameBitsForAnyNumberOfThreads) {
 
 // ---- the shared corpus ------------------------------------------------------
 
-const nlohmann::json& manifest() {
-    static const nlohmann::json m = [] {
-        std::ifstream in(std::string(POLYVOL_CORPUS_DIR) + "/manifest.json");
-        return in ? nlohmann::json::parse(in) : nlohmann::json::array();
-    }();
-    return m;
-}
+using polyvol::test::corpus_manifest;
 
 // The larger spacing of doubles around x (>= the error of a correctly
 // rounded reference).
@@ -633,19 +610,19 @@ double ulp(double x) {
 // (plus the reference's own rounding). 3MF files with transforms are held to
 // 1e-12 only: the reference applies transforms exactly, a reader in doubles.
 TEST(Methods, CorpusClosedMeshes) {
-    if (manifest().empty()) GTEST_SKIP() << "no manifest at " << POLYVOL_CORPUS_DIR;
+    if (corpus_manifest().empty()) GTEST_SKIP() << "no manifest at " << polyvol::test::corpus_dir();
     int checked = 0;
     double worst_volume[3] = {0, 0, 0}, worst_area = 0, worst_length = 0;
     double largest_bound[3] = {0, 0, 0};  // error_bound / scale
     std::string worst_volume_file[3];
-    for (const nlohmann::json& e : manifest()) {
+    for (const nlohmann::json& e : corpus_manifest()) {
         if (e.value("category", "") == "invalid" || !e.value("exact", false)) continue;
         if (!e.contains("topology") || !e["topology"].value("closed_2_cycle", false)) continue;
         const std::string rel = e.at("path");
         SCOPED_TRACE(rel);
         polyvol::LoadedMesh lm;
         try {
-            lm = polyvol::read_mesh_file(std::string(POLYVOL_CORPUS_DIR) + "/" + rel);
+            lm = polyvol::read_mesh_file(polyvol::test::corpus_file(rel));
         } catch (const std::exception& ex) {
             ADD_FAILURE() << "cannot read: " << ex.what();
             continue;

@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <random>
 #include <string>
@@ -18,6 +17,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/files.hpp"
+#include "common/manifest.hpp"
 #include "measure/soup_testing.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
@@ -28,15 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace polyvol;
 
-const fs::path kCorpus = POLYVOL_CORPUS_DIR;
-
-std::vector<std::byte> slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::vector<char> c((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::vector<std::byte> out(c.size());
-    std::memcpy(out.data(), c.data(), c.size());
-    return out;
-}
+const fs::path& kCorpus = test::corpus_dir();
 
 uint64_t bits(double x) { return std::bit_cast<uint64_t>(x); }
 
@@ -127,21 +120,18 @@ struct CorpusStl {
 };
 
 std::vector<CorpusStl> corpus_binary_stls() {
-    std::ifstream in(kCorpus / "manifest.json");
-    const auto manifest = nlohmann::json::parse(in);
     std::vector<CorpusStl> out;
-    for (const auto& e : manifest) {
+    for (const auto& e : test::corpus_manifest()) {
         if (e.value("format", "") != "stl" || e.value("encoding", "") != "binary_le") continue;
         CorpusStl c;
         c.path = e["path"].get<std::string>();
         c.closed = e["topology"]["closed_2_cycle"].get<bool>();
-        c.volume = std::strtod(e["volume"]["hex"].get<std::string>().c_str(), nullptr);
+        c.volume = test::corpus_reference(e["volume"]);
         c.area = std::strtod(e["surface_area"]["decimal30"].get<std::string>().c_str(), nullptr);
         if (e["centroid"].is_object()) {
             c.has_centroid = true;
             const char* axes[3] = {"x", "y", "z"};
-            for (int k = 0; k < 3; ++k)
-                c.centroid[k] = std::strtod(e["centroid"][axes[k]]["hex"].get<std::string>().c_str(), nullptr);
+            for (int k = 0; k < 3; ++k) c.centroid[k] = test::corpus_reference(e["centroid"][axes[k]]);
         }
         out.push_back(c);
     }
@@ -154,7 +144,7 @@ TEST(Soup, EveryCorpusBinaryStlMatchesTheManifestAndTheFullPath) {
     int closed = 0;
     for (const CorpusStl& c : files) {
         SCOPED_TRACE(c.path);
-        const auto bytes = slurp(kCorpus / c.path);
+        const auto bytes = polyvol::test::read_bytes(kCorpus / c.path);
         ASSERT_GE(bytes.size(), 84u);
         const auto rec = std::span<const std::byte>(bytes).subspan(84);
         const SoupResult s = soup_properties(stl_records(rec), 7);
@@ -187,7 +177,7 @@ TEST(Soup, EveryKernelLevelGivesTheSameBits) {
     auto files = corpus_binary_stls();
     std::vector<std::vector<std::byte>> inputs;
     for (const CorpusStl& c : files) {
-        const auto bytes = slurp(kCorpus / c.path);
+        const auto bytes = polyvol::test::read_bytes(kCorpus / c.path);
         inputs.emplace_back(bytes.begin() + 84, bytes.end());
     }
     inputs.push_back(records_of(sphere(40, 70, 2, 0.5)));  // also a block count that is not a multiple of 4

@@ -37,6 +37,24 @@ struct Matrix {
 
 double norm(const std::vector<double>& c) { return norm2(c.data(), static_cast<int>(c.size())); }
 
+// n × n standard normal entries, drawn column by column from g.
+Matrix random_matrix(int n, std::mt19937_64& rng, std::normal_distribution<double>& g) {
+    Matrix m{n, {}};
+    for (int c = 0; c < n; ++c) {
+        m.cols.emplace_back(n);
+        for (double& x : m.cols.back()) x = g(rng);
+    }
+    return m;
+}
+
+// Replaces column j of lu by col, and of m the way ColumnLu orders its
+// columns: the new one goes last.
+void replace_column(ColumnLu& lu, Matrix& m, int j, const std::vector<double>& col) {
+    lu.replace(j, col.data(), norm(col));
+    m.cols.erase(m.cols.begin() + j);
+    m.cols.push_back(col);
+}
+
 // |det - exact| <= bound, checked in exact arithmetic.
 void expect_within(const ColumnLu& lu, const Matrix& m) {
     const double d = lu.det();
@@ -56,11 +74,7 @@ TEST(ColumnLu, FreshFactorisationMatchesEigenAndExact) {
     std::mt19937_64 rng(1);
     std::normal_distribution<double> g;
     for (int n : {2, 3, 4, 7, 12, 20, 32}) {
-        Matrix m{n, {}};
-        for (int c = 0; c < n; ++c) {
-            m.cols.emplace_back(n);
-            for (double& x : m.cols.back()) x = g(rng);
-        }
+        Matrix m = random_matrix(n, rng, g);
         ColumnLu lu(n);
         lu.factor(m.ptrs().data(), m.norms().data());
         Eigen::MatrixXd e(n, n);
@@ -75,11 +89,7 @@ TEST(ColumnLu, ReplacementsStayWithinTheBound) {
     std::mt19937_64 rng(2);
     std::normal_distribution<double> g;
     for (int n : {2, 3, 4, 5, 8, 13, 20}) {
-        Matrix m{n, {}};
-        for (int c = 0; c < n; ++c) {
-            m.cols.emplace_back(n);
-            for (double& x : m.cols.back()) x = g(rng);
-        }
+        Matrix m = random_matrix(n, rng, g);
         ColumnLu lu(n);
         lu.factor(m.ptrs().data(), m.norms().data());
         const double fresh = lu.backward_error();
@@ -92,9 +102,7 @@ TEST(ColumnLu, ReplacementsStayWithinTheBound) {
                 col = m.cols[(j + 1) % n];
                 for (double& x : col) x *= 1 + 1e-9 * g(rng);
             }
-            lu.replace(j, col.data(), norm(col));
-            m.cols.erase(m.cols.begin() + j);
-            m.cols.push_back(col);
+            replace_column(lu, m, j, col);
             if (step % 7 == 0 || step == 199) expect_within(lu, m);
         }
         // The bound grows linearly with the number of updates, not worse.
@@ -119,9 +127,7 @@ TEST(ColumnLu, RowInterchangesAreExercised) {
         std::vector<double> col(n);
         for (int r = 0; r < n; ++r) col[r] = (r == step % n ? 1e6 : 1.0) * g(rng);
         const int j = step % 3;
-        lu.replace(j, col.data(), norm(col));
-        m.cols.erase(m.cols.begin() + j);
-        m.cols.push_back(col);
+        replace_column(lu, m, j, col);
         expect_within(lu, m);
     }
 }
@@ -134,14 +140,10 @@ TEST(ColumnLu, ZeroAndSingularColumns) {
     EXPECT_EQ(lu.det(), 0.0);
     expect_within(lu, m);
     std::vector<double> col{1, 2, 3, 4};  // equal to column 1: singular
-    lu.replace(0, col.data(), norm(col));
-    m.cols.erase(m.cols.begin());
-    m.cols.push_back(col);
+    replace_column(lu, m, 0, col);
     expect_within(lu, m);
     col = {0.5, -1, 2, 7};
-    lu.replace(0, col.data(), norm(col));
-    m.cols.erase(m.cols.begin());
-    m.cols.push_back(col);
+    replace_column(lu, m, 0, col);
     EXPECT_NE(lu.det(), 0.0);
     expect_within(lu, m);
 }

@@ -5,13 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "common/manifest.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/topology.hpp"
 
@@ -20,55 +19,25 @@ namespace {
 using nlohmann::json;
 using polyvol::ShellRole;
 using polyvol::TopologyReport;
-
-const std::string kCorpus = POLYVOL_CORPUS_DIR;
-
-const json& manifest() {
-    static const json m = [] {
-        std::ifstream in(kCorpus + "/manifest.json");
-        if (!in) return json::array();
-        return json::parse(in);
-    }();
-    return m;
-}
-
-// Paths of the entries that are not `invalid` (the test parameter; short to print).
-std::vector<std::string> readable_paths() {
-    std::vector<std::string> v;
-    for (const json& e : manifest())
-        if (e.value("category", "") != "invalid") v.push_back(e.at("path").get<std::string>());
-    return v;
-}
-
-const json& entry(const std::string& path) {
-    for (const json& e : manifest())
-        if (e.at("path") == path) return e;
-    throw std::runtime_error("no manifest entry " + path);
-}
-
-std::string test_name(const testing::TestParamInfo<std::string>& info) {
-    std::string s = info.param;
-    s = s.substr(s.find('/') + 1);  // drop "meshes/"
-    for (char& c : s)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    return s;
-}
+using polyvol::test::corpus_file;
+using polyvol::test::manifest_entry;
+using polyvol::test::readable_paths;
 
 class CorpusTopology : public testing::TestWithParam<std::string> {
 protected:
     static TopologyReport analyze(const json& e) {
-        const polyvol::LoadedMesh loaded = polyvol::read_mesh_file(kCorpus + "/" + e.at("path").get<std::string>());
+        const polyvol::LoadedMesh loaded = polyvol::read_mesh_file(corpus_file(e.at("path").get<std::string>()));
         return polyvol::analyze_topology(loaded.mesh.view());
     }
 };
 
 TEST(CorpusTopologyManifest, HasReadableEntries) {
-    ASSERT_TRUE(manifest().is_array()) << "no manifest at " << kCorpus;
+    ASSERT_FALSE(polyvol::test::corpus_manifest().empty()) << "no manifest at " << polyvol::test::corpus_dir();
     EXPECT_GT(readable_paths().size(), 100u);
 }
 
 TEST_P(CorpusTopology, CountsAndTopologyMatchManifest) {
-    const json& e = entry(GetParam());
+    const json& e = manifest_entry(GetParam());
     const TopologyReport r = analyze(e);
     const json& c = e.at("counts");
     EXPECT_EQ(r.faces, c.at("faces").get<std::size_t>());
@@ -97,7 +66,7 @@ TEST_P(CorpusTopology, CountsAndTopologyMatchManifest) {
     EXPECT_EQ(r.shells.size(), r.components_edge_connected);
 
     // Edges only (polyvol volume's table): the same edge counts, no shells.
-    const polyvol::LoadedMesh loaded = polyvol::read_mesh_file(kCorpus + "/" + e.at("path").get<std::string>());
+    const polyvol::LoadedMesh loaded = polyvol::read_mesh_file(corpus_file(e.at("path").get<std::string>()));
     const TopologyReport light = polyvol::analyze_topology(loaded.mesh.view(), {.shells = false});
     EXPECT_EQ(light.vertices_welded, r.vertices_welded);
     EXPECT_EQ(light.edges, r.edges);
@@ -126,7 +95,7 @@ bool transformed(const json& e) {
 }
 
 TEST_P(CorpusTopology, ComponentsMatchManifest) {
-    const json& e = entry(GetParam());
+    const json& e = manifest_entry(GetParam());
     const TopologyReport r = analyze(e);
     if (!e.contains("components")) {  // listed whenever there is a face
         EXPECT_TRUE(r.shells.empty());
@@ -161,7 +130,7 @@ TEST_P(CorpusTopology, ComponentsMatchManifest) {
 }
 
 TEST_P(CorpusTopology, NestingMatchesManifest) {
-    const json& e = entry(GetParam());
+    const json& e = manifest_entry(GetParam());
     const TopologyReport r = analyze(e);
     if (!e.contains("nesting") || e.at("nesting").is_null()) {  // given for 2 shells or more
         EXPECT_LE(r.shells.size(), 1u);
@@ -180,6 +149,7 @@ TEST_P(CorpusTopology, NestingMatchesManifest) {
     EXPECT_EQ(r.nested_shells, n.at("positive_inside_positive(overlapping_or_nested_solids)").get<std::size_t>());
 }
 
-INSTANTIATE_TEST_SUITE_P(Manifest, CorpusTopology, testing::ValuesIn(readable_paths()), test_name);
+INSTANTIATE_TEST_SUITE_P(Manifest, CorpusTopology, testing::ValuesIn(readable_paths()),
+                         polyvol::test::corpus_param_name);
 
 }  // namespace

@@ -1,4 +1,5 @@
-// Small meshes with known topology, built in code.
+// Small meshes with known topology, built in code (more, with the box and
+// the tetrahedron, in common/shapes.hpp).
 #pragma once
 
 #include <array>
@@ -12,39 +13,7 @@
 
 namespace polyvol::test {
 
-// Options for box(): triangles or quads, and turned inside out.
-struct BoxOptions {
-    bool quads = false;
-    bool inverted = false;
-};
-
-// Axis-aligned box [lo, hi] with 8 shared vertices, faces counter-clockwise
-// seen from outside (clockwise when inverted). Vertex i is corner
-// (x = i & 1, y = i >> 1 & 1, z = i >> 2 & 1).
-inline void add_box(Mesh& m, std::array<double, 3> lo, std::array<double, 3> hi, BoxOptions o = {}) {
-    const uint32_t base = static_cast<uint32_t>(m.vertex_count());
-    for (int i = 0; i < 8; ++i)
-        m.add_vertex(i & 1 ? hi[0] : lo[0], i >> 1 & 1 ? hi[1] : lo[1], i >> 2 & 1 ? hi[2] : lo[2]);
-    static constexpr uint32_t kQuads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                              {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : kQuads) {
-        std::array<uint32_t, 4> f{base + q[0], base + q[1], base + q[2], base + q[3]};
-        if (o.inverted) f = {f[0], f[3], f[2], f[1]};
-        if (o.quads) {
-            m.add_face(f);
-        } else {
-            m.add_triangle(f[0], f[1], f[2]);
-            m.add_triangle(f[0], f[2], f[3]);
-        }
-    }
-}
-
-inline Mesh box(std::array<double, 3> lo, std::array<double, 3> hi, BoxOptions o = {}) {
-    Mesh m;
-    add_box(m, lo, hi, o);
-    return m;
-}
-
+// The box [0, 1]^3 (see add_box).
 inline Mesh unit_cube(BoxOptions o = {}) { return box({0, 0, 0}, {1, 1, 1}, o); }
 
 // The corner tetrahedron (0, e1, e2, e3), outward: volume 1/6.

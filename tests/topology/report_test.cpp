@@ -14,6 +14,7 @@ using test::add_box;
 using test::box;
 using test::quad_torus;
 using test::tetrahedron;
+using test::triangle;
 using test::unit_cube;
 using test::unwelded;
 
@@ -181,12 +182,7 @@ TEST(Topology, MissingFaceLeavesThreeBoundaryEdges) {
 }
 
 TEST(Topology, OpenShellVolumeIsAboutTheOrigin) {
-    Mesh m;
-    m.add_vertex(1, 0, 0);
-    m.add_vertex(0, 1, 0);
-    m.add_vertex(0, 0, 1);
-    m.add_triangle(0, 1, 2);
-    const TopologyReport r = analyze(m);
+    const TopologyReport r = analyze(triangle({1, 0, 0}, {0, 1, 0}, {0, 0, 1}));
     ASSERT_EQ(r.shells.size(), 1u);
     EXPECT_DOUBLE_EQ(r.shells[0].signed_volume, 1.0 / 6);
     EXPECT_EQ(r.euler_characteristic, 1);
@@ -375,13 +371,8 @@ TEST(Topology, NegativeZeroWeldsWithPositiveZero) {
 }
 
 TEST(Topology, NaNPositionsNeverWeld) {
-    Mesh m;
     const double nan = std::nan("");
-    m.add_vertex(nan, 0, 0);
-    m.add_vertex(nan, 0, 0);
-    m.add_vertex(0, 1, 0);
-    m.add_triangle(0, 1, 2);
-    const TopologyReport r = analyze(m);
+    const TopologyReport r = analyze(triangle({nan, 0, 0}, {nan, 0, 0}, {0, 1, 0}));
     EXPECT_EQ(r.vertices_welded, 3u);
     EXPECT_EQ(r.triangles_with_repeated_vertex, 0u);
     EXPECT_EQ(r.zero_area_triangles, 0u);
