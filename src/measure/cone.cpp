@@ -66,6 +66,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "exact/eft.hpp"
@@ -247,10 +248,23 @@ __attribute__((target("avx2,fma"))) void block_fast4_fma(const Block& b, Terms<k
 __attribute__((target("avx2,fma"))) void block_fast10_fma(const Block& b, Terms<kSumCount>& t) {
     block_terms<true, false, kSumCount>(b, t);
 }
+// The double-double kernels once more for AVX-512 (8 triangles per
+// instruction). Every operation is elementwise and rounded on its own
+// (-ffp-contract=off), so the terms are the same bits on every target.
+#define POLYVOL_AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512")))
+POLYVOL_AVX512 void block_dd1_avx512(const Block& b, Terms<1>& t) { block_terms<true, true, 1>(b, t); }
+POLYVOL_AVX512 void block_dd4_avx512(const Block& b, Terms<kSxx>& t) { block_terms<true, true, kSxx>(b, t); }
+POLYVOL_AVX512 void block_dd10_avx512(const Block& b, Terms<kSumCount>& t) { block_terms<true, true, kSumCount>(b, t); }
+#undef POLYVOL_AVX512
 std::atomic<bool> g_force_baseline{false};
 bool cpu_has_fma() {
     static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
     return has && !g_force_baseline.load(std::memory_order_relaxed);
+}
+bool cpu_has_avx512() {
+    static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                            __builtin_cpu_supports("avx512dq");
+    return has && cpu_has_fma();
 }
 #else
 #define POLYVOL_HAVE_FMA_CLONE 0
@@ -265,6 +279,16 @@ void block_fast4(const Block& b, Terms<kSxx>& t) { block_terms<false, false, kSx
 template <int N>
 void compute_terms(const Block& b, Terms<N>& t, bool dd) {
 #if POLYVOL_HAVE_FMA_CLONE
+    if (dd && cpu_has_avx512()) {
+        if constexpr (N == 1) {
+            block_dd1_avx512(b, t);
+        } else if constexpr (N == kSxx) {
+            block_dd4_avx512(b, t);
+        } else {
+            block_dd10_avx512(b, t);
+        }
+        return;
+    }
     if (cpu_has_fma()) {
         if constexpr (N == 1) {
             dd ? block_dd1_fma(b, t) : block_fast1_fma(b, t);
@@ -365,7 +389,26 @@ void for_each_block(const MeshView& mesh, std::size_t f0, std::size_t f1, Fn&& f
         }
     };
     if (mesh.all_triangles()) {
-        for (std::size_t f = f0; f < f1; ++f) put(idx[3 * f], idx[3 * f + 1], idx[3 * f + 2]);
+        // Whole blocks with a fixed trip count (the count and the slot index
+        // stay in registers), then the rest through put().
+        std::size_t f = f0;
+        for (; f + kBlock <= f1; f += kBlock) {
+            const uint32_t* t = idx + 3 * f;
+            for (int i = 0; i < kBlock; ++i) {
+                const double* pa = pos + 3 * std::size_t{t[3 * i]};
+                const double* pb = pos + 3 * std::size_t{t[3 * i + 1]};
+                const double* pc = pos + 3 * std::size_t{t[3 * i + 2]};
+                for (int k = 0; k < 3; ++k) {
+                    b.c[k][i] = pa[k];
+                    b.c[3 + k][i] = pb[k];
+                    b.c[6 + k][i] = pc[k];
+                }
+            }
+            b.n = kBlock;
+            fn(b);
+            b.n = 0;
+        }
+        for (; f < f1; ++f) put(idx[3 * f], idx[3 * f + 1], idx[3 * f + 2]);
     } else {
         const uint32_t* off = mesh.face_offsets.data();
         for (std::size_t f = f0; f < f1; ++f) {
@@ -692,16 +735,33 @@ void force_baseline_kernels(bool on) {
 }
 
 Range coordinate_range(const MeshView& mesh) {
-    // One vectorisable pass: the extreme magnitudes (zeros ignored).
-    double lo = std::numeric_limits<double>::infinity(), hi = 0;
-    bool nan = false;
-    for (double x : mesh.positions) {
-        const double ax = std::fabs(x);
-        nan |= x != x;
-        hi = ax > hi ? ax : hi;
-        lo = (ax < lo && ax != 0) ? ax : lo;
+    // One pass over the bit patterns of |x|, in 8 independent lanes (a
+    // single running max/min would serialise on its latency): the largest
+    // pattern is the largest magnitude, NaN and infinity above every finite
+    // one; the smallest nonzero magnitude is the smallest pattern once 0 is
+    // mapped to the largest (p - 1 wraps).
+    constexpr std::size_t kLanes8 = 8;
+    constexpr uint64_t kAbs = ~(uint64_t{1} << 63);
+    uint64_t hi_bits[kLanes8] = {}, lo_bits[kLanes8];
+    std::fill(lo_bits, lo_bits + kLanes8, ~uint64_t{0});
+    const std::span<const double> x = mesh.positions;
+    const std::size_t whole = x.size() - x.size() % kLanes8;
+    auto visit = [&](std::size_t lane, double v) {
+        const uint64_t a = std::bit_cast<uint64_t>(v) & kAbs;
+        hi_bits[lane] = a > hi_bits[lane] ? a : hi_bits[lane];
+        lo_bits[lane] = a - 1 < lo_bits[lane] ? a - 1 : lo_bits[lane];
+    };
+    for (std::size_t i = 0; i < whole; i += kLanes8)
+        for (std::size_t j = 0; j < kLanes8; ++j) visit(j, x[i + j]);
+    for (std::size_t i = whole; i < x.size(); ++i) visit(0, x[i]);
+    uint64_t hb = 0, lb = ~uint64_t{0};
+    for (std::size_t j = 0; j < kLanes8; ++j) {
+        hb = std::max(hb, hi_bits[j]);
+        lb = std::min(lb, lo_bits[j]);
     }
-    if (nan || std::isinf(hi)) return Range::nonfinite;
+    const double hi = std::bit_cast<double>(hb);
+    const double lo = lb == ~uint64_t{0} ? std::numeric_limits<double>::infinity() : std::bit_cast<double>(lb + 1);
+    if (!(hi <= std::numeric_limits<double>::max())) return Range::nonfinite;  // NaN or infinity
     if (hi > 0x1p190 || lo < 0x1p-160) return hi == 0 ? Range::safe : Range::unsafe;
     return Range::safe;
 }
