@@ -2,10 +2,14 @@
 // surfaces"): the cost of one PL surface and its volume against the number of
 // lattice cells N across the box, for the unit ball in n = 3 and n = 4 (box
 // [-1.25, 1.25]^n, no Richardson pass). The continuation visits only crossed
-// simplices, so the cost grows like N^(n-1) (BigO below: N^2 in 3D, N^3 in
-// 4D), not like the N^n lattice; the coarse scan is fixed (default cells).
+// cubes, so the cost grows like N^(n-1) (BigO below: N^2 in 3D, N^3 in 4D),
+// not like the N^n lattice; the coarse scan is fixed (default cells).
 //   ./build/bench/polyvol_bench --benchmark_filter=Implicit
-// Counters: boundary simplices, crossed n-simplices, F evaluations.
+// ImplicitVolumeBench is the default path (the volume streamed: no chain,
+// determinants on oneTBB workers; wall time), ImplicitChainVolumeBench the
+// chain built and measured by chain_volume (keep_chain), ImplicitSurfaceBench
+// the chain alone. Counters: boundary simplices, crossed n-simplices, F
+// evaluations.
 #include <benchmark/benchmark.h>
 
 #include <span>
@@ -40,10 +44,20 @@ void report(benchmark::State& state, const ImplicitPass& p, int64_t cells) {
     state.SetComplexityN(cells);
 }
 
-// The surface and its volume (chain_volume included).
+// The volume, streamed (the default).
 template <int n>
 void ImplicitVolumeBench(benchmark::State& state) {
     const ImplicitOptions o = options(n, state.range(0));
+    polyvol::ImplicitVolume r;
+    for (auto _ : state) r = implicit_volume(unit_ball, o);
+    report(state, r.fine, state.range(0));
+}
+
+// The surface as a chain and its volume by chain_volume (keep_chain).
+template <int n>
+void ImplicitChainVolumeBench(benchmark::State& state) {
+    ImplicitOptions o = options(n, state.range(0));
+    o.keep_chain = true;
     polyvol::ImplicitVolume r;
     for (auto _ : state) r = implicit_volume(unit_ball, o);
     report(state, r.fine, state.range(0));
@@ -60,7 +74,9 @@ void ImplicitSurfaceBench(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(ImplicitVolumeBench<3>)->RangeMultiplier(2)->Range(16, 256)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNSquared);
+BENCHMARK(ImplicitVolumeBench<3>)->RangeMultiplier(2)->Range(16, 256)->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity(benchmark::oNSquared);
+BENCHMARK(ImplicitChainVolumeBench<3>)->RangeMultiplier(2)->Range(16, 256)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNSquared);
 BENCHMARK(ImplicitSurfaceBench<3>)->RangeMultiplier(2)->Range(16, 256)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNSquared);
-BENCHMARK(ImplicitVolumeBench<4>)->RangeMultiplier(2)->Range(8, 32)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNCubed);
+BENCHMARK(ImplicitVolumeBench<4>)->RangeMultiplier(2)->Range(8, 32)->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity(benchmark::oNCubed);
+BENCHMARK(ImplicitChainVolumeBench<4>)->RangeMultiplier(2)->Range(8, 32)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNCubed);
 BENCHMARK(ImplicitSurfaceBench<4>)->RangeMultiplier(2)->Range(8, 32)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNCubed);

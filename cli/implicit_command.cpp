@@ -2,9 +2,11 @@
 //
 // Prints the volume of {F <= 0} within the box (the Richardson extrapolation
 // from the lattices of spacing h and 2h), its error estimate, the number of
-// boundary simplices of the PL surface at h and the time. Exit codes: 0 ok,
-// 1 usage, 2 an expression that does not parse, 3 F is NaN at a lattice vertex
-// / the solid reaches the box with --box-rule error / the lattice is too large.
+// boundary simplices of the PL surface at h and the time. The volume is
+// streamed (no chain is built) unless --stl or --formula prism needs the
+// chain. Exit codes: 0 ok, 1 usage, 2 an expression that does not parse, 3 F
+// is NaN at a lattice vertex / the solid reaches the box with --box-rule
+// error / the lattice is too large.
 #include "implicit_command.hpp"
 
 #include <cmath>
@@ -144,7 +146,9 @@ CLI::App* add_implicit_command(CLI::App& app, ImplicitArgs& a) {
                     "exit 3 when the solid reaches the box boundary")
         ->check(CLI::IsMember({"clip", "error"}))
         ->capture_default_str();
-    cmd->add_option("--formula", a.formula, "Chain volume formula: cone (2.1) or prism (2.2)")
+    cmd->add_option("--formula", a.formula,
+                    "Volume formula: cone (2.1; streamed, no chain built) or prism (2.2; the chain is built and "
+                    "measured by chain_volume)")
         ->check(CLI::IsMember({"cone", "prism"}))
         ->capture_default_str();
     cmd->add_flag("--no-estimate", a.no_estimate, "Skip the 2h lattice: volume of the PL solid at h only");
@@ -231,6 +235,7 @@ int run_implicit_command(const ImplicitArgs& a) {
                             {"clipped", r.clipped},
                             {"box_rule", a.box_rule},
                             {"formula", a.formula},
+                            {"streamed", !o.keep_chain && o.formula == SimplexFormula::cone},
                             {"seconds", r.seconds},
                             {"fine", pass_json(r.fine)}};
         if (r.coarse) {

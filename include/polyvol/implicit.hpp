@@ -33,10 +33,14 @@
 //     the pieces of two simplices match across their common facet), oriented
 //     outward (the negative side inside; the orientation is decided once per
 //     sign pattern with exact integer determinants and the parity of pi).
-//   * Continuation. Only crossed simplices are visited: from a crossed
-//     simplex the walk steps across each crossed facet to the neighbour
-//     (Freudenthal pivoting), with a hash set of visited (cube, permutation)
-//     keys; cost follows the surface: O(area / h^(n-1)).
+//   * Continuation. Only crossed cubes are visited: from a crossed cube the
+//     walk steps across each cube facet with both signs to the neighbour (a
+//     facet with both signs holds a crossed simplex facet, and the surface
+//     passes between cubes only through crossed simplex facets), with a hash
+//     set of visited cubes; in each cube the crossed Kuhn simplices are
+//     enumerated depth first over the permutations' prefixes, a prefix being
+//     dropped when no corner above its last vertex has the missing sign.
+//     Cost follows the surface: O(area / h^(n-1)).
 //   * Seeds. A coarse lattice (coarse_cells per axis, a sublattice of the
 //     fine one, its cost independent of h) is sampled, every coarse axis
 //     segment with a sign change is bisected down to one fine edge, and a walk
@@ -53,13 +57,33 @@
 //     F <= 0, cut by the pulling triangulation from its first such vertex
 //     (which restricts to the same rule on shared faces and ridges, and to the
 //     surface's staircase pieces on the face), oriented out of the box; these
-//     face simplices are found by walks over each face seeded from the box
-//     boundary vertices with F <= 0 that were sampled. With BoxRule::error, a
+//     face simplices are found by walks over each face's cubes (across cube
+//     facets with a vertex where F <= 0) seeded from the box boundary
+//     vertices with F <= 0 that were sampled; a face cube with both signs
+//     also starts a surface walk from the cube owning it. With BoxRule::error, a
 //     lattice vertex on the box boundary with F <= 0 is an error instead
 //     (ImplicitError::Code::touches_box).
-//   * Volume. The pieces form a closed oriented boundary chain (chain.hpp);
-//     its volume is chain_volume (simplicial.hpp) by (2.1) or (2.2): exact
-//     rounded once for n <= 3, with a rigorous rounding bound for n >= 4.
+//   * Volume. The pieces form a closed oriented boundary chain (chain.hpp)
+//     by construction, and its volume is the cone formula (2.1) of
+//     simplicial.hpp, V = Σ det(p_1 - O, ..., p_n - O) / n!. By default
+//     (keep_chain false, SimplexFormula::cone) the volume is streamed: no
+//     chain is built, no point map, no validation; each crossed simplex (and
+//     each box-face simplex) is recorded as the walk meets it, records are
+//     buffered in blocks reduced on oneTBB workers (Gaussian elimination with
+//     pivoting per piece, in the coordinates [p_1 - O, p_2 - p_1, ...], with
+//     Higham's a-priori bound), and the blocks' sums are combined in walk
+//     order, so the result has the same bits for every thread count. A
+//     piece's points are recomputed from its edge (a function of the edge's
+//     two lattice vertices and their two F values, a the negative end), the
+//     same bits the chain path stores. The apex O is the box corner lo: the
+//     pieces in the box faces x_k = lo_k contribute exactly 0 and are not
+//     measured. With keep_chain (or SimplexFormula::prism) the chain is built
+//     and measured by chain_volume: exact rounded once for n <= 3, with a
+//     rigorous rounding bound for n >= 4.
+//     Either way ImplicitPass::rounding_error_bound bounds |volume - exact
+//     volume of that chain| (the PL surface with its points as computed): the
+//     rounding of the determinants and of their sum, not the PL
+//     approximation's error (that is the estimate below).
 //   * Error estimate (Richardson). For a smooth surface the PL volume is
 //     V(h) = V + C h^2 + o(h^2). The same computation on the lattice of
 //     spacing 2h gives V(2h); then
@@ -123,9 +147,12 @@ struct ImplicitOptions {
     BoxRule box_rule = BoxRule::clip;
     // Compute the lattice of spacing 2h as well, for the Richardson estimate.
     bool error_estimate = true;
-    // Keep the fine PL surface (ImplicitVolume::chain).
+    // Keep the fine PL surface (ImplicitVolume::chain); its volume is then
+    // chain_volume's. Without it (and with the cone formula) the volume is
+    // streamed: no chain is built (see the top of this file).
     bool keep_chain = false;
-    // Formula and accuracy for chain_volume.
+    // cone: (2.1) — streamed, or chain_volume with keep_chain; prism: (2.2),
+    // through a chain and chain_volume.
     SimplexFormula formula = SimplexFormula::cone;
     // Refuse (ImplicitError::Code::too_large) to build more boundary simplices
     // than this in one pass — a guard against an h far too small.
@@ -143,12 +170,19 @@ struct ImplicitPass {
     std::vector<double> spacing;        // h_k
     std::vector<int64_t> cells;         // N_k
     double volume = 0;                  // volume of the PL solid (its chain's volume)
-    double rounding_error_bound = 0;    // |volume - exact volume of the chain| <= this
-    std::size_t boundary_simplices = 0; // (n-1)-simplices of the chain (some may be flat ones in the box faces)
-    std::size_t crossed_simplices = 0;  // Kuhn n-simplices visited by the walk
+    // |volume - exact volume of the chain| <= this: the chain as computed (its
+    // points rounded as they are), the rounding of the determinants and of
+    // their sum only — not the PL approximation's error.
+    double rounding_error_bound = 0;
+    std::size_t boundary_simplices = 0; // (n-1)-simplices of the chain (some are flat ones in the box faces)
+    std::size_t crossed_simplices = 0;  // Kuhn n-simplices with both signs in the cubes walked
     std::size_t function_evaluations = 0;
-    std::size_t components = 0;         // walks through the box's simplices: pieces of the PL surface inside the box
-    std::size_t face_simplices = 0;     // simplices of the box faces' triangulations visited by the closure
+    // Walks through the box's cubes: pieces of the PL surface inside the box
+    // (two sheets through one cube count once).
+    std::size_t components = 0;
+    // Simplices of the box faces' triangulations with a vertex where F <= 0,
+    // in the face cubes walked.
+    std::size_t face_simplices = 0;
     std::size_t face_walks = 0;         // walks over the box faces (the clipped solid's faces in the box boundary)
     std::size_t box_vertices_inside = 0;  // lattice vertices on the box boundary with F <= 0 among those sampled
     double seconds = 0;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -51,13 +52,19 @@ double resolved_h(const ImplicitOptions& o, const Box& b) {
     return widest / default_cells(o.dimension);
 }
 
-// One pass on the lattice with the given cells per axis.
-Chain run_pass(const ImplicitFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
-               ImplicitPass& pass) {
+// One pass on the lattice with the given cells per axis. With `chain` the
+// PL surface is built into it (its volume is measure_pass's); without, the
+// volume is streamed (ConeSum: the cone formula, no chain, no validation —
+// the chain is closed by construction) into pass.volume and
+// pass.rounding_error_bound.
+void run_pass(const ImplicitFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
+              ImplicitPass& pass, Chain* chain) {
     const auto t0 = Clock::now();
     const implicit::Lattice lattice(o.dimension, b.lo, b.hi, cells);
     implicit::Sampler sampler(lattice, f, o.box_rule);
-    implicit::SurfaceBuilder builder(lattice, sampler, o.max_boundary_simplices);
+    std::optional<implicit::ConeSum> cone;
+    if (!chain) cone.emplace(lattice);
+    implicit::SurfaceBuilder builder(lattice, sampler, o.max_boundary_simplices, cone ? &*cone : nullptr);
     const int coarse = o.coarse_cells == 0 ? default_coarse_cells(o.dimension) : o.coarse_cells;
     implicit::seed_and_walk(lattice, sampler, builder, coarse, o.seeds);
     pass.components = builder.surface_walks();
@@ -68,10 +75,15 @@ Chain run_pass(const ImplicitFunction& f, const ImplicitOptions& o, const Box& b
     pass.crossed_simplices = builder.crossed_simplices();
     pass.function_evaluations = sampler.evaluations();
     pass.box_vertices_inside = sampler.box_vertices_inside();
-    Chain chain = builder.take_chain();
-    pass.boundary_simplices = chain.simplex_count();
+    pass.boundary_simplices = builder.boundary_simplices();
+    if (cone) {
+        cone->finish();
+        pass.volume = cone->volume();
+        pass.rounding_error_bound = cone->bound();
+    } else {
+        *chain = builder.take_chain();
+    }
     pass.seconds = seconds_since(t0);
-    return chain;
 }
 
 void measure_pass(const Chain& chain, const ImplicitOptions& o, ImplicitPass& pass) {
@@ -83,6 +95,20 @@ void measure_pass(const Chain& chain, const ImplicitOptions& o, ImplicitPass& pa
     pass.volume = v.volume;
     pass.rounding_error_bound = v.volume_error_bound;
     pass.seconds += seconds_since(t0);
+}
+
+// One pass measured: streamed unless the chain is wanted (kept) or the prism
+// formula is asked for (chain_volume only).
+void volume_pass(const ImplicitFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
+                 ImplicitPass& pass, std::optional<Chain>* kept) {
+    if (!kept && o.formula == SimplexFormula::cone) {
+        run_pass(f, o, b, cells, pass, nullptr);
+        return;
+    }
+    Chain chain;
+    run_pass(f, o, b, cells, pass, &chain);
+    measure_pass(chain, o, pass);
+    if (kept) *kept = std::move(chain);
 }
 
 }  // namespace
@@ -106,7 +132,9 @@ Chain implicit_surface(const ImplicitFunction& f, const ImplicitOptions& options
     const Box b = checked_box(options);
     const std::vector<int32_t> cells = implicit::lattice_cells(b.lo, b.hi, resolved_h(options, b));
     ImplicitPass local;
-    return run_pass(f, options, b, cells, pass ? *pass : local);
+    Chain chain;
+    run_pass(f, options, b, cells, pass ? *pass : local, &chain);
+    return chain;
 }
 
 ImplicitVolume implicit_volume(const ImplicitFunction& f, const ImplicitOptions& options) {
@@ -116,18 +144,13 @@ ImplicitVolume implicit_volume(const ImplicitFunction& f, const ImplicitOptions&
     r.dimension = options.dimension;
     r.h = resolved_h(options, b);
     const std::vector<int32_t> cells = implicit::lattice_cells(b.lo, b.hi, r.h);
-    {
-        Chain chain = run_pass(f, options, b, cells, r.fine);
-        measure_pass(chain, options, r.fine);
-        if (options.keep_chain) r.chain = std::move(chain);
-    }
+    volume_pass(f, options, b, cells, r.fine, options.keep_chain ? &r.chain : nullptr);
     r.clipped = r.fine.box_vertices_inside > 0;
     if (options.error_estimate) {
         std::vector<int32_t> half(cells);
         for (auto& c : half) c /= 2;  // even, so spacing exactly 2 h_k
         ImplicitPass coarse;
-        const Chain chain = run_pass(f, options, b, half, coarse);
-        measure_pass(chain, options, coarse);
+        volume_pass(f, options, b, half, coarse, nullptr);
         const Richardson e = richardson(r.fine.volume, coarse.volume);
         r.volume_extrapolated = e.extrapolated;
         r.volume = e.extrapolated;

@@ -46,7 +46,6 @@ std::vector<int32_t> lattice_cells(std::span<const double> lo, std::span<const d
 Lattice::Lattice(int dimension, std::span<const double> lo_, std::span<const double> hi_,
                  std::span<const int32_t> cells_)
     : n(dimension) {
-    permutations = factorial(n);
     uint64_t vs = 1, cs = 1;
     for (int k = 0; k < n; ++k) {
         lo[k] = lo_[k];
@@ -60,10 +59,10 @@ Lattice::Lattice(int dimension, std::span<const double> lo_, std::span<const dou
             throw ImplicitError(ImplicitError::Code::too_large, {},
                                 "implicit: the lattice has too many vertices for 64-bit keys");
     }
-    uint64_t unused;
-    if (!checked_mul(cs, permutations, unused) || !checked_mul(vs, uint64_t{1} << n, unused))
+    uint64_t unused;  // point keys and face keys stay below vertex key * 2^n
+    if (!checked_mul(vs, uint64_t{1} << n, unused))
         throw ImplicitError(ImplicitError::Code::too_large, {},
-                            "implicit: the lattice has too many simplices for 64-bit keys");
+                            "implicit: the lattice has too many vertices for 64-bit keys");
 }
 
 Sampler::Sampler(const Lattice& lattice, const ImplicitFunction& f, BoxRule rule)

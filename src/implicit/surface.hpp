@@ -3,10 +3,12 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "implicit/cone_sum.hpp"
 #include "implicit/flat_map.hpp"
 #include "implicit/kuhn.hpp"
 #include "polyvol/chain.hpp"
@@ -19,7 +21,8 @@ namespace polyvol::implicit {
 // Keys (the constructor checks that they fit below 2^63):
 //   vertex key  = Σ_k (i_k + 1) vertex_stride[k],  vertex_stride[k] = Π_{l<k} (N_l + 3)
 //   cube key    = Σ_k (c_k + 1) cube_stride[k],    cube_stride[k]   = Π_{l<k} (N_l + 2)
-//   simplex key = cube key * n! + rank(perm)
+//   face key    = (cube key of the owning box cube * n + axis) * 2 + (hi face)
+//                 (below vertex key * 2^n: cube key < Π (N_l + 2), 2n <= 2^n)
 //   point key   = vertex key * 2^n + Σ_{axes a of the edge} 2^a for the crossing
 //                 on the edge from that (lower) vertex; + 0 for the vertex itself
 struct Lattice {
@@ -27,7 +30,6 @@ struct Lattice {
     std::array<double, kMaxDim> lo{}, hi{}, spacing{};
     std::array<int32_t, kMaxDim> cells{};  // N_k
     std::array<uint64_t, kMaxDim> vertex_stride{}, cube_stride{};
-    uint64_t permutations = 1;  // n!
 
     // N_k = cells[k] (each even, >= 2).
     Lattice(int dimension, std::span<const double> lo, std::span<const double> hi,
@@ -58,12 +60,39 @@ struct Lattice {
         for (int k = 0; k < n; ++k) key += static_cast<uint64_t>(v[k] + 1) * vertex_stride[k];
         return key;
     }
-    uint64_t simplex_key(const KuhnSimplex& s) const {
+    uint64_t cube_key(const Index& corner) const {
         uint64_t key = 0;
-        for (int k = 0; k < n; ++k) key += static_cast<uint64_t>(s.corner[k] + 1) * cube_stride[k];
-        return key * permutations + permutation_rank(s.perm, n);
+        for (int k = 0; k < n; ++k) key += static_cast<uint64_t>(corner[k] + 1) * cube_stride[k];
+        return key;
     }
 };
+
+// Point (positive, negative) of a simplex with vertices v and values f: the
+// vertex v[negative] itself when positive == negative, else the crossing of
+// the linear interpolant with 0 on the edge, x = a + t (b - a) with
+// a = v[negative], b = v[positive], t = F(a) / (F(a) - F(b)) in [0, 1) (next to
+// an infinite value: at the other end). A function of the two lattice vertices
+// and their two values only, so every simplex (and both the chain and the
+// streaming paths) computes the same bits for the same edge. x[0 .. n-1].
+void piece_point(const Lattice& lattice, const std::array<Index, kMaxDim + 1>& v,
+                 const std::array<double, kMaxDim + 1>& f, int positive, int negative, double* x);
+
+// The parts of piece_point, shared with the streaming path (cone_sum.cpp) so
+// that both compute the same bits: t on the edge from a (F(a) = fa <= 0) to b
+// (F(b) = fb > 0), and one coordinate of the crossing.
+inline double crossing_parameter(double fa, double fb) {
+    if (std::isinf(fb)) return std::isinf(fa) ? 0.5 : 0.0;  // next to an infinite value: at the other end
+    if (std::isinf(fa)) return 1.0;
+    return fa / (fa - fb);
+}
+inline double crossing_coordinate(double xa, double xb, bool moves, double t) {
+    return !moves || t == 0.0 ? xa : xa + t * (xb - xa);
+}
+
+// Whether the closure pieces of a face simplex (closure_table, oriented in the
+// reference face simplex) take their first two points exchanged to point out
+// of the box: see docs/implicit.md, "The box".
+bool closure_flip(const KuhnSimplex& face_simplex, int axis, bool hi_face, int n);
 
 // Cells per axis for a requested spacing: N_k = 2 ceil((hi_k - lo_k) / (2h)).
 std::vector<int32_t> lattice_cells(std::span<const double> lo, std::span<const double> hi, double h);
@@ -94,47 +123,67 @@ private:
     std::vector<Index> boundary_inside_;
 };
 
-// The continuation walk: visits the crossed simplices of the box through
-// crossed facets and appends each one's oriented pieces to `chain`; then the
-// face walk closes the chain in the box's faces. Points are shared through a
-// map from point keys to chain vertices.
+// F at the corners of a d-cube of the lattice (d = n for a cube of the box,
+// n - 1 for a cube of a box face) spanned by axes[0 .. d-1]: corner b is
+// corner + Σ_{i : bit i of b} e_{axes[i]}. reach_positive[b] (reach_negative[b])
+// says some corner b' ⊇ b — componentwise above corner b — is positive
+// (negative).
+struct CubeSamples {
+    Index corner{};
+    int d = 0;
+    std::array<uint8_t, kMaxDim> axes{};
+    std::array<double, 1u << kMaxDim> f;
+    std::array<bool, 1u << kMaxDim> positive;
+    std::array<bool, 1u << kMaxDim> reach_positive, reach_negative;
+    bool any_positive = false, any_negative = false;
+};
+
+// The continuation walk: visits the crossed cubes of the box through cube
+// facets with both signs and hands every crossed Kuhn simplex in them to
+// emit_pieces (a cube facet with both signs holds a crossed simplex facet, and
+// the surface passes from cube to cube only through crossed simplex facets, so
+// the walk follows the PL surface; its cost is O(crossed cubes), one hash
+// probe per cube). Then the face walk closes the chain in the box's faces.
+// Without a ConeSum the pieces are appended to a chain, points shared through
+// a map from point keys to chain vertices; with one (the streaming path) each
+// simplex with pieces is handed to the sum instead, and no chain is built.
 class SurfaceBuilder {
 public:
-    SurfaceBuilder(const Lattice& lattice, Sampler& sampler, std::size_t max_boundary_simplices);
-    // Walks the component containing seed (a crossed simplex of the box)
-    // unless its simplex was visited before; returns whether a walk was made.
+    SurfaceBuilder(const Lattice& lattice, Sampler& sampler, std::size_t max_boundary_simplices,
+                   ConeSum* cone = nullptr);
+    // Walks the crossed cubes connected to the cube of seed (a crossed
+    // simplex of the box) unless that cube was visited before; returns
+    // whether a walk was made.
     bool walk_from(const KuhnSimplex& seed);
     // Closes the chain: for every box face and every simplex of its Kuhn
-    // triangulation reachable from a boundary vertex with F <= 0 through faces
-    // with such a vertex, the pulling triangulation of its part with F <= 0
-    // (closure_table), oriented outward (out of the box). A face simplex that
-    // the surface crosses also starts a walk from the simplex owning it, so
-    // pieces of the surface joined only through the box faces are all found.
+    // triangulation with a vertex where F <= 0, in the face cubes reachable
+    // from a boundary vertex with F <= 0 through cube facets with such a
+    // vertex, the pulling triangulation of its part with F <= 0
+    // (closure_table), oriented outward (out of the box). A face cube that the
+    // surface crosses also starts a walk from the cube owning it, so pieces of
+    // the surface joined only through the box faces are all found.
     void close_faces();
-    std::size_t crossed_simplices() const { return visited_.size(); }
+    std::size_t crossed_simplices() const { return crossed_; }
     std::size_t surface_walks() const { return surface_walks_; }
     std::size_t face_walks() const { return face_walks_; }
-    std::size_t face_simplices() const { return face_visited_.size(); }
+    std::size_t face_simplices() const { return face_simplices_; }
+    // Pieces emitted (with a ConeSum: also those of faces through the apex,
+    // which it drops).
+    std::size_t boundary_simplices() const { return pieces_; }
     Chain take_chain() { return std::move(chain_); }
 
 private:
-    struct Pending {
-        KuhnSimplex s;
-        std::array<double, kMaxDim + 1> f;  // F at its vertices, except vertex `fresh`
-        int fresh;                          // the vertex to sample; -1: all of them
+    struct FaceCube {
+        Index corner{};  // corner[axis] == 0 (lo face) or N_axis (hi face)
+        int axis = 0;
     };
-    struct FaceSimplex {
-        KuhnSimplex s;  // corner on the face; perm[0 .. n-2] the face's axes
-        int axis = 0;   // the face is x_axis = lo (corner[axis] == 0) or hi (== N_axis)
-    };
-    void emit_pieces(const KuhnSimplex& s, const std::array<Index, kMaxDim + 1>& v,
-                     const std::array<double, kMaxDim + 1>& f, uint32_t mask);
-    bool face_walk_from(const FaceSimplex& seed);
-    void emit_closure(const FaceSimplex& t, const std::array<Index, kMaxDim + 1>& v,
-                      const std::array<double, kMaxDim + 1>& f, uint32_t mask);
-    // The simplex of the box whose facet is the face simplex t.
-    KuhnSimplex owner(const FaceSimplex& t) const;
-    uint64_t face_key(const FaceSimplex& t) const;
+    bool walk_from_cube(const Index& corner);
+    void sample(CubeSamples& cube);
+    void emit_pieces(const KuhnSimplex& s, const std::array<double, kMaxDim + 1>& f, uint32_t mask);
+    bool face_walk_from(const FaceCube& seed);
+    // A face simplex: corner on the face, perm[0 .. n-2] the face's axes.
+    void emit_closure(const KuhnSimplex& t, int axis, const std::array<double, kMaxDim + 1>& f, uint32_t mask);
+    uint64_t face_key(const FaceCube& c) const;
     void reserve_pieces(std::size_t count);
     // Chain vertex of the point (a, b) of simplex vertices v (edge a-b, a
     // positive; a == b: the vertex itself); `axes` the edge's direction bits.
@@ -146,13 +195,16 @@ private:
     const PieceTable& table_;
     const PieceTable& closure_;
     std::size_t max_simplices_;
-    FlatMap<uint8_t> visited_;
-    FlatMap<uint8_t> face_visited_;  // face_key
+    FlatMap<uint8_t> visited_;       // cube_key of the box cubes walked
+    FlatMap<uint8_t> face_visited_;  // face_key of the face cubes walked
     FlatMap<uint32_t> point_vertex_;
-    std::vector<Pending> stack_;
-    std::vector<FaceSimplex> face_stack_;
-    std::size_t boundary_done_ = 0;
-    std::size_t surface_walks_ = 0, face_walks_ = 0;  // sampler_.boundary_inside() entries used as seeds
+    std::vector<Index> cube_stack_;
+    std::vector<FaceCube> face_stack_;
+    std::size_t crossed_ = 0, face_simplices_ = 0;
+    std::size_t boundary_done_ = 0;  // sampler_.boundary_inside() entries used as seeds
+    std::size_t surface_walks_ = 0, face_walks_ = 0;
+    std::size_t pieces_ = 0;
+    ConeSum* cone_;
     Chain chain_;
 };
 

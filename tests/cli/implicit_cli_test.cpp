@@ -44,6 +44,23 @@ TEST(ImplicitCli, JsonHasTheKeysAndTheBallVolume) {
     EXPECT_FALSE(j["clipped"].get<bool>());
 }
 
+// The default streams the volume; --formula prism builds the chain. Both
+// measure the same PL solid: they agree within their rounding bounds.
+TEST(ImplicitCli, StreamedAndPrismAgree) {
+    const std::string ball = "implicit 'x1^2 + x2^2 + x3^2 + x4^2 - 1' --box 0:1.2 --h 0.2 --no-estimate --json";
+    const CliResult streamed = polyvol(ball), prism = polyvol(ball + " --formula prism");
+    ASSERT_EQ(streamed.code, 0) << streamed.err;
+    ASSERT_EQ(prism.code, 0) << prism.err;
+    const json a = json::parse(streamed.out), b = json::parse(prism.out);
+    EXPECT_TRUE(a["streamed"].get<bool>());
+    EXPECT_FALSE(b["streamed"].get<bool>());
+    EXPECT_EQ(a["boundary_simplices"], b["boundary_simplices"]);
+    EXPECT_LE(std::fabs(a["volume"].get<double>() - b["volume"].get<double>()),
+              a["fine"]["rounding_error_bound"].get<double>() + b["fine"]["rounding_error_bound"].get<double>());
+    const double exact = std::numbers::pi * std::numbers::pi / 2;  // the PL solid at h = 0.2: 5.3% less
+    EXPECT_NEAR(16 * a["volume"].get<double>(), 0.947 * exact, 0.005 * exact);
+}
+
 TEST(ImplicitCli, TableAndDimensionFromTheExpression) {
     const CliResult r = polyvol("implicit 'x1^2 + x2^2 + x3^2 + x4^2 - 1' --box 0:1.2 --h 0.2");
     ASSERT_EQ(r.code, 0) << r.err;

@@ -2,14 +2,18 @@
 // an ellipsoid and a torus against closed forms, second-order convergence,
 // the Richardson estimate covering the true error, the symbolic perturbation
 // (F = 0 at lattice vertices), the clipping rule, NaN, empty sets, closed
-// chains, cost following the surface, and expressions.
+// chains, the streamed volume against chain_volume (and the exact chain
+// volume), the same bits for every thread count and with or without AVX2,
+// cost following the surface, and expressions.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <numbers>
 #include <span>
 #include <vector>
 
+#include "implicit/cone_sum.hpp"
 #include "implicit/kuhn.hpp"
 #include "polyvol/implicit.hpp"
 #include "polyvol/simplicial.hpp"
@@ -103,9 +107,27 @@ TEST(ImplicitVolume, UnitDiskAreaIsPi) {
     EXPECT_FALSE(r.clipped);
 }
 
-// Stated spacings: n = 3 the whole ball, h = 1/16; n = 4 .. 6 the positive
-// orthant [0, 1.2]^n (the ball's part there, clipped by the box; 2^n times
-// it), h = 0.1, 0.15 and 0.3 — the orthant costs 2^-n of the whole ball.
+// The orthant {x_k >= 0 for even k, <= 0 for odd k} (0-based k) within
+// radius r: [0, r] x [-r, 0] x [0, r] x ...
+ImplicitOptions alternating_orthant(int n, double r, double h) {
+    ImplicitOptions o = box_options(n, 0, 0, h);
+    o.lo.assign(static_cast<std::size_t>(n), 0.0);
+    o.hi.assign(static_cast<std::size_t>(n), 0.0);
+    for (int k = 0; k < n; ++k) (k % 2 == 0 ? o.hi : o.lo)[static_cast<std::size_t>(k)] = k % 2 == 0 ? r : -r;
+    return o;
+}
+
+// Stated spacings: n = 3 the whole ball, h = 1/16; n = 4 .. 6 one orthant
+// (the ball's part there, clipped by the box; 2^n times it; it costs 2^-n of
+// the whole ball): n = 4 [0, 1.2]^4 with h = 0.1; n = 5 and 6 the
+// alternating orthant [0, r] x [-r, 0] x ..., whose Kuhn simplices the sphere
+// crosses about half as often as those of [0, r]^n (the main diagonal of
+// the cubes is far from the sphere's normal there) for the same PL solid
+// (F is separable: see PlSolidOfASeparableFDoesNotDependOnTheTriangulation):
+// n = 5 with r = 1.2, h = 0.15 (8 cells: -0.26%, 0.8 million boundary
+// simplices), n = 6 with r = 1, h = 0.17 (6 cells of 1/6: -0.91%, 18 million
+// boundary simplices, the cheapest lattice found within 1e-2; 2 s of CPU in
+// the Release build; docs/implicit.md).
 TEST(ImplicitVolume, UnitBall3) {
     const ImplicitVolume r = implicit_volume(unit_ball, box_options(3, -1.25, 1.25, 1.0 / 16));
     EXPECT_NEAR(r.volume, ball_volume(3), 1e-3 * ball_volume(3));
@@ -120,18 +142,38 @@ TEST(ImplicitVolume, UnitBall4Orthant) {
 }
 
 TEST(ImplicitVolume, UnitBall5Orthant) {
-    const ImplicitVolume r = implicit_volume(unit_ball, box_options(5, 0, 1.2, 0.15));
+    const ImplicitVolume r = implicit_volume(unit_ball, alternating_orthant(5, 1.2, 0.15));
+    EXPECT_EQ(r.fine.cells[0], 8);
     EXPECT_NEAR(32 * r.volume, ball_volume(5), 1e-2 * ball_volume(5));
     EXPECT_LE(std::fabs(32 * r.volume - ball_volume(5)), 32 * r.error_estimate);
 }
 
-// At h = 0.3 (4 cells across the orthant) the extrapolation is 8% off; 1e-2
-// needs h ~ 0.15, about 70 million boundary simplices (minutes): see
-// docs/implicit.md. Here: within 10%, and within the printed estimate.
-TEST(ImplicitVolume, UnitBall6OrthantCoarse) {
-    const ImplicitVolume r = implicit_volume(unit_ball, box_options(6, 0, 1.2, 0.3));
-    EXPECT_NEAR(64 * r.volume, ball_volume(6), 0.1 * ball_volume(6));
+// The box touches the sphere at the lattice vertices ±e_k, where F is
+// exactly 0 (inside by the sign rule).
+TEST(ImplicitVolume, UnitBall6Orthant) {
+    const ImplicitVolume r = implicit_volume(unit_ball, alternating_orthant(6, 1, 0.17));
+    EXPECT_EQ(r.fine.cells[0], 6);
+    EXPECT_NEAR(64 * r.volume, ball_volume(6), 1e-2 * ball_volume(6));
     EXPECT_LE(std::fabs(64 * r.volume - ball_volume(6)), 64 * r.error_estimate);
+    EXPECT_LT(r.fine.rounding_error_bound, 1e-9 * r.fine.volume);
+}
+
+// For F = Σ_k f_k(x_k) the linear interpolant on a Kuhn simplex is
+// Σ_k (f_k interpolated along axis k): every edge moves along one axis. So the
+// PL solid does not depend on the triangulation, and mirroring the box in
+// some axes (a different triangulation of the same solid: the Kuhn simplices
+// follow the lattice's order) must give the same volume within the two
+// rounding bounds (lattice coordinates exact here, F symmetric, so the mirror
+// image's points are the exact negatives). The chains differ.
+TEST(ImplicitVolume, PlSolidOfASeparableFDoesNotDependOnTheTriangulation) {
+    ImplicitOptions plain = box_options(4, 0, 1.5, 0.25);
+    plain.error_estimate = false;
+    ImplicitOptions mirrored = alternating_orthant(4, 1.5, 0.25);
+    mirrored.error_estimate = false;
+    const ImplicitVolume a = implicit_volume(unit_ball, plain), b = implicit_volume(unit_ball, mirrored);
+    EXPECT_NE(a.fine.boundary_simplices, b.fine.boundary_simplices);
+    EXPECT_LE(std::fabs(a.fine.volume - b.fine.volume), a.fine.rounding_error_bound + b.fine.rounding_error_bound);
+    EXPECT_GT(a.fine.volume, 0.25);
 }
 
 TEST(ImplicitVolume, OrthantTimesEightIsTheWholeBall) {
@@ -313,10 +355,10 @@ TEST(ImplicitVolume, InvalidOptionsThrow) {
 // --- the chain ---------------------------------------------------------------
 
 TEST(ImplicitSurface, ChainsAreClosedAndMatchTheVolume) {
-    for (int n = 2; n <= 5; ++n) {
+    for (int n = 2; n <= 6; ++n) {
         for (double lo : {-1.25, -0.6, 0.0}) {  // inside, cut by the box, the orthant
-            if (n == 5 && lo < 0) continue;     // (seconds each)
-            ImplicitOptions o = box_options(n, lo, 1.25, n <= 3 ? 0.125 : n == 4 ? 0.25 : 0.4);
+            if (n >= 5 && lo < 0) continue;     // (seconds each)
+            ImplicitOptions o = box_options(n, lo, 1.25, n <= 3 ? 0.125 : n == 4 ? 0.25 : n == 5 ? 0.4 : 0.7);
             o.keep_chain = true;
             o.error_estimate = false;
             const ImplicitVolume r = implicit_volume(unit_ball, o);
@@ -332,6 +374,98 @@ TEST(ImplicitSurface, ChainsAreClosedAndMatchTheVolume) {
             EXPECT_NEAR(v.volume, r.fine.volume, 1e-9) << "n=" << n << " lo=" << lo;
             EXPECT_GT(v.volume, 0);
         }
+    }
+}
+
+// An ellipsoid off the origin: no symmetry of the lattice or the apex.
+double tilted_ellipsoid(std::span<const double> x) {
+    double s = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        const double d = (x[k] - 0.1 * static_cast<double>(k + 1)) / (1.0 - 0.07 * static_cast<double>(k));
+        s += d * d;
+    }
+    return s - 1;
+}
+
+// The streamed volume (no chain) and chain_volume of the chain built from the
+// same walk measure the same chain (the same points, bit for bit), so they
+// agree within the sum of their rounding bounds; the chain is closed.
+TEST(ImplicitSurface, StreamedVolumeIsTheChainVolume) {
+    for (int n = 2; n <= 6; ++n) {
+        for (double lo : {-1.3, -0.5, 0.0}) {  // inside, cut by the box, cut on every lo face
+            const double h = n <= 3 ? 0.1 : n == 4 ? 0.25 : n == 5 ? 0.6 : 0.9;
+            ImplicitOptions o = box_options(n, lo, 1.6, h);
+            o.error_estimate = false;
+            const ImplicitVolume streamed = implicit_volume(tilted_ellipsoid, o);
+            o.keep_chain = true;
+            const ImplicitVolume built = implicit_volume(tilted_ellipsoid, o);
+            ASSERT_TRUE(built.chain);
+            EXPECT_TRUE(validate_chain(built.chain->view()).closed()) << "n=" << n << " lo=" << lo;
+            EXPECT_EQ(streamed.fine.boundary_simplices, built.fine.boundary_simplices);
+            EXPECT_EQ(streamed.fine.crossed_simplices, built.fine.crossed_simplices);
+            EXPECT_EQ(streamed.clipped, lo > -1);
+            EXPECT_GT(streamed.fine.volume, 0);
+            EXPECT_GT(streamed.fine.rounding_error_bound, 0);
+            EXPECT_LT(streamed.fine.rounding_error_bound, 1e-9 * streamed.fine.volume);  // 2e-10 at most here
+            EXPECT_LE(std::fabs(streamed.fine.volume - built.fine.volume),
+                      streamed.fine.rounding_error_bound + built.fine.rounding_error_bound)
+                << "n=" << n << " lo=" << lo << " streamed " << streamed.fine.volume << " chain "
+                << built.fine.volume;
+        }
+    }
+}
+
+// The streamed bound against the exact volume of the chain (GMP, rounded
+// once): a bound that is too small fails here.
+TEST(ImplicitSurface, StreamedBoundCoversTheExactChainVolume) {
+    for (int n = 4; n <= 5; ++n) {
+        ImplicitOptions o = box_options(n, -0.5, 1.6, n == 4 ? 0.3 : 0.5);
+        o.error_estimate = false;
+        const ImplicitVolume streamed = implicit_volume(tilted_ellipsoid, o);
+        const Chain chain = implicit_surface(tilted_ellipsoid, o);
+        ChainOptions exact;
+        exact.accuracy = ChainAccuracy::exact;
+        exact.centroid = false;
+        const ChainVolume v = chain_volume(chain.view(), exact);
+        ASSERT_TRUE(v.volume_correctly_rounded);
+        const double rounding = 0x1p-53 * std::fabs(v.volume);  // the exact value's own rounding
+        EXPECT_LE(std::fabs(streamed.fine.volume - v.volume), streamed.fine.rounding_error_bound + rounding) << n;
+        EXPECT_GT(v.volume, 0);
+    }
+}
+
+// Blocks are reduced in parallel but combined in walk order: the same bits
+// whatever the number of threads.
+TEST(ImplicitSurface, StreamedVolumeHasTheSameBitsForEveryThreadCount) {
+    ImplicitOptions o = box_options(4, -0.5, 1.6, 0.1);
+    ImplicitVolume parallel = implicit_volume(tilted_ellipsoid, o);
+    ImplicitVolume serial;
+    {
+        tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        serial = implicit_volume(tilted_ellipsoid, o);
+    }
+    EXPECT_GT(parallel.fine.boundary_simplices, 100000u);  // dozens of blocks
+    EXPECT_EQ(parallel.fine.volume, serial.fine.volume);
+    EXPECT_EQ(parallel.fine.rounding_error_bound, serial.fine.rounding_error_bound);
+    EXPECT_EQ(parallel.coarse->volume, serial.coarse->volume);
+    EXPECT_EQ(parallel.volume, serial.volume);
+}
+
+// The determinants' AVX2 kernel and the portable one run the same operations
+// on every lane: the same bits (where the processor has no AVX2 both runs take
+// the portable path).
+TEST(ImplicitSurface, StreamedVolumeHasTheSameBitsWithAndWithoutAvx2) {
+    for (int n = 2; n <= 8; ++n) {
+        const double h[] = {0.005, 0.05, 0.2, 0.3, 0.6, 0.8, 0.8};
+        ImplicitOptions o = box_options(n, n <= 6 ? -0.5 : 0.0, 1.6, h[n - 2]);
+        o.error_estimate = false;
+        const ImplicitVolume fast = implicit_volume(tilted_ellipsoid, o);
+        implicit::allow_avx2_for_testing(false);
+        const ImplicitVolume portable = implicit_volume(tilted_ellipsoid, o);
+        implicit::allow_avx2_for_testing(true);
+        EXPECT_GT(fast.fine.boundary_simplices, 1000u) << n;
+        EXPECT_EQ(fast.fine.volume, portable.fine.volume) << n;
+        EXPECT_EQ(fast.fine.rounding_error_bound, portable.fine.rounding_error_bound) << n;
     }
 }
 
