@@ -735,32 +735,40 @@ void force_baseline_kernels(bool on) {
 }
 
 Range coordinate_range(const MeshView& mesh) {
-    // One pass over the bit patterns of |x|, in 8 independent lanes (a
-    // single running max/min would serialise on its latency): the largest
-    // pattern is the largest magnitude, NaN and infinity above every finite
-    // one; the smallest nonzero magnitude is the smallest pattern once 0 is
-    // mapped to the largest (p - 1 wraps).
+    // The bit patterns of |x|: the largest pattern is the largest magnitude,
+    // NaN and infinity above every finite one; the smallest nonzero magnitude
+    // is the smallest pattern once 0 is mapped to the largest (p - 1 wraps).
+    // 8 independent lanes per chunk (one running max/min would serialise on
+    // its latency), chunks on oneTBB (the pass is bound by memory).
+    struct Extremes {
+        uint64_t hi = 0, lo = ~uint64_t{0};
+    };
     constexpr std::size_t kLanes8 = 8;
     constexpr uint64_t kAbs = ~(uint64_t{1} << 63);
-    uint64_t hi_bits[kLanes8] = {}, lo_bits[kLanes8];
-    std::fill(lo_bits, lo_bits + kLanes8, ~uint64_t{0});
     const std::span<const double> x = mesh.positions;
-    const std::size_t whole = x.size() - x.size() % kLanes8;
-    auto visit = [&](std::size_t lane, double v) {
-        const uint64_t a = std::bit_cast<uint64_t>(v) & kAbs;
-        hi_bits[lane] = a > hi_bits[lane] ? a : hi_bits[lane];
-        lo_bits[lane] = a - 1 < lo_bits[lane] ? a - 1 : lo_bits[lane];
-    };
-    for (std::size_t i = 0; i < whole; i += kLanes8)
-        for (std::size_t j = 0; j < kLanes8; ++j) visit(j, x[i + j]);
-    for (std::size_t i = whole; i < x.size(); ++i) visit(0, x[i]);
-    uint64_t hb = 0, lb = ~uint64_t{0};
-    for (std::size_t j = 0; j < kLanes8; ++j) {
-        hb = std::max(hb, hi_bits[j]);
-        lb = std::min(lb, lo_bits[j]);
-    }
-    const double hi = std::bit_cast<double>(hb);
-    const double lo = lb == ~uint64_t{0} ? std::numeric_limits<double>::infinity() : std::bit_cast<double>(lb + 1);
+    const Extremes e = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, x.size(), std::size_t{1} << 16), Extremes{},
+        [&](const tbb::blocked_range<std::size_t>& r, Extremes acc) {
+            uint64_t hi_bits[kLanes8] = {}, lo_bits[kLanes8];
+            std::fill(lo_bits, lo_bits + kLanes8, ~uint64_t{0});
+            auto visit = [&](std::size_t lane, double v) {
+                const uint64_t a = std::bit_cast<uint64_t>(v) & kAbs;
+                hi_bits[lane] = a > hi_bits[lane] ? a : hi_bits[lane];
+                lo_bits[lane] = a - 1 < lo_bits[lane] ? a - 1 : lo_bits[lane];
+            };
+            const std::size_t whole = r.begin() + (r.size() - r.size() % kLanes8);
+            for (std::size_t i = r.begin(); i < whole; i += kLanes8)
+                for (std::size_t j = 0; j < kLanes8; ++j) visit(j, x[i + j]);
+            for (std::size_t i = whole; i < r.end(); ++i) visit(0, x[i]);
+            for (std::size_t j = 0; j < kLanes8; ++j) {
+                acc.hi = std::max(acc.hi, hi_bits[j]);
+                acc.lo = std::min(acc.lo, lo_bits[j]);
+            }
+            return acc;
+        },
+        [](Extremes a, const Extremes& b) { return Extremes{std::max(a.hi, b.hi), std::min(a.lo, b.lo)}; });
+    const double hi = std::bit_cast<double>(e.hi);
+    const double lo = e.lo == ~uint64_t{0} ? std::numeric_limits<double>::infinity() : std::bit_cast<double>(e.lo + 1);
     if (!(hi <= std::numeric_limits<double>::max())) return Range::nonfinite;  // NaN or infinity
     if (hi > 0x1p190 || lo < 0x1p-160) return hi == 0 ? Range::safe : Range::unsafe;
     return Range::safe;
