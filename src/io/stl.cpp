@@ -197,8 +197,7 @@ private:
             bool ok = true;
             for (tok = cur_.next(); !tok.empty() && !iequals(tok, "outer"); tok = cur_.next()) {
                 if (++count > 3) fail("expected 'outer loop' after the facet normal, found " + found(tok));
-                double v;
-                if (!text::parse_double(tok, v)) ok = false;
+                if (!text::is_number(tok)) ok = false;
             }
             if (!ok || count != 3) note("stl-unparseable-normal");
         } else if (iequals(tok, "outer")) {

@@ -39,6 +39,7 @@ inline std::string_view trim(std::string_view s) {
 // ASCII case-insensitive equality; `lower` must be lower case.
 inline bool iequals(std::string_view s, std::string_view lower) {
     if (s.size() != lower.size()) return false;
+    if (s == lower) return true;  // the usual spelling, one comparison
     for (std::size_t i = 0; i < s.size(); ++i) {
         char c = s[i];
         if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
@@ -62,6 +63,36 @@ inline bool parse_double(std::string_view tok, double& out) {
     if (first == last) return false;
     const auto r = fast_float::from_chars(first, last, out);
     return r.ec == std::errc() && r.ptr == last;
+}
+
+// Whether a whole token is a number parse_double accepts, for tokens whose
+// value is not needed (an STL facet's normal): the plain decimal spellings
+// [+-]? digits [. digits] [(e|E) [+-]? digits] and [+-]? . digits [...] are
+// recognised by one scan, anything else ("inf", "5.", odd signs) by
+// parse_double itself.
+inline bool is_number(std::string_view tok) {
+    const char* p = tok.data();
+    const char* end = p + tok.size();
+    auto digits = [&] {
+        const char* s = p;
+        while (p < end && *p >= '0' && *p <= '9') ++p;
+        return p > s;
+    };
+    if (p < end && (*p == '-' || *p == '+')) ++p;
+    bool mantissa = digits();
+    if (p < end && *p == '.') {
+        ++p;
+        mantissa = digits() || mantissa;
+    }
+    bool plain = mantissa;
+    if (plain && p < end && (*p == 'e' || *p == 'E')) {
+        ++p;
+        if (p < end && (*p == '-' || *p == '+')) ++p;
+        plain = digits();
+    }
+    if (plain && p == end) return true;
+    double ignored;
+    return parse_double(tok, ignored);
 }
 
 // A whole token as a signed 64-bit integer (optional '+' or '-').
