@@ -32,6 +32,7 @@
 #include <string>
 
 #include "io/chunks.hpp"
+#include "io/huge_pages.hpp"
 #include "io/readers.hpp"
 #include "io/text.hpp"
 
@@ -69,6 +70,10 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n) {
         out.notes.emplace_back("binary-stl-header-starts-with-solid");
     Mesh& m = out.mesh;
     // n is trustworthy here: the file size was checked against it.
+    m.positions.reserve(std::size_t{9} * n);
+    m.indices.reserve(std::size_t{3} * n);
+    advise_huge_pages(m.positions.data(), std::size_t{9} * n * sizeof(double));
+    advise_huge_pages(m.indices.data(), std::size_t{3} * n * sizeof(uint32_t));
     m.positions.resize(std::size_t{9} * n);
     m.indices.resize(std::size_t{3} * n);
     bool attributes = false;
