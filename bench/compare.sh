@@ -15,7 +15,7 @@
 #     BIG_TRIANGLES-triangle binary STL (default 60M = 3 GB).
 # Usage: bench/compare.sh [BUILD_DIR]      (env: RUNS=5, TIMEOUT=600, JOBS=2,
 #        BIG_TRIANGLES=60000000, OFFSET=0, SIZES="1000000 8000000",
-#        SKIP_BUILD=1 to reuse BUILD_DIR; Open3D runs on the smallest size only,
+#        SKIP_BUILD=1 to reuse BUILD_DIR, PEERS=0 for polyvol and the naive loop only; Open3D runs on the smallest size only,
 #        with OPEN3D_TIMEOUT=120 per run)
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -27,6 +27,7 @@ BIG_TRIANGLES=${BIG_TRIANGLES:-60000000}
 OFFSET=${OFFSET:-0}
 SIZES=${SIZES:-"1000000 8000000"}
 OPEN3D_TIMEOUT=${OPEN3D_TIMEOUT:-120}
+PEERS=${PEERS:-1}   # 0: polyvol and the naive loop only (quick runs)
 
 echo "## machine"
 echo "nproc: $(nproc); CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //'); $(grep MemTotal /proc/meminfo | tr -s ' ')"
@@ -52,12 +53,13 @@ for n in $SIZES; do
 done
 ls -l "$tmp" | sed 's/^/    /'
 
-python3 - "$build" "$tmp" "$RUNS" "$TIMEOUT" "$BIG_TRIANGLES" "$OFFSET" "$tags" "$OPEN3D_TIMEOUT" <<'PY'
+python3 - "$build" "$tmp" "$RUNS" "$TIMEOUT" "$BIG_TRIANGLES" "$OFFSET" "$tags" "$OPEN3D_TIMEOUT" "$PEERS" <<'PY'
 import os, subprocess, sys, time, statistics, signal
 
 build, tmp, runs, timeout, big, offset = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4]), int(sys.argv[5]), sys.argv[6]
 tags = sys.argv[7].split()
 open3d_timeout = float(sys.argv[8])
+with_peers = sys.argv[9] != "0"
 B = lambda *p: os.path.join(build, *p)
 
 def run_wait4(cmd, timeout=timeout):
@@ -139,8 +141,9 @@ for tag in tags:
         tools = [("polyvol", [B("polyvol"), "volume", f]), ("polyvol-harness", [B("bench", "harness_polyvol"), f])]
         if ext == "stl":
             tools.append(("naive", [B("bench", "naive_stl_volume"), f]))
-        tools += [("cgal", [B("bench", "peer_cgal"), f]), ("vtk", [B("bench", "peer_vtk"), f])]
-        if tag == tags[0]:
+        if with_peers:
+            tools += [("cgal", [B("bench", "peer_cgal"), f]), ("vtk", [B("bench", "peer_vtk"), f])]
+        if with_peers and tag == tags[0]:
             tools.append(("open3d", [B("bench", "peer_open3d"), f]))
         res = {}
         for name, cmd in tools:
@@ -171,6 +174,23 @@ print()
 for tag, ext, res in rows:
     if ext == "stl" and res.get("polyvol") and res.get("naive"):
         print(f"polyvol/naive ({tag} binary STL, median wall): {res['polyvol'][0] / res['naive'][0]:.2f}")
+
+print()
+print("Binary STL, polyvol volume against the naive loop in interleaved pairs (the order alternating;")
+print("the shared machine's state drifts, so pairs compare like with like): median of the per-pair ratios.")
+for tag in tags:
+    f = os.path.join(tmp, f"sphere{tag}.stl")
+    pv, nv = [B("polyvol"), "volume", f], [B("bench", "naive_stl_volume"), f]
+    pairs = []
+    for i in range(4 * runs):
+        first, second = (pv, nv) if i % 2 == 0 else (nv, pv)
+        a, b = run_wait4(first)[0], run_wait4(second)[0]
+        pairs.append((a, b) if i % 2 == 0 else (b, a))
+    ratios = sorted(p / n for p, n in pairs)
+    q = statistics.quantiles(ratios, n=4)
+    print(f"    {tag}: polyvol {statistics.median(p for p, _ in pairs) * 1e3:.1f} ms, naive "
+          f"{statistics.median(n for _, n in pairs) * 1e3:.1f} ms, polyvol/naive median {statistics.median(ratios):.2f} "
+          f"(quartiles {q[0]:.2f}..{q[2]:.2f}, {len(pairs)} pairs)")
 
 print()
 print("Loading (read into memory + one volume call) and the in-memory volume call, each tool's own")
