@@ -183,6 +183,11 @@ private:
     bool face_walk_from(const FaceCube& seed);
     // A face simplex: corner on the face, perm[0 .. n-2] the face's axes.
     void emit_closure(const KuhnSimplex& t, int axis, const std::array<double, kMaxDim + 1>& f, uint32_t mask);
+    // Appends pieces [first, last) of `table` to the chain for the simplex s
+    // (vertices v, F values f): piece vertex i is the point on the edge the
+    // table names, keyed by the axes that edge spans; flip swaps two vertices.
+    void append_pieces(const PieceTable& table, uint32_t first, uint32_t last, const KuhnSimplex& s,
+                       const std::array<Index, kMaxDim + 1>& v, const std::array<double, kMaxDim + 1>& f, bool flip);
     uint64_t face_key(const FaceCube& c) const;
     void reserve_pieces(std::size_t count);
     // Chain vertex of the point (a, b) of simplex vertices v (edge a-b, a

@@ -160,16 +160,23 @@ void SurfaceBuilder::emit_pieces(const KuhnSimplex& s, const std::array<double, 
     }
     std::array<Index, kMaxDim + 1> v;
     kuhn_vertices(s, n, v);
-    const bool odd = permutation_odd(s.perm, n);
+    // An odd permutation: the map from the reference simplex reverses orientation.
+    append_pieces(table_, first, last, s, v, f, permutation_odd(s.perm, n));
+}
+
+void SurfaceBuilder::append_pieces(const PieceTable& table, uint32_t first, uint32_t last, const KuhnSimplex& s,
+                                   const std::array<Index, kMaxDim + 1>& v, const std::array<double, kMaxDim + 1>& f,
+                                   bool flip) {
+    const int n = lattice_.n;
     std::array<uint32_t, kMaxDim> ids;
     for (uint32_t p = first; p < last; ++p) {
         for (int i = 0; i < n; ++i) {
-            const auto& e = table_.vertices[static_cast<std::size_t>(p) * n + i];
+            const auto& e = table.vertices[static_cast<std::size_t>(p) * n + i];
             uint64_t axes = 0;
             for (int j = std::min(e[0], e[1]); j < std::max(e[0], e[1]); ++j) axes |= uint64_t{1} << s.perm[j];
             ids[i] = point_vertex(v, f, e[0], e[1], axes);
         }
-        if (odd) std::swap(ids[0], ids[1]);  // the map from the reference simplex reverses orientation
+        if (flip) std::swap(ids[0], ids[1]);
         chain_.simplices.insert(chain_.simplices.end(), ids.begin(), ids.begin() + n);
     }
 }
@@ -274,18 +281,7 @@ void SurfaceBuilder::emit_closure(const KuhnSimplex& t, int axis, const std::arr
     }
     std::array<Index, kMaxDim + 1> v;
     kuhn_vertices(t, n - 1, v);
-    const bool flip = closure_flip(t, axis, hi_face, n);
-    std::array<uint32_t, kMaxDim> ids;
-    for (uint32_t p = first; p < last; ++p) {
-        for (int i = 0; i < n; ++i) {
-            const auto& e = closure_.vertices[static_cast<std::size_t>(p) * n + i];
-            uint64_t axes = 0;
-            for (int j = std::min(e[0], e[1]); j < std::max(e[0], e[1]); ++j) axes |= uint64_t{1} << t.perm[j];
-            ids[i] = point_vertex(v, f, e[0], e[1], axes);
-        }
-        if (flip) std::swap(ids[0], ids[1]);
-        chain_.simplices.insert(chain_.simplices.end(), ids.begin(), ids.begin() + n);
-    }
+    append_pieces(closure_, first, last, t, v, f, closure_flip(t, axis, hi_face, n));
 }
 
 void SurfaceBuilder::close_faces() {
