@@ -361,30 +361,30 @@ __attribute__((target("avx2"), always_inline)) inline uint32_t load_block_avx2(c
     return static_cast<uint32_t>(_mm_cvtsi128_si32(m4));
 }
 
-// Load + arithmetic of pass 1, compiled for AVX2 and for AVX-512.
-__attribute__((target("avx2,fma"))) uint32_t arith_avx2(const std::byte* base, std::size_t stride, int n,
-                                                        Pass1Block& out) {
+// Load + arithmetic of pass 1: one body, inlined into the AVX2 and the
+// AVX-512 entry points below (each compiles it for its own vector width).
+__attribute__((target("avx2,fma"), always_inline)) inline uint32_t arith_body(const std::byte* base,
+                                                                             std::size_t stride, int n,
+                                                                             Pass1Block& out) {
     Coords co;
     const uint32_t mx = load_block_avx2(base, stride, n, co);
     if (mx >= 0x7F800000u) return mx;
     alignas(64) double t2[kB], t[kB];
     pass1_arith<true>(co, out, t2);
+    // (256-bit also under AVX-512: GCC 12 warns falsely inside _mm512_sqrt_pd.)
     for (int i = 0; i < kB; i += 4) _mm256_store_pd(t + i, _mm256_sqrt_pd(_mm256_load_pd(t2 + i)));
     out.area2 = lane_sum(t);
     return mx;
 }
 
+__attribute__((target("avx2,fma"))) uint32_t arith_avx2(const std::byte* base, std::size_t stride, int n,
+                                                        Pass1Block& out) {
+    return arith_body(base, stride, n, out);
+}
+
 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,prefer-vector-width=512"))) uint32_t arith_avx512(
     const std::byte* base, std::size_t stride, int n, Pass1Block& out) {
-    Coords co;
-    const uint32_t mx = load_block_avx2(base, stride, n, co);
-    if (mx >= 0x7F800000u) return mx;
-    alignas(64) double t2[kB], t[kB];
-    pass1_arith<true>(co, out, t2);
-    // (256-bit: GCC 12 warns falsely inside _mm512_sqrt_pd.)
-    for (int i = 0; i < kB; i += 4) _mm256_store_pd(t + i, _mm256_sqrt_pd(_mm256_load_pd(t2 + i)));
-    out.area2 = lane_sum(t);
-    return mx;
+    return arith_body(base, stride, n, out);
 }
 
 // The vertices of triangle r (r: its first coordinate) at bytes [0,12),
