@@ -127,6 +127,14 @@ def inmem_of(tool, out):
     except Exception:
         return None
 
+def field_of(out, i):
+    """polyvol-harness only: field i (5: READ_SECONDS, 6: NAIVE_SECONDS), None when absent or negative."""
+    try:
+        x = float(out.split()[i])
+        return x if x >= 0 else None
+    except Exception:
+        return None
+
 def load_of(tool, out):
     """The harnesses' LOAD_SECONDS: reading into memory plus one volume call."""
     try:
@@ -196,8 +204,11 @@ print()
 print("Loading (read into memory + one volume call) and the in-memory volume call, each tool's own")
 print("harness (medians over runs of the in-process figures); ratio = fastest peer / polyvol.")
 print()
-print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio |")
-print("|---|---|---|---|---|---|---|---|---|---|")
+print("read floor / naive det: the same arrays on all cores, read and added (no determinant) / det summed in")
+print("plain double (bench/peers/polyvol_volume.cpp); 5x the fastest peer needs a call below fastest/5.")
+print()
+print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | fastest/5 s | read floor s | naive det s |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for tag, ext, res in rows:
     h = res.get("polyvol-harness")
     if h is None:
@@ -213,7 +224,8 @@ for tag, ext, res in rows:
     fmt = lambda x: "" if x is None else f"{x:.4f}"
     print(f"| {tag} | {ext} | {fmt(pl)} | {fmt(loads.get('cgal'))} | {fmt(loads.get('vtk'))} | "
           f"{'' if not (fl and pl) else f'{fl / pl:.1f}'} | {fmt(pc)} | {fmt(calls.get('cgal'))} | {fmt(calls.get('vtk'))} | "
-          f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} |")
+          f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} | {fmt(fc / 5 if fc else None)} | "
+          f"{fmt(med(lambda n, o: field_of(o, 5), 'polyvol-harness', h))} | {fmt(med(lambda n, o: field_of(o, 6), 'polyvol-harness', h))} |")
 
 print()
 print("## in-memory volume call, polyvol (polyvol_bench)")

@@ -1,13 +1,44 @@
 // polyvol through the same harness as the peers (bench/compare.sh): read the
 // file into memory (read_mesh_file), one correctly rounded signed_volume,
 // then the median of 5 more. Prints, like peer_cgal and peer_vtk:
-//   polyvol VOLUME LOAD_SECONDS VOLUME_SECONDS(median of 5) FACES
+//   polyvol VOLUME LOAD_SECONDS VOLUME_SECONDS(median of 5) FACES READ_SECONDS NAIVE_SECONDS
 // LOAD_SECONDS covers reading and the first volume call, as the peers' do.
+//
+// READ_SECONDS and NAIVE_SECONDS are floors for any in-memory volume call on
+// this machine, over the same arrays, on all cores (oneTBB, as polyvol):
+// READ reads each face's three indices and nine coordinates and adds them
+// (no determinant), NAIVE sums det(a, b, c) in plain double (no guarantee
+// at all). A method that must look at every triangle cannot beat READ.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/partitioner.h>
+
 #include <cstdio>
+#include <functional>
 
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "timing.hpp"
+
+namespace {
+
+// Σ over triangles of f(a, b, c), in parallel chunks of 8192 triangles.
+template <class F>
+double sum_triangles(const polyvol::MeshView& mesh, F&& f) {
+    const double* pos = mesh.positions.data();
+    const uint32_t* idx = mesh.indices.data();
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, mesh.face_count(), 8192), 0.0,
+        [&](const tbb::blocked_range<std::size_t>& r, double s) {
+            for (std::size_t t = r.begin(); t < r.end(); ++t)
+                s += f(pos + 3 * std::size_t{idx[3 * t]}, pos + 3 * std::size_t{idx[3 * t + 1]},
+                       pos + 3 * std::size_t{idx[3 * t + 2]});
+            return s;
+        },
+        std::plus<double>(), tbb::simple_partitioner());
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     if (argc != 2) return 1;
@@ -23,6 +54,28 @@ int main(int argc, char** argv) {
     double v = polyvol::signed_volume(mesh);
     const double load = peers::seconds_since(t0);
     const double vol_s = peers::median_seconds(5, [&] { return polyvol::signed_volume(mesh); }, &v);
-    std::printf("polyvol %.17g %.6f %.6f %zu\n", v, load, vol_s, mesh.face_count());
+    double floor_value = 0, naive_value = 0;
+    double read_s = -1, naive_s = -1;
+    if (mesh.all_triangles()) {
+        read_s = peers::median_seconds(
+            5,
+            [&] {
+                return sum_triangles(mesh, [](const double* a, const double* b, const double* c) {
+                    return ((a[0] + a[1]) + (a[2] + b[0])) + ((b[1] + b[2]) + (c[0] + c[1])) + c[2];
+                });
+            },
+            &floor_value);
+        naive_s = peers::median_seconds(
+            5,
+            [&] {
+                return sum_triangles(mesh, [](const double* a, const double* b, const double* c) {
+                           return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+                                  a[2] * (b[0] * c[1] - b[1] * c[0]);
+                       }) /
+                       6;
+            },
+            &naive_value);
+    }
+    std::printf("polyvol %.17g %.6f %.6f %zu %.6f %.6f\n", v, load, vol_s, mesh.face_count(), read_s, naive_s);
     return 0;
 }
