@@ -1,5 +1,9 @@
-// A small read-only wrapper over libzip for archives held in memory (3MF
-// packages, zipped AMF). Every error is a polyvol::ReadError naming the file.
+// A small read-only wrapper over minizip (zlib's contrib/minizip) for archives
+// held in memory (3MF packages, zipped AMF). Every error is a polyvol::ReadError
+// naming the file. minizip rather than libzip: it needs only zlib, where libzip
+// loads libcrypto, libbz2 and liblzma into every process that links polyvol.
+// minizip reads stored and deflate entries only, which is what 3MF and AMF
+// writers produce; other compression methods and encrypted entries are errors.
 //
 // Decompression is bounded: the bytes read from an archive, summed over all
 // entries read through one ZipArchive, may not exceed max_total_bytes()
@@ -9,14 +13,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "io/readers.hpp"
-
-struct zip;  // libzip's zip_t
 
 namespace polyvol::io {
 
@@ -35,6 +38,9 @@ public:
     uint64_t max_total_bytes() const { return limit_; }
 
     // Names of the file entries (directory entries left out), in archive order.
+    // Names are decoded as libzip did: the Info-ZIP Unicode Path extra field
+    // when it matches, else the stored bytes, converted from CP437 to UTF-8 when
+    // they are not flagged UTF-8 and do not look like UTF-8.
     std::vector<std::string> file_names() const;
 
     // The stored name of the entry called `entry`: exact match first, then
@@ -48,7 +54,8 @@ public:
     std::vector<std::byte> read(const std::string& entry);
 
 private:
-    ::zip* archive_ = nullptr;
+    struct Impl;  // the minizip handle (unzFile), its in-memory stream and the entry index
+    std::unique_ptr<Impl> impl_;
     std::string name_;
     uint64_t limit_ = 0;
     uint64_t used_ = 0;  // bytes decompressed so far

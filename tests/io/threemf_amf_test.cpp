@@ -1,6 +1,6 @@
 // 3MF and AMF readers: the corpus (manifest.json) and in-memory fixtures.
 #include <gtest/gtest.h>
-#include <zip.h>
+#include <minizip/zip.h>
 
 #include <algorithm>
 #include <cmath>
@@ -33,34 +33,52 @@ Bytes to_bytes(std::string_view s) {
     return b;
 }
 
-// A zip archive built in memory with libzip (deflate, the default).
+// A zip archive built in memory with minizip (deflate).
+struct ZipBuffer {
+    Bytes bytes;
+    uint64_t pos = 0;
+};
+voidpf ZCALLBACK zb_open(voidpf opaque, const void*, int) { return opaque; }
+uLong ZCALLBACK zb_read(voidpf, voidpf s, void* buf, uLong size) {
+    auto* z = static_cast<ZipBuffer*>(s);
+    const uint64_t n = std::min<uint64_t>(size, z->bytes.size() - std::min<uint64_t>(z->pos, z->bytes.size()));
+    if (n) std::memcpy(buf, z->bytes.data() + z->pos, n);
+    z->pos += n;
+    return static_cast<uLong>(n);
+}
+uLong ZCALLBACK zb_write(voidpf, voidpf s, const void* buf, uLong size) {
+    auto* z = static_cast<ZipBuffer*>(s);
+    if (z->pos + size > z->bytes.size()) z->bytes.resize(z->pos + size);
+    if (size) std::memcpy(z->bytes.data() + z->pos, buf, size);
+    z->pos += size;
+    return size;
+}
+ZPOS64_T ZCALLBACK zb_tell(voidpf, voidpf s) { return static_cast<ZipBuffer*>(s)->pos; }
+long ZCALLBACK zb_seek(voidpf, voidpf s, ZPOS64_T offset, int origin) {
+    auto* z = static_cast<ZipBuffer*>(s);
+    const uint64_t base = origin == ZLIB_FILEFUNC_SEEK_CUR ? z->pos
+                          : origin == ZLIB_FILEFUNC_SEEK_END ? z->bytes.size() : 0;
+    z->pos = base + offset;
+    return 0;
+}
+int ZCALLBACK zb_close(voidpf, voidpf) { return 0; }
+int ZCALLBACK zb_error(voidpf, voidpf) { return 0; }
+
 Bytes make_zip(const std::vector<std::pair<std::string, std::string>>& entries) {
-    zip_error_t err;
-    zip_error_init(&err);
-    zip_source_t* src = zip_source_buffer_create(nullptr, 0, 0, &err);
-    if (!src) throw std::runtime_error("zip_source_buffer_create");
-    zip_t* za = zip_open_from_source(src, ZIP_TRUNCATE, &err);
-    if (!za) throw std::runtime_error("zip_open_from_source");
-    zip_source_keep(src);
+    ZipBuffer buffer;
+    zlib_filefunc64_def io{zb_open, zb_read, zb_write, zb_tell, zb_seek, zb_close, zb_error, &buffer};
+    zipFile zf = zipOpen2_64("memory", APPEND_STATUS_CREATE, nullptr, &io);
+    if (!zf) throw std::runtime_error("zipOpen2_64");
     for (const auto& [name, data] : entries) {
-        zip_source_t* s = zip_source_buffer(za, data.data(), data.size(), 0);
-        if (!s || zip_file_add(za, name.c_str(), s, ZIP_FL_ENC_UTF_8) < 0)
-            throw std::runtime_error("zip_file_add");
+        zip_fileinfo info{};
+        if (zipOpenNewFileInZip64(zf, name.c_str(), &info, nullptr, 0, nullptr, 0, nullptr, Z_DEFLATED,
+                                  Z_DEFAULT_COMPRESSION, 0) != ZIP_OK ||
+            zipWriteInFileInZip(zf, data.data(), static_cast<unsigned>(data.size())) != ZIP_OK ||
+            zipCloseFileInZip(zf) != ZIP_OK)
+            throw std::runtime_error("zip entry " + name);
     }
-    if (zip_close(za) < 0) throw std::runtime_error("zip_close");
-    Bytes out;
-    if (zip_source_open(src) < 0) throw std::runtime_error("zip_source_open");
-    std::byte buf[4096];
-    for (;;) {
-        const zip_int64_t n = zip_source_read(src, buf, sizeof buf);
-        if (n < 0) throw std::runtime_error("zip_source_read");
-        if (n == 0) break;
-        out.insert(out.end(), buf, buf + n);
-    }
-    zip_source_close(src);
-    zip_source_free(src);
-    zip_error_fini(&err);
-    return out;
+    if (zipClose(zf, nullptr) != ZIP_OK) throw std::runtime_error("zipClose");
+    return std::move(buffer.bytes);
 }
 
 const std::string kRels =
@@ -537,6 +555,73 @@ TEST(ZipArchive, LimitAndLookup) {
         const ReadError e = expect_read_error([&] { za.read("3D/3dmodel.model"); });
         EXPECT_NE(e.message.find("decompression limit"), std::string::npos) << e.message;
     }
+}
+
+// One stored little-endian field of the local and of the central header of the
+// only entry of a one-entry archive (offsets from each header's signature).
+void patch_both(Bytes& z, std::size_t local_off, std::size_t central_off, uint32_t value, int width) {
+    const auto put = [&](std::size_t at) {
+        for (int i = 0; i < width; ++i) z[at + i] = static_cast<std::byte>((value >> (8 * i)) & 0xFF);
+    };
+    put(local_off);
+    const std::string_view text(reinterpret_cast<const char*>(z.data()), z.size());
+    const std::size_t central = text.find("PK\x01\x02");
+    ASSERT_NE(central, std::string_view::npos);
+    put(central + central_off);
+}
+
+TEST(ZipArchive, DamagedAndUnsupportedEntries) {
+    const std::string text = "hello hello hello hello";
+    const auto error_of = [](const Bytes& z) {
+        polyvol::io::ZipArchive za(z, "d.zip");
+        const ReadError e = expect_read_error([&] { za.read("a.txt"); });
+        EXPECT_EQ(e.file, "d.zip");
+        return e.message;
+    };
+    {
+        const Bytes z = make_zip({{"a.txt", text}});
+        polyvol::io::ZipArchive za(z, "d.zip");
+        const std::vector<std::byte> got = za.read("a.txt");
+        EXPECT_EQ(std::string(reinterpret_cast<const char*>(got.data()), got.size()), text);
+    }
+    Bytes z = make_zip({{"a.txt", text}});
+    patch_both(z, 6, 8, 1, 2);  // flag bit 0
+    EXPECT_NE(error_of(z).find("encrypted"), std::string::npos) << error_of(z);
+
+    z = make_zip({{"a.txt", text}});
+    patch_both(z, 8, 10, 12, 2);  // bzip2
+    EXPECT_NE(error_of(z).find("compression method 12 (bzip2), which is not supported"), std::string::npos)
+        << error_of(z);
+
+    z = make_zip({{"a.txt", text}});
+    patch_both(z, 14, 16, 0x12345678, 4);  // CRC
+    EXPECT_NE(error_of(z).find("CRC mismatch"), std::string::npos) << error_of(z);
+
+    z = make_zip({{"a.txt", text}});
+    patch_both(z, 22, 24, 1000, 4);  // claims more than it holds
+    EXPECT_NE(error_of(z).find("corrupt"), std::string::npos) << error_of(z);
+
+    z = make_zip({{"a.txt", text}});
+    z[30 + 5] = std::byte{0xFF};  // the deflate data (after the 30-byte local header and the name)
+    z[30 + 6] = std::byte{0xFF};
+    EXPECT_NE(error_of(z).find("cannot decompress zip entry 'a.txt'"), std::string::npos) << error_of(z);
+
+    z = make_zip({{"a.txt", text}});
+    const ReadError e = expect_read_error([&] { polyvol::io::ZipArchive za(Bytes(z.begin(), z.end() - 5), "t.zip"); });
+    EXPECT_NE(e.message.find("not a readable zip archive"), std::string::npos) << e.message;
+    const Bytes one = make_zip({{"a.txt", text}});
+    polyvol::io::ZipArchive missing(one, "m.zip");
+    EXPECT_NE(expect_read_error([&] { missing.read("b.txt"); }).message.find("'b.txt' is missing"),
+              std::string::npos);
+}
+
+TEST(ZipArchive, Cp437NamesAreDecodedToUtf8) {
+    // No UTF-8 flag and not UTF-8: CP437, as libzip read it (0x81 is u-umlaut).
+    const Bytes z = make_zip({{"3D/m\x81" "de.model", "x"}, {"dir/", ""}, {"plain.txt", "y"}});
+    polyvol::io::ZipArchive za(z, "n.zip");
+    EXPECT_EQ(za.file_names(), (std::vector<std::string>{"3D/m\xC3\xBC" "de.model", "plain.txt"}));
+    EXPECT_EQ(za.find("3d/M\xC3\xBC" "DE.MODEL"), std::optional<std::string>("3D/m\xC3\xBC" "de.model"));
+    EXPECT_EQ(za.read("3D/m\xC3\xBC" "de.model").size(), 1u);
 }
 
 // ---------------------------------------------------------------- numbers
