@@ -120,6 +120,7 @@ int run(Command command, const Common& c) {
 int main(int argc, char** argv) {
     CLI::App app{"polyvol: exact volume, area, centroid, inertia and topology of polyhedral meshes.\n"
                  "Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid for the request."};
+    app.set_version_flag("--version", "polyvol " POLYVOL_VERSION);
     app.require_subcommand(1);
     Common volume_opts, measure_opts, check_opts;
     auto* volume = app.add_subcommand("volume", "Volume, area and centroid, one row per file");

@@ -181,6 +181,9 @@ TEST(Cli, HelpAndUsageErrors) {
         EXPECT_EQ(r.code, 0) << sub;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub << r.out;
     }
+    const CliRun v = polyvol("--version");
+    EXPECT_EQ(v.code, 0);
+    EXPECT_EQ(v.out, "polyvol " POLYVOL_VERSION "\n");
     EXPECT_EQ(polyvol("").code, 1);
     EXPECT_EQ(polyvol("volume").code, 1);
     EXPECT_EQ(polyvol("volume --method nonsense x.stl").code, 1);
