@@ -41,7 +41,8 @@
 // Fingerprint: see soup.hpp. Arithmetic mod p = 2^31 - 1 in 64-bit words,
 // reduced lazily (2^31 ≡ 1): differences are formed as x + p - y (<= 2p <
 // 2^32), products (< 2^64) folded as (x mod 2^31) + (x >> 31). Vectorised:
-// 32 x 32 -> 64-bit multiplies on the even and the odd 32-bit lanes apart.
+// 32 x 32 -> 64-bit multiplies on the even and the odd 32-bit lanes apart
+// (with AVX-512 IFMA, the last product in 52-bit halves: Fingerprint512).
 #include "polyvol/soup.hpp"
 
 #include <tbb/blocked_range.h>
@@ -268,7 +269,7 @@ void pass1_arith_base(const Coords& c, Pass1Block& out) {
     out.area2 = lane_sum(t);
 }
 
-// The whole of pass 1 for one block, portable (see pass1_fast).
+// The whole of pass 1 for one block, portable (see pass1_avx512).
 uint32_t pass1_portable(const std::byte* base, std::size_t stride, int n, const Keys& key, Pass1Block& out,
                         uint64_t fp[kFpLanes]) {
     Words w;
@@ -293,10 +294,10 @@ uint32_t pass1_portable(const std::byte* base, std::size_t stride, int n, const 
 }
 
 #if POLYVOL_SOUP_X86
-// ---- x86 kernels: AVX2 + FMA + AES-NI, and AVX-512 + VAES where present ----
+// ---- x86 kernels: AVX2 + FMA + AES-NI, and AVX-512 + IFMA + VAES where present ----
 
 // Instruction sets, decided once: 0 portable, 1 AVX2 + FMA + AES-NI,
-// 2 that and AVX-512 (F, VL, DQ, BW) + VAES.
+// 2 that and AVX-512 (F, VL, DQ, BW, IFMA) + VAES.
 std::atomic<int> g_level_cap{-1};
 
 int isa_level() {
@@ -305,7 +306,8 @@ int isa_level() {
         if (!(__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("aes")))
             return 0;
         if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("vaes"))
+            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
+            __builtin_cpu_supports("avx512ifma") && __builtin_cpu_supports("vaes"))
             return 2;
         return 1;
     }();
@@ -361,30 +363,18 @@ __attribute__((target("avx2"), always_inline)) inline uint32_t load_block_avx2(c
     return static_cast<uint32_t>(_mm_cvtsi128_si32(m4));
 }
 
-// Load + arithmetic of pass 1: one body, inlined into the AVX2 and the
-// AVX-512 entry points below (each compiles it for its own vector width).
-__attribute__((target("avx2,fma"), always_inline)) inline uint32_t arith_body(const std::byte* base,
-                                                                             std::size_t stride, int n,
-                                                                             Pass1Block& out) {
+// Load + arithmetic of pass 1 with AVX2 (pass1_avx512 below does the same
+// with AVX-512, register-resident).
+__attribute__((target("avx2,fma"))) uint32_t arith_avx2(const std::byte* base, std::size_t stride, int n,
+                                                        Pass1Block& out) {
     Coords co;
     const uint32_t mx = load_block_avx2(base, stride, n, co);
     if (mx >= 0x7F800000u) return mx;
     alignas(64) double t2[kB], t[kB];
     pass1_arith<true>(co, out, t2);
-    // (256-bit also under AVX-512: GCC 12 warns falsely inside _mm512_sqrt_pd.)
     for (int i = 0; i < kB; i += 4) _mm256_store_pd(t + i, _mm256_sqrt_pd(_mm256_load_pd(t2 + i)));
     out.area2 = lane_sum(t);
     return mx;
-}
-
-__attribute__((target("avx2,fma"))) uint32_t arith_avx2(const std::byte* base, std::size_t stride, int n,
-                                                        Pass1Block& out) {
-    return arith_body(base, stride, n, out);
-}
-
-__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,prefer-vector-width=512"))) uint32_t arith_avx512(
-    const std::byte* base, std::size_t stride, int n, Pass1Block& out) {
-    return arith_body(base, stride, n, out);
 }
 
 // The vertices of triangle r (r: its first coordinate) at bytes [0,12),
@@ -467,63 +457,258 @@ __attribute__((target("avx2,aes"))) void fingerprint_aesni(const std::byte* base
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wuninitialized"
-// The same with AVX-512 and VAES: four triangles per 512-bit vector, four
-// vertices per AES instruction (identical values to fingerprint_aesni).
-__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2"), always_inline)) inline __m512i fold16(__m512i x) {
+
+// ---- AVX-512 + IFMA + VAES: the whole of pass 1 for a block in one kernel ----
+
+#define POLYVOL_AVX512 "avx512f,avx512vl,avx512dq,avx512bw,avx512ifma,avx2,fma,aes,vaes"
+
+// x ≡ fold(x) (mod p) on 64-bit lanes.
+__attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512i fold16(__m512i x) {
     return _mm512_add_epi64(_mm512_and_si512(x, _mm512_set1_epi64(static_cast<long long>(kP))), _mm512_srli_epi64(x, 31));
 }
 
 // A 128-bit round key in all four 128-bit quarters.
-__attribute__((target("avx512f"), always_inline)) inline __m512i key512(const uint64_t k[2]) {
-    const auto lo = static_cast<long long>(k[0]), hi = static_cast<long long>(k[1]);
-    return _mm512_set_epi64(hi, lo, hi, lo, hi, lo, hi, lo);
+__attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512i key512(const uint64_t k[2]) {
+    return _mm512_broadcast_i32x4(_mm_load_si128(reinterpret_cast<const __m128i*>(k)));
 }
 
-__attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,aes,vaes"))) void fingerprint_vaes512(
-    const std::byte* base, std::size_t stride, int n, const Keys& key, uint64_t fp[kFpLanes]) {
-    const __m512i k0 = key512(key.aes[0]);
-    const __m512i k1 = key512(key.aes[1]);
-    const __m512i k2 = key512(key.aes[2]);
-    const __m512i k3 = key512(key.aes[3]);
-    const __m512i P = _mm512_set1_epi32(static_cast<int>(kP));
-    __m512i even = _mm512_setzero_si512(), odd = _mm512_setzero_si512();
-    for (int i = 0; i < n; i += 4) {
-        __m128i v[4][3];
-        for (int h = 0; h < 4; ++h) {
-            if (i + h < n) {
-                vertices(base + static_cast<std::size_t>(i + h) * stride, v[h][0], v[h][1], v[h][2]);
-            } else {
-                v[h][0] = v[h][1] = v[h][2] = v[0][0];  // a degenerate triangle adds 0
+// Vertex v (v = 0, 1, 2) of the four triangles at r[0..3] (first
+// coordinate of each) in the four 128-bit quarters, canonical (top word 0,
+// -0.0 as +0.0) and whitened with k0 (x ^ k0). words: 0x7777 (the three
+// coordinates of each quarter), without the quarters that are to hold the
+// point 0. Vertex 2 is loaded from bytes [20, 36) and shifted: no load
+// leaves [0, 36).
+template <int v>
+__attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512i whitened_vertices(const std::byte* const r[4],
+                                                                                       __mmask16 words, __m512i k0) {
+    constexpr int off = v < 2 ? 12 * v : 20;
+    __m512i x = _mm512_castsi128_si512(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r[0] + off)));
+    x = _mm512_inserti32x4(x, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[1] + off)), 1);
+    x = _mm512_inserti32x4(x, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[2] + off)), 2);
+    x = _mm512_inserti32x4(x, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[3] + off)), 3);
+    if constexpr (v == 2) x = _mm512_bsrli_epi128(x, 4);
+    // Words kept: those in `words`, unless -0.0; the others are 0, whitened: k0.
+    const __mmask16 keep = _mm512_mask_cmpneq_epi32_mask(words, x, _mm512_set1_epi32(static_cast<int>(0x80000000u)));
+    return _mm512_mask_xor_epi32(k0, keep, x, k0);
+}
+
+// The fingerprint with VAES: four triangles per 512-bit vector, four
+// vertices per AES instruction (the same hash values as fingerprint_aesni).
+// The last multiplication of each Vandermonde product uses IFMA's 52-bit
+// multiplies, the product's bits 0..51 and 52..103 summed apart (2^52 ≡ 2^21).
+// Bounds: hashes h <= p; d = h_y + (p - h_x) <= 2p < 2^32; e = fold(d1 d2) <
+// 2^31 + 2^33 < 2^34 (d1 d2 < 2^64); e d3 < 2^66, so its low 52 bits are
+// < 2^52 and its high part < 2^14; over the 8 steps of a block the sums
+// stay below 2^55 and 2^17, and lo + 2^21 hi < 2^56 per 64-bit element.
+struct Fingerprint512 {
+    __m512i k0, k1, k2, k3;
+    __m512i even_lo, even_hi, odd_lo, odd_hi;
+
+    __attribute__((target(POLYVOL_AVX512), always_inline)) inline explicit Fingerprint512(const Keys& key)
+        : k0(key512(key.aes[0])), k1(key512(key.aes[1])), k2(key512(key.aes[2])), k3(key512(key.aes[3])),
+          even_lo(_mm512_setzero_si512()), even_hi(even_lo), odd_lo(even_lo), odd_hi(even_lo) {}
+
+    // Four triangles (r: their first coordinates; see whitened_vertices for words).
+    __attribute__((target(POLYVOL_AVX512), always_inline)) inline void add4(const std::byte* const r[4],
+                                                                             __mmask16 words) {
+        __m512i w[3] = {whitened_vertices<0>(r, words, k0), whitened_vertices<1>(r, words, k0),
+                        whitened_vertices<2>(r, words, k0)};
+        for (__m512i& x : w) x = _mm512_aesenc_epi128(_mm512_aesenc_epi128(_mm512_aesenc_epi128(x, k1), k2), k3);
+        // The hashes h = w & p, and p - h = ~w & p.
+        const __m512i P = _mm512_set1_epi32(static_cast<int>(kP));
+        const __m512i hb = _mm512_and_si512(w[1], P), hc = _mm512_and_si512(w[2], P);
+        const __m512i na = _mm512_andnot_si512(w[0], P), nb = _mm512_andnot_si512(w[1], P);
+        const __m512i d1 = _mm512_add_epi32(hb, na);
+        const __m512i d2 = _mm512_add_epi32(hc, na);
+        const __m512i d3 = _mm512_add_epi32(hc, nb);
+        // Even and odd 32-bit lanes apart.
+        const __m512i e = fold16(_mm512_mul_epu32(d1, d2));
+        const __m512i o = fold16(_mm512_mul_epu32(_mm512_srli_epi64(d1, 32), _mm512_srli_epi64(d2, 32)));
+        const __m512i d3e = _mm512_and_si512(d3, _mm512_set1_epi64(0xFFFFFFFFll)), d3o = _mm512_srli_epi64(d3, 32);
+        even_lo = _mm512_madd52lo_epu64(even_lo, e, d3e);
+        even_hi = _mm512_madd52hi_epu64(even_hi, e, d3e);
+        odd_lo = _mm512_madd52lo_epu64(odd_lo, o, d3o);
+        odd_hi = _mm512_madd52hi_epu64(odd_hi, o, d3o);
+    }
+
+    __attribute__((target(POLYVOL_AVX512), always_inline)) inline void finish(uint64_t fp[kFpLanes]) const {
+        alignas(64) uint64_t ev[8], od[8];
+        _mm512_store_si512(ev, _mm512_add_epi64(even_lo, _mm512_slli_epi64(even_hi, 21)));
+        _mm512_store_si512(od, _mm512_add_epi64(odd_lo, _mm512_slli_epi64(odd_hi, 21)));
+        // 64-bit element j is lane 2 (j mod 2) (ev) or 2 (j mod 2) + 1 (od) of a triangle.
+        fp[0] = reduce((ev[0] + ev[2]) + (ev[4] + ev[6]));
+        fp[1] = reduce((od[0] + od[2]) + (od[4] + od[6]));
+        fp[2] = reduce((ev[1] + ev[3]) + (ev[5] + ev[7]));
+        fp[3] = reduce((od[1] + od[3]) + (od[5] + od[7]));
+    }
+};
+
+// Σ of each of eight vectors, in lane_sum8's order: {lane_sum8(v[0]), ..., lane_sum8(v[7])}.
+__attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512d lane_sums8(const __m512d v[8]) {
+    // [a0+a1, b0+b1, a2+a3, b2+b3, a4+a5, b4+b5, a6+a7, b6+b7] for the pairs (a, b).
+    __m512d t[4];
+    for (int j = 0; j < 4; ++j)
+        t[j] = _mm512_add_pd(_mm512_unpacklo_pd(v[2 * j], v[2 * j + 1]), _mm512_unpackhi_pd(v[2 * j], v[2 * j + 1]));
+    // [a0..3, b0..3, a4..7, b4..7, c0..3, d0..3, c4..7, d4..7] for the quadruples (a, b, c, d).
+    __m512d u[2];
+    for (int j = 0; j < 2; ++j)
+        u[j] = _mm512_add_pd(_mm512_shuffle_f64x2(t[2 * j], t[2 * j + 1], 0x88),
+                             _mm512_shuffle_f64x2(t[2 * j], t[2 * j + 1], 0xDD));
+    return _mm512_add_pd(_mm512_shuffle_f64x2(u[0], u[1], 0x88), _mm512_shuffle_f64x2(u[0], u[1], 0xDD));
+}
+
+// Floats 4 (imm >> 4) .. + 3 of a's low half and b's low half, widened.
+template <int imm>
+__attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512d column(__m512 a, __m512 b) {
+    return _mm512_cvtps_pd(_mm256_permute2f128_ps(_mm512_castps512_ps256(a), _mm512_castps512_ps256(b), imm));
+}
+
+// two_sum(a, b) on eight lanes.
+__attribute__((target(POLYVOL_AVX512), always_inline)) inline void two_sum8(__m512d a, __m512d b, __m512d& s,
+                                                                              __m512d& e) {
+    s = _mm512_add_pd(a, b);
+    const __m512d bb = _mm512_sub_pd(s, a);
+    e = _mm512_add_pd(_mm512_sub_pd(a, _mm512_sub_pd(s, bb)), _mm512_sub_pd(b, bb));
+}
+
+// The whole of pass 1 for one block (see pass1_portable). The arithmetic is
+// pass1_arith's, operation for operation and lane for lane (the same bits):
+// the block in four groups of eight triangles, each group's coordinates in
+// nine registers (lane j of group g is triangle 8 g + j, which is lane j of
+// the per-block sums), nothing stored in between.
+template <bool kFull>  // kFull: n == kB
+__attribute__((target(POLYVOL_AVX512), always_inline)) inline uint32_t pass1_avx512_body(
+    const std::byte* base, std::size_t stride, int n, const Keys& key, Pass1Block& out, uint64_t fp[kFpLanes]) {
+    const __m512d neg = _mm512_set1_pd(-0.0);
+    const __m512i col8_index = _mm512_setr_epi32(8, 9, 10, 11, 24, 25, 26, 27, 8, 9, 10, 11, 24, 25, 26, 27);
+    Fingerprint512 fpr(key);
+    __m512 mx = _mm512_setzero_ps();
+    __m512d S = _mm512_setzero_pd(), E = S, M0 = S, M1 = S, M2 = S, AD = S, X = S, T = S;
+    for (int g = 0; g < kB / 8; ++g) {
+        const int i0 = 8 * g;
+        // Rows: the nine floats of triangle i0 + j in words 0..8 (zero past n).
+        __m512 row[8];
+        if (kFull) {
+            const std::byte* const r0 = base + static_cast<std::size_t>(i0) * stride;
+            for (int j = 0; j < 8; ++j) row[j] = _mm512_maskz_loadu_ps(0x1FF, r0 + static_cast<std::size_t>(j) * stride);
+            for (int q = 0; q < 8; q += 4) {
+                const std::byte* const r[4] = {r0 + static_cast<std::size_t>(q) * stride,
+                                               r0 + static_cast<std::size_t>(q + 1) * stride,
+                                               r0 + static_cast<std::size_t>(q + 2) * stride,
+                                               r0 + static_cast<std::size_t>(q + 3) * stride};
+                fpr.add4(r, 0x7777);
+            }
+        } else {
+            for (int j = 0; j < 8; ++j)
+                row[j] = i0 + j < n ? _mm512_maskz_loadu_ps(0x1FF, base + static_cast<std::size_t>(i0 + j) * stride)
+                                    : _mm512_setzero_ps();
+            // Triangles past n: all three corners the point 0 (degenerate: adds 0).
+            for (int q = i0; q < std::min(n, i0 + 8); q += 4) {
+                const std::byte* r[4];
+                for (int h = 0; h < 4; ++h) r[h] = base + static_cast<std::size_t>(std::min(q + h, n - 1)) * stride;
+                fpr.add4(r, static_cast<__mmask16>(n - q >= 4 ? 0x7777u : 0x7777u & ((1u << (4 * (n - q))) - 1)));
             }
         }
-        __m512i w[3];
-        for (int j = 0; j < 3; ++j) {
-            __m512i x = _mm512_zextsi128_si512(v[0][j]);
-            x = _mm512_inserti32x4(x, v[1][j], 1);
-            x = _mm512_inserti32x4(x, v[2][j], 2);
-            x = _mm512_inserti32x4(x, v[3][j], 3);
-            x = _mm512_aesenc_epi128(_mm512_xor_si512(x, k0), k1);
-            x = _mm512_aesenc_epi128(x, k2);
-            w[j] = _mm512_and_si512(_mm512_aesenc_epi128(x, k3), P);
+        // The largest |coordinate| (range 0xB: the operand of larger magnitude, its
+        // sign cleared; with a NaN operand the result differs between CPUs: NaN
+        // is detected below).
+        const __m512 m01 = _mm512_range_ps(row[0], row[1], 0xB), m23 = _mm512_range_ps(row[2], row[3], 0xB);
+        const __m512 m45 = _mm512_range_ps(row[4], row[5], 0xB), m67 = _mm512_range_ps(row[6], row[7], 0xB);
+        mx = _mm512_range_ps(mx, _mm512_range_ps(_mm512_range_ps(m01, m23, 0xB), _mm512_range_ps(m45, m67, 0xB), 0xB),
+                             0xB);
+        // Transposed within each 128-bit lane: lane l of u_k holds float 4 l + (k mod 4) of rows 4 (k / 4) .. + 3.
+        const __m512 t0 = _mm512_unpacklo_ps(row[0], row[1]), t1 = _mm512_unpackhi_ps(row[0], row[1]);
+        const __m512 t2 = _mm512_unpacklo_ps(row[2], row[3]), t3 = _mm512_unpackhi_ps(row[2], row[3]);
+        const __m512 t4 = _mm512_unpacklo_ps(row[4], row[5]), t5 = _mm512_unpackhi_ps(row[4], row[5]);
+        const __m512 t6 = _mm512_unpacklo_ps(row[6], row[7]), t7 = _mm512_unpackhi_ps(row[6], row[7]);
+        const __m512 u0 = _mm512_shuffle_ps(t0, t2, 0x44), u1 = _mm512_shuffle_ps(t0, t2, 0xEE);
+        const __m512 u2 = _mm512_shuffle_ps(t1, t3, 0x44), u3 = _mm512_shuffle_ps(t1, t3, 0xEE);
+        const __m512 u4 = _mm512_shuffle_ps(t4, t6, 0x44), u5 = _mm512_shuffle_ps(t4, t6, 0xEE);
+        const __m512 u6 = _mm512_shuffle_ps(t5, t7, 0x44), u7 = _mm512_shuffle_ps(t5, t7, 0xEE);
+        const __m512d ax = column<0x20>(u0, u4), ay = column<0x20>(u1, u5), az = column<0x20>(u2, u6);
+        const __m512d bx = column<0x20>(u3, u7), by = column<0x31>(u0, u4), bz = column<0x31>(u1, u5);
+        const __m512d cx = column<0x31>(u2, u6), cy = column<0x31>(u3, u7);
+        const __m512d cz = _mm512_cvtps_pd(_mm512_castps512_ps256(_mm512_permutex2var_ps(u0, col8_index, u4)));
+        // Volume: b × c from exact products, then a · (b × c) in double-double.
+        __m512d n0, e0, n1, e1, n2, e2;
+        two_sum8(_mm512_mul_pd(by, cz), _mm512_xor_pd(_mm512_mul_pd(bz, cy), neg), n0, e0);
+        two_sum8(_mm512_mul_pd(bz, cx), _mm512_xor_pd(_mm512_mul_pd(bx, cz), neg), n1, e1);
+        two_sum8(_mm512_mul_pd(bx, cy), _mm512_xor_pd(_mm512_mul_pd(by, cx), neg), n2, e2);
+        const __m512d P0 = _mm512_mul_pd(ax, n0), Q0 = _mm512_fmsub_pd(ax, n0, P0);
+        const __m512d P1 = _mm512_mul_pd(ay, n1), Q1 = _mm512_fmsub_pd(ay, n1, P1);
+        const __m512d P2 = _mm512_mul_pd(az, n2), Q2 = _mm512_fmsub_pd(az, n2, P2);
+        __m512d h1, g1, h, g2;
+        two_sum8(P0, P1, h1, g1);
+        two_sum8(h1, P2, h, g2);
+        const __m512d l = _mm512_add_pd(
+            _mm512_add_pd(_mm512_add_pd(g1, g2), _mm512_add_pd(_mm512_add_pd(Q0, Q1), Q2)),
+            _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(ax, e0), _mm512_mul_pd(ay, e1)), _mm512_mul_pd(az, e2)));
+        // First moments.
+        const __m512d d = _mm512_add_pd(h, l);
+        const __m512d ad = _mm512_abs_pd(d);
+        const __m512d m0 = _mm512_mul_pd(d, _mm512_add_pd(_mm512_add_pd(ax, bx), cx));
+        const __m512d m1 = _mm512_mul_pd(d, _mm512_add_pd(_mm512_add_pd(ay, by), cy));
+        const __m512d m2 = _mm512_mul_pd(d, _mm512_add_pd(_mm512_add_pd(az, bz), cz));
+        // Area.
+        const __m512d ux = _mm512_sub_pd(bx, ax), uy = _mm512_sub_pd(by, ay), uz = _mm512_sub_pd(bz, az);
+        const __m512d wx = _mm512_sub_pd(cx, ax), wy = _mm512_sub_pd(cy, ay), wz = _mm512_sub_pd(cz, az);
+        const __m512d p0 = _mm512_mul_pd(uy, wz), q0 = _mm512_mul_pd(uz, wy);
+        const __m512d p1 = _mm512_mul_pd(uz, wx), q1 = _mm512_mul_pd(ux, wz);
+        const __m512d p2 = _mm512_mul_pd(ux, wy), q2 = _mm512_mul_pd(uy, wx);
+        const __m512d f0 = _mm512_sub_pd(p0, q0), f1 = _mm512_sub_pd(p1, q1), f2 = _mm512_sub_pd(p2, q2);
+        const __m512d t = _mm512_sqrt_pd(
+            _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(f0, f0), _mm512_mul_pd(f1, f1)), _mm512_mul_pd(f2, f2)));
+        const __m512d x = _mm512_add_pd(_mm512_add_pd(_mm512_add_pd(_mm512_abs_pd(p0), _mm512_abs_pd(q0)),
+                                                      _mm512_add_pd(_mm512_abs_pd(p1), _mm512_abs_pd(q1))),
+                                        _mm512_add_pd(_mm512_abs_pd(p2), _mm512_abs_pd(q2)));
+        // Into the lanes: Sum2 for the volume, plain sums for the rest.
+        if (g == 0) {
+            S = h, E = l, M0 = m0, M1 = m1, M2 = m2, AD = ad, X = x, T = t;
+        } else {
+            __m512d ns, ne;
+            two_sum8(S, h, ns, ne);
+            S = ns;
+            E = _mm512_add_pd(E, _mm512_add_pd(ne, l));
+            M0 = _mm512_add_pd(M0, m0), M1 = _mm512_add_pd(M1, m1), M2 = _mm512_add_pd(M2, m2);
+            AD = _mm512_add_pd(AD, ad), X = _mm512_add_pd(X, x), T = _mm512_add_pd(T, t);
         }
-        const __m512i d1 = _mm512_add_epi32(_mm512_sub_epi32(w[1], w[0]), P);
-        const __m512i d2 = _mm512_add_epi32(_mm512_sub_epi32(w[2], w[0]), P);
-        const __m512i d3 = _mm512_add_epi32(_mm512_sub_epi32(w[2], w[1]), P);
-        const __m512i e = fold16(fold16(_mm512_mul_epu32(d1, d2)));
-        const __m512i o = fold16(fold16(_mm512_mul_epu32(_mm512_srli_epi64(d1, 32), _mm512_srli_epi64(d2, 32))));
-        even = _mm512_add_epi64(even, fold16(_mm512_mul_epu32(e, d3)));
-        odd = _mm512_add_epi64(odd, fold16(_mm512_mul_epu32(o, _mm512_srli_epi64(d3, 32))));
     }
-    alignas(64) uint64_t ev[8], od[8];
-    _mm512_store_si512(ev, even);
-    _mm512_store_si512(od, odd);
-    // 64-bit element j is lane 2 (j mod 2) (even) or 2 (j mod 2) + 1 (odd) of triangle j / 2.
-    fp[0] = reduce((ev[0] + ev[2]) + (ev[4] + ev[6]));
-    fp[1] = reduce((od[0] + od[2]) + (od[4] + od[6]));
-    fp[2] = reduce((ev[1] + ev[3]) + (ev[5] + ev[7]));
-    fp[3] = reduce((od[1] + od[3]) + (od[5] + od[7]));
+    // Magnitudes' bit patterns order as the magnitudes (inf above all finite ones).
+    const uint32_t m = _mm512_reduce_max_epu32(_mm512_castps_si512(mx));
+    if (m >= 0x7F800000u) return m;
+    const __m512d lanes[8] = {E, M0, M1, M2, AD, X, T, T};
+    alignas(64) double sums[8], s[kSumLanes];
+    _mm512_store_pd(sums, lane_sums8(lanes));
+    // A NaN coordinate makes one of the differences b - a, c - a NaN; each
+    // of the six is a factor of a product in X, so Σ X is then NaN (and it is
+    // finite when the coordinates are).
+    if (std::isnan(sums[5])) return 0x7FC00000u;
+    fpr.finish(fp);
+    _mm512_store_pd(s, S);
+    double vs = s[0], ve = sums[0];
+    for (int j = 1; j < kSumLanes; ++j) {
+        double ns, ne;
+        two_sum(vs, s[j], ns, ne);
+        vs = ns;
+        ve += ne;
+    }
+    out.vs = vs;
+    out.ve = ve;
+    for (int k = 0; k < 3; ++k) out.mom[k] = sums[1 + k];
+    out.abs_d = sums[4];
+    out.cross = sums[5];
+    out.area2 = sums[6];
+    return m;
 }
 
+__attribute__((target(POLYVOL_AVX512))) uint32_t pass1_avx512(const std::byte* base, std::size_t stride, int n,
+                                                                const Keys& key, Pass1Block& out,
+                                                                uint64_t fp[kFpLanes]) {
+    return n == kB ? pass1_avx512_body<true>(base, stride, n, key, out, fp)
+                   : pass1_avx512_body<false>(base, stride, n, key, out, fp);
+}
+
+#undef POLYVOL_AVX512
 #pragma GCC diagnostic pop
 #endif
 
@@ -608,15 +793,11 @@ struct SoupAccumulator::State {
             Pass1Block r;
             uint32_t mx;
 #if POLYVOL_SOUP_X86
-            if (const int level = isa_level(); level > 0) {
-                mx = level == 2 ? arith_avx512(base, t.stride, n, r) : arith_avx2(base, t.stride, n, r);
-                if (mx < 0x7F800000u) {
-                    if (level == 2) {
-                        fingerprint_vaes512(base, t.stride, n, keys, fp);
-                    } else {
-                        fingerprint_aesni(base, t.stride, n, keys, fp);
-                    }
-                }
+            if (const int level = isa_level(); level == 2) {
+                mx = pass1_avx512(base, t.stride, n, keys, r, fp);
+            } else if (level == 1) {
+                mx = arith_avx2(base, t.stride, n, r);
+                if (mx < 0x7F800000u) fingerprint_aesni(base, t.stride, n, keys, fp);
             } else
 #endif
             {

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <string>
@@ -23,6 +24,11 @@
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/soup.hpp"
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 namespace {
 
@@ -198,6 +204,99 @@ TEST(Soup, EveryKernelLevelGivesTheSameBits) {
     }
     measure::cap_soup_kernels(-1);
 }
+
+// Random triangles with repeated coordinates, ±0.0, subnormals and large
+// magnitudes, written with the given stride and offset.
+std::vector<std::byte> random_records(std::size_t n, std::size_t stride, std::size_t offset, unsigned seed) {
+    std::mt19937 rng(seed);
+    const float pool[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 3.25f, -7.75f, 1e-40f, -1e-40f, 1e30f, -2.5e-3f};
+    std::uniform_int_distribution<int> pick(0, 2 * static_cast<int>(std::size(pool)) - 1);
+    std::uniform_real_distribution<float> any(-100.0f, 100.0f);
+    std::vector<std::byte> out(stride * n);
+    for (std::size_t t = 0; t < n; ++t)
+        for (int k = 0; k < 9; ++k) {
+            const int i = pick(rng);
+            const float f = i < static_cast<int>(std::size(pool)) ? pool[i] : any(rng);
+            std::memcpy(&out[stride * t + offset + 4 * k], &f, 4);
+        }
+    return out;
+}
+
+TEST(Soup, EveryKernelLevelGivesTheSameBitsForEveryBlockTail) {
+    // 1 .. 70 triangles: every fill of the last block of 32 (and of its groups
+    // of 4 and 8), packed (stride 36) and in STL records; the fingerprints too.
+    for (const auto& [stride, offset] : {std::pair<std::size_t, std::size_t>{50, 12}, {36, 0}, {44, 8}}) {
+        for (std::size_t n = 1; n <= 70; ++n) {
+            SCOPED_TRACE(testing::Message() << "stride " << stride << ", " << n << " triangles");
+            const auto rec = random_records(n, stride, offset, static_cast<unsigned>(n));
+            const Float32Triangles t{rec.data(), n, stride, offset};
+            measure::cap_soup_kernels(-1);
+            const SoupResult best = soup_properties(t, 17);
+            for (int level : {0, 1, 2}) {
+                SCOPED_TRACE(level);
+                measure::cap_soup_kernels(level);
+                const SoupResult s = soup_properties(t, 17);
+                expect_same(best, s);
+                EXPECT_EQ(bits(s.first_moments_error_bound), bits(best.first_moments_error_bound));
+                if (level > 0) {
+                    EXPECT_EQ(s.fingerprint, best.fingerprint);
+                }
+            }
+        }
+    }
+    measure::cap_soup_kernels(-1);
+}
+
+TEST(Soup, EveryKernelLevelFlagsEveryNonFiniteCoordinate) {
+    const auto tri = sphere(10, 16, 1, 0);  // 288 triangles
+    const float bad[] = {std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN(),
+                         std::numeric_limits<float>::signaling_NaN(), std::numeric_limits<float>::infinity(),
+                         -std::numeric_limits<float>::infinity()};
+    for (int level : {0, 1, 2}) {
+        measure::cap_soup_kernels(level);
+        for (std::size_t t : {0u, 5u, 8u, 31u, 37u, 287u}) {
+            for (int k = 0; k < 9; ++k) {
+                for (float b : bad) {
+                    SCOPED_TRACE(testing::Message() << "level " << level << ", triangle " << t << ", coordinate " << k);
+                    auto rec = records_of(tri);
+                    std::memcpy(&rec[50 * t + 12 + 4 * k], &b, 4);
+                    const SoupResult s = soup_properties(stl_records(rec), 2);
+                    EXPECT_TRUE(s.nonfinite);
+                    EXPECT_FALSE(s.closed);
+                    EXPECT_TRUE(std::isnan(s.volume));
+                }
+            }
+        }
+    }
+    measure::cap_soup_kernels(-1);
+}
+
+#if defined(__linux__)
+TEST(Soup, NoKernelReadsPastTheCoordinates) {
+    // The last triangle's 36 bytes of coordinates end at an inaccessible page.
+    const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+    void* map = mmap(nullptr, 3 * page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    ASSERT_NE(map, MAP_FAILED);
+    auto* bytes = static_cast<std::byte*>(map);
+    ASSERT_EQ(mprotect(bytes + 2 * page, page, PROT_NONE), 0);
+    for (const auto& [stride, offset] : {std::pair<std::size_t, std::size_t>{50, 12}, {36, 0}}) {
+        for (std::size_t n : {1u, 31u, 32u, 45u}) {
+            const auto rec = random_records(n, stride, offset, 5);
+            // Triangle n - 1's coordinates occupy [offset + (n - 1) stride, + 36).
+            std::byte* data = bytes + 2 * page - (offset + (n - 1) * stride + 36);
+            std::memcpy(data, rec.data(), (n - 1) * stride + offset + 36);
+            const Float32Triangles t{data, n, stride, offset};
+            for (int level : {0, 1, 2}) {
+                SCOPED_TRACE(testing::Message() << "stride " << stride << ", " << n << " triangles, level " << level);
+                measure::cap_soup_kernels(level);
+                EXPECT_EQ(soup_properties(t, 3).triangles, n);
+            }
+        }
+    }
+    measure::cap_soup_kernels(-1);
+    munmap(map, 3 * page);
+}
+#endif
 
 TEST(Soup, WindowSizesAndOrderGiveIdenticalBits) {
     const auto tri = sphere(120, 200, 3.5, 17.25);  // 47600 triangles
