@@ -10,8 +10,10 @@
 //
 // How they are summed:
 //   filtered   — each term in double-double (or plain double for Accuracy::fast),
-//                blocks of 32 triangles summed in 4 lanes, each lane's result
-//                added to a superaccumulator. Returns the exact sum of those
+//                blocks of 32 triangles summed in lanes (volume alone in
+//                double-double: 8 lanes combined into one pair per block; the
+//                rest: 4 lanes), the lanes' results added to a
+//                superaccumulator. Returns the exact sum of those
 //                approximations and a rigorous bound on its distance to the
 //                exact sum (see cone.cpp for the error analysis).
 //   exact      — each term as an exact expansion (Shewchuk) added to the
@@ -60,6 +62,16 @@ struct ConeSums {
 // Filtered sums (needs Range::safe for the bound to hold).
 ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision);
 
+// filtered_sums(mesh, 1, Precision::double_double) with the range check:
+// safe is set to whether every coordinate of every vertex that some face
+// uses is in the safe range (the definition of Range::safe, applied to the
+// coordinates the sums read; vertices no face uses do not matter), checked
+// in the same pass. Without AVX-512 (where that check costs more than a
+// separate pass) safe is coordinate_range(mesh) == Range::safe instead:
+// stricter, and the caller's exact fallback gives the same results. When
+// safe is false the sums are meaningless.
+ConeSums filtered_volume(const MeshView& mesh, bool& safe);
+
 // Replaces sums[k] by the exact sum (bound 0) for every k with bit k of mask
 // set (needs Range::safe).
 void exact_sums(const MeshView& mesh, uint32_t mask, ConeSums& sums);
@@ -100,7 +112,12 @@ double filtered_bound(int k, Precision precision, double magnitude);
 void exact_block_sums(const TriangleBlock& b, uint32_t mask, exact::ExactSum* acc);
 
 // For tests: use the baseline kernels (no FMA: Dekker's two_prod) even on a
-// CPU with AVX2 + FMA.
+// CPU with AVX2 + FMA (on), or the best the CPU has again (off).
 void force_baseline_kernels(bool on);
+
+// For tests: the highest instruction-set level the kernels may use
+// (0: baseline, 1: AVX2 + FMA, 2: AVX-512; capped by the CPU). Every level
+// gives the same bits.
+void cap_kernel_level(int level);
 
 }  // namespace polyvol::measure::cone

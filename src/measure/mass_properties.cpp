@@ -186,20 +186,27 @@ std::optional<double> volume_decided(const ConeSums& sums) {
 }
 
 ConeResults cone_results(const MeshView& mesh, int count, Accuracy accuracy, double density) {
-    if (count == 1 && accuracy == Accuracy::correctly_rounded && density == 1 &&
-        coordinate_range(mesh) == Range::safe) {
-        // The common signed_volume call: no rationals needed.
-        ConeSums sums = filtered_sums(mesh, 1, Precision::double_double);
-        std::optional<double> v = volume_decided(sums);
-        if (!v) {
-            exact_sums(mesh, bit(kV), sums);
-            v = volume_decided(sums);
+    if (count == 1 && accuracy == Accuracy::correctly_rounded && density == 1) {
+        // The common signed_volume call: no rationals needed, and (with
+        // AVX-512) the range check in the same pass as the filtered sum. It
+        // looks at the coordinates that some face uses (the only ones any sum
+        // reads); a used coordinate outside the safe range (or not finite)
+        // sends the call down the general path below, which checks every
+        // coordinate and takes the big-integer path (or gives NaN) as before.
+        bool safe = false;
+        ConeSums sums = filtered_volume(mesh, safe);
+        if (safe) {
+            std::optional<double> v = volume_decided(sums);
+            if (!v) {
+                exact_sums(mesh, bit(kV), sums);
+                v = volume_decided(sums);
+            }
+            ConeResults out;
+            out.value = {*v, *v};
+            out.bound = {0.0, 0.0};
+            out.correctly_rounded = true;
+            return out;
         }
-        ConeResults out;
-        out.value = {*v, *v};
-        out.bound = {0.0, 0.0};
-        out.correctly_rounded = true;
-        return out;
     }
     const bool finite_density = std::isfinite(density);
     const Rational rho(finite_density ? density : 1.0);

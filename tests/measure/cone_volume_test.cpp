@@ -1,0 +1,278 @@
+// Tests of the double-double volume pass (measure/cone.cpp, volume_pass):
+// filtered_volume with its range check on the referenced coordinates,
+// filtered_volume_block, and signed_volume's fast path built on them. Every
+// instruction-set level (cap_kernel_level) and thread count must give the
+// same bits; coordinates outside the safe range on a used vertex must still
+// give the exact answer (big integers), and unused vertices must not matter.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <bit>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "cone_fixtures.hpp"
+#include "exact/rational.hpp"
+#include "measure/cone.hpp"
+#include "polyvol/measure.hpp"
+
+using namespace polyvol;
+using namespace polyvol::measure::cone;
+using polyvol::fixtures::q;
+namespace fx = polyvol::fixtures;
+
+namespace {
+
+mpq_class as_mpq(const exact::ExactSum& s) { return mpq_class(exact::Rational(s).get()); }
+double rnd(const mpq_class& x) { return exact::round_to_double(x.get_mpq_t()); }
+bool same(double a, double b) {
+    return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b) || (std::isnan(a) && std::isnan(b));
+}
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Whether the CPU runs the AVX-512 kernels (cone.cpp's condition).
+bool cpu_has_avx512() {
+#if defined(__x86_64__) && defined(__GNUC__)
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+           __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+    return false;
+#endif
+}
+
+// Restores the best kernels when a test ends (also on a failed assertion).
+struct LevelGuard {
+    ~LevelGuard() { cap_kernel_level(2); }
+};
+
+// Meshes with every shape of work: partial blocks, several parallel tasks,
+// polygon faces, the last vertex used early and late (the AVX2 gather leaves
+// such blocks to the scalar one), far from and around the origin.
+std::vector<Mesh> meshes() {
+    std::mt19937_64 rng(31);
+    std::vector<Mesh> ms;
+    ms.push_back(fx::unit_tetrahedron());
+    ms.push_back(fx::box(-1, -2, -3, 0.5, 4, 7, /*quads=*/true));
+    ms.push_back(fx::octahedron(3));
+    ms.push_back(fx::random_sphere(rng, 3, 1.0, {0, 0, 0}));
+    ms.push_back(fx::random_sphere(rng, 4, 1.0, {1e6, -2e6, 3e6}));
+    ms.push_back(fx::random_sphere(rng, 6, 1.0, {1e6, 0, 0}));  // 32768 triangles: several tasks
+    ms.push_back(fx::random_sphere(rng, 2, 1e-3, {1e8, 1e8, -1e8}));
+    ms.push_back(fx::random_sphere(rng, 3, 1e50, {0, 3e49, 0}));
+    // Faces in a random order and a count that is not a multiple of 32.
+    Mesh shuffled = fx::random_sphere(rng, 5, 2.0, {-7, 1e3, 0});
+    std::vector<std::size_t> order(shuffled.face_count());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), rng);
+    Mesh s2;
+    s2.positions = shuffled.positions;
+    for (std::size_t i = 0; i + 5 < order.size(); ++i) {
+        const std::size_t f = order[i];
+        s2.add_triangle(shuffled.indices[3 * f], shuffled.indices[3 * f + 1], shuffled.indices[3 * f + 2]);
+    }
+    ms.push_back(std::move(s2));
+    // A polygon mesh with long fans (several blocks per face).
+    Mesh fan;
+    for (int i = 0; i < 100; ++i) {
+        const double t = 2 * 3.141592653589793 * i / 100;
+        fan.add_vertex(std::cos(t) + 10, std::sin(t) - 3, 0.25 * i);
+    }
+    std::vector<uint32_t> face;
+    for (uint32_t i = 0; i < 100; ++i) face.push_back(i);
+    fan.add_face(face);
+    fan.add_face(face);
+    ms.push_back(std::move(fan));
+    return ms;
+}
+
+struct Volume {
+    mpq_class sum;
+    double bound;
+    std::size_t triangles;
+    bool safe;
+};
+
+Volume volume_of(const MeshView& m) {
+    bool safe = false;
+    const ConeSums s = filtered_volume(m, safe);
+    return {as_mpq(s.sum[kV]), s.bound[kV], s.triangles, safe};
+}
+
+}  // namespace
+
+TEST(ConeVolume, BoundHoldsAndSameBitsOnEveryLevelAndThreadCount) {
+    LevelGuard guard;
+    for (const Mesh& m : meshes()) {
+        const mpq_class ref = fx::reference_sums(m.view())[kV];
+        cap_kernel_level(2);
+        const Volume best = volume_of(m.view());
+        EXPECT_TRUE(best.safe);
+        EXPECT_EQ(best.triangles, m.view().triangle_count());
+        EXPECT_LE(abs(best.sum - ref), q(best.bound));
+        EXPECT_EQ(coordinate_range(m.view()), Range::safe);
+        for (int level : {0, 1, 2}) {
+            cap_kernel_level(level);
+            for (int threads : {1, 2, 3}) {
+                tbb::global_control gc(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+                const Volume v = volume_of(m.view());
+                EXPECT_EQ(v.sum, best.sum) << "level " << level << ", " << threads << " threads";
+                EXPECT_EQ(v.bound, best.bound) << "level " << level << ", " << threads << " threads";
+                EXPECT_EQ(v.triangles, best.triangles);
+                EXPECT_TRUE(v.safe);
+                // filtered_sums(.., 1, double_double) is the same pass.
+                const ConeSums f = filtered_sums(m.view(), 1, Precision::double_double);
+                EXPECT_EQ(as_mpq(f.sum[kV]), best.sum);
+                EXPECT_EQ(f.bound[kV], best.bound);
+                EXPECT_PRED2(same, signed_volume(m.view()), rnd(ref / 6));
+            }
+        }
+    }
+}
+
+TEST(ConeVolume, BlockKernelIsThePassOnOneBlock) {
+    // filtered_volume_block (measure/soup.cpp's pass 2) on one block gives
+    // the pass's sum, and its magnitude the pass's bound.
+    LevelGuard guard;
+    std::mt19937_64 rng(32);
+    const Mesh ms[] = {fx::octahedron(2), fx::random_sphere(rng, 1, 1.0, {5e5, 1, 2})};  // 8 and 32 triangles
+    for (const Mesh& m : ms) {
+        ASSERT_LE(m.face_count(), static_cast<std::size_t>(kBlockTriangles));
+        TriangleBlock b{};
+        b.n = static_cast<int>(m.face_count());
+        for (int i = 0; i < b.n; ++i)
+            for (int v = 0; v < 3; ++v)
+                for (int k = 0; k < 3; ++k)
+                    b.c[3 * v + k][i] = m.positions[3 * std::size_t{m.indices[3 * static_cast<std::size_t>(i) + v]} + k];
+        for (int level : {0, 1, 2}) {
+            cap_kernel_level(level);
+            exact::ExactSum sum, magnitude;
+            filtered_volume_block(b, sum, magnitude);
+            const Volume v = volume_of(m.view());
+            EXPECT_EQ(as_mpq(sum), v.sum) << "level " << level;
+            EXPECT_EQ(filtered_bound(kV, Precision::double_double, magnitude.round()), v.bound) << "level " << level;
+            EXPECT_LE(abs(as_mpq(sum) - fx::reference_sums(m.view())[kV]), q(v.bound));
+        }
+    }
+}
+
+TEST(ConeVolume, RangeCheckIsRangeSafeOnTheReferencedCoordinates) {
+    // One coordinate set to each boundary value, in every slot of the
+    // blocks (vertex role, axis, triangle): the pass's verdict is
+    // coordinate_range's. The triangles share no vertex (each coordinate is
+    // read once, in one slot) and fill one block and part of another.
+    LevelGuard guard;
+    std::mt19937_64 rng(33);
+    std::uniform_real_distribution<double> d(-4, 4);
+    Mesh base;
+    for (uint32_t t = 0; t < 40; ++t) {
+        for (int v = 0; v < 3; ++v) base.add_vertex(d(rng), d(rng), d(rng));
+        base.add_triangle(3 * t, 3 * t + 1, 3 * t + 2);
+    }
+    const double values[] = {0.0,
+                             -0.0,
+                             0x1p-160,
+                             -0x1p-160,
+                             std::nextafter(0x1p-160, 0.0),
+                             -std::nextafter(0x1p-160, 0.0),
+                             0x1p190,
+                             -0x1p190,
+                             std::nextafter(0x1p190, kInf),
+                             -std::nextafter(0x1p190, kInf),
+                             1e-320,
+                             DBL_MIN,
+                             DBL_MAX,
+                             -DBL_MAX,
+                             kInf,
+                             -kInf,
+                             kNaN,
+                             -kNaN};
+    for (double x : values) {
+        for (std::size_t slot = 0; slot < base.positions.size(); ++slot) {
+            Mesh m = base;
+            m.positions[slot] = x;
+            const bool expect = coordinate_range(m.view()) == Range::safe;
+            for (int level : {0, 1, 2}) {
+                cap_kernel_level(level);
+                EXPECT_EQ(volume_of(m.view()).safe, expect) << "x = " << x << ", slot " << slot << ", level " << level;
+            }
+        }
+    }
+    cap_kernel_level(2);
+    EXPECT_TRUE(volume_of(fx::box(0, 0, 0, 0x1p190, 0x1p-160, 1).view()).safe);
+    EXPECT_FALSE(volume_of(fx::box(0, 0, 0, 0x1p191, 1, 1).view()).safe);
+    EXPECT_FALSE(volume_of(fx::box(0, 0, 0, 0x1p-161, 1, 1).view()).safe);
+}
+
+TEST(ConeVolume, OutsideTheSafeRangeOnAUsedVertexIsStillExact) {
+    // The fused check sends these down the big-integer path: the exact
+    // volume rounded once, as before.
+    LevelGuard guard;
+    std::mt19937_64 rng(34);
+    std::vector<Mesh> ms;
+    ms.push_back(fx::random_sphere(rng, 2, 1e-200, {3e-200, 0, 0}));
+    ms.push_back(fx::random_sphere(rng, 2, 1e250, {0, 1e250, 0}));
+    Mesh mixed = fx::random_sphere(rng, 3, 1.0, {0, 0, 0});
+    mixed.positions[0] = 1e-300;  // used vertices
+    mixed.positions[3 * 100 + 1] = 1e200;
+    ms.push_back(std::move(mixed));
+    Mesh one = fx::random_sphere(rng, 4, 1.0, {1e6, 0, 0});
+    one.positions[3 * 501 + 2] = 0x1p-170;  // one coordinate below 2^-160
+    ms.push_back(std::move(one));
+    for (const Mesh& m : ms) {
+        ASSERT_EQ(coordinate_range(m.view()), Range::unsafe);
+        const double expect = rnd(fx::reference_sums(m.view())[kV] / 6);
+        for (int level : {0, 1, 2}) {
+            cap_kernel_level(level);
+            EXPECT_FALSE(volume_of(m.view()).safe);
+            EXPECT_PRED2(same, signed_volume(m.view()), expect) << "level " << level;
+        }
+    }
+    // A used NaN or infinity: NaN.
+    for (double bad : {kNaN, kInf, -kInf}) {
+        Mesh m = fx::unit_tetrahedron();
+        m.positions[7] = bad;
+        EXPECT_TRUE(std::isnan(signed_volume(m.view())));
+    }
+}
+
+TEST(ConeVolume, UnusedVerticesDoNotMatter) {
+    // Vertices no face uses enter no sum: NaN, infinite or out-of-range
+    // coordinates there change nothing. With AVX-512 the pass sees only used
+    // vertices (safe); below it the range check is coordinate_range's, which
+    // sees them (not safe: the exact path gives the same volume).
+    LevelGuard guard;
+    std::mt19937_64 rng(35);
+    const Mesh clean = fx::random_sphere(rng, 5, 1.0, {1e6, 1e6, 1e6});
+    const double expect = rnd(fx::reference_sums(clean.view())[kV] / 6);
+    ASSERT_PRED2(same, signed_volume(clean.view()), expect);
+    cap_kernel_level(2);
+    const Volume ref = volume_of(clean.view());
+    for (double bad : {kNaN, kInf, 1e300, 1e-300}) {
+        Mesh m = clean;
+        m.add_vertex(bad, 0, 1);
+        // An unused vertex in the middle: renumber so that vertex 7 is unused.
+        Mesh mid;
+        mid.positions = clean.positions;
+        mid.positions.insert(mid.positions.begin() + 21, {bad, bad, 0.5});
+        for (uint32_t i : clean.indices) mid.indices.push_back(i >= 7 ? i + 1 : i);
+        for (const Mesh* mm : {&m, &mid}) {
+            EXPECT_NE(coordinate_range(mm->view()), Range::safe);
+            for (int level : {0, 1, 2}) {
+                cap_kernel_level(level);
+                const Volume v = volume_of(mm->view());
+                EXPECT_EQ(v.safe, level == 2 && cpu_has_avx512()) << "bad " << bad << ", level " << level;
+                if (v.safe) {
+                    EXPECT_EQ(v.sum, ref.sum);
+                    EXPECT_EQ(v.bound, ref.bound);
+                }
+                EXPECT_PRED2(same, signed_volume(mm->view()), expect) << "bad " << bad << ", level " << level;
+            }
+        }
+    }
+}
