@@ -97,6 +97,14 @@ struct StlStreamOptions {
     // Read and call back on several threads at once (oneTBB). The callback
     // must then be thread-safe; windows arrive in no particular order.
     bool parallel = true;
+    // Map the file and hand out windows of the mapping (no copy), dropping
+    // each finished slab of slab_bytes from the process, so the resident set
+    // stays about threads x slab_bytes (the pages stay in the page cache).
+    // A file truncated by another process while mapped ends the process
+    // with SIGBUS; map = false reads with pread(2) into per-thread buffers
+    // instead and reports it as a ReadError (the offset where data stopped).
+    bool map = true;
+    std::size_t slab_bytes = std::size_t{4} << 20;
 };
 
 // records: whole 50-byte records; first_triangle: index of the first one.

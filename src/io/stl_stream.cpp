@@ -1,19 +1,25 @@
 // Streaming binary STL (polyvol/io.hpp): the records of a file too large to
 // hold, handed over window by window.
 //
-// How: pread(2) into one fixed buffer per thread (a window, ~200 KB by
-// default, so it stays in the core's L2 cache while the caller works on it),
-// windows spread over threads by oneTBB. Nothing else is allocated, so the
-// resident memory is about threads × window_bytes whatever the file size.
-// (mmap was measured too: faulting the pages in cost more than pread's copy
-// on the machine of docs/benchmarks.md, and its resident set grows with the
-// window unless pages are dropped; posix_fadvise(SEQUENTIAL) asks for
-// read-ahead when the file is not cached.)
+// How (default): the whole file is mapped once; slabs of ~4 MB go to threads
+// (oneTBB), each walks its slab window by window (~200 KB) and then drops
+// the slab's pages from the process (madvise DONTNEED: they stay in the page
+// cache, so the resident set stays about threads × slab_bytes whatever the
+// file size). No copy: with the page cache in large folios a fault maps many
+// pages at once, and pread's copy out of the cache was the largest single
+// cost of `polyvol volume` on an 8M-triangle file (docs/benchmarks.md).
+// Mapping each window on its own was measured slower than either (a new
+// mapping, faults and an unmap with its TLB shootdown per window).
+// Fallback (options.map = false, or when mmap fails): pread(2) into one
+// buffer per thread, which turns a file shrinking under us into a ReadError
+// instead of SIGBUS. posix_fadvise(SEQUENTIAL) asks for read-ahead when the
+// file is not cached.
 //
 // Detection is read_mesh_file's (detect.cpp), restricted to what decides
 // binary STL: gzip, zip and PLY content win over the size rule; then the
 // size must be 84 + 50 n, n the count at bytes 80..83.
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -23,7 +29,9 @@
 #include <tbb/partitioner.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -90,6 +98,51 @@ Fd open_file(const std::string& path) {
     return f;
 }
 
+// The records [0, n) through fn from a mapping of the whole file, windows of
+// per_window records grouped into slabs; false (nothing called) when the
+// file cannot be mapped.
+bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t per_window, const StlWindowFn& fn,
+                            const StlStreamOptions& options) {
+    if (file_bytes > std::numeric_limits<std::size_t>::max()) return false;
+    const auto size = static_cast<std::size_t>(file_bytes);
+    void* m = ::mmap(nullptr, size, PROT_READ, MAP_SHARED, fd, 0);
+    if (m == MAP_FAILED) return false;
+    struct Unmap {
+        void* p;
+        std::size_t len;
+        ~Unmap() { ::munmap(p, len); }
+    } unmap{m, size};
+    const auto* base = static_cast<const std::byte*>(m);
+    const uint64_t per_slab = per_window * std::max<uint64_t>(1, options.slab_bytes / (per_window * kRecord));
+    const uint64_t slabs = (n + per_slab - 1) / per_slab;
+    const auto page = static_cast<uint64_t>(::sysconf(_SC_PAGESIZE));
+
+    auto slab = [&](uint64_t s) {
+        const uint64_t first = s * per_slab, last = std::min(n, first + per_slab);
+        for (uint64_t w = first; w < last; w += per_window) {
+            const uint64_t count = std::min(per_window, last - w);
+            fn(std::span<const std::byte>(base + 84 + w * kRecord, static_cast<std::size_t>(count * kRecord)), w);
+        }
+        // Drop the whole pages inside the slab (its neighbours may still be
+        // reading the pages it shares with them).
+        const uint64_t lo = (84 + first * kRecord + page - 1) / page * page;
+        const uint64_t hi = (84 + last * kRecord) / page * page;
+        if (hi > lo)
+            (void)::madvise(const_cast<std::byte*>(base) + lo, static_cast<std::size_t>(hi - lo), MADV_DONTNEED);
+    };
+    if (!options.parallel || slabs == 1) {
+        for (uint64_t s = 0; s < slabs; ++s) slab(s);
+        return true;
+    }
+    tbb::parallel_for(
+        tbb::blocked_range<uint64_t>(0, slabs, 1),
+        [&](const tbb::blocked_range<uint64_t>& r) {
+            for (uint64_t s = r.begin(); s < r.end(); ++s) slab(s);
+        },
+        tbb::simple_partitioner());
+    return true;
+}
+
 }  // namespace
 
 BinaryStlProbe probe_binary_stl(const std::string& path) {
@@ -139,6 +192,8 @@ void for_each_stl_window(const std::string& path, const StlWindowFn& fn, const S
                                          " bytes for " + std::to_string(n) + " triangles (the file shrank while being read)");
         fn(std::span<const std::byte>(buf.data(), bytes), first);
     };
+
+    if (options.map && for_each_mapped_window(f.fd, p.file_bytes, n, per_window, fn, options)) return;
 
     if (!options.parallel || windows == 1) {
         std::vector<std::byte> buf;

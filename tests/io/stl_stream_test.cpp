@@ -89,7 +89,8 @@ TEST(StlStream, ProbeAgreesWithTheManifestOnEveryStl) {
         const auto bytes = polyvol::test::read_bytes(path);
         const std::vector<std::byte> want(bytes.begin() + 84, bytes.end());
         for (std::size_t w : {std::size_t{1}, std::size_t{1600}, std::size_t{50 * 4096}, std::size_t{1} << 24})
-            for (bool parallel : {false, true}) EXPECT_EQ(collect(path.string(), {w, parallel}), want);
+            for (bool parallel : {false, true})
+                for (bool map : {false, true}) EXPECT_EQ(collect(path.string(), {w, parallel, map}), want);
     }
     EXPECT_GE(binary, 15);
 }
@@ -100,7 +101,12 @@ TEST(StlStream, WindowsCoverALargerFileExactlyOnce) {
     f.write(b);
     const std::vector<std::byte> want(b.begin() + 84, b.end());
     for (std::size_t w : {std::size_t{0}, std::size_t{3200}, std::size_t{50 * 4096 + 17}})
-        for (bool parallel : {false, true}) EXPECT_EQ(collect(f.path.string(), {w, parallel}), want);
+        for (bool parallel : {false, true})
+            for (bool map : {false, true})
+                // Slabs of one window, of a few windows (not a whole number
+                // of pages, so neighbours share pages), and the default.
+                for (std::size_t slab : {std::size_t{0}, std::size_t{3 * 4096 + 100}, std::size_t{4} << 20})
+                    EXPECT_EQ(collect(f.path.string(), {w, parallel, map, slab}), want);
 }
 
 TEST(StlStream, NotBinaryStl) {
@@ -147,7 +153,7 @@ TEST(StlStream, AFileThatShrinksWhileReadErrorsWithTheOffset) {
                 if (first) fs::resize_file(f.path, 84 + 50 * 5000 + 20);
                 first = false;
             },
-            {50 * 1024, false});
+            {50 * 1024, false, /*map=*/false});
     });
     EXPECT_TRUE(e.has_byte_offset);
     EXPECT_EQ(e.byte_offset, 84u + 50 * 5000 + 20);
