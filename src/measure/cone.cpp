@@ -1,7 +1,10 @@
 // measure/cone.cpp — the cone rule's ten sums (see cone.hpp), filtered,
 // exact and big-integer.
 //
-// What is guaranteed, and why (u = 2^-53, safe coordinate range, see cone.hpp):
+// What is guaranteed, and why (u = 2^-53, safe coordinate range, see cone.hpp).
+// All of it assumes the default floating-point environment: round to
+// nearest, no flush-to-zero or denormals-are-zero (which e.g. -ffast-math's
+// crtfastmath sets at start-up).
 //
 // Filtered, double-double. Per fan triangle (a, b, c):
 //   u = b - a, w = c - a are split exactly (two_sum) into uh + ul, wh + wl;
@@ -11,7 +14,8 @@
 //   parts), the second (of relative size 2u) in plain double. With
 //     Perm = Σ_i |a_i| (|uh_j wh_k| + |uh_k wh_j|)   (a permanent, computed),
 //   the error of det is below 96 u² Perm (the low-order parts are a sum of
-//   nine terms of total magnitude <= 7.2 u Perm, summed with relative error
+//   eleven terms, g1, g2, Q_0..2, the three a_k nl_k and the three
+//   a_k corr_k, of total magnitude <= 7.2 u Perm, summed with relative error
 //   < 8u; the cross products' own errors are <= 3.01 u² per unit of Perm).
 //   s_i = a_i + b_i + c_i is formed as a double-double with error
 //   <= 2.02 u² σ_i, σ_i = |a_i| + |b_i| + |c_i|; q_ij = a_i a_j + b_i b_j +
@@ -644,7 +648,9 @@ POLYVOL_INLINE void range_block(const Block& b, U8& hi, U8& lo) {
 }
 
 // Per task: the exact sum of the blocks' pairs, of their magnitudes, and the
-// extremes of the coordinates' patterns (hi, lo as above; AVX-512 only).
+// extremes of the coordinates' patterns (hi, lo as above; AVX-512 only: the
+// other levels set hi to the largest pattern, so safe() is false unless the
+// check ran on every block).
 struct VolumeAccumulator {
     ExactSum sum;
     ExactSum magnitude;
@@ -683,9 +689,13 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
     });
     acc.magnitude.add(magnitude);
     acc.triangles += triangles;
-    for (int j = 0; j < kVolLanes; ++j) {
-        acc.hi = std::max<uint64_t>(acc.hi, hi[j]);
-        acc.lo = std::min<uint64_t>(acc.lo, lo[j]);
+    if constexpr (kLevel >= 2) {
+        for (int j = 0; j < kVolLanes; ++j) {
+            acc.hi = std::max<uint64_t>(acc.hi, hi[j]);
+            acc.lo = std::min<uint64_t>(acc.lo, lo[j]);
+        }
+    } else {
+        acc.hi = ~uint64_t{0};  // not checked: never safe()
     }
 }
 
@@ -715,23 +725,30 @@ void volume_block_any(const Block& b, VolumeSums& out) {
     volume_block_base(b, out);
 }
 
-bool avx512_kernels() {
+// The instruction-set level for a volume pass (0, 1, 2 as in
+// cap_kernel_level). Read once per call: the cap may change meanwhile, and
+// whether the range check ran depends on the level (volume_faces).
+int volume_level() {
 #if POLYVOL_HAVE_FMA_CLONE
-    return cpu_has_avx512();
-#else
-    return false;
+    if (cpu_has_avx512()) return 2;
+    if (cpu_has_fma()) return 1;
 #endif
+    return 0;
 }
 
-VolumeAccumulator volume_pass(const MeshView& mesh) {
+// The pass with the kernels of `level` (from volume_level()); the range
+// check ran iff level == 2.
+VolumeAccumulator volume_pass(const MeshView& mesh, int level) {
     using Fn = void (*)(const MeshView&, std::size_t, std::size_t, VolumeAccumulator&);
     Fn fn = volume_faces_base;
 #if POLYVOL_HAVE_FMA_CLONE
-    if (cpu_has_avx512()) {
+    if (level == 2) {
         fn = volume_faces_avx512;
-    } else if (cpu_has_fma()) {
+    } else if (level == 1) {
         fn = volume_faces_fma;
     }
+#else
+    (void)level;
 #endif
     return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, mesh.face_count(), kGrain), VolumeAccumulator{},
@@ -760,7 +777,7 @@ ConeSums volume_sums(const VolumeAccumulator& acc) {
 template <int N>
 ConeSums filtered_impl(const MeshView& mesh, bool dd) {
     if constexpr (N == 1) {
-        if (dd) return volume_sums(volume_pass(mesh));
+        if (dd) return volume_sums(volume_pass(mesh, volume_level()));
     }
     const Accumulator<N> acc = reduce_blocks<Accumulator<N>>(mesh, [dd](const Block& b, Accumulator<N>& a) {
         Terms<N> t;
@@ -1091,14 +1108,15 @@ Range coordinate_range(const MeshView& mesh) {
 }
 
 ConeSums filtered_volume(const MeshView& mesh, bool& safe) {
-    if (!avx512_kernels()) {
+    const int level = volume_level();  // once: the pass below runs this level
+    if (level < 2) {
         // The range check is not fused below AVX-512 (volume_faces): every
         // position first, as coordinate_range always did.
         safe = coordinate_range(mesh) == Range::safe;
         if (!safe) return ConeSums{.count = 1};
-        return volume_sums(volume_pass(mesh));
+        return volume_sums(volume_pass(mesh, level));
     }
-    const VolumeAccumulator acc = volume_pass(mesh);
+    const VolumeAccumulator acc = volume_pass(mesh, level);
     safe = acc.safe();
     return volume_sums(acc);
 }

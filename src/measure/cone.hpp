@@ -66,8 +66,9 @@ ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision);
 // safe is set to whether every coordinate of every vertex that some face
 // uses is in the safe range (the definition of Range::safe, applied to the
 // coordinates the sums read; vertices no face uses do not matter), checked
-// in the same pass. Without AVX-512 (where that check costs more than a
-// separate pass) safe is coordinate_range(mesh) == Range::safe instead:
+// in the same pass. Below AVX-512 (the CPU's or cap_kernel_level's; the
+// level is read once per call), where that check costs more than a
+// separate pass, safe is coordinate_range(mesh) == Range::safe instead:
 // stricter, and the caller's exact fallback gives the same results. When
 // safe is false the sums are meaningless.
 ConeSums filtered_volume(const MeshView& mesh, bool& safe);

@@ -1,9 +1,16 @@
 // measure/soup.cpp — polyvol/soup.hpp: volume, first moments, area and a
 // closedness fingerprint of float32 triangle records, in constant memory.
 //
-// Error analysis of pass 1 (u = 2^-53). Coordinates are float32 values
-// widened exactly; every value below is a multiple of 2^-447 and below 2^520,
-// so no operation underflows or overflows and each rounding is relative.
+// Error analysis of pass 1 (u = 2^-53). It assumes the default
+// floating-point environment: round to nearest, no flush-to-zero or
+// denormals-are-zero (which e.g. -ffast-math's crtfastmath sets at start-up).
+// Coordinates are float32 values widened exactly: multiples of 2^-149 below
+// 2^128. The volume terms (products of three coordinates) are multiples of
+// 2^-447, the first-moment and area terms (d s_i and t² = Σ_k e_k², products
+// of four) multiples of 2^-596; every nonzero value in pass 1 (also t = √t²
+// and the magnitudes, down to 2^-43 M^4 >= 2^-639) is at least 2^-640 and
+// under 2^520, so no operation underflows or overflows and each rounding is
+// relative.
 //   Volume, per triangle (a, b, c), det = Σ_k a_k (b_j c_l - b_l c_j):
 //     p_k = b_j c_l, q_k = b_l c_j        exact (24-bit × 24-bit significands)
 //     n_k + t_k = p_k - q_k               exact (two_sum), |t_k| <= u |n_k|
@@ -29,7 +36,8 @@
 //   cone.cpp's kernel, which translates each triangle to its first vertex.
 //   First moments, per triangle: d = fl(h + lo), s_i = fl(fl(a_i + b_i) + c_i),
 //   m_i = fl(d s_i); with σ_i = |a_i| + |b_i| + |c_i| <= 3M,
-//     |m_i - det (a_i + b_i + c_i)| <= 4.01 u σ_i |d| + 525 u² M^4,
+//     |m_i - det (a_i + b_i + c_i)| <= 4.01 u σ_i |d| + 525.6 u² M^4
+//   (525.6 = 3 · 29.2 · 6: σ_i <= 3M times the error of d, <= 29.2 u² · 6 M^3),
 //   plus <= γ6 Σ|m_i| for the sum of a block (8 lanes of 4, then the lanes
 //   pairwise: depth 6; 9.01 u is used below).
 //   Bound used: 16 u (1 + 2^-10) Σ_blocks (3 M_b Σ|d| + 2^-43 M_b^4 n_b), /24.
@@ -767,6 +775,12 @@ void measure::cap_soup_kernels(int max_level) {
 #endif
 }
 
+namespace {
+std::atomic<measure::SoupPass1Sums*> g_pass1_record{nullptr};  // record_soup_pass1
+}  // namespace
+
+void measure::record_soup_pass1(SoupPass1Sums* out) { g_pass1_record.store(out, std::memory_order_relaxed); }
+
 struct SoupAccumulator::State {
     Keys keys{};
     int pass = 1;
@@ -892,6 +906,8 @@ bool SoupAccumulator::next_pass() {
     s.tls.clear();
     SoupResult& r = s.result;
     if (s.pass == 1) {
+        if (measure::SoupPass1Sums* rec = g_pass1_record.load(std::memory_order_relaxed))
+            *rec = {all.vol, all.vol_mag, {all.mom[0], all.mom[1], all.mom[2]}, all.mom_mag, all.area2, all.cross};
         s.pass1_triangles = all.triangles;
         r.triangles = all.triangles;
         r.nonfinite = all.nonfinite;

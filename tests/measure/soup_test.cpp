@@ -20,6 +20,7 @@
 
 #include "common/files.hpp"
 #include "common/manifest.hpp"
+#include "exact/exact_sum.hpp"
 #include "measure/soup_testing.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
@@ -97,6 +98,35 @@ void expect_same(const SoupResult& a, const SoupResult& b) {
     }
     EXPECT_EQ(bits(a.first_moments_error_bound), bits(b.first_moments_error_bound));
     EXPECT_EQ(bits(a.centroid_error_bound), bits(b.centroid_error_bound));
+}
+
+bool same_sum(const exact::ExactSum& a, const exact::ExactSum& b) {
+    exact::ExactSum d = a;
+    d.subtract(b);
+    return d.sign() == 0;
+}
+
+// soup_properties with pass 1's exact sums (measure/soup_testing.hpp).
+struct Recorded {
+    SoupResult result;
+    measure::SoupPass1Sums pass1;
+};
+Recorded recorded(const Float32Triangles& t, uint64_t seed) {
+    Recorded r;
+    measure::record_soup_pass1(&r.pass1);
+    r.result = soup_properties(t, seed);
+    measure::record_soup_pass1(nullptr);
+    return r;
+}
+
+// The same pass-1 sums, exactly (the volume's, not just its rounding).
+void expect_same_pass1(const measure::SoupPass1Sums& a, const measure::SoupPass1Sums& b) {
+    EXPECT_TRUE(same_sum(a.volume, b.volume)) << "pass-1 volume sum";
+    EXPECT_TRUE(same_sum(a.volume_magnitude, b.volume_magnitude)) << "pass-1 volume magnitude";
+    for (int k = 0; k < 3; ++k) EXPECT_TRUE(same_sum(a.moments[k], b.moments[k])) << "pass-1 moment " << k;
+    EXPECT_TRUE(same_sum(a.moments_magnitude, b.moments_magnitude)) << "pass-1 moments' magnitude";
+    EXPECT_TRUE(same_sum(a.area2, b.area2)) << "pass-1 area";
+    EXPECT_TRUE(same_sum(a.cross, b.cross)) << "pass-1 cross products";
 }
 
 // Feeds rec in windows of `window` triangles (a multiple of 32), in a shuffled order.
@@ -190,15 +220,16 @@ TEST(Soup, EveryKernelLevelGivesTheSameBits) {
     inputs.push_back(records_of(sphere(7, 5, 1, 0)));
     for (const auto& rec : inputs) {
         measure::cap_soup_kernels(-1);
-        const SoupResult best = soup_properties(stl_records(rec), 3);
+        const Recorded best = recorded(stl_records(rec), 3);
         for (int level : {0, 1, 2}) {
             SCOPED_TRACE(level);
             measure::cap_soup_kernels(level);
-            const SoupResult s = soup_properties(stl_records(rec), 3);
-            expect_same(best, s);
+            const Recorded s = recorded(stl_records(rec), 3);
+            expect_same(best.result, s.result);
+            expect_same_pass1(best.pass1, s.pass1);
             // The AES kernels hash alike, so their fingerprints agree too.
             if (level > 0) {
-                EXPECT_EQ(s.fingerprint, best.fingerprint);
+                EXPECT_EQ(s.result.fingerprint, best.result.fingerprint);
             }
         }
     }
@@ -231,15 +262,16 @@ TEST(Soup, EveryKernelLevelGivesTheSameBitsForEveryBlockTail) {
             const auto rec = random_records(n, stride, offset, static_cast<unsigned>(n));
             const Float32Triangles t{rec.data(), n, stride, offset};
             measure::cap_soup_kernels(-1);
-            const SoupResult best = soup_properties(t, 17);
+            const Recorded best = recorded(t, 17);
             for (int level : {0, 1, 2}) {
                 SCOPED_TRACE(level);
                 measure::cap_soup_kernels(level);
-                const SoupResult s = soup_properties(t, 17);
-                expect_same(best, s);
-                EXPECT_EQ(bits(s.first_moments_error_bound), bits(best.first_moments_error_bound));
+                const Recorded s = recorded(t, 17);
+                expect_same(best.result, s.result);
+                EXPECT_EQ(bits(s.result.first_moments_error_bound), bits(best.result.first_moments_error_bound));
+                expect_same_pass1(best.pass1, s.pass1);
                 if (level > 0) {
-                    EXPECT_EQ(s.fingerprint, best.fingerprint);
+                    EXPECT_EQ(s.result.fingerprint, best.result.fingerprint);
                 }
             }
         }
@@ -248,22 +280,34 @@ TEST(Soup, EveryKernelLevelGivesTheSameBitsForEveryBlockTail) {
 }
 
 TEST(Soup, EveryKernelLevelFlagsEveryNonFiniteCoordinate) {
-    const auto tri = sphere(10, 16, 1, 0);  // 288 triangles
+    const auto closed = sphere(10, 16, 1, 0);  // 288 triangles: 9 whole blocks
     const float bad[] = {std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN(),
                          std::numeric_limits<float>::signaling_NaN(), std::numeric_limits<float>::infinity(),
                          -std::numeric_limits<float>::infinity()};
-    for (int level : {0, 1, 2}) {
-        measure::cap_soup_kernels(level);
-        for (std::size_t t : {0u, 5u, 8u, 31u, 37u, 287u}) {
-            for (int k = 0; k < 9; ++k) {
-                for (float b : bad) {
-                    SCOPED_TRACE(testing::Message() << "level " << level << ", triangle " << t << ", coordinate " << k);
-                    auto rec = records_of(tri);
-                    std::memcpy(&rec[50 * t + 12 + 4 * k], &b, 4);
-                    const SoupResult s = soup_properties(stl_records(rec), 2);
-                    EXPECT_TRUE(s.nonfinite);
-                    EXPECT_FALSE(s.closed);
-                    EXPECT_TRUE(std::isnan(s.volume));
+    // Also with a partial last block (pass1_avx512_body<false>): of 1
+    // triangle, and of 12 (a whole group of 8 and part of the next).
+    struct Case {
+        std::size_t tail;
+        std::vector<std::size_t> where;  // the triangles given a bad coordinate
+    };
+    const Case cases[] = {{0, {0, 5, 8, 31, 37, 287}}, {1, {287, 288}}, {12, {5, 288, 295, 296, 299}}};
+    for (const Case& c : cases) {
+        auto tri = closed;
+        tri.insert(tri.end(), closed.begin(), closed.begin() + static_cast<long>(9 * c.tail));
+        for (int level : {0, 1, 2}) {
+            measure::cap_soup_kernels(level);
+            for (std::size_t t : c.where) {
+                for (int k = 0; k < 9; ++k) {
+                    for (float b : bad) {
+                        SCOPED_TRACE(testing::Message() << "level " << level << ", " << tri.size() / 9
+                                                        << " triangles, triangle " << t << ", coordinate " << k);
+                        auto rec = records_of(tri);
+                        std::memcpy(&rec[50 * t + 12 + 4 * k], &b, 4);
+                        const SoupResult s = soup_properties(stl_records(rec), 2);
+                        EXPECT_TRUE(s.nonfinite);
+                        EXPECT_FALSE(s.closed);
+                        EXPECT_TRUE(std::isnan(s.volume));
+                    }
                 }
             }
         }
