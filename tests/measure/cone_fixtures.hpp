@@ -11,9 +11,15 @@
 #include <vector>
 
 #include "common/shapes.hpp"
+#include "exact/exact_sum.hpp"
+#include "exact/rational.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace polyvol::fixtures {
+
+// The exact value held by a superaccumulator; a rational rounded once.
+inline mpq_class as_mpq(const exact::ExactSum& s) { return mpq_class(exact::Rational(s).get()); }
+inline double rnd(const mpq_class& x) { return exact::round_to_double(x.get_mpq_t()); }
 
 inline mpq_class q(double x) {
     mpq_class r;

@@ -14,11 +14,11 @@
 using namespace polyvol;
 using namespace polyvol::measure::cone;
 using polyvol::fixtures::q;
+using polyvol::fixtures::as_mpq;
 namespace fx = polyvol::fixtures;
 
 namespace {
 
-mpq_class as_mpq(const exact::ExactSum& s) { return mpq_class(exact::Rational(s).get()); }
 
 std::vector<Mesh> test_meshes() {
     std::mt19937_64 rng(11);

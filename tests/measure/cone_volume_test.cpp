@@ -24,12 +24,12 @@
 using namespace polyvol;
 using namespace polyvol::measure::cone;
 using polyvol::fixtures::q;
+using polyvol::fixtures::as_mpq;
+using polyvol::fixtures::rnd;
 namespace fx = polyvol::fixtures;
 
 namespace {
 
-mpq_class as_mpq(const exact::ExactSum& s) { return mpq_class(exact::Rational(s).get()); }
-double rnd(const mpq_class& x) { return exact::round_to_double(x.get_mpq_t()); }
 bool same(double a, double b) {
     return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b) || (std::isnan(a) && std::isnan(b));
 }

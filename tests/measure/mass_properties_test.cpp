@@ -17,11 +17,11 @@
 
 using namespace polyvol;
 using polyvol::fixtures::q;
+using polyvol::fixtures::rnd;
 namespace fx = polyvol::fixtures;
 
 namespace {
 
-double rnd(const mpq_class& x) { return exact::round_to_double(x.get_mpq_t()); }
 
 bool same(double a, double b) {
     return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b) || (std::isnan(a) && std::isnan(b));
