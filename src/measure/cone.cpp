@@ -516,16 +516,14 @@ POLYVOL_INLINE void for_each_block(const MeshView& mesh, std::size_t f0, std::si
 // reduction itself is exact.
 constexpr std::size_t kGrain = 8192;
 
-// Acc: default-constructible, with merge(const Acc&) and a triangles count.
-template <class Acc, class PerBlock>
-Acc reduce_blocks(const MeshView& mesh, PerBlock per_block) {
+// per_range(f0, f1, acc) over the faces in fixed ranges of at most kGrain,
+// merged. Acc: default-constructible, with merge(const Acc&).
+template <class Acc, class PerRange>
+Acc reduce_face_ranges(const MeshView& mesh, PerRange per_range) {
     return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, mesh.face_count(), kGrain), Acc{},
         [&](const tbb::blocked_range<std::size_t>& r, Acc acc) {
-            for_each_block(mesh, r.begin(), r.end(), [&](const Block& b) {
-                acc.triangles += static_cast<std::size_t>(b.n);
-                per_block(b, acc);
-            });
+            per_range(r.begin(), r.end(), acc);
             return acc;
         },
         [](Acc x, const Acc& y) {
@@ -533,6 +531,17 @@ Acc reduce_blocks(const MeshView& mesh, PerBlock per_block) {
             return x;
         },
         tbb::simple_partitioner());
+}
+
+// Acc: as above, with a triangles count.
+template <class Acc, class PerBlock>
+Acc reduce_blocks(const MeshView& mesh, PerBlock per_block) {
+    return reduce_face_ranges<Acc>(mesh, [&](std::size_t f0, std::size_t f1, Acc& acc) {
+        for_each_block(mesh, f0, f1, [&](const Block& b) {
+            acc.triangles += static_cast<std::size_t>(b.n);
+            per_block(b, acc);
+        });
+    });
 }
 
 // ---- the double-double volume alone ------------------------------------------
@@ -571,6 +580,19 @@ POLYVOL_INLINE void two_sum_v(const V& a, const V& b, V& s, V& e) {
     const V bb = s - a;
     e = (a - (s - bb)) + (b - bb);
 }
+// One level of the lane tree: the (sum, error, magnitude) lanes of W folded
+// into half as many: the sums' halves by two_sum, its error added to the
+// halves' error terms.
+template <class V, class W>
+POLYVOL_INLINE void fold_lanes(const W& S, const W& E, const W& M, V& s, V& e, V& m) {
+    V sa, sb, ea, eb, ma, mb, t;
+    halves(S, sa, sb);
+    halves(E, ea, eb);
+    halves(M, ma, mb);
+    two_sum_v(sa, sb, s, t);
+    e = (ea + eb) + t;
+    m = ma + mb;
+}
 
 // One block's volume terms summed: s + e approximates Σ det (see the top of
 // this file for the error), m = Σ magnitude.
@@ -600,20 +622,10 @@ POLYVOL_INLINE void volume_block(const Block& b, VolumeSums& out) {
     }
     // The lanes into one pair: a two_sum tree (8 -> 4 -> 2 -> 1), the errors
     // of each level added to the lanes' error terms.
-    V4 s4a, s4b, e4a, e4b, m4a, m4b, s4, t4;
-    halves(S, s4a, s4b);
-    halves(E, e4a, e4b);
-    halves(M, m4a, m4b);
-    two_sum_v(s4a, s4b, s4, t4);
-    const V4 e4 = (e4a + e4b) + t4;
-    const V4 m4 = m4a + m4b;
-    V2 s2a, s2b, e2a, e2b, m2a, m2b, s2, t2;
-    halves(s4, s2a, s2b);
-    halves(e4, e2a, e2b);
-    halves(m4, m2a, m2b);
-    two_sum_v(s2a, s2b, s2, t2);
-    const V2 e2 = (e2a + e2b) + t2;
-    const V2 m2 = m2a + m2b;
+    V4 s4, e4, m4;
+    fold_lanes(S, E, M, s4, e4, m4);
+    V2 s2, e2, m2;
+    fold_lanes(s4, e4, m4, s2, e2, m2);
     double s1, t1;
     two_sum(s2[0], s2[1], s1, t1);
     out.s = s1;
@@ -717,14 +729,6 @@ void volume_faces_base(const MeshView& mesh, std::size_t f0, std::size_t f1, Vol
 }
 void volume_block_base(const Block& b, VolumeSums& out) { volume_block<false>(b, out); }
 
-void volume_block_any(const Block& b, VolumeSums& out) {
-#if POLYVOL_HAVE_FMA_CLONE
-    if (cpu_has_avx512()) return volume_block_avx512(b, out);
-    if (cpu_has_fma()) return volume_block_fma(b, out);
-#endif
-    volume_block_base(b, out);
-}
-
 // The instruction-set level for a volume pass (0, 1, 2 as in
 // cap_kernel_level). Read once per call: the cap may change meanwhile, and
 // whether the range check ran depends on the level (volume_faces).
@@ -734,6 +738,17 @@ int volume_level() {
     if (cpu_has_fma()) return 1;
 #endif
     return 0;
+}
+
+void volume_block_any(const Block& b, VolumeSums& out) {
+#if POLYVOL_HAVE_FMA_CLONE
+    switch (volume_level()) {
+        case 2: return volume_block_avx512(b, out);
+        case 1: return volume_block_fma(b, out);
+        default: break;
+    }
+#endif
+    volume_block_base(b, out);
 }
 
 // The pass with the kernels of `level` (from volume_level()); the range
@@ -750,17 +765,8 @@ VolumeAccumulator volume_pass(const MeshView& mesh, int level) {
 #else
     (void)level;
 #endif
-    return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, mesh.face_count(), kGrain), VolumeAccumulator{},
-        [&](const tbb::blocked_range<std::size_t>& r, VolumeAccumulator acc) {
-            fn(mesh, r.begin(), r.end(), acc);
-            return acc;
-        },
-        [](VolumeAccumulator x, const VolumeAccumulator& y) {
-            x.merge(y);
-            return x;
-        },
-        tbb::simple_partitioner());
+    return reduce_face_ranges<VolumeAccumulator>(
+        mesh, [&](std::size_t f0, std::size_t f1, VolumeAccumulator& acc) { fn(mesh, f0, f1, acc); });
 }
 
 ConeSums volume_sums(const VolumeAccumulator& acc) {
