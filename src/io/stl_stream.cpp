@@ -98,6 +98,22 @@ Fd open_file(const std::string& path) {
     return f;
 }
 
+// body(i) for i in [0, count): in order on this thread, or spread over
+// threads (oneTBB, one index per task).
+template <class Body>
+void for_each_index(uint64_t count, bool parallel, Body&& body) {
+    if (!parallel || count == 1) {
+        for (uint64_t i = 0; i < count; ++i) body(i);
+        return;
+    }
+    tbb::parallel_for(
+        tbb::blocked_range<uint64_t>(0, count, 1),
+        [&](const tbb::blocked_range<uint64_t>& r) {
+            for (uint64_t i = r.begin(); i < r.end(); ++i) body(i);
+        },
+        tbb::simple_partitioner());
+}
+
 // The records [0, n) through fn from a mapping of the whole file, windows of
 // per_window records grouped into slabs; false (nothing called) when the
 // file cannot be mapped.
@@ -130,16 +146,7 @@ bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t pe
         if (hi > lo)
             (void)::madvise(const_cast<std::byte*>(base) + lo, static_cast<std::size_t>(hi - lo), MADV_DONTNEED);
     };
-    if (!options.parallel || slabs == 1) {
-        for (uint64_t s = 0; s < slabs; ++s) slab(s);
-        return true;
-    }
-    tbb::parallel_for(
-        tbb::blocked_range<uint64_t>(0, slabs, 1),
-        [&](const tbb::blocked_range<uint64_t>& r) {
-            for (uint64_t s = r.begin(); s < r.end(); ++s) slab(s);
-        },
-        tbb::simple_partitioner());
+    for_each_index(slabs, options.parallel, slab);
     return true;
 }
 
@@ -177,9 +184,12 @@ void for_each_stl_window(const std::string& path, const StlWindowFn& fn, const S
     (void)::posix_fadvise(f.fd, 0, 0, POSIX_FADV_SEQUENTIAL);
     const uint64_t groups = std::max<uint64_t>(1, options.window_bytes / (kRecord * kGroup));
     const uint64_t per_window = groups * kGroup;  // records
-    const uint64_t windows = (n + per_window - 1) / per_window;
+    if (options.map && for_each_mapped_window(f.fd, p.file_bytes, n, per_window, fn, options)) return;
 
-    auto window = [&](uint64_t w, std::vector<std::byte>& buf) {
+    const uint64_t windows = (n + per_window - 1) / per_window;
+    tbb::enumerable_thread_specific<std::vector<std::byte>> buffers;  // one per thread
+    for_each_index(windows, options.parallel, [&](uint64_t w) {
+        std::vector<std::byte>& buf = buffers.local();
         const uint64_t first = w * per_window;
         const uint64_t count = std::min(per_window, n - first);
         const std::size_t bytes = static_cast<std::size_t>(count * kRecord);
@@ -191,23 +201,7 @@ void for_each_stl_window(const std::string& path, const StlWindowFn& fn, const S
                                      "unexpected end of file: expected " + std::to_string(84 + n * kRecord) +
                                          " bytes for " + std::to_string(n) + " triangles (the file shrank while being read)");
         fn(std::span<const std::byte>(buf.data(), bytes), first);
-    };
-
-    if (options.map && for_each_mapped_window(f.fd, p.file_bytes, n, per_window, fn, options)) return;
-
-    if (!options.parallel || windows == 1) {
-        std::vector<std::byte> buf;
-        for (uint64_t w = 0; w < windows; ++w) window(w, buf);
-        return;
-    }
-    tbb::enumerable_thread_specific<std::vector<std::byte>> buffers;
-    tbb::parallel_for(
-        tbb::blocked_range<uint64_t>(0, windows, 1),
-        [&](const tbb::blocked_range<uint64_t>& r) {
-            std::vector<std::byte>& buf = buffers.local();
-            for (uint64_t w = r.begin(); w < r.end(); ++w) window(w, buf);
-        },
-        tbb::simple_partitioner());
+    });
 }
 
 }  // namespace polyvol
