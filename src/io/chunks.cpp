@@ -1,8 +1,6 @@
 // The shared pieces of the parallel text readers (chunks.hpp).
 #include "io/chunks.hpp"
 
-#include <cstdint>
-
 #include <algorithm>
 #include <bit>
 #include <cstring>
@@ -161,7 +159,6 @@ LineChunks split_line_body(std::string_view body, std::size_t target, char comme
     return c;
 }
 
-
 void concat(std::vector<Mesh>& parts, Mesh& out, bool shift_indices) {
     if (parts.size() == 1 && out.positions.empty() && out.indices.empty()) {
         // One part, nothing before it: its vertex numbering is already global.
@@ -189,12 +186,8 @@ void concat(std::vector<Mesh>& parts, Mesh& out, bool shift_indices) {
         out.face_offsets.resize(face_base[0] + 1);
         for (std::size_t f = 0; f <= face_base[0]; ++f) out.face_offsets[f] = static_cast<uint32_t>(3 * f);
     }
-    out.positions.reserve(pos_base[k]);
-    out.indices.reserve(idx_base[k]);
-    advise_huge_pages(out.positions.data(), pos_base[k] * sizeof(double));
-    advise_huge_pages(out.indices.data(), idx_base[k] * sizeof(uint32_t));
-    out.positions.resize(pos_base[k]);
-    out.indices.resize(idx_base[k]);
+    resize_for_filling(out.positions, pos_base[k]);
+    resize_for_filling(out.indices, idx_base[k]);
     if (polygons) out.face_offsets.resize(face_base[k] + 1);
     for_each(k, [&](std::size_t i) {
         Mesh& part = parts[i];

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace polyvol::io {
 
@@ -20,6 +21,15 @@ inline void advise_huge_pages(const void* data, std::size_t bytes) {
     const auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
     const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
     if (end > begin) (void)::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+}
+
+// v.resize(n) for an array a reader is about to fill, with the advice above
+// given between the allocation and the first write.
+template <class T>
+void resize_for_filling(std::vector<T>& v, std::size_t n) {
+    v.reserve(n);
+    advise_huge_pages(v.data(), n * sizeof(T));
+    v.resize(n);
 }
 
 }  // namespace polyvol::io

@@ -70,12 +70,8 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n) {
         out.notes.emplace_back("binary-stl-header-starts-with-solid");
     Mesh& m = out.mesh;
     // n is trustworthy here: the file size was checked against it.
-    m.positions.reserve(std::size_t{9} * n);
-    m.indices.reserve(std::size_t{3} * n);
-    advise_huge_pages(m.positions.data(), std::size_t{9} * n * sizeof(double));
-    advise_huge_pages(m.indices.data(), std::size_t{3} * n * sizeof(uint32_t));
-    m.positions.resize(std::size_t{9} * n);
-    m.indices.resize(std::size_t{3} * n);
+    resize_for_filling(m.positions, std::size_t{9} * n);
+    resize_for_filling(m.indices, std::size_t{3} * n);
     bool attributes = false;
     const std::byte* rec = data.data() + 84;
     double* pos = m.positions.data();
