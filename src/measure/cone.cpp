@@ -17,6 +17,13 @@
 //   eleven terms, g1, g2, Q_0..2, the three a_k nl_k and the three
 //   a_k corr_k, of total magnitude <= 7.2 u Perm, summed with relative error
 //   < 8u; the cross products' own errors are <= 3.01 u² per unit of Perm).
+//   The origin form (VolumeForm::origin, the volume alone) is the same
+//   computation with uh = b, wh = c and ul = wl = 0: det = a · (b × c),
+//   corr = 0 and Perm = Σ_i |a_i| (|b_j c_k| + |b_k c_j|), and every bound
+//   below holds as it stands. It skips the six two_sums and the corr terms
+//   (about a third of the operations), but Perm grows with |a| |b| |c|
+//   instead of |a| |b - a| |c - a|: it decides only for meshes not far from
+//   the origin compared with their size (likely_volume_form guesses which).
 //   s_i = a_i + b_i + c_i is formed as a double-double with error
 //   <= 2.02 u² σ_i, σ_i = |a_i| + |b_i| + |c_i|; q_ij = a_i a_j + b_i b_j +
 //   c_i c_j + s_i s_j with error <= 65 u² Mq_ij, Mq_ij = |a_i a_j| + |b_i b_j|
@@ -132,20 +139,28 @@ struct Terms {
 
 // ---- per-triangle kernels (what is summed) -------------------------------
 
-// The ten terms of one triangle in double-double.
-template <bool kFma, int N>
+// The ten terms of one triangle in double-double. kTranslate false (volume
+// only): the origin form, uh = b, wh = c and ul = wl = 0, so corr = 0 and
+// det = a · (b × c) (see the top of this file).
+template <bool kFma, int N, bool kTranslate = true>
 POLYVOL_INLINE void terms_dd(const Block& b, int i, Terms<N>& t) {
+    static_assert(kTranslate || N == 1);
     const double a[3] = {b.c[0][i], b.c[1][i], b.c[2][i]};
     const double bb[3] = {b.c[3][i], b.c[4][i], b.c[5][i]};
     const double cc[3] = {b.c[6][i], b.c[7][i], b.c[8][i]};
-    double uh[3], ul[3], wh[3], wl[3];
+    double uh[3], ul[3] = {}, wh[3], wl[3] = {};
     #pragma GCC unroll 6
     for (int k = 0; k < 3; ++k) {
-        two_sum(bb[k], -a[k], uh[k], ul[k]);
-        two_sum(cc[k], -a[k], wh[k], wl[k]);
+        if constexpr (kTranslate) {
+            two_sum(bb[k], -a[k], uh[k], ul[k]);
+            two_sum(cc[k], -a[k], wh[k], wl[k]);
+        } else {
+            uh[k] = bb[k];
+            wh[k] = cc[k];
+        }
     }
     // Cross product uh × wh: component k = uh[j] wh[l] - uh[l] wh[j].
-    double ns[3], nl[3], pn[3], corr[3];
+    double ns[3], nl[3], pn[3], corr[3] = {};
     #pragma GCC unroll 6
     for (int k = 0; k < 3; ++k) {
         const int j = (k + 1) % 3, l = (k + 2) % 3;
@@ -155,8 +170,10 @@ POLYVOL_INLINE void terms_dd(const Block& b, int i, Terms<N>& t) {
         two_sum(p1, -p2, ns[k], tt);
         nl[k] = (e1 - e2) + tt;
         pn[k] = std::fabs(p1) + std::fabs(p2);
-        corr[k] = ((uh[j] * wl[l] - uh[l] * wl[j]) + (ul[j] * wh[l] - ul[l] * wh[j])) +
-                  (ul[j] * wl[l] - ul[l] * wl[j]);
+        if constexpr (kTranslate) {
+            corr[k] = ((uh[j] * wl[l] - uh[l] * wl[j]) + (ul[j] * wh[l] - ul[l] * wh[j])) +
+                      (ul[j] * wl[l] - ul[l] * wl[j]);
+        }
     }
     double P[3], Q[3];
     #pragma GCC unroll 6
@@ -164,9 +181,8 @@ POLYVOL_INLINE void terms_dd(const Block& b, int i, Terms<N>& t) {
     double h1, g1, h, g2;
     two_sum(P[0], P[1], h1, g1);
     two_sum(h1, P[2], h, g2);
-    const double lo = ((g1 + g2) + ((Q[0] + Q[1]) + Q[2])) +
-                      ((a[0] * nl[0] + a[1] * nl[1]) + a[2] * nl[2]) +
-                      ((a[0] * corr[0] + a[1] * corr[1]) + a[2] * corr[2]);
+    double lo = ((g1 + g2) + ((Q[0] + Q[1]) + Q[2])) + ((a[0] * nl[0] + a[1] * nl[1]) + a[2] * nl[2]);
+    if constexpr (kTranslate) lo += (a[0] * corr[0] + a[1] * corr[1]) + a[2] * corr[2];
     double dh, dl;
     two_sum(h, lo, dh, dl);
     const double perm = (std::fabs(a[0]) * pn[0] + std::fabs(a[1]) * pn[1]) + std::fabs(a[2]) * pn[2];
@@ -255,11 +271,11 @@ POLYVOL_INLINE void terms_fast(const Block& b, int i, Terms<N>& t) {
     }
 }
 
-template <bool kFma, bool kDD, int N>
+template <bool kFma, bool kDD, int N, bool kTranslate = true>
 POLYVOL_INLINE void block_terms(const Block& b, Terms<N>& t) {
     for (int i = 0; i < kBlock; ++i) {
         if constexpr (kDD) {
-            terms_dd<kFma, N>(b, i, t);
+            terms_dd<kFma, N, kTranslate>(b, i, t);
         } else {
             terms_fast<N>(b, i, t);
         }
@@ -600,10 +616,10 @@ struct VolumeSums {
     double s, e, m;
 };
 
-template <bool kFma>
+template <bool kFma, bool kTranslate = true>
 POLYVOL_INLINE void volume_block(const Block& b, VolumeSums& out) {
     Terms<1> t;
-    block_terms<kFma, true, 1>(b, t);
+    block_terms<kFma, true, 1, kTranslate>(b, t);
     // Sum2: lane j holds triangles j, j + 8, j + 16, j + 24.
     V8 S, E, M;
     vload(S, t.h[kV]);
@@ -685,14 +701,14 @@ struct VolumeAccumulator {
 // 64-bit integer minimum and maximum, and a check in floating point (7
 // operations per vector) cost more than coordinate_range's separate pass
 // (AVX2 + FMA: +19% against +15%; baseline: +25% against +4%; measured).
-template <bool kFma, int kLevel>
+template <bool kFma, int kLevel, bool kTranslate>
 POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
     U8 hi = {}, lo = ~U8{};
     double magnitude = 0;
     std::size_t triangles = 0;
     for_each_block<kLevel>(mesh, f0, f1, [&](const Block& b) __attribute__((always_inline)) {
         VolumeSums v;
-        volume_block<kFma>(b, v);
+        volume_block<kFma, kTranslate>(b, v);
         acc.sum.add(v.s);
         acc.sum.add(v.e);
         magnitude += v.m;
@@ -713,19 +729,22 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
 
 #if POLYVOL_HAVE_FMA_CLONE
 #define POLYVOL_AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512")))
+template <bool kTranslate>
 POLYVOL_AVX512 void volume_faces_avx512(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
-    volume_faces<true, 2>(mesh, f0, f1, acc);
+    volume_faces<true, 2, kTranslate>(mesh, f0, f1, acc);
 }
 POLYVOL_AVX512 void volume_block_avx512(const Block& b, VolumeSums& out) { volume_block<true>(b, out); }
 #undef POLYVOL_AVX512
+template <bool kTranslate>
 __attribute__((target("avx2,fma"))) void volume_faces_fma(const MeshView& mesh, std::size_t f0, std::size_t f1,
                                                           VolumeAccumulator& acc) {
-    volume_faces<true, 1>(mesh, f0, f1, acc);
+    volume_faces<true, 1, kTranslate>(mesh, f0, f1, acc);
 }
 __attribute__((target("avx2,fma"))) void volume_block_fma(const Block& b, VolumeSums& out) { volume_block<true>(b, out); }
 #endif
+template <bool kTranslate>
 void volume_faces_base(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
-    volume_faces<false, 0>(mesh, f0, f1, acc);
+    volume_faces<false, 0, kTranslate>(mesh, f0, f1, acc);
 }
 void volume_block_base(const Block& b, VolumeSums& out) { volume_block<false>(b, out); }
 
@@ -751,16 +770,17 @@ void volume_block_any(const Block& b, VolumeSums& out) {
     volume_block_base(b, out);
 }
 
-// The pass with the kernels of `level` (from volume_level()); the range
-// check ran iff level == 2.
-VolumeAccumulator volume_pass(const MeshView& mesh, int level) {
+// The pass with the kernels of `level` (from volume_level()) in the given
+// form; the range check ran iff level == 2.
+VolumeAccumulator volume_pass(const MeshView& mesh, int level, VolumeForm form = VolumeForm::translated) {
     using Fn = void (*)(const MeshView&, std::size_t, std::size_t, VolumeAccumulator&);
-    Fn fn = volume_faces_base;
+    const bool translate = form == VolumeForm::translated;
+    Fn fn = translate ? volume_faces_base<true> : volume_faces_base<false>;
 #if POLYVOL_HAVE_FMA_CLONE
     if (level == 2) {
-        fn = volume_faces_avx512;
+        fn = translate ? volume_faces_avx512<true> : volume_faces_avx512<false>;
     } else if (level == 1) {
-        fn = volume_faces_fma;
+        fn = translate ? volume_faces_fma<true> : volume_faces_fma<false>;
     }
 #else
     (void)level;
@@ -1113,16 +1133,43 @@ Range coordinate_range(const MeshView& mesh) {
     return Range::safe;
 }
 
-ConeSums filtered_volume(const MeshView& mesh, bool& safe) {
+VolumeForm likely_volume_form(const MeshView& mesh) {
+    // Why n (B / E)^3 < 2^29: the origin form's bound, 512 u² Σ Perm with
+    // Perm <= 6 B^3 per triangle, is below 2^-10 of an ulp of Σ det = 6 V
+    // (an ulp of x is at least u |x|) when n B^3 < 2^34 V; a solid whose
+    // largest extent is E has V >= E^3 / 32 or so (a ball: E^3 / 1.9).
+    const std::size_t nv = mesh.vertex_count();
+    const std::size_t step = std::max<std::size_t>(1, nv / 64);
+    double lo[3], hi[3];
+    std::fill(lo, lo + 3, std::numeric_limits<double>::infinity());
+    std::fill(hi, hi + 3, -std::numeric_limits<double>::infinity());
+    for (std::size_t v = 0; v < nv; v += step)
+        for (int k = 0; k < 3; ++k) {
+            const double x = mesh.positions[3 * v + k];
+            lo[k] = std::min(lo[k], x);
+            hi[k] = std::max(hi[k], x);
+        }
+    double B = 0, E = 0;
+    for (int k = 0; k < 3; ++k) {
+        B = std::max({B, std::fabs(lo[k]), std::fabs(hi[k])});
+        E = std::max(E, hi[k] - lo[k]);
+    }
+    if (!(E > 0) || !(B < std::numeric_limits<double>::infinity())) return VolumeForm::translated;
+    const double r = B / E;
+    const double n = static_cast<double>(mesh.indices.size()) / 3;  // about the fan triangles
+    return n * r * r * r < 0x1p29 ? VolumeForm::origin : VolumeForm::translated;
+}
+
+ConeSums filtered_volume(const MeshView& mesh, bool& safe, VolumeForm form) {
     const int level = volume_level();  // once: the pass below runs this level
     if (level < 2) {
         // The range check is not fused below AVX-512 (volume_faces): every
         // position first, as coordinate_range always did.
         safe = coordinate_range(mesh) == Range::safe;
         if (!safe) return ConeSums{.count = 1};
-        return volume_sums(volume_pass(mesh, level));
+        return volume_sums(volume_pass(mesh, level, form));
     }
-    const VolumeAccumulator acc = volume_pass(mesh, level);
+    const VolumeAccumulator acc = volume_pass(mesh, level, form);
     safe = acc.safe();
     return volume_sums(acc);
 }

@@ -62,6 +62,21 @@ struct ConeSums {
 // Filtered sums (needs Range::safe for the bound to hold).
 ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision);
 
+// The two forms of the double-double volume term (cone.cpp):
+//   translated — det = a · ((b - a) × (c - a)): its error bound grows with
+//                |a| |b - a| |c - a|, so it decides also far from the origin;
+//   origin     — det = a · (b × c), about a third of the operations: its
+//                bound grows with |a| |b| |c|, so it decides only for meshes
+//                not far from the origin compared with their size.
+enum class VolumeForm { translated, origin };
+
+// A guess (from a sample of at most 64 vertices) at which form decides the
+// rounding of the volume at the lower cost: origin when n (B / E)^3 < 2^29,
+// n the fan triangles, B the sample's largest |coordinate| and E its largest
+// extent along an axis. Only a guess: the caller runs the translated form
+// when the origin form leaves the rounding undecided.
+VolumeForm likely_volume_form(const MeshView& mesh);
+
 // filtered_sums(mesh, 1, Precision::double_double) with the range check:
 // safe is set to whether every coordinate of every vertex that some face
 // uses is in the safe range (the definition of Range::safe, applied to the
@@ -71,7 +86,7 @@ ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision);
 // separate pass, safe is coordinate_range(mesh) == Range::safe instead:
 // stricter, and the caller's exact fallback gives the same results. When
 // safe is false the sums are meaningless.
-ConeSums filtered_volume(const MeshView& mesh, bool& safe);
+ConeSums filtered_volume(const MeshView& mesh, bool& safe, VolumeForm form = VolumeForm::translated);
 
 // Replaces sums[k] by the exact sum (bound 0) for every k with bit k of mask
 // set (needs Range::safe).

@@ -193,10 +193,17 @@ ConeResults cone_results(const MeshView& mesh, int count, Accuracy accuracy, dou
         // reads); a used coordinate outside the safe range (or not finite)
         // sends the call down the general path below, which checks every
         // coordinate and takes the big-integer path (or gives NaN) as before.
+        // The cheaper origin form first when it is likely to decide; the
+        // translated form when it does not (same result: correctly rounded).
         bool safe = false;
-        ConeSums sums = filtered_volume(mesh, safe);
+        const VolumeForm form = likely_volume_form(mesh);
+        ConeSums sums = filtered_volume(mesh, safe, form);
         if (safe) {
             std::optional<double> v = volume_decided(sums);
+            if (!v && form == VolumeForm::origin) {
+                sums = filtered_volume(mesh, safe, VolumeForm::translated);
+                v = volume_decided(sums);
+            }
             if (!v) {
                 exact_sums(mesh, bit(kV), sums);
                 v = volume_decided(sums);

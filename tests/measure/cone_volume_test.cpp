@@ -99,9 +99,9 @@ struct Volume {
     bool safe;
 };
 
-Volume volume_of(const MeshView& m) {
+Volume volume_of(const MeshView& m, VolumeForm form = VolumeForm::translated) {
     bool safe = false;
-    const ConeSums s = filtered_volume(m, safe);
+    const ConeSums s = filtered_volume(m, safe, form);
     return {as_mpq(s.sum[kV]), s.bound[kV], s.triangles, safe};
 }
 
@@ -174,6 +174,69 @@ TEST(ConeVolume, BoundHoldsAndSameBitsOnEveryLevelAndThreadCount) {
                 EXPECT_PRED2(same, signed_volume(m.view()), rnd(ref / 6));
             }
         }
+    }
+}
+
+TEST(ConeVolume, OriginFormBoundHoldsAndSameBitsOnEveryLevelAndThreadCount) {
+    LevelGuard guard;
+    for (const Mesh& m : meshes()) {
+        const mpq_class ref = fx::reference_sums(m.view())[kV];
+        cap_kernel_level(2);
+        const Volume best = volume_of(m.view(), VolumeForm::origin);
+        const Volume translated = volume_of(m.view(), VolumeForm::translated);
+        EXPECT_TRUE(best.safe);
+        EXPECT_EQ(best.triangles, m.view().triangle_count());
+        EXPECT_LE(abs(best.sum - ref), q(best.bound));
+        // Its bound grows with |a| |b| |c|: never below the translated one's
+        // far from the origin (the meshes around 1e6 and 1e8).
+        if (m.positions[0] > 1e5 && m.positions[0] < 1e20) {
+            EXPECT_GT(best.bound, 100 * translated.bound);
+        }
+        for (int level : {0, 1, 2}) {
+            cap_kernel_level(level);
+            for (int threads : {1, 3}) {
+                tbb::global_control gc(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+                const Volume v = volume_of(m.view(), VolumeForm::origin);
+                EXPECT_EQ(v.sum, best.sum) << "level " << level << ", " << threads << " threads";
+                EXPECT_EQ(v.bound, best.bound) << "level " << level << ", " << threads << " threads";
+                EXPECT_TRUE(v.safe);
+            }
+        }
+    }
+}
+
+TEST(ConeVolume, LikelyFormIsOriginNearTheOriginAndTranslatedFarFromIt) {
+    std::mt19937_64 rng(5);
+    EXPECT_EQ(likely_volume_form(fx::random_sphere(rng, 4, 1.0, {0, 0, 0}).view()), VolumeForm::origin);
+    EXPECT_EQ(likely_volume_form(fx::random_sphere(rng, 4, 1.0, {3, -2, 1}).view()), VolumeForm::origin);
+    EXPECT_EQ(likely_volume_form(fx::random_sphere(rng, 4, 1.0, {1e6, 0, 0}).view()), VolumeForm::translated);
+    EXPECT_EQ(likely_volume_form(fx::random_sphere(rng, 2, 1e-3, {1e8, 1e8, -1e8}).view()), VolumeForm::translated);
+    EXPECT_EQ(likely_volume_form(Mesh{}.view()), VolumeForm::translated);
+    Mesh point;  // no extent
+    point.add_vertex(1, 2, 3);
+    EXPECT_EQ(likely_volume_form(point.view()), VolumeForm::translated);
+}
+
+TEST(ConeVolume, AWrongGuessFallsBackToTheTranslatedForm) {
+    // A small sphere far from the origin, with unused vertices spread from
+    // -1e6 to 1e6 in the sample: the guess is the origin form, whose bound
+    // (about |x|^3 per triangle) cannot decide a volume of 4e-9; signed_volume
+    // must then take the translated form and still round correctly.
+    LevelGuard guard;
+    std::mt19937_64 rng(8);
+    Mesh m = fx::random_sphere(rng, 3, 1e-3, {1e6, 1e6, 1e6});
+    std::uniform_real_distribution<double> d(-1e6, 1e6);
+    Mesh spread;
+    for (int i = 0; i < 5000; ++i) spread.add_vertex(d(rng), d(rng), d(rng));
+    spread.append(m);
+    ASSERT_EQ(likely_volume_form(spread.view()), VolumeForm::origin);
+    const mpq_class ref = fx::reference_sums(spread.view())[kV];
+    const Volume origin = volume_of(spread.view(), VolumeForm::origin);
+    ASSERT_TRUE(origin.safe);
+    EXPECT_GT(q(origin.bound), abs(ref) / 1e6);  // undecided by far
+    for (int level : {0, 1, 2}) {
+        cap_kernel_level(level);
+        EXPECT_PRED2(same, signed_volume(spread.view()), rnd(ref / 6)) << "level " << level;
     }
 }
 
