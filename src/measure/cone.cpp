@@ -19,11 +19,14 @@
 //   < 8u; the cross products' own errors are <= 3.01 u² per unit of Perm).
 //   The origin form (VolumeForm::origin, the volume alone) is the same
 //   computation with uh = b, wh = c and ul = wl = 0: det = a · (b × c),
-//   corr = 0 and Perm = Σ_i |a_i| (|b_j c_k| + |b_k c_j|), and every bound
-//   below holds as it stands. It skips the six two_sums and the corr terms
-//   (about a third of the operations), but Perm grows with |a| |b| |c|
-//   instead of |a| |b - a| |c - a|: it decides only for meshes not far from
-//   the origin compared with their size (likely_volume_form guesses which).
+//   corr = 0 and Perm = Σ_i |a_i| (|b_j c_k| + |b_k c_j|) <= 6 M_b^3, M_b the
+//   largest |coordinate| of the block; every bound below holds as it stands
+//   with Σ magnitude = Σ_blocks 6 M_b^3 n_b (n_b triangles), which is what
+//   the origin form sums instead of Perm. It skips the six two_sums, the
+//   corr terms and the per-triangle magnitudes (about 40% of the
+//   operations), but its bound grows with M_b^3 instead of |a| |b - a|
+//   |c - a|: it decides only for meshes not far from the origin compared
+//   with their size (likely_volume_form guesses which).
 //   s_i = a_i + b_i + c_i is formed as a double-double with error
 //   <= 2.02 u² σ_i, σ_i = |a_i| + |b_i| + |c_i|; q_ij = a_i a_j + b_i b_j +
 //   c_i c_j + s_i s_j with error <= 65 u² Mq_ij, Mq_ij = |a_i a_j| + |b_i b_j|
@@ -141,7 +144,8 @@ struct Terms {
 
 // The ten terms of one triangle in double-double. kTranslate false (volume
 // only): the origin form, uh = b, wh = c and ul = wl = 0, so corr = 0 and
-// det = a · (b × c) (see the top of this file).
+// det = a · (b × c), and no magnitude (the caller bounds Perm by 6 M_b^3 per
+// triangle; see the top of this file).
 template <bool kFma, int N, bool kTranslate = true>
 POLYVOL_INLINE void terms_dd(const Block& b, int i, Terms<N>& t) {
     static_assert(kTranslate || N == 1);
@@ -188,7 +192,7 @@ POLYVOL_INLINE void terms_dd(const Block& b, int i, Terms<N>& t) {
     const double perm = (std::fabs(a[0]) * pn[0] + std::fabs(a[1]) * pn[1]) + std::fabs(a[2]) * pn[2];
     t.h[kV][i] = dh;
     t.l[kV][i] = dl;
-    t.m[kV][i] = perm;
+    if constexpr (kTranslate) t.m[kV][i] = perm;  // the origin form bounds Perm per block instead
     if constexpr (N > 1) {
         const exact::DD d{dh, dl};
         exact::DD s[3];
@@ -620,21 +624,25 @@ template <bool kFma, bool kTranslate = true>
 POLYVOL_INLINE void volume_block(const Block& b, VolumeSums& out) {
     Terms<1> t;
     block_terms<kFma, true, 1, kTranslate>(b, t);
-    // Sum2: lane j holds triangles j, j + 8, j + 16, j + 24.
-    V8 S, E, M;
+    // Sum2: lane j holds triangles j, j + 8, j + 16, j + 24. The origin form
+    // has no per-triangle magnitudes (out.m = 0: volume_faces bounds them).
+    V8 S, E, M = {};
     vload(S, t.h[kV]);
     vload(E, t.l[kV]);
-    vload(M, t.m[kV]);
+    if constexpr (kTranslate) vload(M, t.m[kV]);
     #pragma GCC unroll 4
     for (int r = 1; r < kVolPerLane; ++r) {
-        V8 H, L, P, ns, ne;
+        V8 H, L, ns, ne;
         vload(H, t.h[kV] + r * kVolLanes);
         vload(L, t.l[kV] + r * kVolLanes);
-        vload(P, t.m[kV] + r * kVolLanes);
         two_sum_v(S, H, ns, ne);
         S = ns;
         E += ne + L;
-        M += P;
+        if constexpr (kTranslate) {
+            V8 P;
+            vload(P, t.m[kV] + r * kVolLanes);
+            M += P;
+        }
     }
     // The lanes into one pair: a two_sum tree (8 -> 4 -> 2 -> 1), the errors
     // of each level added to the lanes' error terms.
@@ -675,6 +683,27 @@ POLYVOL_INLINE void range_block(const Block& b, U8& hi, U8& lo) {
         }
 }
 
+// The origin form's magnitude of a block: 6 M^3 n >= Σ Perm, M the largest
+// |coordinate| of the block (Perm = Σ_i |a_i| (|b_j c_k| + |b_k c_j|) <= 6 M^3),
+// n its triangles. M is the largest of the patterns in hi when checked
+// (range_block ran on this block: the same value, as bits), else the maximum
+// of |x| over the block. Rounded three times (relative error < 4u, within the
+// factor 1 + 2^-10 of the bound). Cheaper than Perm per triangle, and for a
+// mesh not far from the origin compared with its size still far below what
+// deciding the rounding needs (likely_volume_form).
+POLYVOL_INLINE double origin_magnitude(const Block& b, const U8& hi, bool checked) {
+    double m = 0;
+    if (checked) {
+        uint64_t bits = 0;
+        for (int j = 0; j < kVolLanes; ++j) bits = std::max<uint64_t>(bits, hi[j]);
+        m = std::bit_cast<double>(bits);
+    } else {
+        for (int r = 0; r < 9; ++r)
+            for (int i = 0; i < kBlock; ++i) m = std::max(m, std::fabs(b.c[r][i]));
+    }
+    return (m * m) * (m * (6.0 * b.n));
+}
+
 // Per task: the exact sum of the blocks' pairs, of their magnitudes, and the
 // extremes of the coordinates' patterns (hi, lo as above; AVX-512 only: the
 // other levels set hi to the largest pattern, so safe() is false unless the
@@ -711,8 +740,16 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
         volume_block<kFma, kTranslate>(b, v);
         acc.sum.add(v.s);
         acc.sum.add(v.e);
-        magnitude += v.m;
-        if constexpr (kLevel >= 2) range_block(b, hi, lo);
+        U8 block_hi = {};
+        if constexpr (kLevel >= 2) {
+            range_block(b, block_hi, lo);
+            hi = block_hi > hi ? block_hi : hi;
+        }
+        if constexpr (kTranslate) {
+            magnitude += v.m;
+        } else {
+            magnitude += origin_magnitude(b, block_hi, kLevel >= 2);
+        }
         triangles += static_cast<std::size_t>(b.n);
     });
     acc.magnitude.add(magnitude);
