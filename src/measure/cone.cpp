@@ -19,14 +19,14 @@
 //   < 8u; the cross products' own errors are <= 3.01 u² per unit of Perm).
 //   The origin form (VolumeForm::origin, the volume alone) is the same
 //   computation with uh = b, wh = c and ul = wl = 0: det = a · (b × c),
-//   corr = 0 and Perm = Σ_i |a_i| (|b_j c_k| + |b_k c_j|) <= 6 M_b^3, M_b the
-//   largest |coordinate| of the block; every bound below holds as it stands
-//   with Σ magnitude = Σ_blocks 6 M_b^3 n_b (n_b triangles), which is what
-//   the origin form sums instead of Perm. It skips the six two_sums, the
-//   corr terms and the per-triangle magnitudes (about 40% of the
-//   operations), but its bound grows with M_b^3 instead of |a| |b - a|
-//   |c - a|: it decides only for meshes not far from the origin compared
-//   with their size (likely_volume_form guesses which).
+//   corr = 0 and Perm = Σ_i |a_i| (|b_j c_k| + |b_k c_j|) <= 6 M^3, M the
+//   largest |coordinate| the pass reads (or of any position, when those were
+//   checked first); every bound below holds as it stands with Σ magnitude =
+//   6 M^3 n (n triangles), which is what the origin form uses instead of
+//   Σ Perm. It skips the six two_sums, the corr terms and the per-triangle
+//   magnitudes (about 40% of the operations), but its bound grows with M^3
+//   instead of |a| |b - a| |c - a|: it decides only for meshes not far from
+//   the origin compared with their size (likely_volume_form guesses which).
 //   s_i = a_i + b_i + c_i is formed as a double-double with error
 //   <= 2.02 u² σ_i, σ_i = |a_i| + |b_i| + |c_i|; q_ij = a_i a_j + b_i b_j +
 //   c_i c_j + s_i s_j with error <= 65 u² Mq_ij, Mq_ij = |a_i a_j| + |b_i b_j|
@@ -38,20 +38,30 @@
 //   parts by two_sum, the errors and low parts in plain double) in lanes of
 //   B terms, with error <= 2B (1.01 B + 3.1) u² Σ|term| (the lanes' error
 //   terms: <= (1.01 B + 3.1) u Σ|term|, each rounded in <= 2B additions).
-//   * The volume alone in double-double (volume_block, the common call):
-//     8 lanes of 4 (lane j: triangles j, j + 8, j + 16, j + 24),
-//     <= 57.2 u² Σ magnitude; then the lanes into one pair: a two_sum tree
-//     8 -> 4 -> 2 -> 1 (exact) whose seven errors (each level's total
-//     <= u Σ|h| <= 1.01 u Σ magnitude: <= 3.03 u Σ magnitude) are added to
-//     the lanes' error terms (<= 7.15 u Σ magnitude) in double, each value
-//     in at most 6 additions: <= γ6 · 10.2 u Σ magnitude <= 61.3 u² Σ
-//     magnitude. The block's (sum, error) pair goes exactly into a
-//     superaccumulator. Total <= (96 + 57.2 + 61.3) u² < 215 u² Σ magnitude.
+//   * The volume alone in double-double (volume_block, the common call)
+//     sums each triangle's (h, lo) as formed, h + lo = the approximation of
+//     det above (96 u² Perm), not normalised: |h| <= 1.01 Perm and |lo| <=
+//     7.21 u Perm. 8 lanes of 4 (lane j: triangles j, j + 8, j + 16, j + 24):
+//     the h by two_sum (exact), their errors ne (Σ|ne| <= 3 · 1.01 u Σ|h|
+//     <= 3.07 u Σ Perm) and the lo (<= 7.21 u Σ Perm) added in double, each
+//     in at most 6 additions: <= γ6 · 10.3 u Σ Perm <= 61.9 u² Σ Perm, and
+//     the lanes' error terms are <= 10.31 u Σ Perm. Then the lanes into one
+//     pair: a two_sum tree 8 -> 4 -> 2 -> 1 (exact) whose seven errors (each
+//     level's total <= u Σ|S| <= 1.013 u Σ Perm: <= 3.04 u Σ Perm) are added
+//     to the lanes' error terms in double, each value in at most 6
+//     additions: <= γ6 · 13.35 u Σ Perm <= 80.3 u² Σ Perm; the block's pair
+//     (s_b, e_b) has |s_b| <= 1.02 Σ Perm_b and |e_b| <= 13.4 u Σ Perm_b.
+//     Groups of 4 consecutive blocks of a task (the last may be shorter):
+//     the s_b by two_sum (exact; three errors t, each <= 1.03 u Σ Perm of
+//     the group), the e_b and t added in double, each in at most 6
+//     additions: <= γ6 · (13.4 + 3.09) u Σ Perm <= 99.1 u² Σ Perm; the
+//     group's pair goes exactly into a superaccumulator. Total <= (96 +
+//     61.9 + 80.3 + 99.1) u² < 338 u² Σ magnitude.
 //   * Everything else: 4 lanes of 8, <= 179 u² Σ magnitude, each lane's
 //     (sum, error) pair exactly into a superaccumulator; totals <= 275,
 //     307 and 355 u² Σ magnitude.
 //   The bound used is K u² Σ magnitude (1 + 2^-10), K = 512 (volume: a
-//   factor 2.38 of safety alone, 1.86 with the moments), 768 (first moments:
+//   factor 1.51 of safety alone, 1.86 with the moments), 768 (first moments:
 //   2.5), 1024 (second moments: 2.88); the factor (1 + 2^-10) covers the
 //   rounding of the magnitudes (sums of non-negative doubles: in double
 //   within a block and, for the volume alone, within a task's fixed range of
@@ -78,9 +88,12 @@
 // coordinate), sums in mpz: exact for any finite input.
 //
 // Range check. The filtered and exact paths need Range::safe (cone.hpp).
-// With AVX-512 the double-double volume alone checks it in its own pass, on
-// the coordinates it reads (range_block: 4 integer operations per 8
-// coordinates); everything else calls coordinate_range (every position).
+// The double-double volume alone checks every position first when each
+// vertex is read about twice or more (at least two indices per vertex) or
+// below AVX-512 (position_extremes: 4 integer operations per 8 coordinates);
+// with AVX-512, a soup, or positions out of range somewhere, the pass checks
+// the coordinates it reads (range_block), so vertices no face uses do not
+// matter. Everything else calls coordinate_range (every position).
 //
 // Cost (one core of a shared 2-core AMD EPYC with AVX2/FMA, 2M triangles
 // far from the origin, where a naive double loop takes 2.2-2.4 ns/triangle):
@@ -187,8 +200,10 @@ POLYVOL_INLINE void terms_dd(const Block& b, int i, Terms<N>& t) {
     two_sum(h1, P[2], h, g2);
     double lo = ((g1 + g2) + ((Q[0] + Q[1]) + Q[2])) + ((a[0] * nl[0] + a[1] * nl[1]) + a[2] * nl[2]);
     if constexpr (kTranslate) lo += (a[0] * corr[0] + a[1] * corr[1]) + a[2] * corr[2];
-    double dh, dl;
-    two_sum(h, lo, dh, dl);
+    // The volume alone keeps (h, lo) as it is (Sum2 adds lo to its error
+    // terms: see the top of this file); the moments need it normalised.
+    double dh = h, dl = lo;
+    if constexpr (N > 1) two_sum(h, lo, dh, dl);
     const double perm = (std::fabs(a[0]) * pn[0] + std::fabs(a[1]) * pn[1]) + std::fabs(a[2]) * pn[2];
     t.h[kV][i] = dh;
     t.l[kV][i] = dl;
@@ -683,31 +698,20 @@ POLYVOL_INLINE void range_block(const Block& b, U8& hi, U8& lo) {
         }
 }
 
-// The origin form's magnitude of a block: 6 M^3 n >= Σ Perm, M the largest
-// |coordinate| of the block (Perm = Σ_i |a_i| (|b_j c_k| + |b_k c_j|) <= 6 M^3),
-// n its triangles. M is the largest of the patterns in hi when checked
-// (range_block ran on this block: the same value, as bits), else the maximum
-// of |x| over the block. Rounded three times (relative error < 4u, within the
-// factor 1 + 2^-10 of the bound). Cheaper than Perm per triangle, and for a
-// mesh not far from the origin compared with its size still far below what
-// deciding the rounding needs (likely_volume_form).
-POLYVOL_INLINE double origin_magnitude(const Block& b, const U8& hi, bool checked) {
-    double m = 0;
-    if (checked) {
-        uint64_t bits = 0;
-        for (int j = 0; j < kVolLanes; ++j) bits = std::max<uint64_t>(bits, hi[j]);
-        m = std::bit_cast<double>(bits);
-    } else {
-        for (int r = 0; r < 9; ++r)
-            for (int i = 0; i < kBlock; ++i) m = std::max(m, std::fabs(b.c[r][i]));
-    }
-    return (m * m) * (m * (6.0 * b.n));
-}
+// The origin form's magnitude: 6 M^3 n >= Σ Perm over n triangles whose
+// coordinates are at most M in magnitude (Perm = Σ_i |a_i| (|b_j c_k| +
+// |b_k c_j|) <= 6 M^3 per triangle). Rounded three times (relative error
+// < 4u, within the factor 1 + 2^-10 of the bound). Cheaper than Perm per
+// triangle, and for a mesh not far from the origin compared with its size
+// still far below what deciding the rounding needs (likely_volume_form).
+double origin_magnitude(double M, std::size_t n) { return (M * M) * (M * (6.0 * static_cast<double>(n))); }
 
-// Per task: the exact sum of the blocks' pairs, of their magnitudes, and the
-// extremes of the coordinates' patterns (hi, lo as above; AVX-512 only: the
-// other levels set hi to the largest pattern, so safe() is false unless the
-// check ran on every block).
+constexpr int kGroupBlocks = 4;  // blocks per superaccumulator pair (volume_faces)
+
+// Per task: the exact sum of the blocks' pairs, of their magnitudes
+// (translated form), and the extremes of the coordinates' patterns (hi, lo
+// as above; only when the pass checked the range, else hi is the largest
+// pattern, so safe() is false).
 struct VolumeAccumulator {
     ExactSum sum;
     ExactSum magnitude;
@@ -723,38 +727,53 @@ struct VolumeAccumulator {
     bool safe() const { return hi <= kSafeHi && lo >= kSafeLo - 1; }
 };
 
-// Faces [f0, f1) into acc. The blocks' magnitudes are summed in double over
-// the range (a fixed range: the same bits for every split of the work), then
-// added exactly. Everything is inlined into the per-level entry points below.
-// The range check only with AVX-512 (kLevel 2): before it there are no
-// 64-bit integer minimum and maximum, and a check in floating point (7
-// operations per vector) cost more than coordinate_range's separate pass
-// (AVX2 + FMA: +19% against +15%; baseline: +25% against +4%; measured).
-template <bool kFma, int kLevel, bool kTranslate>
+// Faces [f0, f1) into acc. The blocks' magnitudes (translated form) are
+// summed in double over the range (a fixed range: the same bits for every
+// split of the work), then added exactly. kCheck: the range check of the
+// coordinates the pass reads (range_block; AVX-512 only: before it there
+// are no 64-bit integer minimum and maximum, and a check in floating point
+// (7 operations per vector) cost more than a separate pass over the
+// positions: AVX2 + FMA +19% against +15%, baseline +25% against +4%,
+// measured). Everything is inlined into the per-level entry points below.
+template <bool kFma, int kLevel, bool kTranslate, bool kCheck>
 POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
+    static_assert(!kCheck || kLevel >= 2);
     U8 hi = {}, lo = ~U8{};
     double magnitude = 0;
     std::size_t triangles = 0;
+    // The blocks' pairs in groups of kGroupBlocks: (gs, ge) by two_sum and
+    // plain additions, then into the superaccumulator (two exact additions
+    // per group instead of per block; see the top of this file).
+    double gs = 0, ge = 0;
+    int grouped = 0;
     for_each_block<kLevel>(mesh, f0, f1, [&](const Block& b) __attribute__((always_inline)) {
         VolumeSums v;
         volume_block<kFma, kTranslate>(b, v);
-        acc.sum.add(v.s);
-        acc.sum.add(v.e);
-        U8 block_hi = {};
-        if constexpr (kLevel >= 2) {
-            range_block(b, block_hi, lo);
-            hi = block_hi > hi ? block_hi : hi;
-        }
-        if constexpr (kTranslate) {
-            magnitude += v.m;
+        if (grouped == 0) {
+            gs = v.s;
+            ge = v.e;
         } else {
-            magnitude += origin_magnitude(b, block_hi, kLevel >= 2);
+            double ns, t;
+            two_sum(gs, v.s, ns, t);
+            gs = ns;
+            ge = (ge + v.e) + t;
         }
+        if (++grouped == kGroupBlocks) {
+            acc.sum.add(gs);
+            acc.sum.add(ge);
+            grouped = 0;
+        }
+        if constexpr (kCheck) range_block(b, hi, lo);
+        if constexpr (kTranslate) magnitude += v.m;
         triangles += static_cast<std::size_t>(b.n);
     });
+    if (grouped > 0) {
+        acc.sum.add(gs);
+        acc.sum.add(ge);
+    }
     acc.magnitude.add(magnitude);
     acc.triangles += triangles;
-    if constexpr (kLevel >= 2) {
+    if constexpr (kCheck) {
         for (int j = 0; j < kVolLanes; ++j) {
             acc.hi = std::max<uint64_t>(acc.hi, hi[j]);
             acc.lo = std::min<uint64_t>(acc.lo, lo[j]);
@@ -766,28 +785,28 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
 
 #if POLYVOL_HAVE_FMA_CLONE
 #define POLYVOL_AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512")))
-template <bool kTranslate>
+template <bool kTranslate, bool kCheck>
 POLYVOL_AVX512 void volume_faces_avx512(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
-    volume_faces<true, 2, kTranslate>(mesh, f0, f1, acc);
+    volume_faces<true, 2, kTranslate, kCheck>(mesh, f0, f1, acc);
 }
 POLYVOL_AVX512 void volume_block_avx512(const Block& b, VolumeSums& out) { volume_block<true>(b, out); }
 #undef POLYVOL_AVX512
 template <bool kTranslate>
 __attribute__((target("avx2,fma"))) void volume_faces_fma(const MeshView& mesh, std::size_t f0, std::size_t f1,
                                                           VolumeAccumulator& acc) {
-    volume_faces<true, 1, kTranslate>(mesh, f0, f1, acc);
+    volume_faces<true, 1, kTranslate, false>(mesh, f0, f1, acc);
 }
 __attribute__((target("avx2,fma"))) void volume_block_fma(const Block& b, VolumeSums& out) { volume_block<true>(b, out); }
 #endif
 template <bool kTranslate>
 void volume_faces_base(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
-    volume_faces<false, 0, kTranslate>(mesh, f0, f1, acc);
+    volume_faces<false, 0, kTranslate, false>(mesh, f0, f1, acc);
 }
 void volume_block_base(const Block& b, VolumeSums& out) { volume_block<false>(b, out); }
 
 // The instruction-set level for a volume pass (0, 1, 2 as in
 // cap_kernel_level). Read once per call: the cap may change meanwhile, and
-// whether the range check ran depends on the level (volume_faces).
+// whether the range check can run in the pass depends on the level.
 int volume_level() {
 #if POLYVOL_HAVE_FMA_CLONE
     if (cpu_has_avx512()) return 2;
@@ -808,14 +827,15 @@ void volume_block_any(const Block& b, VolumeSums& out) {
 }
 
 // The pass with the kernels of `level` (from volume_level()) in the given
-// form; the range check ran iff level == 2.
-VolumeAccumulator volume_pass(const MeshView& mesh, int level, VolumeForm form = VolumeForm::translated) {
+// form; check (level 2 only): the range check in the pass.
+VolumeAccumulator volume_pass(const MeshView& mesh, int level, VolumeForm form, bool check) {
     using Fn = void (*)(const MeshView&, std::size_t, std::size_t, VolumeAccumulator&);
     const bool translate = form == VolumeForm::translated;
     Fn fn = translate ? volume_faces_base<true> : volume_faces_base<false>;
 #if POLYVOL_HAVE_FMA_CLONE
     if (level == 2) {
-        fn = translate ? volume_faces_avx512<true> : volume_faces_avx512<false>;
+        fn = translate ? (check ? volume_faces_avx512<true, true> : volume_faces_avx512<true, false>)
+                       : (check ? volume_faces_avx512<false, true> : volume_faces_avx512<false, false>);
     } else if (level == 1) {
         fn = translate ? volume_faces_fma<true> : volume_faces_fma<false>;
     }
@@ -826,13 +846,71 @@ VolumeAccumulator volume_pass(const MeshView& mesh, int level, VolumeForm form =
         mesh, [&](std::size_t f0, std::size_t f1, VolumeAccumulator& acc) { fn(mesh, f0, f1, acc); });
 }
 
-ConeSums volume_sums(const VolumeAccumulator& acc) {
+// The sums of a pass; M (origin form): the largest |coordinate| it read.
+ConeSums volume_sums(const VolumeAccumulator& acc, VolumeForm form, double M) {
     ConeSums out;
     out.count = 1;
     out.triangles = acc.triangles;
     out.sum[kV] = acc.sum;
-    out.bound[kV] = filtered_bound(kV, Precision::double_double, acc.magnitude.round());
+    const double magnitude = form == VolumeForm::origin ? origin_magnitude(M, acc.triangles) : acc.magnitude.round();
+    out.bound[kV] = filtered_bound(kV, Precision::double_double, magnitude);
     return out;
+}
+
+// The extremes of the bit patterns of |x| over positions (as range_block):
+// hi the largest pattern (NaN and infinity above every finite value), lo the
+// smallest of (pattern - 1) (0 wraps to the largest), 8 independent lanes
+// per chunk (one running max/min would serialise on its latency), chunks on
+// oneTBB (the pass is bound by memory). Compiled for AVX-512 too, where the
+// 64-bit minimum and maximum are single instructions.
+struct Extremes {
+    uint64_t hi = 0, lo = ~uint64_t{0};
+    bool safe() const { return hi <= kSafeHi && lo >= kSafeLo - 1; }
+    double largest() const { return std::bit_cast<double>(hi); }
+};
+
+POLYVOL_INLINE void extremes_of(const double* x, std::size_t n, Extremes& e) {
+    U8 hi = {}, lo = ~U8{};
+    std::size_t i = 0;
+    for (; i + kVolLanes <= n; i += kVolLanes) {
+        U8 v;
+        vload(v, x + i);
+        const U8 a = v & kAbsMask;
+        hi = a > hi ? a : hi;
+        const U8 am = a - 1;
+        lo = am < lo ? am : lo;
+    }
+    for (int j = 0; j < kVolLanes; ++j) {
+        e.hi = std::max<uint64_t>(e.hi, hi[j]);
+        e.lo = std::min<uint64_t>(e.lo, lo[j]);
+    }
+    for (; i < n; ++i) {
+        const uint64_t a = std::bit_cast<uint64_t>(x[i]) & kAbsMask;
+        e.hi = std::max(e.hi, a);
+        e.lo = std::min(e.lo, a - 1);
+    }
+}
+#if POLYVOL_HAVE_FMA_CLONE
+__attribute__((target("avx512f,avx512vl,avx512dq,avx2,prefer-vector-width=512"))) void extremes_avx512(
+    const double* x, std::size_t n, Extremes& e) {
+    extremes_of(x, n, e);
+}
+#endif
+
+Extremes position_extremes(std::span<const double> x) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, x.size(), std::size_t{1} << 16), Extremes{},
+        [&](const tbb::blocked_range<std::size_t>& r, Extremes acc) {
+#if POLYVOL_HAVE_FMA_CLONE
+            if (cpu_has_avx512()) {
+                extremes_avx512(x.data() + r.begin(), r.size(), acc);
+                return acc;
+            }
+#endif
+            extremes_of(x.data() + r.begin(), r.size(), acc);
+            return acc;
+        },
+        [](Extremes a, const Extremes& b) { return Extremes{std::max(a.hi, b.hi), std::min(a.lo, b.lo)}; });
 }
 
 // ---- every other filtered sum (accumulate_into: 4 lanes of 8) ----------------
@@ -840,7 +918,7 @@ ConeSums volume_sums(const VolumeAccumulator& acc) {
 template <int N>
 ConeSums filtered_impl(const MeshView& mesh, bool dd) {
     if constexpr (N == 1) {
-        if (dd) return volume_sums(volume_pass(mesh, volume_level()));
+        if (dd) return volume_sums(volume_pass(mesh, volume_level(), VolumeForm::translated, false), VolumeForm::translated, 0);
     }
     const Accumulator<N> acc = reduce_blocks<Accumulator<N>>(mesh, [dd](const Block& b, Accumulator<N>& a) {
         Terms<N> t;
@@ -1131,38 +1209,7 @@ void cap_kernel_level(int level) {
 }
 
 Range coordinate_range(const MeshView& mesh) {
-    // The bit patterns of |x|: the largest pattern is the largest magnitude,
-    // NaN and infinity above every finite one; the smallest nonzero magnitude
-    // is the smallest pattern once 0 is mapped to the largest (p - 1 wraps).
-    // 8 independent lanes per chunk (one running max/min would serialise on
-    // its latency), chunks on oneTBB (the pass is bound by memory).
-    struct Extremes {
-        uint64_t hi = 0, lo = ~uint64_t{0};
-    };
-    constexpr std::size_t kLanes8 = 8;
-    constexpr uint64_t kAbs = ~(uint64_t{1} << 63);
-    const std::span<const double> x = mesh.positions;
-    const Extremes e = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, x.size(), std::size_t{1} << 16), Extremes{},
-        [&](const tbb::blocked_range<std::size_t>& r, Extremes acc) {
-            uint64_t hi_bits[kLanes8] = {}, lo_bits[kLanes8];
-            std::fill(lo_bits, lo_bits + kLanes8, ~uint64_t{0});
-            auto visit = [&](std::size_t lane, double v) {
-                const uint64_t a = std::bit_cast<uint64_t>(v) & kAbs;
-                hi_bits[lane] = a > hi_bits[lane] ? a : hi_bits[lane];
-                lo_bits[lane] = a - 1 < lo_bits[lane] ? a - 1 : lo_bits[lane];
-            };
-            const std::size_t whole = r.begin() + (r.size() - r.size() % kLanes8);
-            for (std::size_t i = r.begin(); i < whole; i += kLanes8)
-                for (std::size_t j = 0; j < kLanes8; ++j) visit(j, x[i + j]);
-            for (std::size_t i = whole; i < r.end(); ++i) visit(0, x[i]);
-            for (std::size_t j = 0; j < kLanes8; ++j) {
-                acc.hi = std::max(acc.hi, hi_bits[j]);
-                acc.lo = std::min(acc.lo, lo_bits[j]);
-            }
-            return acc;
-        },
-        [](Extremes a, const Extremes& b) { return Extremes{std::max(a.hi, b.hi), std::min(a.lo, b.lo)}; });
+    const Extremes e = position_extremes(mesh.positions);
     const double hi = std::bit_cast<double>(e.hi);
     const double lo = e.lo == ~uint64_t{0} ? std::numeric_limits<double>::infinity() : std::bit_cast<double>(e.lo + 1);
     if (!(hi <= std::numeric_limits<double>::max())) return Range::nonfinite;  // NaN or infinity
@@ -1171,10 +1218,10 @@ Range coordinate_range(const MeshView& mesh) {
 }
 
 VolumeForm likely_volume_form(const MeshView& mesh) {
-    // Why n (B / E)^3 < 2^29: the origin form's bound, 512 u² Σ Perm with
-    // Perm <= 6 B^3 per triangle, is below 2^-10 of an ulp of Σ det = 6 V
-    // (an ulp of x is at least u |x|) when n B^3 < 2^34 V; a solid whose
-    // largest extent is E has V >= E^3 / 32 or so (a ball: E^3 / 1.9).
+    // Why n (B / E)^3 < 2^29: the origin form's bound, 512 u² Σ magnitude
+    // with 6 B^3 per triangle, is below 2^-10 of an ulp of Σ det = 6 V (an
+    // ulp of x is at least u |x|) when n B^3 < 2^34 V; a solid whose largest
+    // extent is E has V >= E^3 / 32 or so (a ball: E^3 / 1.9).
     const std::size_t nv = mesh.vertex_count();
     const std::size_t step = std::max<std::size_t>(1, nv / 64);
     double lo[3], hi[3];
@@ -1198,17 +1245,28 @@ VolumeForm likely_volume_form(const MeshView& mesh) {
 }
 
 ConeSums filtered_volume(const MeshView& mesh, bool& safe, VolumeForm form) {
-    const int level = volume_level();  // once: the pass below runs this level
-    if (level < 2) {
-        // The range check is not fused below AVX-512 (volume_faces): every
-        // position first, as coordinate_range always did.
-        safe = coordinate_range(mesh) == Range::safe;
-        if (!safe) return ConeSums{.count = 1};
-        return volume_sums(volume_pass(mesh, level, form));
+    const int level = volume_level();  // once: the passes below run this level
+    // Every position first when that costs less than checking each used
+    // coordinate in the pass (at least two indices per vertex: each vertex
+    // is read about twice or more there), and always below AVX-512, where
+    // the pass cannot check. The origin form's M is then the largest
+    // |coordinate| of any position, else of any used one.
+    if (level < 2 || 2 * mesh.vertex_count() <= mesh.indices.size()) {
+        const Extremes e = position_extremes(mesh.positions);
+        if (e.safe()) {
+            safe = true;
+            return volume_sums(volume_pass(mesh, level, form, false), form, e.largest());
+        }
+        if (level < 2) {  // stricter than the definition; the caller's exact fallback gives the same results
+            safe = false;
+            return ConeSums{.count = 1};
+        }
+        // Out of range somewhere, maybe only on vertices no face uses: the
+        // check in the pass decides.
     }
-    const VolumeAccumulator acc = volume_pass(mesh, level, form);
+    const VolumeAccumulator acc = volume_pass(mesh, level, form, true);
     safe = acc.safe();
-    return volume_sums(acc);
+    return volume_sums(acc, form, std::bit_cast<double>(acc.hi));
 }
 
 ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision) {

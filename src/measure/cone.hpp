@@ -77,15 +77,18 @@ enum class VolumeForm { translated, origin };
 // when the origin form leaves the rounding undecided.
 VolumeForm likely_volume_form(const MeshView& mesh);
 
-// filtered_sums(mesh, 1, Precision::double_double) with the range check:
+// The double-double volume alone in the given form, with the range check:
 // safe is set to whether every coordinate of every vertex that some face
 // uses is in the safe range (the definition of Range::safe, applied to the
-// coordinates the sums read; vertices no face uses do not matter), checked
-// in the same pass. Below AVX-512 (the CPU's or cap_kernel_level's; the
-// level is read once per call), where that check costs more than a
-// separate pass, safe is coordinate_range(mesh) == Range::safe instead:
-// stricter, and the caller's exact fallback gives the same results. When
-// safe is false the sums are meaningless.
+// coordinates the sums read; vertices no face uses do not matter). Every
+// position is checked first (cheaper when each vertex is read about twice
+// or more); when one is out of range, the pass checks the coordinates it
+// reads. Below AVX-512 (the CPU's or cap_kernel_level's; the level is read
+// once per call), where the pass cannot check, safe is
+// coordinate_range(mesh) == Range::safe instead: stricter, and the caller's
+// exact fallback gives the same results. When safe is false the sums are
+// meaningless. The translated form is filtered_sums(mesh, 1,
+// Precision::double_double) (the same sum and bound).
 ConeSums filtered_volume(const MeshView& mesh, bool& safe, VolumeForm form = VolumeForm::translated);
 
 // Replaces sums[k] by the exact sum (bound 0) for every k with bit k of mask

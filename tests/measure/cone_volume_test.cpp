@@ -389,6 +389,7 @@ TEST(ConeVolume, UnusedVerticesDoNotMatter) {
     ASSERT_PRED2(same, signed_volume(clean.view()), expect);
     cap_kernel_level(2);
     const Volume ref = volume_of(clean.view());
+    const Volume ref_origin = volume_of(clean.view(), VolumeForm::origin);
     for (double bad : {kNaN, kInf, 1e300, 1e-300}) {
         Mesh m = clean;
         m.add_vertex(bad, 0, 1);
@@ -406,6 +407,14 @@ TEST(ConeVolume, UnusedVerticesDoNotMatter) {
                 if (v.safe) {
                     EXPECT_EQ(v.sum, ref.sum);
                     EXPECT_EQ(v.bound, ref.bound);
+                }
+                // The origin form: the same check, and its M is the largest
+                // used coordinate, not the unused vertex's.
+                const Volume o = volume_of(mm->view(), VolumeForm::origin);
+                EXPECT_EQ(o.safe, v.safe);
+                if (o.safe) {
+                    EXPECT_EQ(o.sum, ref_origin.sum);
+                    EXPECT_EQ(o.bound, ref_origin.bound);
                 }
                 EXPECT_PRED2(same, signed_volume(mm->view()), expect) << "bad " << bad << ", level " << level;
             }
