@@ -62,4 +62,25 @@ std::vector<uint32_t> weld_vertices(std::span<const double> positions) {
     return out;
 }
 
+Mesh welded(const MeshView& mesh) {
+    const std::vector<uint32_t> canonical = weld_vertices(mesh.positions);
+    const std::size_t n = canonical.size();
+    std::vector<uint32_t> id(n);
+    Mesh out;
+    uint32_t next = 0;
+    for (std::size_t v = 0; v < n; ++v) {
+        if (canonical[v] == v) {  // the first of its class (canonical[v] <= v)
+            id[v] = next++;
+            out.positions.insert(out.positions.end(), mesh.positions.begin() + 3 * v,
+                                 mesh.positions.begin() + 3 * v + 3);
+        } else {
+            id[v] = id[canonical[v]];
+        }
+    }
+    out.face_offsets.assign(mesh.face_offsets.begin(), mesh.face_offsets.end());
+    out.indices.resize(mesh.indices.size());
+    for (std::size_t i = 0; i < mesh.indices.size(); ++i) out.indices[i] = id[mesh.indices[i]];
+    return out;
+}
+
 }  // namespace polyvol

@@ -82,3 +82,33 @@ TEST(Weld, ManyDuplicatesMatchAnOrderedMapReference) {
     EXPECT_GT(distinct, 1000u);
     EXPECT_LT(distinct, w.size() / 4);
 }
+
+// welded: equal positions become one vertex (first-of-class order, -0.0 with
+// +0.0, NaN never), faces keep their order and sizes, measures unchanged.
+TEST(Weld, WeldedMeshMergesEqualPositionsAndKeepsTheFaces) {
+    polyvol::Mesh soup;  // a tetrahedron as a soup (3 vertices per face) plus a quad
+    const double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const uint32_t tri[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    for (const auto& t : tri) {
+        const uint32_t a = soup.add_vertex(v[t[0]][0], v[t[0]][1], v[t[0]][2]);
+        const uint32_t b = soup.add_vertex(v[t[1]][0], v[t[1]][1], v[t[1]][2]);
+        const uint32_t c = soup.add_vertex(v[t[2]][0], v[t[2]][1], v[t[2]][2]);
+        soup.add_triangle(a, b, c);
+    }
+    soup.positions[3 * 3] = -0.0;  // vertex 3 is (0,0,0) with a negative zero: welds with vertex 0
+    const uint32_t n0 = soup.add_vertex(std::nan(""), 0, 0), n1 = soup.add_vertex(std::nan(""), 0, 0);
+    const uint32_t quad[4] = {n0, n1, 0, 1};
+    soup.add_face(quad);
+    const polyvol::Mesh w = polyvol::welded(soup.view());
+    ASSERT_EQ(w.vertex_count(), 6u);  // four corners and the two NaN vertices
+    EXPECT_EQ((std::vector<double>(w.positions.begin(), w.positions.begin() + 12)),
+              (std::vector<double>{0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1}));
+    EXPECT_EQ(w.face_offsets, soup.face_offsets);
+    EXPECT_EQ(w.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 1, 2, 1, 3, 4, 5, 0, 1}));
+    for (std::size_t i = 0; i < soup.indices.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const double a = soup.positions[3 * std::size_t{soup.indices[i]} + k];
+            const double b = w.positions[3 * std::size_t{w.indices[i]} + k];
+            EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << "index " << i;
+        }
+}
