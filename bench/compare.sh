@@ -137,7 +137,7 @@ def inmem_of(tool, out):
         return None
 
 def field_of(out, i):
-    """polyvol-harness only: field i (5: READ_SECONDS, 6: NAIVE_SECONDS), None when absent or negative."""
+    """polyvol-harness only: field i (5: READ_SECONDS, 6: NAIVE_SECONDS, 7: WELDED_SECONDS), None when absent or negative."""
     try:
         x = float(out.split()[i])
         return x if x >= 0 else None
@@ -219,10 +219,12 @@ print("harness (medians over runs of the in-process figures); ratio = fastest pe
 print()
 print("read loop / naive det: plain scalar loops over the same arrays on all cores, reading and adding the")
 print("coordinates (no determinant) / summing det in plain double (bench/peers/polyvol_volume.cpp); for")
-print("scale, not lower bounds. 5x the fastest peer needs a call below fastest/5.")
+print("scale, not lower bounds. 5x the fastest peer needs a call below fastest/5. welded: polyvol's call on")
+print("welded(mesh), the indexed mesh the peers hold (their readers merge points; polyvol's STL reader keeps")
+print("three vertices per triangle), with its ratio.")
 print()
-print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | fastest/5 s | read loop s | naive det s |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | polyvol call, welded s | welded call ratio | fastest/5 s | read loop s | naive det s |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for tag, ext, res in rows:
     h = res.get("polyvol-harness")
     if h is None:
@@ -231,6 +233,7 @@ for tag, ext, res in rows:
         xs = [x for x in (fn(name, o) for o in r[4]) if x is not None]
         return statistics.median(xs) if xs else None
     pl, pc = med(load_of, "polyvol-harness", h), med(inmem_of, "polyvol-harness", h)
+    pw = med(lambda n, o: field_of(o, 7), "polyvol-harness", h)
     loads = {n: med(load_of, n, res[n]) for n in ("cgal", "vtk") if res.get(n)}
     calls = {n: med(inmem_of, n, res[n]) for n in ("cgal", "vtk") if res.get(n)}
     fl = min([x for x in loads.values() if x], default=None)
@@ -238,7 +241,8 @@ for tag, ext, res in rows:
     fmt = lambda x: "" if x is None else f"{x:.4f}"
     print(f"| {tag} | {ext} | {fmt(pl)} | {fmt(loads.get('cgal'))} | {fmt(loads.get('vtk'))} | "
           f"{'' if not (fl and pl) else f'{fl / pl:.1f}'} | {fmt(pc)} | {fmt(calls.get('cgal'))} | {fmt(calls.get('vtk'))} | "
-          f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} | {fmt(fc / 5 if fc else None)} | "
+          f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} | {fmt(pw)} | {'' if not (fc and pw) else f'{fc / pw:.1f}'} | "
+          f"{fmt(fc / 5 if fc else None)} | "
           f"{fmt(med(lambda n, o: field_of(o, 5), 'polyvol-harness', h))} | {fmt(med(lambda n, o: field_of(o, 6), 'polyvol-harness', h))} |")
 
 print()
