@@ -82,8 +82,10 @@ std::vector<uint32_t> weld_vertices(std::span<const double> positions);
 // The same faces over welded vertices (weld_vertices): one vertex per class
 // of equal positions, numbered in the order of each class's first vertex
 // (its position is that vertex's), indices mapped, faces and their sizes
-// unchanged. Welding changes no measure: merged positions are equal values
-// (they differ at most in the sign of zeros). For triangle soups (STL
+// unchanged. Merged positions are equal values (they differ at most in the
+// sign of zeros), so exact and correctly rounded results do not change; a
+// plain double result (Accuracy::fast) that is zero may change its sign.
+// For triangle soups (STL
 // reads keep three vertices per triangle) it gives the indexed mesh other
 // libraries hold, about a sixth of the positions to read per call.
 Mesh welded(const MeshView& mesh);

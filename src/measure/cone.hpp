@@ -11,9 +11,9 @@
 // How they are summed:
 //   filtered   — each term in double-double (or plain double for Accuracy::fast),
 //                blocks of 32 triangles summed in lanes (volume alone in
-//                double-double: 8 lanes combined into one pair per block; the
-//                rest: 4 lanes), the lanes' results added to a
-//                superaccumulator. Returns the exact sum of those
+//                double-double: 8 lanes combined into one pair per block,
+//                the pairs of 4 blocks into one; the rest: 4 lanes), the
+//                results added to a superaccumulator. Returns the exact sum of those
 //                approximations and a rigorous bound on its distance to the
 //                exact sum (see cone.cpp for the error analysis).
 //   exact      — each term as an exact expansion (Shewchuk) added to the
@@ -65,12 +65,16 @@ ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision);
 // The two forms of the double-double volume term (cone.cpp):
 //   translated — det = a · ((b - a) × (c - a)): its error bound grows with
 //                |a| |b - a| |c - a|, so it decides also far from the origin;
-//   origin     — det = a · (b × c), about a third of the operations: its
-//                bound grows with |a| |b| |c|, so it decides only for meshes
-//                not far from the origin compared with their size.
+//   origin     — det = a · (b × c), about 40% fewer operations: its bound is
+//                6 M^3 per triangle (M the largest |coordinate| the pass
+//                read, or of any position when every position was checked
+//                first: so its bound, not its sum, can differ between
+//                instruction-set levels when some vertices are unused), so
+//                it decides only for meshes not far from the origin compared
+//                with their size.
 enum class VolumeForm { translated, origin };
 
-// A guess (from a sample of at most 64 vertices) at which form decides the
+// A guess (from a sample of at most 128 vertices) at which form decides the
 // rounding of the volume at the lower cost: origin when n (B / E)^3 < 2^29,
 // n the fan triangles, B the sample's largest |coordinate| and E its largest
 // extent along an axis. Only a guess: the caller runs the translated form
@@ -80,10 +84,10 @@ VolumeForm likely_volume_form(const MeshView& mesh);
 // The double-double volume alone in the given form, with the range check:
 // safe is set to whether every coordinate of every vertex that some face
 // uses is in the safe range (the definition of Range::safe, applied to the
-// coordinates the sums read; vertices no face uses do not matter). Every
-// position is checked first (cheaper when each vertex is read about twice
-// or more); when one is out of range, the pass checks the coordinates it
-// reads. Below AVX-512 (the CPU's or cap_kernel_level's; the level is read
+// coordinates the sums read; vertices no face uses do not matter). When each
+// vertex is read about twice or more (at least two indices per vertex)
+// every position is checked first, as cheaper; otherwise, or when one is
+// out of range, the pass checks the coordinates it reads. Below AVX-512 (the CPU's or cap_kernel_level's; the level is read
 // once per call), where the pass cannot check, safe is
 // coordinate_range(mesh) == Range::safe instead: stricter, and the caller's
 // exact fallback gives the same results. When safe is false the sums are
@@ -92,7 +96,8 @@ VolumeForm likely_volume_form(const MeshView& mesh);
 ConeSums filtered_volume(const MeshView& mesh, bool& safe, VolumeForm form = VolumeForm::translated);
 
 // Replaces sums[k] by the exact sum (bound 0) for every k with bit k of mask
-// set (needs Range::safe).
+// set (needs every coordinate of a vertex that some face uses in the safe
+// range: filtered_volume's safe, or Range::safe).
 void exact_sums(const MeshView& mesh, uint32_t mask, ConeSums& sums);
 
 // The exact sums as rationals for any coordinates; non-finite coordinates on

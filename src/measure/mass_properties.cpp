@@ -195,15 +195,21 @@ ConeResults cone_results(const MeshView& mesh, int count, Accuracy accuracy, dou
         // coordinate and takes the big-integer path (or gives NaN) as before.
         // The cheaper origin form first when it is likely to decide; the
         // translated form when it does not (same result: correctly rounded).
+        // Each call reads the kernel level afresh (a test may cap it
+        // meanwhile): an unsafe verdict from the second one also sends the
+        // call down the general path.
         bool safe = false;
         const VolumeForm form = likely_volume_form(mesh);
         ConeSums sums = filtered_volume(mesh, safe, form);
+        std::optional<double> v;
         if (safe) {
-            std::optional<double> v = volume_decided(sums);
+            v = volume_decided(sums);
             if (!v && form == VolumeForm::origin) {
                 sums = filtered_volume(mesh, safe, VolumeForm::translated);
-                v = volume_decided(sums);
+                if (safe) v = volume_decided(sums);
             }
+        }
+        if (safe) {
             if (!v) {
                 exact_sums(mesh, bit(kV), sums);
                 v = volume_decided(sums);
