@@ -9,8 +9,9 @@
 #     quadratic) RUNS times each and prints the median wall seconds, the
 #     median peak RSS, the volumes, and the ratios polyvol/naive and
 #     peer/polyvol;
-#   * prints the in-memory volume call of each peer (their own median) and
-#     polyvol's (polyvol_bench);
+#   * prints loading and the in-memory volume call of each tool's harness
+#     (their own medians; polyvol's also on welded(mesh), the indexed mesh
+#     the peers hold, and two plain loops for scale) and polyvol_bench's;
 #   * measures peak RSS of `polyvol volume` (and of the naive mmap loop) on a
 #     BIG_TRIANGLES-triangle binary STL (default 60M = 3 GB).
 # Usage: bench/compare.sh [BUILD_DIR]      (env: RUNS=5, TIMEOUT=600, JOBS=2,
