@@ -11,7 +11,7 @@
 #include <emmintrin.h>
 #endif
 
-#include "io/huge_pages.hpp"
+#include "core/huge_pages.hpp"
 #include "io/text.hpp"
 
 namespace polyvol::io {
@@ -186,8 +186,8 @@ void concat(std::vector<Mesh>& parts, Mesh& out, bool shift_indices) {
         out.face_offsets.resize(face_base[0] + 1);
         for (std::size_t f = 0; f <= face_base[0]; ++f) out.face_offsets[f] = static_cast<uint32_t>(3 * f);
     }
-    resize_for_filling(out.positions, pos_base[k]);
-    resize_for_filling(out.indices, idx_base[k]);
+    core::resize_for_filling(out.positions, pos_base[k]);
+    core::resize_for_filling(out.indices, idx_base[k]);
     if (polygons) out.face_offsets.resize(face_base[k] + 1);
     for_each(k, [&](std::size_t i) {
         Mesh& part = parts[i];

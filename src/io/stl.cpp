@@ -32,7 +32,7 @@
 #include <string>
 
 #include "io/chunks.hpp"
-#include "io/huge_pages.hpp"
+#include "core/huge_pages.hpp"
 #include "io/readers.hpp"
 #include "io/text.hpp"
 
@@ -70,8 +70,8 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n) {
         out.notes.emplace_back("binary-stl-header-starts-with-solid");
     Mesh& m = out.mesh;
     // n is trustworthy here: the file size was checked against it.
-    resize_for_filling(m.positions, std::size_t{9} * n);
-    resize_for_filling(m.indices, std::size_t{3} * n);
+    core::resize_for_filling(m.positions, std::size_t{9} * n);
+    core::resize_for_filling(m.indices, std::size_t{3} * n);
     bool attributes = false;
     const std::byte* rec = data.data() + 84;
     double* pos = m.positions.data();

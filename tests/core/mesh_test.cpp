@@ -49,38 +49,64 @@ TEST(Weld, BitIdenticalAndSignedZero) {
     EXPECT_EQ(w[3], 0u);
 }
 
-// Against a std::map reference on many vertices with heavy duplication (the
-// open-addressing table grows past its probe runs), NaN never welded, and
-// -0.0 in every coordinate.
-TEST(Weld, ManyDuplicatesMatchAnOrderedMapReference) {
+// The canonical ids by an ordered map (first index of each class; -0.0 as
+// +0.0; NaN never welded), independent of weld_vertices.
+std::vector<uint32_t> map_reference(const std::vector<double>& p, std::size_t* distinct) {
+    std::vector<uint32_t> ref(p.size() / 3);
+    std::map<std::array<double, 3>, uint32_t> first;
+    *distinct = 0;
+    for (std::size_t v = 0; v < ref.size(); ++v) {
+        const std::array<double, 3> key{p[3 * v] + 0.0, p[3 * v + 1] + 0.0, p[3 * v + 2] + 0.0};  // -0.0 + 0.0 == +0.0
+        if (std::isnan(key[0]) || std::isnan(key[1]) || std::isnan(key[2])) {
+            ref[v] = static_cast<uint32_t>(v);
+            continue;
+        }
+        const auto [it, inserted] = first.try_emplace(key, static_cast<uint32_t>(v));
+        *distinct += inserted;
+        ref[v] = it->second;
+    }
+    return ref;
+}
+
+// Positions with heavy duplication: x from 50 integers plus one of eight
+// values (0, -0.0, NaN, 1e300, ...), y and z one of those values.
+std::vector<double> duplicated_positions(std::size_t n, uint64_t state) {
     std::vector<double> p;
-    uint64_t state = 12345;
     auto next = [&] {
         state = state * 6364136223846793005ull + 1442695040888963407ull;
         return state >> 33;
     };
     const double values[] = {0.0, -0.0, 1.0, 0.5, -3.25, 1e300, 2.0000000000000004, std::nan("")};
-    for (int i = 0; i < 200000; ++i)
+    for (std::size_t i = 0; i < n; ++i)
         for (int k = 0; k < 3; ++k) {
             const double v = values[next() % 8];
             p.push_back(k == 0 ? v + double(next() % 50) : v);  // -0.0 kept in y and z
         }
+    return p;
+}
+
+// Against the map reference on many vertices (the partitioned path: buckets
+// welded apart, on several threads), NaN never welded, and -0.0 in every
+// coordinate.
+TEST(Weld, ManyDuplicatesMatchAnOrderedMapReference) {
+    const std::vector<double> p = duplicated_positions(200000, 12345);
     const auto w = polyvol::weld_vertices(p);
     ASSERT_EQ(w.size(), p.size() / 3);
-    std::map<std::array<double, 3>, uint32_t> first;
     std::size_t distinct = 0;
-    for (std::size_t v = 0; v < w.size(); ++v) {
-        const std::array<double, 3> key{p[3 * v] + 0.0, p[3 * v + 1] + 0.0, p[3 * v + 2] + 0.0};  // -0.0 + 0.0 == +0.0
-        if (std::isnan(key[0]) || std::isnan(key[1]) || std::isnan(key[2])) {
-            EXPECT_EQ(w[v], v);
-            continue;
-        }
-        const auto [it, inserted] = first.try_emplace(key, static_cast<uint32_t>(v));
-        distinct += inserted;
-        ASSERT_EQ(w[v], it->second) << "vertex " << v;
-    }
+    const std::vector<uint32_t> ref = map_reference(p, &distinct);
+    for (std::size_t v = 0; v < w.size(); ++v) ASSERT_EQ(w[v], ref[v]) << "vertex " << v;
     EXPECT_GT(distinct, 1000u);
     EXPECT_LT(distinct, w.size() / 4);
+}
+
+// Both sides of the size where the partitioned path starts (2^16 vertices),
+// and one where the last chunk and bucket are short.
+TEST(Weld, SerialAndPartitionedPathsAgreeAtTheirBoundary) {
+    for (const std::size_t n : {std::size_t{65535}, std::size_t{65536}, std::size_t{65537}, std::size_t{300001}}) {
+        const std::vector<double> p = duplicated_positions(n, n);
+        std::size_t distinct = 0;
+        EXPECT_EQ(polyvol::weld_vertices(p), map_reference(p, &distinct)) << n << " vertices";
+    }
 }
 
 // welded: equal positions become one vertex (first-of-class order, -0.0 with

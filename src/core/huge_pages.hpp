@@ -1,4 +1,5 @@
-// Private to io: transparent huge pages for the large arrays a reader fills.
+// Private to the library (core and io): transparent huge pages for the large
+// arrays a reader or a pass fills.
 #pragma once
 
 #include <sys/mman.h>
@@ -7,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace polyvol::io {
+namespace polyvol::core {
 
 // Asks for transparent huge pages on the 2 MiB-aligned interior of a large,
 // not yet touched buffer (call it between reserve and the first write): one
@@ -32,4 +33,4 @@ void resize_for_filling(std::vector<T>& v, std::size_t n) {
     v.resize(n);
 }
 
-}  // namespace polyvol::io
+}  // namespace polyvol::core
