@@ -208,7 +208,7 @@ POLYVOL_INLINE void terms_dd(const Block& b, int i, Terms<N>& t) {
     const double perm = (std::fabs(a[0]) * pn[0] + std::fabs(a[1]) * pn[1]) + std::fabs(a[2]) * pn[2];
     t.h[kV][i] = dh;
     t.l[kV][i] = dl;
-    if constexpr (kTranslate) t.m[kV][i] = perm;  // the origin form bounds Perm per block instead
+    if constexpr (kTranslate) t.m[kV][i] = perm;  // the origin form bounds Perm by 6 M^3 instead
     if constexpr (N > 1) {
         const exact::DD d{dh, dl};
         exact::DD s[3];
@@ -641,7 +641,7 @@ POLYVOL_INLINE void volume_block(const Block& b, VolumeSums& out) {
     Terms<1> t;
     block_terms<kFma, true, 1, kTranslate>(b, t);
     // Sum2: lane j holds triangles j, j + 8, j + 16, j + 24. The origin form
-    // has no per-triangle magnitudes (out.m = 0: volume_faces bounds them).
+    // has no per-triangle magnitudes (out.m = 0; volume_sums bounds them).
     V8 S, E, M = {};
     vload(S, t.h[kV]);
     vload(E, t.l[kV]);

@@ -13,9 +13,10 @@
 //                blocks of 32 triangles summed in lanes (volume alone in
 //                double-double: 8 lanes combined into one pair per block,
 //                the pairs of 4 blocks into one; the rest: 4 lanes), the
-//                results added to a superaccumulator. Returns the exact sum of those
-//                approximations and a rigorous bound on its distance to the
-//                exact sum (see cone.cpp for the error analysis).
+//                results added to a superaccumulator. Returns the exact sum
+//                of those approximations and a rigorous bound on its
+//                distance to the exact sum (see cone.cpp for the error
+//                analysis).
 //   exact      — each term as an exact expansion (Shewchuk) added to the
 //                superaccumulator: the exact sum.
 //   gmp        — big-integer arithmetic: the exact sum for any finite
@@ -84,15 +85,16 @@ VolumeForm likely_volume_form(const MeshView& mesh);
 // The double-double volume alone in the given form, with the range check:
 // safe is set to whether every coordinate of every vertex that some face
 // uses is in the safe range (the definition of Range::safe, applied to the
-// coordinates the sums read; vertices no face uses do not matter). When each
-// vertex is read about twice or more (at least two indices per vertex)
+// coordinates the sums read; vertices no face uses do not matter). When
+// each vertex is read about twice or more (at least two indices per vertex)
 // every position is checked first, as cheaper; otherwise, or when one is
-// out of range, the pass checks the coordinates it reads. Below AVX-512 (the CPU's or cap_kernel_level's; the level is read
-// once per call), where the pass cannot check, safe is
-// coordinate_range(mesh) == Range::safe instead: stricter, and the caller's
-// exact fallback gives the same results. When safe is false the sums are
-// meaningless. The translated form is filtered_sums(mesh, 1,
-// Precision::double_double) (the same sum and bound).
+// out of range, the pass checks the coordinates it reads. Below AVX-512
+// (the CPU's or cap_kernel_level's; the level is read once per call), where
+// the pass cannot check, safe is coordinate_range(mesh) == Range::safe
+// instead: stricter, and the caller's exact fallback gives the same
+// results. When safe is false the sums are meaningless. The translated form
+// is filtered_sums(mesh, 1, Precision::double_double) (the same sum and
+// bound).
 ConeSums filtered_volume(const MeshView& mesh, bool& safe, VolumeForm form = VolumeForm::translated);
 
 // Replaces sums[k] by the exact sum (bound 0) for every k with bit k of mask
