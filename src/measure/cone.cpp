@@ -686,16 +686,36 @@ constexpr uint64_t kSafeHi = 0x4BD0000000000000ull;  // 2^190
 constexpr uint64_t kSafeLo = 0x35F0000000000000ull;  // 2^-160
 static_assert(std::bit_cast<double>(kSafeHi) == 0x1p190 && std::bit_cast<double>(kSafeLo) == 0x1p-160);
 
+// Extremes of some coordinates' patterns (hi, lo as above).
+struct Extremes {
+    uint64_t hi = 0, lo = ~uint64_t{0};
+    void merge(const Extremes& o) {
+        hi = std::max(hi, o.hi);
+        lo = std::min(lo, o.lo);
+    }
+    // Folds the lanes of a vector step (extremes_step).
+    void merge(const U8& lanes_hi, const U8& lanes_lo) {
+        for (int j = 0; j < kVolLanes; ++j) merge(Extremes{lanes_hi[j], lanes_lo[j]});
+    }
+    bool safe() const { return hi <= kSafeHi && lo >= kSafeLo - 1; }
+    double largest() const { return std::bit_cast<double>(hi); }
+};
+
+// One vector of 8 coordinates into the lanes' extremes.
+POLYVOL_INLINE void extremes_step(const U8& x, U8& hi, U8& lo) {
+    const U8 a = x & kAbsMask;
+    hi = a > hi ? a : hi;
+    const U8 am = a - 1;
+    lo = am < lo ? am : lo;
+}
+
 POLYVOL_INLINE void range_block(const Block& b, U8& hi, U8& lo) {
     #pragma GCC unroll 36
     for (int r = 0; r < 9; ++r)
         for (int i = 0; i < kBlock; i += kVolLanes) {
             U8 x;
             vload(x, &b.c[r][i]);
-            const U8 a = x & kAbsMask;
-            hi = a > hi ? a : hi;
-            const U8 am = a - 1;
-            lo = am < lo ? am : lo;
+            extremes_step(x, hi, lo);
         }
 }
 
@@ -710,22 +730,21 @@ double origin_magnitude(double M, std::size_t n) { return (M * M) * (M * (6.0 * 
 constexpr int kGroupBlocks = 4;  // blocks per superaccumulator pair (volume_faces)
 
 // Per task: the exact sum of the blocks' pairs, of their magnitudes
-// (translated form), and the extremes of the coordinates' patterns (hi, lo
-// as above; only when the pass checked the range, else hi is the largest
-// pattern, so safe() is false).
+// (translated form), and the extremes of the coordinates the pass read
+// (only when it checked the range, else hi is the largest pattern, so
+// safe() is false).
 struct VolumeAccumulator {
     ExactSum sum;
     ExactSum magnitude;
-    uint64_t hi = 0, lo = ~uint64_t{0};
+    Extremes range;
     std::size_t triangles = 0;
     void merge(const VolumeAccumulator& o) {
         sum.merge(o.sum);
         magnitude.merge(o.magnitude);
-        hi = std::max(hi, o.hi);
-        lo = std::min(lo, o.lo);
+        range.merge(o.range);
         triangles += o.triangles;
     }
-    bool safe() const { return hi <= kSafeHi && lo >= kSafeLo - 1; }
+    bool safe() const { return range.safe(); }
 };
 
 // Faces [f0, f1) into acc. The blocks' magnitudes (translated form) are
@@ -775,12 +794,9 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
     acc.magnitude.add(magnitude);
     acc.triangles += triangles;
     if constexpr (kCheck) {
-        for (int j = 0; j < kVolLanes; ++j) {
-            acc.hi = std::max<uint64_t>(acc.hi, hi[j]);
-            acc.lo = std::min<uint64_t>(acc.lo, lo[j]);
-        }
+        acc.range.merge(hi, lo);
     } else {
-        acc.hi = ~uint64_t{0};  // not checked: never safe()
+        acc.range.hi = ~uint64_t{0};  // not checked: never safe()
     }
 }
 
@@ -858,37 +874,22 @@ ConeSums volume_sums(const VolumeAccumulator& acc, VolumeForm form, double M) {
     return out;
 }
 
-// The extremes of the bit patterns of |x| over positions (as range_block):
-// hi the largest pattern (NaN and infinity above every finite value), lo the
-// smallest of (pattern - 1) (0 wraps to the largest), 8 independent lanes
-// per chunk (one running max/min would serialise on its latency), chunks on
-// oneTBB (the pass is bound by memory). Compiled for AVX-512 too, where the
-// 64-bit minimum and maximum are single instructions.
-struct Extremes {
-    uint64_t hi = 0, lo = ~uint64_t{0};
-    bool safe() const { return hi <= kSafeHi && lo >= kSafeLo - 1; }
-    double largest() const { return std::bit_cast<double>(hi); }
-};
-
+// The extremes of the bit patterns of |x| over positions (as range_block),
+// 8 independent lanes per chunk (one running max/min would serialise on its
+// latency), chunks on oneTBB (the pass is bound by memory). Compiled for
+// AVX-512 too, where the 64-bit minimum and maximum are single instructions.
 POLYVOL_INLINE void extremes_of(const double* x, std::size_t n, Extremes& e) {
     U8 hi = {}, lo = ~U8{};
     std::size_t i = 0;
     for (; i + kVolLanes <= n; i += kVolLanes) {
         U8 v;
         vload(v, x + i);
-        const U8 a = v & kAbsMask;
-        hi = a > hi ? a : hi;
-        const U8 am = a - 1;
-        lo = am < lo ? am : lo;
+        extremes_step(v, hi, lo);
     }
-    for (int j = 0; j < kVolLanes; ++j) {
-        e.hi = std::max<uint64_t>(e.hi, hi[j]);
-        e.lo = std::min<uint64_t>(e.lo, lo[j]);
-    }
+    e.merge(hi, lo);
     for (; i < n; ++i) {
         const uint64_t a = std::bit_cast<uint64_t>(x[i]) & kAbsMask;
-        e.hi = std::max(e.hi, a);
-        e.lo = std::min(e.lo, a - 1);
+        e.merge(Extremes{a, a - 1});
     }
 }
 #if POLYVOL_HAVE_FMA_CLONE
@@ -911,7 +912,10 @@ Extremes position_extremes(std::span<const double> x) {
             extremes_of(x.data() + r.begin(), r.size(), acc);
             return acc;
         },
-        [](Extremes a, const Extremes& b) { return Extremes{std::max(a.hi, b.hi), std::min(a.lo, b.lo)}; });
+        [](Extremes a, const Extremes& b) {
+            a.merge(b);
+            return a;
+        });
 }
 
 // ---- every other filtered sum (accumulate_into: 4 lanes of 8) ----------------
@@ -1211,11 +1215,9 @@ void cap_kernel_level(int level) {
 
 Range coordinate_range(const MeshView& mesh) {
     const Extremes e = position_extremes(mesh.positions);
-    const double hi = std::bit_cast<double>(e.hi);
-    const double lo = e.lo == ~uint64_t{0} ? std::numeric_limits<double>::infinity() : std::bit_cast<double>(e.lo + 1);
-    if (!(hi <= std::numeric_limits<double>::max())) return Range::nonfinite;  // NaN or infinity
-    if (hi > 0x1p190 || lo < 0x1p-160) return hi == 0 ? Range::safe : Range::unsafe;
-    return Range::safe;
+    // NaN and infinity: patterns above the largest finite one.
+    if (e.hi > std::bit_cast<uint64_t>(std::numeric_limits<double>::max())) return Range::nonfinite;
+    return e.safe() ? Range::safe : Range::unsafe;
 }
 
 VolumeForm likely_volume_form(const MeshView& mesh) {
@@ -1267,7 +1269,7 @@ ConeSums filtered_volume(const MeshView& mesh, bool& safe, VolumeForm form) {
     }
     const VolumeAccumulator acc = volume_pass(mesh, level, form, true);
     safe = acc.safe();
-    return volume_sums(acc, form, std::bit_cast<double>(acc.hi));
+    return volume_sums(acc, form, acc.range.largest());
 }
 
 ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision) {
