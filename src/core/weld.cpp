@@ -45,32 +45,44 @@ bool has_nan(const double* p) { return p[0] != p[0] || p[1] != p[1] || p[2] != p
 
 bool same_position(const double* p, const double* q) { return q[0] == p[0] && q[1] == p[1] && q[2] == p[2]; }
 
-// One table for vertices [0, n) (the small-input path).
-void weld_serial(const double* pos, std::size_t n, uint32_t* out) {
-    const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * n, 16));
+// Welds m vertices in increasing index order with one table (slots: reused
+// storage): out[index(j)] = index of the first of j's class. position(j),
+// index(j) and hash(j) give vertex j's coordinates, original index and hash.
+template <class Position, class Index, class Hash>
+void weld_with_table(std::size_t m, Position position, Index index, Hash hash, std::vector<uint32_t>& slots,
+                     uint32_t* out) {
+    const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * m, 16));
     const std::size_t mask = capacity - 1;
-    std::vector<uint32_t> slots(capacity, 0);  // vertex id + 1; 0 is empty
-    for (std::size_t v = 0; v < n; ++v) {
-        const double* p = pos + 3 * v;
+    slots.assign(capacity, 0);  // j + 1; 0 is empty
+    for (std::size_t j = 0; j < m; ++j) {
+        const double* p = position(j);
         if (has_nan(p)) {  // never equal to anything
-            out[v] = static_cast<uint32_t>(v);
+            out[index(j)] = index(j);
             continue;
         }
-        std::size_t i = position_hash(p) & mask;
+        std::size_t i = hash(j) & mask;
         for (;;) {
             const uint32_t s = slots[i];
             if (s == 0) {
-                slots[i] = static_cast<uint32_t>(v + 1);
-                out[v] = static_cast<uint32_t>(v);
+                slots[i] = static_cast<uint32_t>(j + 1);
+                out[index(j)] = index(j);
                 break;
             }
-            if (same_position(pos + 3 * (s - 1), p)) {
-                out[v] = s - 1;
+            if (same_position(position(s - 1), p)) {
+                out[index(j)] = index(s - 1);
                 break;
             }
             i = (i + 1) & mask;
         }
     }
+}
+
+// One table for vertices [0, n) (the small-input path).
+void weld_serial(const double* pos, std::size_t n, uint32_t* out) {
+    std::vector<uint32_t> slots;
+    weld_with_table(
+        n, [pos](std::size_t v) { return pos + 3 * v; }, [](std::size_t v) { return static_cast<uint32_t>(v); },
+        [pos](std::size_t v) { return position_hash(pos + 3 * v); }, slots, out);
 }
 
 // A vertex copied into its bucket.
@@ -131,33 +143,13 @@ void weld_partitioned(const double* pos, std::size_t n, uint32_t* out) {
         }
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, buckets, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-        std::vector<uint32_t> slots;  // entry offset in the bucket + 1; 0 is empty
+        std::vector<uint32_t> slots;  // reused by the buckets of this range
         for (std::size_t b = r.begin(); b < r.end(); ++b) {
             const Entry* e = entries.get() + bucket_begin[b];
-            const std::size_t m = bucket_begin[b + 1] - bucket_begin[b];
-            const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * m, 16));
-            const std::size_t mask = capacity - 1;
-            slots.assign(capacity, 0);
-            for (std::size_t j = 0; j < m; ++j) {
-                if (has_nan(e[j].xyz)) {
-                    out[e[j].index] = e[j].index;
-                    continue;
-                }
-                std::size_t i = e[j].hash & mask;
-                for (;;) {
-                    const uint32_t s = slots[i];
-                    if (s == 0) {
-                        slots[i] = static_cast<uint32_t>(j + 1);
-                        out[e[j].index] = e[j].index;
-                        break;
-                    }
-                    if (same_position(e[s - 1].xyz, e[j].xyz)) {
-                        out[e[j].index] = e[s - 1].index;
-                        break;
-                    }
-                    i = (i + 1) & mask;
-                }
-            }
+            weld_with_table(
+                bucket_begin[b + 1] - bucket_begin[b], [e](std::size_t j) { return e[j].xyz; },
+                [e](std::size_t j) { return e[j].index; }, [e](std::size_t j) { return uint64_t{e[j].hash}; }, slots,
+                out);
         }
     });
 }
