@@ -84,13 +84,28 @@ inline Float32Triangles stl_records(std::span<const std::byte> records) {
     return {records.data(), records.size() / 50, 50, 12};
 }
 
+// Packed triangles: nine floats each (a, b, c), as a numpy (n, 3, 3) float32
+// array or polyvol::read_binary_stl_triangles (io.hpp) holds them. A trailing
+// partial triangle (size not a multiple of 9) is not counted.
+inline Float32Triangles packed_triangles(std::span<const float> xyz) {
+    return {reinterpret_cast<const std::byte*>(xyz.data()), xyz.size() / 9, 36, 0};
+}
+
+// What pass 1 computes besides the volume. Each costs time: on 1M triangles
+// in memory the volume alone takes about a third of everything.
+struct SoupWants {
+    bool closedness = true;        // the fingerprint (SoupResult::closed)
+    bool moments_and_area = true;  // first moments, centroid, area
+};
+
 struct SoupResult {
+    SoupWants computed;            // what was asked for; figures not asked for are NaN
     uint64_t triangles = 0;
     bool nonfinite = false;        // some coordinate is NaN or ±inf (then every figure below is NaN)
     // Fingerprint lanes (mod 2^31 - 1); all zero iff the surface is closed, up to
     // the probability above. Keyed per accumulator, so the values mean nothing else.
     std::array<uint64_t, 4> fingerprint{};
-    bool closed = false;           // fingerprint all zero and !nonfinite
+    bool closed = false;           // fingerprint all zero and !nonfinite (false when not computed)
 
     double volume = 0;             // correctly rounded (when volume_correctly_rounded)
     bool volume_correctly_rounded = false;
@@ -107,9 +122,9 @@ struct SoupResult {
 class SoupAccumulator {
 public:
     // Keys from std::random_device.
-    SoupAccumulator();
+    explicit SoupAccumulator(SoupWants wants = {});
     // Keys derived from seed (reproducible fingerprints, for tests).
-    explicit SoupAccumulator(uint64_t seed);
+    explicit SoupAccumulator(uint64_t seed, SoupWants wants = {});
     ~SoupAccumulator();
     SoupAccumulator(const SoupAccumulator&) = delete;
     SoupAccumulator& operator=(const SoupAccumulator&) = delete;
@@ -134,7 +149,12 @@ private:
 };
 
 // All passes over triangles held in memory.
-SoupResult soup_properties(const Float32Triangles& t);
-SoupResult soup_properties(const Float32Triangles& t, uint64_t seed);
+SoupResult soup_properties(const Float32Triangles& t, SoupWants wants = {});
+SoupResult soup_properties(const Float32Triangles& t, uint64_t seed, SoupWants wants = {});
+
+// The volume alone, correctly rounded (NaN when a coordinate is NaN or
+// infinite): pass 1 without the fingerprint, the moments and the area. Like
+// signed_volume (measure.hpp), it does not check that the surface is closed.
+double soup_volume(const Float32Triangles& t);
 
 }  // namespace polyvol

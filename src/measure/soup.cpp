@@ -192,7 +192,8 @@ POLYVOL_INLINE double lane_sum(const double* v) {
     return lane_sum8(a);
 }
 
-template <bool kFma>
+// kMA: the first moments and t² (area) as well as the volume.
+template <bool kFma, bool kMA>
 POLYVOL_INLINE void pass1_arith(const Coords& co, Pass1Block& out, double* t2) {
     const auto& c = co.c;
     alignas(64) double h[kB], lo[kB], m[3][kB], ad[kB], x[kB];
@@ -215,7 +216,7 @@ POLYVOL_INLINE void pass1_arith(const Coords& co, Pass1Block& out, double* t2) {
         h[i] = hh;
         lo[i] = ((g1 + g2) + ((Q0 + Q1) + Q2)) + ((ax * t0 + ay * t1) + az * tt2);
     }
-    for (int i = 0; i < kB; ++i) {
+    for (int i = 0; i < kB && kMA; ++i) {
         // First moments.
         const double d = h[i] + lo[i];
         ad[i] = std::fabs(d);
@@ -223,7 +224,7 @@ POLYVOL_INLINE void pass1_arith(const Coords& co, Pass1Block& out, double* t2) {
         m[1][i] = d * ((c[1][i] + c[4][i]) + c[7][i]);
         m[2][i] = d * ((c[2][i] + c[5][i]) + c[8][i]);
     }
-    for (int i = 0; i < kB; ++i) {
+    for (int i = 0; i < kB && kMA; ++i) {
         // Area: |(b - a) × (c - a)|.
         const double ux = c[3][i] - c[0][i], uy = c[4][i] - c[1][i], uz = c[5][i] - c[2][i];
         const double wx = c[6][i] - c[0][i], wy = c[7][i] - c[1][i], wz = c[8][i] - c[2][i];
@@ -260,24 +261,31 @@ POLYVOL_INLINE void pass1_arith(const Coords& co, Pass1Block& out, double* t2) {
     }
     out.vs = vs;
     out.ve = ve;
-    for (int k = 0; k < 3; ++k) out.mom[k] = lane_sum(m[k]);
-    out.abs_d = lane_sum(ad);
-    out.cross = lane_sum(x);
+    if constexpr (kMA) {
+        for (int k = 0; k < 3; ++k) out.mom[k] = lane_sum(m[k]);
+        out.abs_d = lane_sum(ad);
+        out.cross = lane_sum(x);
+    }
 }
 
 
+template <bool kMA>
 void pass1_arith_base(const Coords& c, Pass1Block& out) {
     alignas(64) double t2[kB], t[kB];
-    pass1_arith<false>(c, out, t2);
+    pass1_arith<false, kMA>(c, out, t2);
+    if constexpr (kMA) {
 #if POLYVOL_SOUP_X86
-    for (int i = 0; i < kB; i += 2) _mm_store_pd(t + i, _mm_sqrt_pd(_mm_load_pd(t2 + i)));
+        for (int i = 0; i < kB; i += 2) _mm_store_pd(t + i, _mm_sqrt_pd(_mm_load_pd(t2 + i)));
 #else
-    for (int i = 0; i < kB; ++i) t[i] = std::sqrt(t2[i]);
+        for (int i = 0; i < kB; ++i) t[i] = std::sqrt(t2[i]);
 #endif
-    out.area2 = lane_sum(t);
+        out.area2 = lane_sum(t);
+    }
 }
 
-// The whole of pass 1 for one block, portable (see pass1_avx512).
+// The whole of pass 1 for one block, portable (see pass1_avx512). kFp: the
+// fingerprint (into fp); kMA: first moments and area.
+template <bool kFp, bool kMA>
 uint32_t pass1_portable(const std::byte* base, std::size_t stride, int n, const Keys& key, Pass1Block& out,
                         uint64_t fp[kFpLanes]) {
     Words w;
@@ -296,8 +304,8 @@ uint32_t pass1_portable(const std::byte* base, std::size_t stride, int n, const 
     for (int k = 0; k < 9; ++k)
         for (int i = n; i < kB; ++i) co.c[k][i] = 0;
     if (mx >= 0x7F800000u) return mx;
-    fingerprint_portable(w, n, key, fp);
-    pass1_arith_base(co, out);
+    if constexpr (kFp) fingerprint_portable(w, n, key, fp);
+    pass1_arith_base<kMA>(co, out);
     return mx;
 }
 
@@ -373,15 +381,18 @@ __attribute__((target("avx2"), always_inline)) inline uint32_t load_block_avx2(c
 
 // Load + arithmetic of pass 1 with AVX2 (pass1_avx512 below does the same
 // with AVX-512, register-resident).
+template <bool kMA>
 __attribute__((target("avx2,fma"))) uint32_t arith_avx2(const std::byte* base, std::size_t stride, int n,
                                                         Pass1Block& out) {
     Coords co;
     const uint32_t mx = load_block_avx2(base, stride, n, co);
     if (mx >= 0x7F800000u) return mx;
     alignas(64) double t2[kB], t[kB];
-    pass1_arith<true>(co, out, t2);
-    for (int i = 0; i < kB; i += 4) _mm256_store_pd(t + i, _mm256_sqrt_pd(_mm256_load_pd(t2 + i)));
-    out.area2 = lane_sum(t);
+    pass1_arith<true, kMA>(co, out, t2);
+    if constexpr (kMA) {
+        for (int i = 0; i < kB; i += 4) _mm256_store_pd(t + i, _mm256_sqrt_pd(_mm256_load_pd(t2 + i)));
+        out.area2 = lane_sum(t);
+    }
     return mx;
 }
 
@@ -571,6 +582,15 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512d column(__m
     return _mm512_cvtps_pd(_mm256_permute2f128_ps(_mm512_castps512_ps256(a), _mm512_castps512_ps256(b), imm));
 }
 
+// The nine floats at r in words 0..8, the rest zero: a 256-bit load and
+// the ninth float broadcast into word 8. (A masked 512-bit load, 0x1FF,
+// reads the same words but was 3-4x slower for the whole block on AMD
+// Zen 4 when nothing else touched the records' cache lines first.)
+__attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512 triangle_row(const std::byte* r) {
+    const __m512 x = _mm512_zextps256_ps512(_mm256_loadu_ps(reinterpret_cast<const float*>(r)));
+    return _mm512_mask_broadcastss_ps(x, 0x100, _mm_load_ss(reinterpret_cast<const float*>(r + 32)));
+}
+
 // two_sum(a, b) on eight lanes.
 __attribute__((target(POLYVOL_AVX512), always_inline)) inline void two_sum8(__m512d a, __m512d b, __m512d& s,
                                                                               __m512d& e) {
@@ -583,8 +603,8 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline void two_sum8(__m5
 // pass1_arith's, operation for operation and lane for lane (the same bits):
 // the block in four groups of eight triangles, each group's coordinates in
 // nine registers (lane j of group g is triangle 8 g + j, which is lane j of
-// the per-block sums), nothing stored in between.
-template <bool kFull>  // kFull: n == kB
+// the per-block sums), nothing stored in between. kFp, kMA: as pass1_portable.
+template <bool kFull, bool kFp, bool kMA>  // kFull: n == kB
 __attribute__((target(POLYVOL_AVX512), always_inline)) inline uint32_t pass1_avx512_body(
     const std::byte* base, std::size_t stride, int n, const Keys& key, Pass1Block& out, uint64_t fp[kFpLanes]) {
     const __m512d neg = _mm512_set1_pd(-0.0);
@@ -598,8 +618,8 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline uint32_t pass1_avx
         __m512 row[8];
         if (kFull) {
             const std::byte* const r0 = base + static_cast<std::size_t>(i0) * stride;
-            for (int j = 0; j < 8; ++j) row[j] = _mm512_maskz_loadu_ps(0x1FF, r0 + static_cast<std::size_t>(j) * stride);
-            for (int q = 0; q < 8; q += 4) {
+            for (int j = 0; j < 8; ++j) row[j] = triangle_row(r0 + static_cast<std::size_t>(j) * stride);
+            for (int q = 0; q < 8 && kFp; q += 4) {
                 const std::byte* const r[4] = {r0 + static_cast<std::size_t>(q) * stride,
                                                r0 + static_cast<std::size_t>(q + 1) * stride,
                                                r0 + static_cast<std::size_t>(q + 2) * stride,
@@ -608,10 +628,10 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline uint32_t pass1_avx
             }
         } else {
             for (int j = 0; j < 8; ++j)
-                row[j] = i0 + j < n ? _mm512_maskz_loadu_ps(0x1FF, base + static_cast<std::size_t>(i0 + j) * stride)
+                row[j] = i0 + j < n ? triangle_row(base + static_cast<std::size_t>(i0 + j) * stride)
                                     : _mm512_setzero_ps();
             // Triangles past n: all three corners the point 0 (degenerate: adds 0).
-            for (int q = i0; q < std::min(n, i0 + 8); q += 4) {
+            for (int q = i0; q < std::min(n, i0 + 8) && kFp; q += 4) {
                 const std::byte* r[4];
                 for (int h = 0; h < 4; ++h) r[h] = base + static_cast<std::size_t>(std::min(q + h, n - 1)) * stride;
                 fpr.add4(r, static_cast<__mmask16>(n - q >= 4 ? 0x7777u : 0x7777u & ((1u << (4 * (n - q))) - 1)));
@@ -651,47 +671,58 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline uint32_t pass1_avx
         const __m512d l = _mm512_add_pd(
             _mm512_add_pd(_mm512_add_pd(g1, g2), _mm512_add_pd(_mm512_add_pd(Q0, Q1), Q2)),
             _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(ax, e0), _mm512_mul_pd(ay, e1)), _mm512_mul_pd(az, e2)));
-        // First moments.
-        const __m512d d = _mm512_add_pd(h, l);
-        const __m512d ad = _mm512_abs_pd(d);
-        const __m512d m0 = _mm512_mul_pd(d, _mm512_add_pd(_mm512_add_pd(ax, bx), cx));
-        const __m512d m1 = _mm512_mul_pd(d, _mm512_add_pd(_mm512_add_pd(ay, by), cy));
-        const __m512d m2 = _mm512_mul_pd(d, _mm512_add_pd(_mm512_add_pd(az, bz), cz));
-        // Area.
-        const __m512d ux = _mm512_sub_pd(bx, ax), uy = _mm512_sub_pd(by, ay), uz = _mm512_sub_pd(bz, az);
-        const __m512d wx = _mm512_sub_pd(cx, ax), wy = _mm512_sub_pd(cy, ay), wz = _mm512_sub_pd(cz, az);
-        const __m512d p0 = _mm512_mul_pd(uy, wz), q0 = _mm512_mul_pd(uz, wy);
-        const __m512d p1 = _mm512_mul_pd(uz, wx), q1 = _mm512_mul_pd(ux, wz);
-        const __m512d p2 = _mm512_mul_pd(ux, wy), q2 = _mm512_mul_pd(uy, wx);
-        const __m512d f0 = _mm512_sub_pd(p0, q0), f1 = _mm512_sub_pd(p1, q1), f2 = _mm512_sub_pd(p2, q2);
-        const __m512d t = _mm512_sqrt_pd(
-            _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(f0, f0), _mm512_mul_pd(f1, f1)), _mm512_mul_pd(f2, f2)));
-        const __m512d x = _mm512_add_pd(_mm512_add_pd(_mm512_add_pd(_mm512_abs_pd(p0), _mm512_abs_pd(q0)),
-                                                      _mm512_add_pd(_mm512_abs_pd(p1), _mm512_abs_pd(q1))),
-                                        _mm512_add_pd(_mm512_abs_pd(p2), _mm512_abs_pd(q2)));
-        // Into the lanes: Sum2 for the volume, plain sums for the rest.
+        // Into the lanes: Sum2 for the volume.
         if (g == 0) {
-            S = h, E = l, M0 = m0, M1 = m1, M2 = m2, AD = ad, X = x, T = t;
+            S = h, E = l;
         } else {
             __m512d ns, ne;
             two_sum8(S, h, ns, ne);
             S = ns;
             E = _mm512_add_pd(E, _mm512_add_pd(ne, l));
-            M0 = _mm512_add_pd(M0, m0), M1 = _mm512_add_pd(M1, m1), M2 = _mm512_add_pd(M2, m2);
-            AD = _mm512_add_pd(AD, ad), X = _mm512_add_pd(X, x), T = _mm512_add_pd(T, t);
+        }
+        if constexpr (kMA) {
+            // First moments.
+            const __m512d d = _mm512_add_pd(h, l);
+            const __m512d ad = _mm512_abs_pd(d);
+            const __m512d m0 = _mm512_mul_pd(d, _mm512_add_pd(_mm512_add_pd(ax, bx), cx));
+            const __m512d m1 = _mm512_mul_pd(d, _mm512_add_pd(_mm512_add_pd(ay, by), cy));
+            const __m512d m2 = _mm512_mul_pd(d, _mm512_add_pd(_mm512_add_pd(az, bz), cz));
+            // Area.
+            const __m512d ux = _mm512_sub_pd(bx, ax), uy = _mm512_sub_pd(by, ay), uz = _mm512_sub_pd(bz, az);
+            const __m512d wx = _mm512_sub_pd(cx, ax), wy = _mm512_sub_pd(cy, ay), wz = _mm512_sub_pd(cz, az);
+            const __m512d p0 = _mm512_mul_pd(uy, wz), q0 = _mm512_mul_pd(uz, wy);
+            const __m512d p1 = _mm512_mul_pd(uz, wx), q1 = _mm512_mul_pd(ux, wz);
+            const __m512d p2 = _mm512_mul_pd(ux, wy), q2 = _mm512_mul_pd(uy, wx);
+            const __m512d f0 = _mm512_sub_pd(p0, q0), f1 = _mm512_sub_pd(p1, q1), f2 = _mm512_sub_pd(p2, q2);
+            const __m512d t = _mm512_sqrt_pd(
+                _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(f0, f0), _mm512_mul_pd(f1, f1)), _mm512_mul_pd(f2, f2)));
+            const __m512d x = _mm512_add_pd(_mm512_add_pd(_mm512_add_pd(_mm512_abs_pd(p0), _mm512_abs_pd(q0)),
+                                                          _mm512_add_pd(_mm512_abs_pd(p1), _mm512_abs_pd(q1))),
+                                            _mm512_add_pd(_mm512_abs_pd(p2), _mm512_abs_pd(q2)));
+            // Plain sums.
+            if (g == 0) {
+                M0 = m0, M1 = m1, M2 = m2, AD = ad, X = x, T = t;
+            } else {
+                M0 = _mm512_add_pd(M0, m0), M1 = _mm512_add_pd(M1, m1), M2 = _mm512_add_pd(M2, m2);
+                AD = _mm512_add_pd(AD, ad), X = _mm512_add_pd(X, x), T = _mm512_add_pd(T, t);
+            }
         }
     }
     // Magnitudes' bit patterns order as the magnitudes (inf above all finite ones).
     const uint32_t m = _mm512_reduce_max_epu32(_mm512_castps_si512(mx));
     if (m >= 0x7F800000u) return m;
-    const __m512d lanes[8] = {E, M0, M1, M2, AD, X, T, T};
     alignas(64) double sums[8], s[kSumLanes];
-    _mm512_store_pd(sums, lane_sums8(lanes));
-    // A NaN coordinate makes one of the differences b - a, c - a NaN; each
-    // of the six is a factor of a product in X, so Σ X is then NaN (and it is
-    // finite when the coordinates are).
-    if (std::isnan(sums[5])) return 0x7FC00000u;
-    fpr.finish(fp);
+    if constexpr (kMA) {
+        const __m512d lanes[8] = {E, M0, M1, M2, AD, X, T, T};
+        _mm512_store_pd(sums, lane_sums8(lanes));
+        // A NaN coordinate makes one of the differences b - a, c - a NaN; each
+        // of the six is a factor of a product in X, so Σ X is then NaN (and it is
+        // finite when the coordinates are).
+        if (std::isnan(sums[5])) return 0x7FC00000u;
+    } else {
+        _mm512_store_pd(sums, E);
+        sums[0] = lane_sum8(sums);
+    }
     _mm512_store_pd(s, S);
     double vs = s[0], ve = sums[0];
     for (int j = 1; j < kSumLanes; ++j) {
@@ -700,20 +731,27 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline uint32_t pass1_avx
         vs = ns;
         ve += ne;
     }
+    // Without the area: every coordinate is a factor of a product in h (a
+    // NaN one makes vs NaN), and finite coordinates keep vs and ve finite.
+    if (!kMA && std::isnan(vs + ve)) return 0x7FC00000u;
+    if constexpr (kFp) fpr.finish(fp);
     out.vs = vs;
     out.ve = ve;
-    for (int k = 0; k < 3; ++k) out.mom[k] = sums[1 + k];
-    out.abs_d = sums[4];
-    out.cross = sums[5];
-    out.area2 = sums[6];
+    if constexpr (kMA) {
+        for (int k = 0; k < 3; ++k) out.mom[k] = sums[1 + k];
+        out.abs_d = sums[4];
+        out.cross = sums[5];
+        out.area2 = sums[6];
+    }
     return m;
 }
 
+template <bool kFp, bool kMA>
 __attribute__((target(POLYVOL_AVX512))) uint32_t pass1_avx512(const std::byte* base, std::size_t stride, int n,
                                                                 const Keys& key, Pass1Block& out,
                                                                 uint64_t fp[kFpLanes]) {
-    return n == kB ? pass1_avx512_body<true>(base, stride, n, key, out, fp)
-                   : pass1_avx512_body<false>(base, stride, n, key, out, fp);
+    return n == kB ? pass1_avx512_body<true, kFp, kMA>(base, stride, n, key, out, fp)
+                   : pass1_avx512_body<false, kFp, kMA>(base, stride, n, key, out, fp);
 }
 
 #undef POLYVOL_AVX512
@@ -745,6 +783,30 @@ struct Partial {
         nonfinite = nonfinite || o.nonfinite;
     }
 };
+
+// Pass 1 for one block at the best instruction-set level: the largest
+// |coordinate| bit pattern (>= 0x7F800000: NaN or infinity, and then nothing
+// else is set).
+template <bool kFp, bool kMA>
+uint32_t pass1_block(const std::byte* base, std::size_t stride, int n, const Keys& keys, Pass1Block& r,
+                     uint64_t fp[kFpLanes]) {
+#if POLYVOL_SOUP_X86
+    if (const int level = isa_level(); level == 2) return pass1_avx512<kFp, kMA>(base, stride, n, keys, r, fp);
+    else if (level == 1) {
+        const uint32_t mx = arith_avx2<kMA>(base, stride, n, r);
+        if (kFp && mx < 0x7F800000u) fingerprint_aesni(base, stride, n, keys, fp);
+        return mx;
+    }
+#endif
+    return pass1_portable<kFp, kMA>(base, stride, n, keys, r, fp);
+}
+
+using Pass1Fn = uint32_t (*)(const std::byte*, std::size_t, int, const Keys&, Pass1Block&, uint64_t*);
+
+Pass1Fn pass1_for(SoupWants w) {
+    if (w.closedness) return w.moments_and_area ? pass1_block<true, true> : pass1_block<true, false>;
+    return w.moments_and_area ? pass1_block<false, true> : pass1_block<false, false>;
+}
 
 std::optional<double> decide_volume(const ExactSum& sum, double bound) {
     if (bound == 0) return sum.round_div(6);
@@ -783,13 +845,15 @@ void measure::record_soup_pass1(SoupPass1Sums* out) { g_pass1_record.store(out, 
 
 struct SoupAccumulator::State {
     Keys keys{};
+    SoupWants wants;
+    Pass1Fn pass1;
     int pass = 1;
     bool done = false;
     tbb::enumerable_thread_specific<Partial> tls;
     uint64_t pass1_triangles = 0;
     SoupResult result;
 
-    explicit State(uint64_t seed) {
+    State(uint64_t seed, SoupWants w) : wants(w), pass1(pass1_for(w)) {
         uint64_t s = seed;
         for (auto& k : keys.aes)
             for (auto& x : k) x = splitmix(s);
@@ -803,20 +867,9 @@ struct SoupAccumulator::State {
         const std::byte* base = t.data + first * t.stride + t.offset;
         if (pass == 1) {
             p.triangles += static_cast<uint64_t>(n);
-            uint64_t fp[kFpLanes];
+            uint64_t fp[kFpLanes] = {};
             Pass1Block r;
-            uint32_t mx;
-#if POLYVOL_SOUP_X86
-            if (const int level = isa_level(); level == 2) {
-                mx = pass1_avx512(base, t.stride, n, keys, r, fp);
-            } else if (level == 1) {
-                mx = arith_avx2(base, t.stride, n, r);
-                if (mx < 0x7F800000u) fingerprint_aesni(base, t.stride, n, keys, fp);
-            } else
-#endif
-            {
-                mx = pass1_portable(base, t.stride, n, keys, r, fp);
-            }
+            const uint32_t mx = pass1(base, t.stride, n, keys, r, fp);
             if (mx >= 0x7F800000u) {  // NaN or infinity: nothing else is meaningful
                 p.nonfinite = true;
                 return;
@@ -830,6 +883,7 @@ struct SoupAccumulator::State {
             const double M = static_cast<double>(std::bit_cast<float>(mx));
             const double nn = static_cast<double>(n);
             p.vol_mag.add(6 * (M * M * M) * nn);
+            if (!wants.moments_and_area) return;
             for (int k = 0; k < 3; ++k) p.mom[k].add(r.mom[k]);
             p.mom_mag.add(3 * M * r.abs_d + 0x1p-43 * ((M * M) * (M * M)) * nn);
             p.area2.add(r.area2);
@@ -859,19 +913,19 @@ struct SoupAccumulator::State {
     }
 };
 
-SoupAccumulator::SoupAccumulator() {
+SoupAccumulator::SoupAccumulator(SoupWants wants) {
     std::random_device rd;
     uint64_t seed = 0;
     for (int i = 0; i < 4; ++i) seed = (seed << 16) ^ (static_cast<uint64_t>(rd()) * 0x9E3779B97F4A7C15ull) ^ (seed >> 7);
     // More entropy than one 64-bit seed for the keys themselves.
-    s_ = std::make_unique<State>(seed);
+    s_ = std::make_unique<State>(seed, wants);
     for (auto& k : s_->keys.aes)
         for (auto& x : k) x ^= static_cast<uint64_t>(rd()) << 32 | rd();
     for (auto& k : s_->keys.mix)
         for (auto& x : k) x ^= (static_cast<uint64_t>(rd()) << 32 | rd()) | 1;
 }
 
-SoupAccumulator::SoupAccumulator(uint64_t seed) : s_(std::make_unique<State>(seed)) {}
+SoupAccumulator::SoupAccumulator(uint64_t seed, SoupWants wants) : s_(std::make_unique<State>(seed, wants)) {}
 
 SoupAccumulator::~SoupAccumulator() = default;
 
@@ -909,10 +963,17 @@ bool SoupAccumulator::next_pass() {
         if (measure::SoupPass1Sums* rec = g_pass1_record.load(std::memory_order_relaxed))
             *rec = {all.vol, all.vol_mag, {all.mom[0], all.mom[1], all.mom[2]}, all.mom_mag, all.area2, all.cross};
         s.pass1_triangles = all.triangles;
+        r.computed = s.wants;
         r.triangles = all.triangles;
         r.nonfinite = all.nonfinite;
         r.fingerprint = {all.fp[0], all.fp[1], all.fp[2], all.fp[3]};
-        r.closed = !all.nonfinite && all.fp[0] == 0 && all.fp[1] == 0 && all.fp[2] == 0 && all.fp[3] == 0;
+        r.closed = s.wants.closedness && !all.nonfinite && all.fp[0] == 0 && all.fp[1] == 0 && all.fp[2] == 0 &&
+                   all.fp[3] == 0;
+        if (all.nonfinite || !s.wants.moments_and_area) {
+            r.area = kNaN;
+            r.first_moments = r.centroid = {kNaN, kNaN, kNaN};
+            r.first_moments_error_bound = r.centroid_error_bound = r.area_relative_error = kNaN;
+        }
         if (all.nonfinite) {
             r.volume = r.area = kNaN;
             r.first_moments = r.centroid = {kNaN, kNaN, kNaN};
@@ -921,20 +982,22 @@ bool SoupAccumulator::next_pass() {
             s.done = true;
             return false;
         }
-        // Area.
-        const double a2 = all.area2.round();
-        const double cross = all.cross.round();
-        r.area = a2 / 2;
-        r.area_relative_error =
-            a2 > 0 ? up(up(up(up(15 * kU * a2) + up(5 * kU * cross)) / a2) + kU) : (cross > 0 ? kInf : 0.0);
-        // First moments (the centroid needs the volume: below).
-        const double mom_bound = up(up(16 * kU * up(all.mom_mag.round() * (1 + 0x1p-10))) / 24);
-        double emax = 0;
-        for (int k = 0; k < 3; ++k) {
-            r.first_moments[k] = all.mom[k].round_div(24);
-            emax = std::max(emax, up(mom_bound + up(kU * std::fabs(r.first_moments[k]))));
+        if (s.wants.moments_and_area) {
+            // Area.
+            const double a2 = all.area2.round();
+            const double cross = all.cross.round();
+            r.area = a2 / 2;
+            r.area_relative_error =
+                a2 > 0 ? up(up(up(up(15 * kU * a2) + up(5 * kU * cross)) / a2) + kU) : (cross > 0 ? kInf : 0.0);
+            // First moments (the centroid needs the volume: below).
+            const double mom_bound = up(up(16 * kU * up(all.mom_mag.round() * (1 + 0x1p-10))) / 24);
+            double emax = 0;
+            for (int k = 0; k < 3; ++k) {
+                r.first_moments[k] = all.mom[k].round_div(24);
+                emax = std::max(emax, up(mom_bound + up(kU * std::fabs(r.first_moments[k]))));
+            }
+            r.first_moments_error_bound = emax;
         }
-        r.first_moments_error_bound = emax;
         const double bound = up(512 * kU * kU * up(all.vol_mag.round() * (1 + 0x1p-10)));
         if (const auto v = decide_volume(all.vol, bound)) {
             r.volume = *v;
@@ -958,6 +1021,10 @@ bool SoupAccumulator::next_pass() {
     }
     r.volume_correctly_rounded = true;
     r.passes = s.pass;
+    if (!s.wants.moments_and_area) {
+        s.done = true;
+        return false;
+    }
     // Centroid c_i = F_i / V with F_i ± E (first moments) and V correctly
     // rounded (|V - V*| <= u |V|): |c - c*| <= (E + 1.01 u (|F| + E)) / |V| + u |c|.
     const double V = r.volume;
@@ -991,14 +1058,21 @@ SoupResult run_all(SoupAccumulator& acc, const Float32Triangles& t) {
 }
 }  // namespace
 
-SoupResult soup_properties(const Float32Triangles& t) {
-    SoupAccumulator acc;
+SoupResult soup_properties(const Float32Triangles& t, SoupWants wants) {
+    SoupAccumulator acc(wants);
     return run_all(acc, t);
 }
 
-SoupResult soup_properties(const Float32Triangles& t, uint64_t seed) {
-    SoupAccumulator acc(seed);
+SoupResult soup_properties(const Float32Triangles& t, uint64_t seed, SoupWants wants) {
+    SoupAccumulator acc(seed, wants);
     return run_all(acc, t);
+}
+
+double soup_volume(const Float32Triangles& t) {
+    // No keys are needed without the fingerprint: a fixed seed spares
+    // std::random_device.
+    SoupAccumulator acc(0, SoupWants{.closedness = false, .moments_and_area = false});
+    return run_all(acc, t).volume;
 }
 
 }  // namespace polyvol

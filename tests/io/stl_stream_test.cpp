@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -168,6 +169,53 @@ TEST(StlStream, CallbackExceptionsPropagate) {
                          f.path.string(), [](std::span<const std::byte>, uint64_t) { throw std::runtime_error("stop"); },
                          {1600, parallel}),
                      std::runtime_error);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(StlStream, BinaryStlTrianglesArePackedFromTheRecords) {
+    // The numbered file's bytes 12..47 of each record, packed; at sizes that
+    // make several windows and a partial last group of 32.
+    for (uint32_t n : {0u, 1u, 33u, 100003u}) {
+        SCOPED_TRACE(n);
+        TempFile f("packed.stl");
+        auto b = numbered_stl(n);
+        // Finite coordinates: clear each float's top exponent bit.
+        for (uint32_t t = 0; t < n; ++t)
+            for (int k = 0; k < 9; ++k) b[84 + 50 * std::size_t{t} + 12 + 4 * k + 3] &= std::byte{0x3F};
+        f.write(b);
+        const std::vector<float> tri = read_binary_stl_triangles(f.path.string());
+        ASSERT_EQ(tri.size(), 9 * std::size_t{n});
+        for (uint32_t t = 0; t < n; ++t)
+            ASSERT_EQ(std::memcmp(&tri[9 * std::size_t{t}], &b[84 + 50 * std::size_t{t} + 12], 36), 0) << t;
+    }
+}
+
+TEST(StlStream, BinaryStlTrianglesErrors) {
+    // Not binary STL: the streaming reader's error (where, and why).
+    const ReadError ascii = iotest::expect_error(
+        [] { (void)read_binary_stl_triangles((kCorpus / "meshes/stl-models/unitCube.ascii.stl").string()); });
+    EXPECT_TRUE(ascii.has_byte_offset);
+    EXPECT_EQ(ascii.byte_offset, 80u);
+    const ReadError missing = iotest::expect_error([] { (void)read_binary_stl_triangles("/nonexistent/x.stl"); });
+    EXPECT_NE(std::string(missing.what()).find("cannot open"), std::string::npos);
+    // NaN or infinity: the byte offset of the first one in the file, however
+    // the windows ran (read_mesh_file names the same byte).
+    TempFile f("nonfinite.stl");
+    auto b = numbered_stl(70000);
+    for (uint32_t t = 0; t < 70000; ++t)
+        for (int k = 0; k < 9; ++k) b[84 + 50 * std::size_t{t} + 12 + 4 * k + 3] &= std::byte{0x3F};
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    std::memcpy(&b[84 + 50 * 69000 + 12 + 4 * 2], &nan, 4);
+    std::memcpy(&b[84 + 50 * 41000 + 12 + 4 * 7], &inf, 4);
+    f.write(b);
+    const ReadError e = iotest::expect_error([&] { (void)read_binary_stl_triangles(f.path.string()); });
+    EXPECT_TRUE(e.has_byte_offset);
+    EXPECT_EQ(e.byte_offset, 84u + 50 * 41000 + 12 + 4 * 7);
+    EXPECT_NE(e.message.find("non-finite coordinate in triangle 41000"), std::string::npos) << e.message;
+    EXPECT_EQ(iotest::expect_error([&] { (void)read_mesh_file(f.path.string()); }).byte_offset, e.byte_offset);
 }
 
 }  // namespace

@@ -129,6 +129,45 @@ void expect_same_pass1(const measure::SoupPass1Sums& a, const measure::SoupPass1
     EXPECT_TRUE(same_sum(a.cross, b.cross)) << "pass-1 cross products";
 }
 
+// What pass 1 computes besides the volume changes nothing else: for every
+// reduced SoupWants the same pass-1 volume sums (exactly), the same volume
+// and passes, the same fingerprint when it is asked for, NaN for what is not;
+// and soup_volume gives the same bits.
+void expect_wants_agree(const Float32Triangles& t, const Recorded& full, uint64_t seed) {
+    for (const SoupWants w : {SoupWants{true, false}, SoupWants{false, true}, SoupWants{false, false}}) {
+        SCOPED_TRACE(testing::Message() << "closedness " << w.closedness << ", moments and area " << w.moments_and_area);
+        measure::SoupPass1Sums p1;
+        measure::record_soup_pass1(&p1);
+        const SoupResult r = soup_properties(t, seed, w);
+        measure::record_soup_pass1(nullptr);
+        EXPECT_EQ(r.computed.closedness, w.closedness);
+        EXPECT_EQ(r.computed.moments_and_area, w.moments_and_area);
+        EXPECT_EQ(r.triangles, full.result.triangles);
+        EXPECT_EQ(r.nonfinite, full.result.nonfinite);
+        EXPECT_EQ(r.passes, full.result.passes);
+        EXPECT_EQ(bits(r.volume), bits(full.result.volume));
+        if (!full.result.nonfinite) {
+            EXPECT_TRUE(same_sum(p1.volume, full.pass1.volume)) << "pass-1 volume sum";
+            EXPECT_TRUE(same_sum(p1.volume_magnitude, full.pass1.volume_magnitude)) << "pass-1 volume magnitude";
+        }
+        if (w.closedness) {
+            EXPECT_EQ(r.closed, full.result.closed);
+            EXPECT_EQ(r.fingerprint, full.result.fingerprint);
+        } else {
+            EXPECT_FALSE(r.closed);
+        }
+        if (w.moments_and_area) {
+            EXPECT_EQ(bits(r.area), bits(full.result.area));
+            for (int k = 0; k < 3; ++k) EXPECT_EQ(bits(r.centroid[k]), bits(full.result.centroid[k]));
+        } else {
+            EXPECT_TRUE(std::isnan(r.area));
+            EXPECT_TRUE(std::isnan(r.area_relative_error));
+            for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isnan(r.centroid[k]) && std::isnan(r.first_moments[k]));
+        }
+    }
+    EXPECT_EQ(bits(soup_volume(t)), bits(full.result.volume));
+}
+
 // Feeds rec in windows of `window` triangles (a multiple of 32), in a shuffled order.
 SoupResult windowed(const std::vector<std::byte>& rec, std::size_t window, uint64_t seed) {
     SoupAccumulator acc(seed);
@@ -227,6 +266,7 @@ TEST(Soup, EveryKernelLevelGivesTheSameBits) {
             const Recorded s = recorded(stl_records(rec), 3);
             expect_same(best.result, s.result);
             expect_same_pass1(best.pass1, s.pass1);
+            expect_wants_agree(stl_records(rec), s, 3);
             // The AES kernels hash alike, so their fingerprints agree too.
             if (level > 0) {
                 EXPECT_EQ(s.result.fingerprint, best.result.fingerprint);
@@ -268,6 +308,7 @@ TEST(Soup, EveryKernelLevelGivesTheSameBitsForEveryBlockTail) {
                 measure::cap_soup_kernels(level);
                 const Recorded s = recorded(t, 17);
                 expect_same(best.result, s.result);
+                expect_wants_agree(t, s, 17);
                 EXPECT_EQ(bits(s.result.first_moments_error_bound), bits(best.result.first_moments_error_bound));
                 expect_same_pass1(best.pass1, s.pass1);
                 if (level > 0) {
@@ -307,6 +348,12 @@ TEST(Soup, EveryKernelLevelFlagsEveryNonFiniteCoordinate) {
                         EXPECT_TRUE(s.nonfinite);
                         EXPECT_FALSE(s.closed);
                         EXPECT_TRUE(std::isnan(s.volume));
+                        // Without the area (whose sums detect a NaN in the
+                        // AVX-512 kernel), the volume's sums must.
+                        const SoupResult v = soup_properties(stl_records(rec), 2, SoupWants{true, false});
+                        EXPECT_TRUE(v.nonfinite);
+                        EXPECT_FALSE(v.closed);
+                        EXPECT_TRUE(std::isnan(soup_volume(stl_records(rec))));
                     }
                 }
             }
@@ -334,6 +381,7 @@ TEST(Soup, NoKernelReadsPastTheCoordinates) {
                 SCOPED_TRACE(testing::Message() << "stride " << stride << ", " << n << " triangles, level " << level);
                 measure::cap_soup_kernels(level);
                 EXPECT_EQ(soup_properties(t, 3).triangles, n);
+                EXPECT_EQ(soup_properties(t, 3, SoupWants{false, false}).triangles, n);
             }
         }
     }
@@ -366,6 +414,7 @@ TEST(Soup, FarFromTheOriginIsStillExact) {
     EXPECT_GE(s.passes, 2);  // the float32 filter cannot decide this one
     const MassProperties mp = mass_properties(mesh_of(tri).view());
     EXPECT_EQ(bits(s.volume), bits(mp.volume));
+    EXPECT_EQ(bits(soup_volume(packed_triangles(tri))), bits(mp.volume));
     EXPECT_GT(s.volume, 3e6);
     for (int k = 0; k < 3; ++k) EXPECT_LE(std::fabs(s.centroid[k] - mp.centroid[k]), s.centroid_error_bound);
     EXPECT_LE(std::fabs(s.area - mp.area), s.area_relative_error * mp.area + mp.area_relative_error * mp.area);
@@ -386,6 +435,8 @@ TEST(Soup, AnExactZeroNeedsTheExactPass) {
     EXPECT_TRUE(s.closed);
     EXPECT_EQ(s.passes, 3);
     EXPECT_EQ(bits(s.volume), bits(0.0));
+    EXPECT_EQ(bits(soup_volume(packed_triangles(both))), bits(0.0));
+    EXPECT_EQ(soup_properties(packed_triangles(both), 1, SoupWants{false, false}).passes, 3);
     EXPECT_TRUE(std::isnan(s.centroid[0]));
     // The single tetrahedron: 1/6 in one pass.
     const auto one = records_of(t);
@@ -464,6 +515,31 @@ TEST(Soup, ContractErrors) {
     EXPECT_EQ(empty.triangles, 0u);
     EXPECT_TRUE(empty.closed);
     EXPECT_EQ(empty.volume, 0.0);
+    EXPECT_EQ(soup_volume(Float32Triangles{}), 0.0);
+}
+
+TEST(Soup, PackedTrianglesCountWholeTriangles) {
+    const auto tri = sphere(6, 8, 1, 0);
+    EXPECT_EQ(packed_triangles(tri).count, tri.size() / 9);
+    EXPECT_EQ(packed_triangles(std::span<const float>(tri).first(9 * 5 + 8)).count, 5u);
+    EXPECT_EQ(packed_triangles(std::span<const float>(tri).first(9 * 5 + 8)).stride, 36u);
+    // The packed triangles and their STL records: the same volume.
+    EXPECT_EQ(bits(soup_volume(packed_triangles(tri))), bits(soup_properties(stl_records(records_of(tri)), 1).volume));
+}
+
+TEST(Soup, EveryCorpusBinaryStlReadAsPackedTrianglesGivesTheManifestVolume) {
+    const auto files = corpus_binary_stls();
+    ASSERT_GE(files.size(), 15u) << "corpus missing at " << kCorpus;
+    for (const CorpusStl& c : files) {
+        SCOPED_TRACE(c.path);
+        const std::vector<float> tri = read_binary_stl_triangles((kCorpus / c.path).string());
+        const LoadedMesh full = read_mesh_file((kCorpus / c.path).string());
+        ASSERT_EQ(tri.size(), full.mesh.positions.size());  // 9 per triangle either way
+        // The same coordinates (the Mesh's are the floats widened).
+        EXPECT_TRUE(std::equal(tri.begin(), tri.end(), full.mesh.positions.begin(),
+                               [](float f, double d) { return static_cast<double>(f) == d; }));
+        EXPECT_EQ(bits(soup_volume(packed_triangles(tri))), bits(c.volume));
+    }
 }
 
 }  // namespace
