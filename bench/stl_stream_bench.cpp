@@ -48,6 +48,39 @@ void SoupVolume(benchmark::State& state) {
     state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * r.size()));
 }
 
+// The same triangles packed: nine floats each (36 bytes), as
+// read_binary_stl_triangles holds them.
+const std::vector<float>& packed(std::size_t n, int offset) {
+    static std::map<std::pair<std::size_t, int>, std::vector<float>> cache;
+    auto it = cache.find({n, offset});
+    if (it != cache.end()) return it->second;
+    const auto& r = records(n, offset);
+    std::vector<float> out(9 * (r.size() / 50));
+    for (std::size_t t = 0; t < r.size() / 50; ++t) std::memcpy(&out[9 * t], &r[50 * t + 12], 36);
+    return cache.emplace(std::make_pair(n, offset), std::move(out)).first->second;
+}
+
+// What polyvol volume's table needs when only the volume is asked for: the
+// volume and the closedness fingerprint, on the records.
+void SoupVolumeClosed(benchmark::State& state) {
+    const auto& r = records(static_cast<std::size_t>(state.range(0)), static_cast<int>(state.range(1)));
+    for (auto _ : state) {
+        const SoupResult s = soup_properties(stl_records(r), SoupWants{.closedness = true, .moments_and_area = false});
+        benchmark::DoNotOptimize(s.volume);
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * (r.size() / 50)));
+    state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * r.size()));
+}
+
+// soup_volume (the volume alone) on packed triangles: the in-memory call of
+// bench/peers/polyvol_volume.cpp for a binary STL.
+void SoupVolumeOnlyPacked(benchmark::State& state) {
+    const auto& p = packed(static_cast<std::size_t>(state.range(0)), static_cast<int>(state.range(1)));
+    for (auto _ : state) benchmark::DoNotOptimize(soup_volume(packed_triangles(p)));
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * (p.size() / 9)));
+    state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * p.size() * sizeof(float)));
+}
+
 void NaiveRecords(benchmark::State& state) {
     const auto& r = records(static_cast<std::size_t>(state.range(0)), static_cast<int>(state.range(1)));
     const std::size_t n = r.size() / 50;
@@ -68,4 +101,6 @@ void NaiveRecords(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(SoupVolume)->Args({1 << 20, 0})->Args({8 << 20, 0})->Args({1 << 20, 1000})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(SoupVolumeClosed)->Args({1 << 20, 0})->Args({8 << 20, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(SoupVolumeOnlyPacked)->Args({1 << 20, 0})->Args({1 << 20, 1000})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(NaiveRecords)->Args({1 << 20, 0})->Args({8 << 20, 0})->Unit(benchmark::kMillisecond)->UseRealTime();

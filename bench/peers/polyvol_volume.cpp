@@ -2,11 +2,18 @@
 // file into memory (read_mesh_file), one correctly rounded signed_volume,
 // then the median of 5 more. Prints, like peer_cgal and peer_vtk:
 //   polyvol VOLUME LOAD_SECONDS VOLUME_SECONDS(median of 5) FACES READ_SECONDS NAIVE_SECONDS WELDED_SECONDS
+//           PACKED_LOAD_SECONDS PACKED_SECONDS
 // LOAD_SECONDS covers reading and the first volume call, as the peers' do.
 // WELDED_SECONDS is the call (median of 5) on welded(mesh): for an STL soup
 // (three vertices per triangle as read) the indexed mesh the peers hold
 // after their own loading (CGAL's and VTK's readers merge points); for the
 // other formats the same mesh. Welding is not timed.
+//
+// PACKED_*: binary STL only (else -1): the file read as its own float32
+// triangles (read_binary_stl_triangles, 36 bytes a triangle) plus one
+// soup_volume, then soup_volume's median of 5. The same correctly rounded
+// volume (checked bit for bit), from the representation an STL user holds
+// (numpy-stl's (n, 3, 3) float32 array, VTK's float32 points).
 //
 // READ_SECONDS and NAIVE_SECONDS are two plain loops over the same arrays,
 // on all cores (oneTBB, as polyvol), for scale: READ reads each face's three
@@ -21,9 +28,11 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <vector>
 
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
+#include "polyvol/soup.hpp"
 #include "timing.hpp"
 
 namespace {
@@ -92,7 +101,19 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "polyvol: the welded mesh gave another volume\n");
         return 3;
     }
-    std::printf("polyvol %.17g %.6f %.6f %zu %.6f %.6f %.6f\n", v, load, vol_s, mesh.face_count(), read_s, naive_s,
-                welded_s);
+    double packed_load = -1, packed_s = -1;
+    if (loaded.format == polyvol::Format::stl && loaded.encoding == "binary_le" && !loaded.gzip) {
+        const auto t1 = std::chrono::steady_clock::now();
+        const std::vector<float> tri = polyvol::read_binary_stl_triangles(argv[1]);
+        double pv = polyvol::soup_volume(polyvol::packed_triangles(tri));
+        packed_load = peers::seconds_since(t1);
+        packed_s = peers::median_seconds(5, [&] { return polyvol::soup_volume(polyvol::packed_triangles(tri)); }, &pv);
+        if (std::bit_cast<uint64_t>(pv) != std::bit_cast<uint64_t>(v)) {
+            std::fprintf(stderr, "polyvol: the packed float32 triangles gave another volume\n");
+            return 3;
+        }
+    }
+    std::printf("polyvol %.17g %.6f %.6f %zu %.6f %.6f %.6f %.6f %.6f\n", v, load, vol_s, mesh.face_count(), read_s,
+                naive_s, welded_s, packed_load, packed_s);
     return 0;
 }
