@@ -37,6 +37,7 @@ struct Common {
     std::string accuracy = "correctly-rounded";
     double density = 1.0;
     bool stream = false;  // volume --stream: JSON from the streaming path too
+    bool volume_only = false;  // volume --volume-only
 };
 
 void add_measure_options(CLI::App* cmd, Common& c) {
@@ -80,7 +81,8 @@ int run(Command command, const Common& c) {
     // length or components: README).
     request.stream = command == Command::volume && (!c.json || c.stream);
     request.table_only = command == Command::volume && !c.json;
-    if (request.table_only) {
+    request.volume_only = command == Command::volume && c.volume_only;
+    if (request.table_only || request.volume_only) {
         request.measure.second_moments = false;
         request.measure.edge_length = false;
     }
@@ -128,6 +130,9 @@ int main(int argc, char** argv) {
     volume->add_flag("--stream", volume_opts.stream,
                      "With --json: measure binary STL by streaming it too (constant memory; only the keys the "
                      "streaming path computes). The table always streams binary STL.");
+    volume->add_flag("--volume-only", volume_opts.volume_only,
+                     "Only the volume with its guarantee (and the closedness check), in the table and the JSON: "
+                     "the fastest path, e.g. a third less work per triangle for a streamed binary STL");
     auto* measure = app.add_subcommand("measure", "All mass properties (volume, area, edge length, centroid, "
                                                   "second moments, inertia) with their guarantees");
     add_measure_options(measure, measure_opts);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <algorithm>
 #include <sstream>
 
@@ -51,6 +52,27 @@ std::string unbalanced_message(const TopologyReport& t) {
     return m;
 }
 
+// --volume-only on a loaded mesh: the volume and its guarantee; the other
+// fields NaN. The cone rule correctly rounded is signed_volume alone (its
+// origin form near the origin); the other methods and accuracies state an
+// error bound that only mass_properties computes.
+MassProperties volume_only_properties(const MeshView& view, const MeasureOptions& o) {
+    if (o.method != Method::cone || o.accuracy != Accuracy::correctly_rounded) return mass_properties(view, o);
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    MassProperties m;
+    m.volume = signed_volume(view, Method::cone, Accuracy::correctly_rounded);
+    m.volume_correctly_rounded = std::isfinite(m.volume);
+    m.volume_error_bound = m.volume_correctly_rounded ? 0.0 : nan;
+    m.mass = o.density * m.volume;
+    m.first_moments = m.centroid = {nan, nan, nan};
+    m.second_moments = m.inertia_origin = m.inertia_centroid = {nan, nan, nan, nan, nan, nan};
+    m.area = m.edge_length = nan;
+    m.moments_relative_error = m.area_relative_error = m.edge_length_relative_error = nan;
+    m.method = o.method;
+    m.accuracy = o.accuracy;
+    return m;
+}
+
 }  // namespace
 
 std::string shortest(double v) {
@@ -64,7 +86,7 @@ std::string shortest(double v) {
 // The streaming path for a binary STL (Request::stream); nothing when the
 // file is not binary STL, cannot be probed, or is not closed (the full path
 // then reports it).
-std::optional<FileResult> stream_binary_stl(const std::string& path) {
+std::optional<FileResult> stream_binary_stl(const std::string& path, bool volume_only) {
     BinaryStlProbe probe;
     try {
         probe = probe_binary_stl(path);
@@ -75,7 +97,7 @@ std::optional<FileResult> stream_binary_stl(const std::string& path) {
     FileResult r;
     r.file = path;
     const auto t0 = std::chrono::steady_clock::now();
-    SoupAccumulator acc;
+    SoupAccumulator acc(SoupWants{.closedness = true, .moments_and_area = !volume_only});
     try {
         do {
             for_each_stl_window(path, [&](std::span<const std::byte> records, uint64_t first) {
@@ -95,7 +117,7 @@ std::optional<FileResult> stream_binary_stl(const std::string& path) {
 
 FileResult process_file(const std::string& path, const Request& request) {
     if (request.stream && request.need_mass && request.measure.method == Method::cone)
-        if (auto s = stream_binary_stl(path)) return std::move(*s);
+        if (auto s = stream_binary_stl(path, request.volume_only)) return std::move(*s);
     FileResult r;
     r.file = path;
     auto t0 = std::chrono::steady_clock::now();
@@ -125,7 +147,9 @@ FileResult process_file(const std::string& path, const Request& request) {
                 r.error = path + ": " + unbalanced_message(*r.topology);
             }
         }
-        if (r.exit_code == Exit::ok) r.mass = mass_properties(view, request.measure);
+        if (r.exit_code == Exit::ok)
+            r.mass = request.volume_only ? volume_only_properties(view, request.measure)
+                                         : mass_properties(view, request.measure);
     }
     r.seconds_measure = seconds_since(t0);
     return r;
@@ -150,13 +174,14 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["accuracy"] = s.volume_correctly_rounded ? "correctly-rounded" : "error-bound";
         j["volume"] = number(s.volume);
         j["volume_error_bound"] = 0.0;
+        j["exit_code"] = r.exit_code;
+        if (request.volume_only) return j;
         j["area"] = number(s.area);
         j["area_relative_error"] = s.area_relative_error;
         j["centroid"] = {number(s.centroid[0]), number(s.centroid[1]), number(s.centroid[2])};
         j["centroid_error_bound"] = number(s.centroid_error_bound);
         j["first_moments"] = {number(s.first_moments[0]), number(s.first_moments[1]), number(s.first_moments[2])};
         j["first_moments_error_bound"] = number(s.first_moments_error_bound);
-        j["exit_code"] = r.exit_code;
         return j;
     }
     if (r.loaded) {
@@ -213,6 +238,9 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["accuracy"] = m.volume_correctly_rounded ? "correctly-rounded" : "error-bound";
         j["volume"] = number(m.volume);
         j["volume_error_bound"] = m.volume_error_bound;
+    }
+    if (r.mass && !request.volume_only) {
+        const auto& m = *r.mass;
         j["mass"] = number(m.mass);
         j["area"] = number(m.area);
         j["area_relative_error"] = m.area_relative_error;
@@ -240,17 +268,26 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         if (s.size() < w) s.append(w - s.size(), ' ');
         return s;
     };
+    const bool all = !request.volume_only;  // area and centroid columns
     std::ostringstream out;
-    out << pad("file", name_w) << "  " << pad("triangles", 10) << "  " << pad("volume", 24) << "  " << pad("area", 24)
-        << "  centroid\n";
+    out << pad("file", name_w) << "  " << pad("triangles", 10) << "  ";
+    if (all)
+        out << pad("volume", 24) << "  " << pad("area", 24) << "  centroid\n";
+    else
+        out << "volume\n";
     bool any_rounded = false, any_bound = false;
     std::string streamed_notes;
     for (const auto& r : results) {
         if (r.streamed) {
             const SoupResult& s = *r.streamed;
             any_rounded = true;
-            out << pad(r.file, name_w) << "  " << pad(std::to_string(s.triangles), 10) << "  "
-                << pad(shortest(s.volume), 24) << "  " << pad(shortest(s.area), 24) << "  "
+            out << pad(r.file, name_w) << "  " << pad(std::to_string(s.triangles), 10) << "  ";
+            if (!all) {
+                out << shortest(s.volume) << "\n";
+                streamed_notes += "  " + r.file + "\n";
+                continue;
+            }
+            out << pad(shortest(s.volume), 24) << "  " << pad(shortest(s.area), 24) << "  "
                 << point_text(s.centroid[0], s.centroid[1], s.centroid[2]) << "\n";
             streamed_notes += "  " + r.file + ": area relative error <= " + shortest(s.area_relative_error) +
                               "; centroid within +-" + shortest(s.centroid_error_bound) + " per coordinate\n";
@@ -266,13 +303,18 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
         const std::string vol =
             shortest(m.volume) + (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
+        if (!all) {
+            out << vol << "\n";
+            continue;
+        }
         out << pad(vol, 24) << "  " << pad(shortest(m.area), 24) << "  "
             << point_text(m.centroid[0], m.centroid[1], m.centroid[2]) << "\n";
     }
     out << "method: " << method_name(request.measure.method) << ". ";
     if (any_rounded) out << "Volumes without ± are correctly rounded: the exact volume of the coordinates as read, rounded once. ";
     if (any_bound) out << "± is a rigorous absolute error bound. ";
-    out << "Area carries a relative error bound; centroid and inertia: see `polyvol measure`.\n";
+    if (all) out << "Area carries a relative error bound; centroid and inertia: see `polyvol measure`.";
+    out << "\n";
     if (!streamed_notes.empty())
         out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded): closed 2-cycle by a "
                "randomized edge fingerprint (an open surface passes with probability < 2^-113; a failing file is "

@@ -46,6 +46,11 @@ struct Request {
     // closedness it needs: topology without shells, no second moments, no
     // edge length.
     bool table_only = false;
+    // `volume --volume-only`: the volume, its guarantee and the closedness
+    // check, nothing else (table and JSON): the streamed pass skips area and
+    // first moments, the full path uses signed_volume when the cone rule is
+    // correctly rounded.
+    bool volume_only = false;
 };
 
 // Reads, analyses and measures one file; never throws.

@@ -6,7 +6,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -102,6 +104,68 @@ TEST(CliStream, OtherMethodsAndFormatsUseTheFullPath) {
     const CliRun ascii = polyvol("volume " + quoted(kCorpus / "meshes/stl-models/unitCube.ascii.stl"));
     EXPECT_EQ(ascii.code, 0);
     EXPECT_EQ(ascii.out.find("Streamed binary STL"), std::string::npos);
+}
+
+TEST(CliStream, VolumeOnlyGivesTheManifestVolumeOnEveryPath) {
+    // Every closed corpus mesh the CLI reads: --volume-only gives the
+    // manifest's correctly rounded volume, streamed (binary STL) or through
+    // signed_volume (the rest), and no other figure.
+    const json& manifest = polyvol::test::corpus_manifest();
+    ASSERT_FALSE(manifest.empty()) << "corpus missing at " << kCorpus;
+    int checked = 0, streamed = 0;
+    for (const auto& e : manifest) {
+        if (!e.contains("topology") || !e["topology"].is_object() || !e["topology"]["closed_2_cycle"].get<bool>() ||
+            !e["volume"].is_object())
+            continue;
+        const std::string rel = e["path"].get<std::string>();
+        SCOPED_TRACE(rel);
+        const double volume = polyvol::test::corpus_reference(e["volume"]);
+        const CliRun r = polyvol("volume --volume-only --json --stream " + quoted(kCorpus / rel));
+        ASSERT_EQ(r.code, 0) << r.err;
+        const json j = json::parse(r.out)[0];
+        // 3MF transforms: the manifest transforms in rationals, polyvol rounds
+        // each transformed coordinate to a double (tests/corpus/corpus_test.cpp);
+        // the full path's volume of those doubles is the reference then.
+        const auto& quirks = e["quirks"];
+        if (std::find(quirks.begin(), quirks.end(), "3mf-transform") == quirks.end() && e.value("exact", false)) {
+            EXPECT_EQ(j["volume"].get<double>(), volume);
+        }
+        const CliRun full = polyvol("volume --json " + quoted(kCorpus / rel));
+        ASSERT_EQ(full.code, 0) << full.err;
+        EXPECT_EQ(j["volume"].get<double>(), json::parse(full.out)[0]["volume"].get<double>());
+        EXPECT_EQ(j["accuracy"], "correctly-rounded");
+        EXPECT_EQ(j["volume_error_bound"].get<double>(), 0.0);
+        EXPECT_EQ(j["closed_2_cycle"], true);
+        for (const char* key : {"area", "centroid", "first_moments", "second_moments", "edge_length", "mass"})
+            EXPECT_FALSE(j.contains(key)) << key;
+        ++checked;
+        streamed += j.value("streamed", false);
+    }
+    EXPECT_GE(checked, 60);
+    EXPECT_GE(streamed, 10);
+}
+
+TEST(CliStream, VolumeOnlyTable) {
+    const fs::path torus = kCorpus / "meshes/prusa-slicer/torus.stl";
+    const fs::path cube = kCorpus / "meshes/stl-models/unitCube.ascii.stl";
+    const CliRun r = polyvol("volume --volume-only " + quoted(torus) + " " + quoted(cube));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("volume"), std::string::npos);
+    EXPECT_EQ(r.out.find("area"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("centroid"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("correctly rounded"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Streamed binary STL"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("1791.8163324528632"), std::string::npos) << r.out;  // the torus, as the full path prints it
+    // Open surfaces are refused as without the flag; other methods keep their bound.
+    const CliRun open = polyvol("volume --volume-only " + quoted(kCorpus / "meshes/stl-models/bunny.bin.stl"));
+    EXPECT_EQ(open.code, 3);
+    EXPECT_NE(open.err.find("unbalanced edge"), std::string::npos) << open.err;
+    const CliRun prism = polyvol("volume --volume-only --json --method prism " + quoted(cube));
+    ASSERT_EQ(prism.code, 0) << prism.err;
+    const json p = json::parse(prism.out)[0];
+    EXPECT_EQ(p["accuracy"], "error-bound");
+    EXPECT_LE(std::fabs(p["volume"].get<double>() - 1.0), p["volume_error_bound"].get<double>());
+    EXPECT_FALSE(p.contains("area"));
 }
 
 }  // namespace
