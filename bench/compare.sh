@@ -194,26 +194,43 @@ for tag, ext, res in rows:
     if ext == "stl" and res.get("polyvol") and res.get("naive"):
         print(f"polyvol/naive ({tag} binary STL, median wall): {res['polyvol'][0] / res['naive'][0]:.2f}")
 
+def fresh(path):
+    """Evicts the file's pages, then reads it afresh: the page cache then holds it in large folios,
+    and the naive loop's mmap faults cost almost nothing (the state in which it is fastest)."""
+    fd = os.open(path, os.O_RDONLY)
+    try:
+        os.posix_fadvise(fd, 0, 0, os.POSIX_FADV_DONTNEED)
+    finally:
+        os.close(fd)
+    warm(path)
+
 print()
-print("Binary STL, polyvol volume against the naive loop in interleaved pairs (the order alternating;")
-print("the shared machine's state drifts, so pairs compare like with like; the file is read once before")
-print("each run so that both find it in the page cache): median of the per-pair ratios.")
+print("Binary STL, polyvol volume (and volume --volume-only) against the naive loop in interleaved")
+print("runs (the order rotating; the shared machine's state drifts, so neighbours compare like with like):")
+print("median of the per-round ratios. warm: the file read once before each run; fresh: its pages evicted")
+print("and read afresh before each run (large folios: the naive loop's best case).")
 for tag in tags:
     f = os.path.join(tmp, f"sphere{tag}.stl")
-    pv, nv = [B("polyvol"), "volume", f], [B("bench", "naive_stl_volume"), f]
-    pairs = []
-    for i in range(4 * runs):
-        first, second = (pv, nv) if i % 2 == 0 else (nv, pv)
-        warm(f)
-        a = run_wait4(first)[0]
-        warm(f)
-        b = run_wait4(second)[0]
-        pairs.append((a, b) if i % 2 == 0 else (b, a))
-    ratios = sorted(p / n for p, n in pairs)
-    q = statistics.quantiles(ratios, n=4)
-    print(f"    {tag}: polyvol {statistics.median(p for p, _ in pairs) * 1e3:.1f} ms, naive "
-          f"{statistics.median(n for _, n in pairs) * 1e3:.1f} ms, polyvol/naive median {statistics.median(ratios):.2f} "
-          f"(quartiles {q[0]:.2f}..{q[2]:.2f}, {len(pairs)} pairs)")
+    cmds = {"polyvol": [B("polyvol"), "volume", f], "volume-only": [B("polyvol"), "volume", "--volume-only", f],
+            "naive": [B("bench", "naive_stl_volume"), f]}
+    for state, prepare in (("warm", warm), ("fresh", fresh)):
+        rounds = []
+        names = list(cmds)
+        for i in range(4 * runs):
+            order = names[i % 3:] + names[:i % 3]
+            t = {}
+            for name in order:
+                prepare(f)
+                t[name] = run_wait4(cmds[name])[0]
+            rounds.append(t)
+        n = statistics.median(r["naive"] for r in rounds)
+        line = f"    {tag} {state}: naive {n * 1e3:.1f} ms"
+        for name in ("polyvol", "volume-only"):
+            ratios = sorted(r[name] / r["naive"] for r in rounds)
+            q = statistics.quantiles(ratios, n=4)
+            line += (f"; {name} {statistics.median(r[name] for r in rounds) * 1e3:.1f} ms, /naive median "
+                     f"{statistics.median(ratios):.2f} (quartiles {q[0]:.2f}..{q[2]:.2f})")
+        print(line + f" ({len(rounds)} rounds)", flush=True)
 
 print()
 print("Loading (read into memory + one volume call) and the in-memory volume call, each tool's own")
