@@ -53,14 +53,14 @@ std::string unbalanced_message(const TopologyReport& t) {
 }
 
 // --volume-only on a loaded mesh: the volume and its guarantee; the other
-// fields NaN. The cone rule correctly rounded is signed_volume alone (its
-// origin form near the origin); the other methods and accuracies state an
-// error bound that only mass_properties computes.
+// fields NaN. A correctly rounded volume (cone, prism, pyramid) is
+// signed_volume alone (for the cone, its origin form near the origin); vtnb
+// and --accuracy fast state an error bound that only mass_properties computes.
 MassProperties volume_only_properties(const MeshView& view, const MeasureOptions& o) {
-    if (o.method != Method::cone || o.accuracy != Accuracy::correctly_rounded) return mass_properties(view, o);
+    if (o.method == Method::vtnb || o.accuracy != Accuracy::correctly_rounded) return mass_properties(view, o);
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     MassProperties m;
-    m.volume = signed_volume(view, Method::cone, Accuracy::correctly_rounded);
+    m.volume = signed_volume(view, o.method, Accuracy::correctly_rounded);
     m.volume_correctly_rounded = std::isfinite(m.volume);
     m.volume_error_bound = m.volume_correctly_rounded ? 0.0 : nan;
     m.mass = o.density * m.volume;

@@ -38,15 +38,20 @@ namespace polyvol {
 // The method chooses only `volume` (and `mass`; for vtnb also `area` and
 // `edge_length`). Moments, centroid and inertia always come from the cone
 // rule's sums, with the chosen accuracy; the centroid divides by the cone
-// rule's volume. Only the cone rule's volume can be correctly rounded; the
-// others are computed in double and report volume_error_bound.
+// rule's volume. With Accuracy::correctly_rounded the volume of cone, prism
+// and pyramid is the exact value of that formula on the given doubles,
+// rounded once: the pyramid sum is the cone sum exactly for every mesh
+// (measure/pyramid.cpp), so they give the same double; the prism sum equals
+// them for a closed surface and has its own exact path (measure/prism.cpp)
+// for open ones. vtnb's unit vectors make it irrational: it is computed in
+// double with volume_error_bound in both accuracies.
 enum class Method { cone, prism, pyramid, vtnb };
 
 // How the sums are formed:
 //   correctly_rounded — the exact value for the coordinates as given, rounded
-//                       once to the nearest double (ties to even): the cone
-//                       volume, mass, first and second moments, centroid and
-//                       both inertia tensors (each the exact rational function
+//                       once to the nearest double (ties to even): the cone,
+//                       prism and pyramid volumes, mass, first and second
+//                       moments, centroid and both inertia tensors (each the exact rational function
 //                       of the exact sums, rounded once). Computed by a
 //                       double-double filter with a rigorous error bound, and
 //                       exactly (expansions / big integers) only when the

@@ -369,8 +369,24 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
             p.volume_correctly_rounded = c.correctly_rounded;
             p.volume_error_bound = c.bound[kVolume];
             break;
-        case Method::prism:
-        case Method::pyramid: {
+        case Method::pyramid:
+            // Franklin's pyramid sum is the cone rule's sum exactly, for every
+            // mesh (pyramid.cpp): its correctly rounded value is the cone's.
+            if (options.accuracy == Accuracy::correctly_rounded) {
+                p.volume = c.value[kVolume];
+                p.mass = c.value[kMass];
+                p.volume_correctly_rounded = c.correctly_rounded;
+                p.volume_error_bound = c.bound[kVolume];
+                break;
+            }
+            [[fallthrough]];
+        case Method::prism: {
+            if (options.method == Method::prism && options.accuracy == Accuracy::correctly_rounded) {
+                p.volume = measure::prism_volume_correctly_rounded(mesh);
+                p.volume_correctly_rounded = !std::isnan(p.volume);
+                p.volume_error_bound = p.volume_correctly_rounded ? 0.0 : kInf;
+                break;
+            }
             const measure::SumWithBound v =
                 options.method == Method::prism ? measure::prism_volume(mesh) : measure::pyramid_volume(mesh);
             p.volume = v.value;
@@ -386,7 +402,8 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
             break;
         }
     }
-    if (options.method != Method::cone) p.mass = options.density * p.volume;
+    if (options.method != Method::cone && !(options.method == Method::pyramid && p.volume_correctly_rounded))
+        p.mass = options.density * p.volume;
     if (options.method != Method::vtnb) {
         area = measure::fan_area(mesh);
         if (options.edge_length) length = measure::welded_edge_length(mesh);
@@ -401,8 +418,12 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
 double signed_volume(const MeshView& mesh, Method method, Accuracy accuracy) {
     switch (method) {
         case Method::cone: return cone_results(mesh, 1, accuracy, 1.0).value[kVolume];
-        case Method::prism: return measure::prism_volume(mesh).value;
-        case Method::pyramid: return measure::pyramid_volume(mesh).value;
+        case Method::prism:
+            return accuracy == Accuracy::correctly_rounded ? measure::prism_volume_correctly_rounded(mesh)
+                                                           : measure::prism_volume(mesh).value;
+        case Method::pyramid:  // the cone's sum exactly (pyramid.cpp)
+            return accuracy == Accuracy::correctly_rounded ? cone_results(mesh, 1, accuracy, 1.0).value[kVolume]
+                                                           : measure::pyramid_volume(mesh).value;
         case Method::vtnb: return measure::vtnb_measures(mesh).volume.value;
     }
     return kNaN;

@@ -16,6 +16,12 @@ struct SumWithBound {
 // Allgower–Schmidt (2.2), n = 3: V = Σ (z_a+z_b+z_c)/3 · ((b-a)×(c-a))_z / 2.
 SumWithBound prism_volume(const MeshView& mesh);
 
+// The prism rule's exact sum on the given doubles, rounded once to the
+// nearest double (ties to even); NaN when a used coordinate is NaN or
+// infinite. A double-double filter with a rigorous bound decides almost
+// always; the exact sum otherwise (prism.cpp).
+double prism_volume_correctly_rounded(const MeshView& mesh);
+
 // Franklin's pyramids: per polygon face, V_f = A_f · v0 / 3 where A_f is the
 // vector area of the face's fan (= Σ (vi-v0)×(vi+1-v0) / 2).
 SumWithBound pyramid_volume(const MeshView& mesh);

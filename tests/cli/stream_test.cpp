@@ -160,12 +160,16 @@ TEST(CliStream, VolumeOnlyTable) {
     const CliRun open = polyvol("volume --volume-only " + quoted(kCorpus / "meshes/stl-models/bunny.bin.stl"));
     EXPECT_EQ(open.code, 3);
     EXPECT_NE(open.err.find("unbalanced edge"), std::string::npos) << open.err;
-    const CliRun prism = polyvol("volume --volume-only --json --method prism " + quoted(cube));
-    ASSERT_EQ(prism.code, 0) << prism.err;
-    const json p = json::parse(prism.out)[0];
+    const CliRun vtnb = polyvol("volume --volume-only --json --method vtnb " + quoted(cube));
+    ASSERT_EQ(vtnb.code, 0) << vtnb.err;
+    const json p = json::parse(vtnb.out)[0];
     EXPECT_EQ(p["accuracy"], "error-bound");
     EXPECT_LE(std::fabs(p["volume"].get<double>() - 1.0), p["volume_error_bound"].get<double>());
     EXPECT_FALSE(p.contains("area"));
+    const CliRun prism = polyvol("volume --volume-only --json --method prism " + quoted(torus));
+    ASSERT_EQ(prism.code, 0) << prism.err;
+    EXPECT_EQ(json::parse(prism.out)[0]["accuracy"], "correctly-rounded");
+    EXPECT_EQ(json::parse(prism.out)[0]["volume"].get<double>(), 1791.8163324528632);
 }
 
 }  // namespace

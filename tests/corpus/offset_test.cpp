@@ -1,9 +1,10 @@
 // Issue 3's accuracy test on real meshes: every closed corpus mesh, translated
 // by 1e6 and by 1e8 (each coordinate x + t rounded to a double, as a file
 // would store it), must give exactly the volume of those coordinates rounded
-// once. The reference is computed here with GMP integers, independently of
-// polyvol's exact module, and "rounded once" is checked by comparing the
-// exact value with the midpoints to the result's neighbours.
+// once, by the cone, prism and pyramid formulas alike. The reference is
+// computed here with GMP integers, independently of polyvol's exact module,
+// and "rounded once" is checked by comparing the exact value with the
+// midpoints to the result's neighbours.
 #include <gtest/gtest.h>
 
 #include <gmpxx.h>
@@ -107,6 +108,13 @@ TEST_P(Offset, TranslatedMeshVolumeIsCorrectlyRounded) {
         const double got = polyvol::signed_volume(m.view());
         EXPECT_TRUE(correctly_rounded(got, want))
             << "offset " << t << ": got " << std::hexfloat << got << ", exact " << want.get_d();
+        // The other rational formulas: the pyramid sum is the cone sum for
+        // every mesh, the prism sum for every closed one.
+        for (const auto method : {polyvol::Method::prism, polyvol::Method::pyramid}) {
+            const double v = polyvol::signed_volume(m.view(), method);
+            EXPECT_TRUE(correctly_rounded(v, want)) << polyvol::method_name(method) << " offset " << t << ": got "
+                                                    << std::hexfloat << v << ", exact " << want.get_d();
+        }
         // The fast path must stay within its stated bound.
         const auto fast = polyvol::mass_properties(m.view(), {.accuracy = polyvol::Accuracy::fast});
         const mpq_class error = abs(mpq_class(exact(fast.volume) - want));

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <utility>
 
 #include "common/naive_volume.hpp"
 #include "cone_fixtures.hpp"
@@ -367,17 +368,29 @@ TEST(MassProperties, OutsideTheSafeRangeAndNonFinite) {
 
 TEST(MassProperties, OtherMethodsReportTheirBounds) {
     const Mesh m = fx::box(-1, -2, -3, 0.5, 4, 7, /*quads=*/true);  // 12 edges
-    for (Method method : {Method::prism, Method::pyramid, Method::vtnb}) {
+    // Prism and pyramid are correctly rounded by default (their sums are
+    // rational); vtnb (unit vectors) and --accuracy fast carry a bound.
+    for (Method method : {Method::prism, Method::pyramid}) {
         const MassProperties p = mass_properties(m.view(), {.method = method});
+        EXPECT_TRUE(p.volume_correctly_rounded);
+        EXPECT_EQ(p.volume, 90.0);
+        EXPECT_EQ(p.volume_error_bound, 0.0);
+        EXPECT_EQ(p.mass, 90.0);
+        EXPECT_EQ(signed_volume(m.view(), method), 90.0);
+    }
+    for (const auto& [method, accuracy] : {std::pair{Method::prism, Accuracy::fast},
+                                           std::pair{Method::pyramid, Accuracy::fast},
+                                           std::pair{Method::vtnb, Accuracy::correctly_rounded}}) {
+        const MassProperties p = mass_properties(m.view(), {.method = method, .accuracy = accuracy});
         EXPECT_EQ(p.method, method);
         EXPECT_FALSE(p.volume_correctly_rounded);
         EXPECT_NEAR(p.volume, 1.5 * 6 * 10, 1e-12);
         EXPECT_LE(std::fabs(p.volume - 90), p.volume_error_bound + 1e-300);
         EXPECT_NEAR(p.area, 2 * (1.5 * 6 + 6 * 10 + 1.5 * 10), 1e-10);
         EXPECT_NEAR(p.edge_length, 4 * (1.5 + 6 + 10), 1e-10);
-        // Moments from the cone rule, correctly rounded.
-        EXPECT_TRUE(p.moments_correctly_rounded);
-        EXPECT_EQ(p.centroid[0], -0.25);
+        // Moments from the cone rule, with the same accuracy.
+        EXPECT_EQ(p.moments_correctly_rounded, accuracy == Accuracy::correctly_rounded);
+        EXPECT_NEAR(p.centroid[0], -0.25, 1e-15);
     }
     EXPECT_NEAR(surface_area(m.view()), 2 * (1.5 * 6 + 6 * 10 + 1.5 * 10), 1e-10);
     EXPECT_NEAR(total_edge_length(m.view()), 4 * (1.5 + 6 + 10), 1e-10);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -24,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "measure/methods.hpp"
+#include "polyvol/measure.hpp"
 #include "common/manifest.hpp"
 #include "common/shapes.hpp"
 #include "cone_fixtures.hpp"
@@ -690,6 +692,175 @@ TEST(Methods, CorpusClosedMeshes) {
                 checked, worst_volume[0], worst_volume_file[0].c_str(), worst_volume[1],
                 worst_volume_file[1].c_str(), worst_volume[2], worst_volume_file[2].c_str(), worst_area,
                 worst_length, largest_bound[0], largest_bound[1], largest_bound[2]);
+}
+
+// ---- correctly rounded prism and pyramid (polyvol/measure.hpp) ----------------
+
+// The nearest double to q, ties to even, independently of the library:
+// mpq's get_d truncates, so the nearest is it or a neighbour.
+double nearest_double(const mpq_class& q) {
+    const double t = q.get_d();
+    double best = t;
+    mpq_class best_d = abs(mpq_class(t) - q);
+    for (double c : {std::nextafter(t, -INFINITY), std::nextafter(t, INFINITY)}) {
+        const mpq_class d = abs(mpq_class(c) - q);
+        if (d < best_d || (d == best_d && (std::bit_cast<uint64_t>(c) & 1) == 0)) {
+            best = c;
+            best_d = d;
+        }
+    }
+    return best + 0.0;  // an exact zero is +0.0
+}
+
+// The prism rule exactly: Σ (z_a + z_b + z_c) ((b - a) × (c - a))_z / 6.
+mpq_class exact_prism(const MeshView& m) {
+    mpq_class sum = 0;
+    for_each_fan_triangle(m, [&](const Vec& a, const Vec& b, const Vec& c) {
+        const mpq_class ux = mpq_class(b[0]) - a[0], uy = mpq_class(b[1]) - a[1];
+        const mpq_class wx = mpq_class(c[0]) - a[0], wy = mpq_class(c[1]) - a[1];
+        sum += (mpq_class(a[2]) + b[2] + c[2]) * (ux * wy - uy * wx);
+    });
+    return sum / 6;
+}
+
+double cr(const MeshView& m, polyvol::Method method) {
+    return polyvol::signed_volume(m, method, polyvol::Accuracy::correctly_rounded);
+}
+
+uint64_t bits(double x) { return std::bit_cast<uint64_t>(x); }
+
+// m's faces appended to into (reversed when flip).
+void append(Mesh& into, const Mesh& m, bool flip) {
+    const auto base = static_cast<uint32_t>(into.positions.size() / 3);
+    into.positions.insert(into.positions.end(), m.positions.begin(), m.positions.end());
+    const MeshView v = m.view();
+    for (std::size_t f = 0; f < v.face_count(); ++f) {
+        std::vector<uint32_t> face(v.face(f).begin(), v.face(f).end());
+        for (uint32_t& i : face) i += base;
+        if (flip) std::reverse(face.begin(), face.end());
+        into.add_face(face);
+    }
+}
+
+// An open surface: the octasphere without its first faces.
+Mesh opened(const Mesh& in, std::size_t drop) {
+    Mesh m;
+    m.positions = in.positions;
+    const MeshView v = in.view();
+    for (std::size_t f = drop; f < v.face_count(); ++f) {
+        const auto face = v.face(f);
+        m.add_triangle(face[0], face[1], face[2]);
+    }
+    return m;
+}
+
+TEST(Methods, PrismAndPyramidAreCorrectlyRoundedOnEveryClosedCorpusMesh) {
+    if (corpus_manifest().empty()) GTEST_SKIP() << "no manifest at " << polyvol::test::corpus_dir();
+    int checked = 0;
+    for (const nlohmann::json& e : corpus_manifest()) {
+        if (e.value("category", "") == "invalid" || !e.value("exact", false)) continue;
+        if (!e.contains("topology") || !e["topology"].value("closed_2_cycle", false)) continue;
+        bool transformed = false;  // the manifest transforms in rationals (see CorpusClosedMeshes)
+        for (const auto& q : e.value("quirks", nlohmann::json::array()))
+            transformed = transformed || q.get<std::string>().rfind("3mf-", 0) == 0;
+        if (transformed) continue;
+        const std::string rel = e.at("path");
+        SCOPED_TRACE(rel);
+        const polyvol::LoadedMesh lm = polyvol::read_mesh_file(polyvol::test::corpus_file(rel));
+        const double want = polyvol::test::corpus_reference(e["volume"]);
+        EXPECT_EQ(bits(cr(lm.mesh.view(), polyvol::Method::prism)), bits(want));
+        EXPECT_EQ(bits(cr(lm.mesh.view(), polyvol::Method::pyramid)), bits(want));
+        const polyvol::MassProperties p = polyvol::mass_properties(lm.mesh.view(), {.method = polyvol::Method::prism});
+        EXPECT_TRUE(p.volume_correctly_rounded);
+        EXPECT_EQ(bits(p.volume), bits(want));
+        ++checked;
+    }
+    EXPECT_GT(checked, 50);
+}
+
+TEST(Methods, PrismIsCorrectlyRoundedOnOpenSurfacesFarFromTheOrigin) {
+    // Open surfaces (the prism sum then differs from the cone sum), near the
+    // origin and shifted in z by 1e6 and 1e8 (each coordinate rounded to a
+    // double): against the exact sum rounded once.
+    int differs_from_cone = 0;
+    for (uint64_t seed : {1u, 2u, 3u})
+        for (double dz : {0.0, 1e6, 1e8}) {
+            SCOPED_TRACE(testing::Message() << "seed " << seed << ", dz " << dz);
+            const Mesh m = translated(opened(octasphere(12, seed, 0.3), 5 * seed), 0.25, -0.5, dz);
+            const mpq_class exact = exact_prism(m.view());
+            const double v = cr(m.view(), polyvol::Method::prism);
+            EXPECT_EQ(bits(v), bits(nearest_double(exact))) << v << " vs " << exact.get_d();
+            differs_from_cone += bits(v) != bits(cr(m.view(), polyvol::Method::cone));
+            // --accuracy fast stays within its bound.
+            EXPECT_TRUE(within(polyvol::measure::prism_volume(m.view()), exact));
+        }
+    EXPECT_GT(differs_from_cone, 0);
+}
+
+TEST(Methods, PrismFilterFallsBackToTheExactSum) {
+    // A tetrahedron and its inside-out copy: closed, volume exactly 0, which
+    // no filter can decide (the sum's interval straddles 0).
+    const Mesh t = unit_tetrahedron();
+    Mesh both = t;
+    append(both, t, true);
+    EXPECT_EQ(bits(cr(both.view(), polyvol::Method::prism)), bits(0.0));
+    EXPECT_EQ(bits(cr(t.view(), polyvol::Method::prism)), bits(1.0 / 6));
+    // Near-ties: the unit cube and a thin box of volume 2^-53 + 2^-105, or
+    // inside out -(2^-54 + 2^-106): the exact volume lies just beyond the
+    // midpoint between two doubles (1 + 2^-53 above 1, 1 - 2^-54 below),
+    // far inside the filter's bound (~2^-94 here), so the exact sum must
+    // decide: up to 1 + 2^-52, and down to 1 - 2^-53.
+    for (const bool inside_out : {false, true}) {
+        SCOPED_TRACE(inside_out);
+        Mesh m = box(0, 0, 0, 1, 1, 1);
+        const Mesh thin = box(2, 2, 0, 2 + 0x1p-20, 2 + (inside_out ? 0x1p-34 : 0x1p-33), 1 + 0x1p-52);
+        append(m, thin, inside_out);
+        const double v = cr(m.view(), polyvol::Method::prism);
+        EXPECT_EQ(bits(v), bits(inside_out ? 1 - 0x1p-53 : 1 + 0x1p-52)) << std::hexfloat << v;
+        EXPECT_EQ(bits(v), bits(cr(m.view(), polyvol::Method::cone)));
+        EXPECT_EQ(bits(v), bits(nearest_double(exact_prism(m.view()))));
+    }
+}
+
+TEST(Methods, PrismOutsideTheSafeRangeIsStillCorrectlyRounded) {
+    // Scaled by 2^-200 and 2^200 (exact): coordinates outside {0} ∪ [2^-160,
+    // 2^190] take the rational path.
+    for (double scale : {0x1p-200, 0x1p200}) {
+        SCOPED_TRACE(scale);
+        Mesh m = opened(octasphere(6, 4, 0.2), 3);
+        for (double& x : m.positions) x *= scale;
+        EXPECT_EQ(bits(cr(m.view(), polyvol::Method::prism)), bits(nearest_double(exact_prism(m.view()))));
+    }
+    Mesh bad = octasphere(3, 1, 0.1);
+    bad.positions[7] = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_TRUE(std::isnan(cr(bad.view(), polyvol::Method::prism)));
+    EXPECT_FALSE(polyvol::mass_properties(bad.view(), {.method = polyvol::Method::prism}).volume_correctly_rounded);
+}
+
+TEST(Methods, PyramidIsTheConeForEveryMesh) {
+    // Open meshes with polygon faces (quads and their fans) far from the
+    // origin: the same exact sum, so the same correctly rounded double.
+    for (double dz : {0.0, 1e7}) {
+        const Mesh quads = translated(box(-1, -2, -3, 0.5, 4, 7, true), 0.1, 0.2, dz);
+        Mesh open_quads;
+        open_quads.positions = quads.positions;
+        const MeshView qv = quads.view();
+        for (std::size_t f = 1; f < qv.face_count(); ++f) {
+            const std::vector<uint32_t> face(qv.face(f).begin(), qv.face(f).end());
+            open_quads.add_face(face);
+        }
+        for (const Mesh* m : std::initializer_list<const Mesh*>{&quads, &open_quads}) {
+            EXPECT_EQ(bits(cr(m->view(), polyvol::Method::pyramid)), bits(cr(m->view(), polyvol::Method::cone)));
+            EXPECT_EQ(bits(cr(m->view(), polyvol::Method::pyramid)), bits(nearest_double(exact_volume(m->view()))));
+        }
+    }
+}
+
+TEST(Methods, CorrectlyRoundedPrismIsTheSameForAnyNumberOfThreads) {
+    const Mesh m = translated(opened(octasphere(40, 11, 0.3), 7), 1.0 / 3, 0.1, -0.7);
+    const double many = cr(m.view(), polyvol::Method::prism);
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    EXPECT_EQ(bits(cr(m.view(), polyvol::Method::prism)), bits(many));
 }
 
 }  // namespace
