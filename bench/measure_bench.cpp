@@ -52,6 +52,10 @@ BENCHMARK(Volume<Method::cone, Accuracy::correctly_rounded>)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(Volume<Method::cone, Accuracy::fast>)->Args({1 << 20, 1000000})->Unit(benchmark::kMillisecond);
 BENCHMARK(Volume<Method::prism, Accuracy::fast>)->Args({1 << 20, 1000000})->Unit(benchmark::kMillisecond);
+BENCHMARK(Volume<Method::prism, Accuracy::correctly_rounded>)
+    ->Args({1 << 20, 1000000})
+    ->Args({1 << 20, 0})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(Volume<Method::pyramid, Accuracy::fast>)->Args({1 << 20, 1000000})->Unit(benchmark::kMillisecond);
 BENCHMARK(Volume<Method::vtnb, Accuracy::fast>)->Args({1 << 20, 1000000})->Unit(benchmark::kMillisecond);
 BENCHMARK(AllMassProperties)->Arg(1 << 20)->Unit(benchmark::kMillisecond);
