@@ -80,9 +80,9 @@ int run(Command command, const Common& c) {
     // --stream (the streaming path has no second moments, inertia, edge
     // length or components: README).
     request.stream = command == Command::volume && (!c.json || c.stream);
-    request.table_only = command == Command::volume && !c.json;
     request.volume_only = command == Command::volume && c.volume_only;
-    if (request.table_only || request.volume_only) {
+    request.table_only = command == Command::volume && (!c.json || request.volume_only);
+    if (request.table_only) {
         request.measure.second_moments = false;
         request.measure.edge_length = false;
     }

@@ -61,7 +61,7 @@ MassProperties volume_only_properties(const MeshView& view, const MeasureOptions
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     MassProperties m;
     m.volume = signed_volume(view, o.method, Accuracy::correctly_rounded);
-    m.volume_correctly_rounded = std::isfinite(m.volume);
+    m.volume_correctly_rounded = !std::isnan(m.volume);
     m.volume_error_bound = m.volume_correctly_rounded ? 0.0 : nan;
     m.mass = o.density * m.volume;
     m.first_moments = m.centroid = {nan, nan, nan};
@@ -208,12 +208,15 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["vertices_welded"] = t.vertices_welded;
         j["edges"] = t.edges;
         j["degenerate_triangles"] = t.triangles_with_repeated_vertex + t.zero_area_triangles;
-        j["cavities"] = t.cavities;
-        j["inside_out_shells"] = t.inside_out_shells;
         if (t.unbalanced_example) {
             const auto& e = *t.unbalanced_example;
             j["unbalanced_example"] = {{e[0], e[1], e[2]}, {e[3], e[4], e[5]}};
         }
+    }
+    if (r.topology && !request.volume_only) {  // shells and nesting: not computed for --volume-only
+        const auto& t = *r.topology;
+        j["cavities"] = t.cavities;
+        j["inside_out_shells"] = t.inside_out_shells;
         nlohmann::json shells = nlohmann::json::array();
         for (const Shell& s : t.shells) {
             nlohmann::json sj{{"signed_volume", s.signed_volume},
@@ -231,7 +234,7 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
     if (request.need_mass) {
         j["method"] = std::string(method_name(request.measure.method));
         j["accuracy"] = std::string(accuracy_name(request.measure.accuracy));
-        j["density"] = request.measure.density;
+        if (!request.volume_only) j["density"] = request.measure.density;
     }
     if (r.mass) {
         const auto& m = *r.mass;

@@ -42,14 +42,15 @@ struct Request {
     // fingerprint) when the method is cone; a nonzero fingerprint falls back
     // to the full path, which names the unbalanced edges.
     bool stream = false;
-    // `volume`'s table: only what it prints (volume, area, centroid) and the
+    // `volume`'s table, and --volume-only: only what is printed and the
     // closedness it needs: topology without shells, no second moments, no
     // edge length.
     bool table_only = false;
     // `volume --volume-only`: the volume, its guarantee and the closedness
-    // check, nothing else (table and JSON): the streamed pass skips area and
-    // first moments, the full path uses signed_volume when the cone rule is
-    // correctly rounded.
+    // check, nothing else (table and JSON; the JSON keeps the edge counts,
+    // not the shells): the streamed pass skips area and first moments, the
+    // full path calls signed_volume when the volume is correctly rounded
+    // (cone, prism, pyramid).
     bool volume_only = false;
 };
 

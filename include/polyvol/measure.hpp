@@ -59,7 +59,8 @@ enum class Method { cone, prism, pyramid, vtnb };
 //   fast              — double arithmetic per triangle (the sum across blocks is
 //                       exact), with a rigorous a-posteriori error bound.
 // Meshes with a coordinate outside {0} ∪ [2^-160, 2^190] take an exact
-// big-integer path in both modes (then correctly rounded). Area and edge
+// big-integer path for the cone rule's sums in both modes (then correctly
+// rounded), and for the prism volume when correctly rounded. Area and edge
 // length are computed in double in both modes (with bounds). Non-finite
 // coordinates on a used vertex give NaN results.
 enum class Accuracy { correctly_rounded, fast };
@@ -93,8 +94,9 @@ struct MassProperties {
     // means the volume is the exact value rounded once to nearest.
     bool volume_correctly_rounded = false;
     double volume_error_bound = 0;        // absolute bound on |volume - exact|
-    // moments_correctly_rounded: mass (cone method), first/second moments,
-    // centroid and inertia are each the exact value rounded once to nearest;
+    // moments_correctly_rounded: mass (cone, and pyramid when correctly
+    // rounded), first/second moments, centroid and inertia are each the
+    // exact value rounded once to nearest;
     // moments_relative_error is then 2^-53 (half an ulp, for results >= 2^-1022).
     bool moments_correctly_rounded = false;
     double moments_relative_error = 0;    // bound on the error of moments, centroid, inertia, relative to the largest magnitude in the same array (inf when the volume may be 0)

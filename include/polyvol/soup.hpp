@@ -99,11 +99,13 @@ struct SoupWants {
 };
 
 struct SoupResult {
-    SoupWants computed;            // what was asked for; figures not asked for are NaN
+    SoupWants computed;            // what was asked for; the figures of what was not are NaN
+                                   // (the fingerprint then 0 and closed false)
     uint64_t triangles = 0;
     bool nonfinite = false;        // some coordinate is NaN or ±inf (then every figure below is NaN)
-    // Fingerprint lanes (mod 2^31 - 1); all zero iff the surface is closed, up to
-    // the probability above. Keyed per accumulator, so the values mean nothing else.
+    // Fingerprint lanes (mod 2^31 - 1); when computed, all zero iff the surface is
+    // closed, up to the probability above. Keyed per accumulator, so the values
+    // mean nothing else.
     std::array<uint64_t, 4> fingerprint{};
     bool closed = false;           // fingerprint all zero and !nonfinite (false when not computed)
 

@@ -2,6 +2,7 @@
 // of the superaccumulator (see exact_sum.hpp for the representation).
 #include "exact/exact_sum.hpp"
 
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -115,6 +116,16 @@ double ExactSum::round_div(uint32_t divisor) const {
         }
     }
     return round_digits(w, n, kUnitExponent - 64, rem != 0, negative);
+}
+
+std::optional<double> decided_round_div(const ExactSum& sum, double bound, uint32_t divisor) {
+    if (bound == 0) return sum.round_div(divisor);
+    ExactSum lo = sum, hi = sum;
+    lo.add(-bound);
+    hi.add(bound);
+    const double a = lo.round_div(divisor), b = hi.round_div(divisor);
+    if (std::bit_cast<uint64_t>(a) != std::bit_cast<uint64_t>(b)) return std::nullopt;
+    return a;
 }
 
 }  // namespace polyvol::exact

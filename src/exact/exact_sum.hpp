@@ -28,6 +28,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 namespace polyvol::exact {
@@ -115,6 +116,12 @@ private:
     int adds_left_ = kAddsPerCarry;
     uint8_t specials_ = 0;
 };
+
+// The filters' decision: sum approximates an exact value within bound (>= 0);
+// when (sum - bound) / divisor and (sum + bound) / divisor round to the same
+// double (rounding is monotone), that double is the exact value / divisor
+// rounded once; otherwise nothing.
+std::optional<double> decided_round_div(const ExactSum& sum, double bound, uint32_t divisor);
 
 // Rounds the non-negative integer Σ digit[i] * 2^(32 i + unit_exponent)
 // (digits < 2^32), plus "a little more" when sticky, to the nearest double,

@@ -176,13 +176,7 @@ struct ConeResults {
 
 // Volume only, without GMP: round((sum ± bound) / 6) with the superaccumulator.
 std::optional<double> volume_decided(const ConeSums& sums) {
-    if (sums.bound[kV] == 0) return sums.sum[kV].round_div(6);
-    exact::ExactSum lo = sums.sum[kV], hi = sums.sum[kV];
-    lo.add(-sums.bound[kV]);
-    hi.add(sums.bound[kV]);
-    const double a = lo.round_div(6), b = hi.round_div(6);
-    if (std::bit_cast<uint64_t>(a) != std::bit_cast<uint64_t>(b)) return std::nullopt;
-    return a;
+    return exact::decided_round_div(sums.sum[kV], sums.bound[kV], 6);
 }
 
 ConeResults cone_results(const MeshView& mesh, int count, Accuracy accuracy, double density) {
@@ -362,48 +356,34 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
     }
 
     measure::SumWithBound area{}, length{};
-    switch (options.method) {
-        case Method::cone:
-            p.volume = c.value[kVolume];
-            p.mass = c.value[kMass];
-            p.volume_correctly_rounded = c.correctly_rounded;
-            p.volume_error_bound = c.bound[kVolume];
-            break;
-        case Method::pyramid:
-            // Franklin's pyramid sum is the cone rule's sum exactly, for every
-            // mesh (pyramid.cpp): its correctly rounded value is the cone's.
-            if (options.accuracy == Accuracy::correctly_rounded) {
-                p.volume = c.value[kVolume];
-                p.mass = c.value[kMass];
-                p.volume_correctly_rounded = c.correctly_rounded;
-                p.volume_error_bound = c.bound[kVolume];
-                break;
-            }
-            [[fallthrough]];
-        case Method::prism: {
-            if (options.method == Method::prism && options.accuracy == Accuracy::correctly_rounded) {
-                p.volume = measure::prism_volume_correctly_rounded(mesh);
-                p.volume_correctly_rounded = !std::isnan(p.volume);
-                p.volume_error_bound = p.volume_correctly_rounded ? 0.0 : kInf;
-                break;
-            }
-            const measure::SumWithBound v =
-                options.method == Method::prism ? measure::prism_volume(mesh) : measure::pyramid_volume(mesh);
-            p.volume = v.value;
-            p.volume_error_bound = v.error_bound;
-            break;
-        }
-        case Method::vtnb: {
-            const measure::VtnbResult v = measure::vtnb_measures(mesh);
-            p.volume = v.volume.value;
-            p.volume_error_bound = v.volume.error_bound;
-            area = v.area;
-            length = v.length;
-            break;
-        }
+    // Franklin's pyramid sum is the cone rule's sum exactly, for every mesh
+    // (pyramid.cpp): correctly rounded, it is the cone's volume and mass.
+    const bool cone_volume = options.method == Method::cone ||
+                             (options.method == Method::pyramid && options.accuracy == Accuracy::correctly_rounded);
+    if (cone_volume) {
+        p.volume = c.value[kVolume];
+        p.mass = c.value[kMass];
+        p.volume_correctly_rounded = c.correctly_rounded;
+        p.volume_error_bound = c.bound[kVolume];
+    } else if (options.method == Method::prism && options.accuracy == Accuracy::correctly_rounded) {
+        p.volume = measure::prism_volume_correctly_rounded(mesh);
+        p.volume_correctly_rounded = !std::isnan(p.volume);
+        p.volume_error_bound = p.volume_correctly_rounded ? 0.0 : kNaN;
+    } else if (options.method == Method::vtnb) {
+        const measure::VtnbResult v = measure::vtnb_measures(mesh);
+        p.volume = v.volume.value;
+        p.volume_error_bound = v.volume.error_bound;
+        area = v.area;
+        length = v.length;
+    } else {
+        const measure::SumWithBound v =
+            options.method == Method::prism ? measure::prism_volume(mesh) : measure::pyramid_volume(mesh);
+        p.volume = v.value;
+        p.volume_error_bound = v.error_bound;
     }
-    if (options.method != Method::cone && !(options.method == Method::pyramid && p.volume_correctly_rounded))
-        p.mass = options.density * p.volume;
+    // Otherwise the mass is density × volume rounded again (not covered by
+    // moments_correctly_rounded).
+    if (!cone_volume) p.mass = options.density * p.volume;
     if (options.method != Method::vtnb) {
         area = measure::fan_area(mesh);
         if (options.edge_length) length = measure::welded_edge_length(mesh);

@@ -32,7 +32,8 @@
 //
 // Correctly rounded (prism_volume_correctly_rounded): the exact sum of the
 // terms τ = Z* A* on the given doubles, divided by 6 and rounded once.
-// With every coordinate in cone.hpp's safe range ({0} ∪ [2^-160, 2^190]),
+// With every coordinate the fan triangles read in cone.hpp's safe range
+// ({0} ∪ [2^-160, 2^190]; NaN when one is not finite),
 // every value below is a multiple of 2^-1060 under 2^1000: the error-free
 // transformations are exact and no rounding underflows.
 //   Filter, per fan triangle, in double-double (ux + ux' = b_x - a_x exactly
@@ -64,7 +65,6 @@
 //   Outside the safe range (finite): GMP rationals, triangle by triangle.
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -76,7 +76,6 @@
 #include "exact/exact_sum.hpp"
 #include "exact/rational.hpp"
 #include "measure/certified_sum.hpp"
-#include "measure/cone.hpp"
 #include "measure/methods.hpp"
 
 namespace polyvol::measure {
@@ -164,22 +163,38 @@ double rational_prism(const MeshView& mesh) {
     return (total / Rational(6L)).to_double();
 }
 
+// cone.hpp's Range, of the coordinates the fan triangles read (vertices no
+// face uses do not matter, as for the cone rule).
+struct UsedRange {
+    bool unsafe = false, nonfinite = false;
+    void merge(const UsedRange& o) {
+        unsafe = unsafe || o.unsafe;
+        nonfinite = nonfinite || o.nonfinite;
+    }
+};
+
+void check_range(const double* p, UsedRange& r) {
+    for (int k = 0; k < 3; ++k) {
+        const double x = std::fabs(p[k]);
+        r.nonfinite = r.nonfinite || !(x <= std::numeric_limits<double>::max());
+        r.unsafe = r.unsafe || !(x == 0 || (x >= 0x1p-160 && x <= 0x1p190));
+    }
+}
+
 }  // namespace
 
 double prism_volume_correctly_rounded(const MeshView& mesh) {
-    switch (cone::coordinate_range(mesh)) {
-        case cone::Range::nonfinite: return std::numeric_limits<double>::quiet_NaN();
-        case cone::Range::unsafe: return rational_prism(mesh);
-        case cone::Range::safe: break;
-    }
+    const UsedRange range = reduce_fan<UsedRange>(mesh, [](const double* a, const double* b, const double* c, UsedRange& r) {
+        check_range(a, r);
+        check_range(b, r);
+        check_range(c, r);
+    });
+    if (range.nonfinite) return std::numeric_limits<double>::quiet_NaN();
+    if (range.unsafe) return rational_prism(mesh);
     const FilterSums f = reduce_fan<FilterSums>(
         mesh, [](const double* a, const double* b, const double* c, FilterSums& acc) { add_filtered_term(a, b, c, acc); });
     const double bound = up(64 * kU * kU * up(f.magnitude.round() * (1 + 0x1p-10)));
-    ExactSum lo = f.sum, hi = f.sum;
-    lo.add(-bound);
-    hi.add(bound);
-    const double v = lo.round_div(6);
-    if (std::bit_cast<uint64_t>(v) == std::bit_cast<uint64_t>(hi.round_div(6))) return v;
+    if (const auto v = exact::decided_round_div(f.sum, bound, 6)) return *v;
     const ExactAcc e = reduce_fan<ExactAcc>(
         mesh, [](const double* a, const double* b, const double* c, ExactAcc& acc) { add_exact_term(a, b, c, acc.sum); });
     return e.sum.round_div(6);

@@ -588,7 +588,7 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512d column(__m
 // Zen 4 when nothing else touched the records' cache lines first.)
 __attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512 triangle_row(const std::byte* r) {
     const __m512 x = _mm512_zextps256_ps512(_mm256_loadu_ps(reinterpret_cast<const float*>(r)));
-    return _mm512_mask_broadcastss_ps(x, 0x100, _mm_load_ss(reinterpret_cast<const float*>(r + 32)));
+    return _mm512_mask_broadcastss_ps(x, 0x100, _mm_castsi128_ps(_mm_loadu_si32(r + 32)));  // r + 32: any alignment
 }
 
 // two_sum(a, b) on eight lanes.
@@ -808,15 +808,6 @@ Pass1Fn pass1_for(SoupWants w) {
     return w.moments_and_area ? pass1_block<false, true> : pass1_block<false, false>;
 }
 
-std::optional<double> decide_volume(const ExactSum& sum, double bound) {
-    if (bound == 0) return sum.round_div(6);
-    ExactSum lo = sum, hi = sum;
-    lo.add(-bound);
-    hi.add(bound);
-    const double a = lo.round_div(6), b = hi.round_div(6);
-    if (std::bit_cast<uint64_t>(a) != std::bit_cast<uint64_t>(b)) return std::nullopt;
-    return a;
-}
 
 double up(double x) { return std::nextafter(x, kInf); }
 
@@ -999,7 +990,7 @@ bool SoupAccumulator::next_pass() {
             r.first_moments_error_bound = emax;
         }
         const double bound = up(512 * kU * kU * up(all.vol_mag.round() * (1 + 0x1p-10)));
-        if (const auto v = decide_volume(all.vol, bound)) {
+        if (const auto v = exact::decided_round_div(all.vol, bound, 6)) {
             r.volume = *v;
         } else {
             s.pass = 2;
@@ -1012,7 +1003,7 @@ bool SoupAccumulator::next_pass() {
                                    std::to_string(s.pass1_triangles));
         const double bound =
             s.pass == 2 ? cone::filtered_bound(cone::kV, cone::Precision::double_double, all.vol_mag.round()) : 0.0;
-        if (const auto v = decide_volume(all.vol, bound)) {
+        if (const auto v = exact::decided_round_div(all.vol, bound, 6)) {
             r.volume = *v;
         } else {
             s.pass = 3;  // only from pass 2: the exact sum always decides

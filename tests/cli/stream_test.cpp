@@ -136,7 +136,8 @@ TEST(CliStream, VolumeOnlyGivesTheManifestVolumeOnEveryPath) {
         EXPECT_EQ(j["accuracy"], "correctly-rounded");
         EXPECT_EQ(j["volume_error_bound"].get<double>(), 0.0);
         EXPECT_EQ(j["closed_2_cycle"], true);
-        for (const char* key : {"area", "centroid", "first_moments", "second_moments", "edge_length", "mass"})
+        for (const char* key : {"area", "centroid", "first_moments", "second_moments", "edge_length", "mass",
+                                "shells", "cavities", "density"})
             EXPECT_FALSE(j.contains(key)) << key;
         ++checked;
         streamed += j.value("streamed", false);

@@ -208,12 +208,16 @@ TEST(StlStream, BinaryStlTrianglesErrors) {
     for (uint32_t t = 0; t < 70000; ++t)
         for (int k = 0; k < 9; ++k) b[84 + 50 * std::size_t{t} + 12 + 4 * k + 3] &= std::byte{0x3F};
     const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    // In another window, in the same window after it (a later triangle, a
+    // later coordinate of the same triangle), and the first.
     std::memcpy(&b[84 + 50 * 69000 + 12 + 4 * 2], &nan, 4);
+    std::memcpy(&b[84 + 50 * 41002 + 12 + 4 * 0], &nan, 4);
     std::memcpy(&b[84 + 50 * 41000 + 12 + 4 * 7], &inf, 4);
+    std::memcpy(&b[84 + 50 * 41000 + 12 + 4 * 5], &inf, 4);
     f.write(b);
     const ReadError e = iotest::expect_error([&] { (void)read_binary_stl_triangles(f.path.string()); });
     EXPECT_TRUE(e.has_byte_offset);
-    EXPECT_EQ(e.byte_offset, 84u + 50 * 41000 + 12 + 4 * 7);
+    EXPECT_EQ(e.byte_offset, 84u + 50 * 41000 + 12 + 4 * 5);
     EXPECT_NE(e.message.find("non-finite coordinate in triangle 41000"), std::string::npos) << e.message;
     EXPECT_EQ(iotest::expect_error([&] { (void)read_mesh_file(f.path.string()); }).byte_offset, e.byte_offset);
 }
