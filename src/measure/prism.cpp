@@ -63,6 +63,7 @@
 //   parts times each of z_a, z_b, z_c by two_prod: 72 doubles per triangle
 //   whose exact sum is τ, into the superaccumulator.
 //   Outside the safe range (finite): GMP rationals, triangle by triangle.
+//   The range is checked in the filter's pass, on the coordinates it reads.
 
 #include <algorithm>
 #include <cmath>
@@ -86,17 +87,41 @@ using exact::ExactSum;
 using exact::two_prod;
 using exact::two_sum;
 
-// The filter's sums (see the top of this file).
+// cone.hpp's Range, of the coordinates the fan triangles read (vertices no
+// face uses do not matter, as for the cone rule).
+struct UsedRange {
+    bool unsafe = false, nonfinite = false;
+    void merge(const UsedRange& o) {
+        unsafe = unsafe || o.unsafe;
+        nonfinite = nonfinite || o.nonfinite;
+    }
+};
+
+void check_range(const double* p, UsedRange& r) {
+    for (int k = 0; k < 3; ++k) {
+        const double x = std::fabs(p[k]);
+        r.nonfinite = r.nonfinite || !(x <= std::numeric_limits<double>::max());
+        r.unsafe = r.unsafe || !(x == 0 || (x >= 0x1p-160 && x <= 0x1p190));
+    }
+}
+
+// The filter's sums (see the top of this file), and the range of the
+// coordinates they read (the sums mean something only when it is safe).
 struct FilterSums {
     ExactSum sum;        // Σ (t + T_lo)
     ExactSum magnitude;  // Σ Zabs X
+    UsedRange range;
     void merge(const FilterSums& o) {
         sum.merge(o.sum);
         magnitude.merge(o.magnitude);
+        range.merge(o.range);
     }
 };
 
 void add_filtered_term(const double* a, const double* b, const double* c, FilterSums& acc) {
+    check_range(a, acc.range);
+    check_range(b, acc.range);
+    check_range(c, acc.range);
     double ux, ux_, uy, uy_, wx, wx_, wy, wy_;
     two_sum(b[0], -a[0], ux, ux_);
     two_sum(b[1], -a[1], uy, uy_);
@@ -163,36 +188,13 @@ double rational_prism(const MeshView& mesh) {
     return (total / Rational(6L)).to_double();
 }
 
-// cone.hpp's Range, of the coordinates the fan triangles read (vertices no
-// face uses do not matter, as for the cone rule).
-struct UsedRange {
-    bool unsafe = false, nonfinite = false;
-    void merge(const UsedRange& o) {
-        unsafe = unsafe || o.unsafe;
-        nonfinite = nonfinite || o.nonfinite;
-    }
-};
-
-void check_range(const double* p, UsedRange& r) {
-    for (int k = 0; k < 3; ++k) {
-        const double x = std::fabs(p[k]);
-        r.nonfinite = r.nonfinite || !(x <= std::numeric_limits<double>::max());
-        r.unsafe = r.unsafe || !(x == 0 || (x >= 0x1p-160 && x <= 0x1p190));
-    }
-}
-
 }  // namespace
 
 double prism_volume_correctly_rounded(const MeshView& mesh) {
-    const UsedRange range = reduce_fan<UsedRange>(mesh, [](const double* a, const double* b, const double* c, UsedRange& r) {
-        check_range(a, r);
-        check_range(b, r);
-        check_range(c, r);
-    });
-    if (range.nonfinite) return std::numeric_limits<double>::quiet_NaN();
-    if (range.unsafe) return rational_prism(mesh);
     const FilterSums f = reduce_fan<FilterSums>(
         mesh, [](const double* a, const double* b, const double* c, FilterSums& acc) { add_filtered_term(a, b, c, acc); });
+    if (f.range.nonfinite) return std::numeric_limits<double>::quiet_NaN();
+    if (f.range.unsafe) return rational_prism(mesh);
     const double bound = up(64 * kU * kU * up(f.magnitude.round() * (1 + 0x1p-10)));
     if (const auto v = exact::decided_round_div(f.sum, bound, 6)) return *v;
     const ExactAcc e = reduce_fan<ExactAcc>(
