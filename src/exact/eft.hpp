@@ -29,6 +29,17 @@ namespace polyvol::exact {
 #define POLYVOL_INLINE inline
 #endif
 
+// The safe range of the exact kernels' coordinates: 0 or 2^-160 <= |x| <=
+// 2^190. With every coordinate in it, every product of up to five
+// coordinates and every intermediate value is a multiple of 2^-1060 below
+// 2^1000, so the transformations below are exact on them (the condition
+// "checking the coordinate range up front" above).
+inline constexpr double kSafeMin = 0x1p-160, kSafeMax = 0x1p190;
+inline bool in_safe_range(double x) {
+    const double a = std::fabs(x);
+    return a == 0 || (a >= kSafeMin && a <= kSafeMax);  // false for NaN
+}
+
 // s + e == a + b exactly, |e| <= ulp(s)/2 (Knuth; no condition on a, b).
 POLYVOL_INLINE void two_sum(double a, double b, double& s, double& e) {
     s = a + b;

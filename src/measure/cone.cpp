@@ -684,7 +684,7 @@ POLYVOL_INLINE void volume_block(const Block& b, VolumeSums& out) {
 constexpr uint64_t kAbsMask = ~(uint64_t{1} << 63);
 constexpr uint64_t kSafeHi = 0x4BD0000000000000ull;  // 2^190
 constexpr uint64_t kSafeLo = 0x35F0000000000000ull;  // 2^-160
-static_assert(std::bit_cast<double>(kSafeHi) == 0x1p190 && std::bit_cast<double>(kSafeLo) == 0x1p-160);
+static_assert(std::bit_cast<double>(kSafeHi) == exact::kSafeMax && std::bit_cast<double>(kSafeLo) == exact::kSafeMin);
 
 // Extremes of some coordinates' patterns (hi, lo as above).
 struct Extremes {

@@ -99,9 +99,8 @@ struct UsedRange {
 
 void check_range(const double* p, UsedRange& r) {
     for (int k = 0; k < 3; ++k) {
-        const double x = std::fabs(p[k]);
-        r.nonfinite = r.nonfinite || !(x <= std::numeric_limits<double>::max());
-        r.unsafe = r.unsafe || !(x == 0 || (x >= 0x1p-160 && x <= 0x1p190));
+        r.nonfinite = r.nonfinite || !std::isfinite(p[k]);
+        r.unsafe = r.unsafe || !exact::in_safe_range(p[k]);
     }
 }
 

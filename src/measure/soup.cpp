@@ -808,7 +808,6 @@ Pass1Fn pass1_for(SoupWants w) {
     return w.moments_and_area ? pass1_block<false, true> : pass1_block<false, false>;
 }
 
-
 double up(double x) { return std::nextafter(x, kInf); }
 
 uint64_t splitmix(uint64_t& s) {
@@ -960,15 +959,13 @@ bool SoupAccumulator::next_pass() {
         r.fingerprint = {all.fp[0], all.fp[1], all.fp[2], all.fp[3]};
         r.closed = s.wants.closedness && !all.nonfinite && all.fp[0] == 0 && all.fp[1] == 0 && all.fp[2] == 0 &&
                    all.fp[3] == 0;
-        if (all.nonfinite || !s.wants.moments_and_area) {
+        if (all.nonfinite || !s.wants.moments_and_area) {  // NaN unless computed below
             r.area = kNaN;
             r.first_moments = r.centroid = {kNaN, kNaN, kNaN};
             r.first_moments_error_bound = r.centroid_error_bound = r.area_relative_error = kNaN;
         }
         if (all.nonfinite) {
-            r.volume = r.area = kNaN;
-            r.first_moments = r.centroid = {kNaN, kNaN, kNaN};
-            r.first_moments_error_bound = r.centroid_error_bound = r.area_relative_error = kNaN;
+            r.volume = kNaN;
             r.passes = 1;
             s.done = true;
             return false;

@@ -72,11 +72,7 @@ EdgeDefects count_shell_edges(const ShellLabels& shells, const EdgeTable& edges,
 // products of det3_exact neither underflow nor overflow (as in measure's
 // cone rule), so the expansion is exact.
 bool in_safe_range(const double* p) {
-    for (int k = 0; k < 3; ++k) {
-        const double x = std::abs(p[k]);
-        if (!(x == 0 || (x >= 0x1p-160 && x <= 0x1p+190))) return false;
-    }
-    return true;
+    return exact::in_safe_range(p[0]) && exact::in_safe_range(p[1]) && exact::in_safe_range(p[2]);
 }
 
 // Σ det(a, b, c) / 6 over the triangles, rounded once: each det as an exact
