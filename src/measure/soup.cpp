@@ -496,15 +496,16 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512i key512(con
 // -0.0 as +0.0) and whitened with k0 (x ^ k0). words: 0x7777 (the three
 // coordinates of each quarter), without the quarters that are to hold the
 // point 0. Vertex 2 is loaded from bytes [20, 36) and shifted: no load
-// leaves [0, 36).
+// leaves [0, 36). Quarters 1..3 come by masked broadcasts from memory, which
+// spare the shuffle unit that inserts would take.
 template <int v>
 __attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512i whitened_vertices(const std::byte* const r[4],
                                                                                        __mmask16 words, __m512i k0) {
     constexpr int off = v < 2 ? 12 * v : 20;
     __m512i x = _mm512_castsi128_si512(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r[0] + off)));
-    x = _mm512_inserti32x4(x, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[1] + off)), 1);
-    x = _mm512_inserti32x4(x, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[2] + off)), 2);
-    x = _mm512_inserti32x4(x, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[3] + off)), 3);
+    x = _mm512_mask_broadcast_i32x4(x, 0x00F0, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[1] + off)));
+    x = _mm512_mask_broadcast_i32x4(x, 0x0F00, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[2] + off)));
+    x = _mm512_mask_broadcast_i32x4(x, 0xF000, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[3] + off)));
     if constexpr (v == 2) x = _mm512_bsrli_epi128(x, 4);
     // Words kept: those in `words`, unless -0.0; the others are 0, whitened: k0.
     const __mmask16 keep = _mm512_mask_cmpneq_epi32_mask(words, x, _mm512_set1_epi32(static_cast<int>(0x80000000u)));
@@ -583,12 +584,16 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512d column(__m
 }
 
 // The nine floats at r in words 0..8, the rest zero: a 256-bit load and
-// the ninth float broadcast into word 8. (A masked 512-bit load, 0x1FF,
+// the ninth float broadcast from memory into word 8 (a load with a blend;
+// from a register the broadcast takes the shuffle unit, which the
+// transposes below keep busy: 5% of the block's time). (A masked 512-bit load, 0x1FF,
 // reads the same words but was 3-4x slower for the whole block on AMD
 // Zen 4 when nothing else touched the records' cache lines first.)
 __attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512 triangle_row(const std::byte* r) {
     const __m512 x = _mm512_zextps256_ps512(_mm256_loadu_ps(reinterpret_cast<const float*>(r)));
-    return _mm512_mask_broadcastss_ps(x, 0x100, _mm_castsi128_ps(_mm_loadu_si32(r + 32)));  // r + 32: any alignment
+    float ninth;
+    std::memcpy(&ninth, r + 32, 4);  // any alignment
+    return _mm512_mask_broadcastss_ps(x, 0x100, _mm_set_ss(ninth));
 }
 
 // two_sum(a, b) on eight lanes.
