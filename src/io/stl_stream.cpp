@@ -3,9 +3,9 @@
 //
 // How (default): the whole file is mapped once; slabs of ~4 MB go to threads
 // (oneTBB), each walks its slab window by window (~200 KB) and then drops
-// the slab's pages from the process (madvise DONTNEED: they stay in the page
-// cache, so the resident set stays about threads × slab_bytes whatever the
-// file size). No copy: with the page cache in large folios a fault maps many
+// the slab's pages from the process in whole 2 MiB units (madvise
+// DONTNEED: they stay in the page cache, so the resident set stays about
+// threads × (slab_bytes + 4 MiB) whatever the file size). No copy: with the page cache in large folios a fault maps many
 // pages at once, and pread's copy out of the cache was the largest single
 // cost of `polyvol volume` on an 8M-triangle file (docs/benchmarks.md).
 // Mapping each window on its own was measured slower than either (a new
@@ -30,6 +30,7 @@
 
 #include <cerrno>
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -42,6 +43,7 @@ namespace {
 
 constexpr uint64_t kRecord = 50;
 constexpr uint64_t kGroup = 32;  // records per alignment group
+constexpr uint64_t kHugeUnit = uint64_t{2} << 20;  // bytes dropped at once (see for_each_mapped_window)
 
 struct Fd {
     int fd = -1;
@@ -132,6 +134,25 @@ bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t pe
     const uint64_t per_slab = per_window * std::max<uint64_t>(1, options.slab_bytes / (per_window * kRecord));
     const uint64_t slabs = (n + per_slab - 1) / per_slab;
     const auto page = static_cast<uint64_t>(::sysconf(_SC_PAGESIZE));
+    // Pages are dropped in whole units of `unit` bytes: 2 MiB (a PMD on
+    // x86-64) when slabs are at least that long, else a page. A page cache
+    // in large folios is mapped a PMD at a time; dropping part of one splits
+    // it first, which costs a TLB flush on every core running the process
+    // (an IPI, expensive in a VM). A unit shared by two slabs is dropped by
+    // whichever finishes second (done[u] counts them).
+    const uint64_t unit = per_slab * kRecord >= kHugeUnit && kHugeUnit % page == 0 ? kHugeUnit : page;
+    const uint64_t units = (size + unit - 1) / unit;
+    std::vector<std::atomic<uint8_t>> done(units);
+    // The number of slabs whose bytes lie in unit u (the header is slab 0's).
+    auto slab_at = [&](uint64_t byte) { return byte < 84 ? 0 : std::min(slabs - 1, (byte - 84) / kRecord / per_slab); };
+    auto users = [&](uint64_t u) {
+        const uint64_t lo = u * unit, hi = std::min(size, lo + unit) - 1;
+        return static_cast<uint8_t>(slab_at(hi) - slab_at(lo) + 1);
+    };
+    auto drop = [&](uint64_t u0, uint64_t u1) {  // units [u0, u1), within the mapping's pages
+        const uint64_t lo = u0 * unit, hi = std::min((size + page - 1) / page * page, u1 * unit);
+        if (hi > lo) (void)::madvise(const_cast<std::byte*>(base) + lo, static_cast<std::size_t>(hi - lo), MADV_DONTNEED);
+    };
 
     auto slab = [&](uint64_t s) {
         const uint64_t first = s * per_slab, last = std::min(n, first + per_slab);
@@ -139,12 +160,17 @@ bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t pe
             const uint64_t count = std::min(per_window, last - w);
             fn(std::span<const std::byte>(base + 84 + w * kRecord, static_cast<std::size_t>(count * kRecord)), w);
         }
-        // Drop the whole pages inside the slab (its neighbours may still be
-        // reading the pages it shares with them).
-        const uint64_t lo = (84 + first * kRecord + page - 1) / page * page;
-        const uint64_t hi = (84 + last * kRecord) / page * page;
-        if (hi > lo)
-            (void)::madvise(const_cast<std::byte*>(base) + lo, static_cast<std::size_t>(hi - lo), MADV_DONTNEED);
+        // This slab's bytes (with the header for the first, up to the end
+        // for the last) lie in units u0..u1; those between are its own.
+        const uint64_t from = s == 0 ? 0 : 84 + first * kRecord, to = s + 1 == slabs ? size : 84 + last * kRecord;
+        const uint64_t u0 = from / unit, u1 = (to - 1) / unit;
+        auto finished = [&](uint64_t u) {
+            const uint8_t k = users(u);
+            return k == 1 || done[u].fetch_add(1) + 1 == k;
+        };
+        const bool drop_first = finished(u0);
+        const bool drop_last = u1 == u0 ? drop_first : finished(u1);
+        drop(drop_first ? u0 : u0 + 1, drop_last ? u1 + 1 : u1);
     };
     for_each_index(slabs, options.parallel, slab);
     return true;
