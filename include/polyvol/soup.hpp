@@ -55,9 +55,14 @@
 //
 // Determinism. Blocks are triangles [32 j, 32 j + 32) of the whole input, so
 // every window must start at a triangle index that is a multiple of 32;
-// every sum across blocks is exact (a superaccumulator) and the fingerprint
-// is a sum mod p, so the results are bit-identical for any window sizes, any
-// order of the windows and any number of threads.
+// the moments' and the area's sums across blocks are exact (a
+// superaccumulator), the volume is correctly rounded and the fingerprint is
+// a sum mod p, so the results are bit-identical for any window sizes, any
+// order of the windows and any number of threads. (Pass 1 sums the volume
+// of a few neighbouring blocks in double-double first, so its error bound
+// depends a little on the windows: `passes` could differ between two window
+// sizes when 6 V is within the filter's bound, 2^-97 Σ 6 M_b^3 n_b, of a
+// rounding boundary; the volume cannot.)
 //
 // Thread safety: add() may be called concurrently (different windows);
 // next_pass() and result() must not run concurrently with add().
