@@ -59,8 +59,8 @@
 // superaccumulator), the volume is correctly rounded and the fingerprint is
 // a sum mod p, so the results are bit-identical for any window sizes, any
 // order of the windows and any number of threads. (Pass 1 sums the volume
-// of a few neighbouring blocks in double-double first, so its error bound
-// depends a little on the windows: `passes` could differ between two window
+// of up to four neighbouring blocks in double-double first, so its
+// approximation depends a little on the windows: `passes` could differ between two window
 // sizes when 6 V is within the filter's bound, 2^-97 Σ 6 M_b^3 n_b, of a
 // rounding boundary; the volume cannot.)
 //

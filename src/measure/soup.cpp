@@ -22,19 +22,19 @@
 //   <= γ7 · 4.001 u S <= 28.1 u² S and the three products fl(a_k t_k) <= 1.01 u² S:
 //     |det - (h + lo)| <= 29.2 u² S.
 //   The pairs (h, lo) of a block are summed by Sum2 (Ogita–Rump–Oishi) in 8
-//   lanes of 4: <= 2·4 (1.01·4 + 3.1) u² Σ S <= 57.2 u² Σ S; the lanes' sums
-//   are then combined by two_sum (exact) and their error terms (the lanes'
-//   e: <= 4.01 u Σ S of lo and <= 3.01 u Σ S of two_sum errors; seven more
-//   two_sum errors <= 7.01 u Σ S) added in double (14 additions):
-//   <= γ14 · 14.1 u Σ S <= 198 u² Σ S; the block's (sum, error) pair goes
-//   into a group of up to 4 consecutive blocks of a task: the blocks'
-//   sums by two_sum (exact; <= 3 errors, each <= u · 1.02 Σ S of the group),
-//   the blocks' error terms (each <= 14.2 u Σ S of its block) and those
-//   errors added in double, each value in at most 7 additions: <= γ7 ·
-//   17.3 u Σ S <= 121.3 u² Σ S; the group's (sum, error) pair goes exactly
-//   into a superaccumulator.
-//   Total <= (29.2 + 57.2 + 198 + 121.3) u² Σ S < 406 u² Σ S.
-//   Bound used: 512 u² (1 + 2^-10) Σ_blocks 6 M_b^3 n_b (a factor 1.26 of safety;
+//   lanes of 4: <= 2·4 (1.01·4 + 3.1) u² Σ S <= 57.2 u² Σ S, leaving each
+//   lane an error term of <= 4.01 u Σ S of lo and <= 3.01 u Σ S of two_sum
+//   errors (7.03 u Σ S with its roundings). The lanes run on across a group
+//   of up to 4 consecutive blocks of a task: per lane, the blocks' sums by
+//   two_sum (exact; <= 3 errors, each <= 1.02 u Σ S of the group) and the
+//   blocks' error terms added in double, each value in at most 7
+//   additions: <= γ7 · 10.1 u Σ S <= 70.8 u² Σ S. The group's lanes are then
+//   combined by two_sum (exact) and their error terms (<= 10.2 u Σ S; seven
+//   more two_sum errors <= 7.14 u Σ S) added in double (14 additions):
+//   <= γ14 · 17.4 u Σ S <= 244 u² Σ S; the group's (sum, error) pair goes
+//   exactly into a superaccumulator.
+//   Total <= (29.2 + 57.2 + 70.8 + 244) u² Σ S < 402 u² Σ S.
+//   Bound used: 512 u² (1 + 2^-10) Σ_blocks 6 M_b^3 n_b (a factor 1.27 of safety;
 //   (1 + 2^-10) covers the rounding of the block magnitudes and of the bound).
 //   Blocks far from the origin compared with their size (M_b^3 much larger
 //   than the volume they enclose) defeat this filter: pass 2 then uses
@@ -165,11 +165,23 @@ struct Coords {
 
 // Per-block results of pass 1 before they go into the superaccumulators.
 struct Pass1Block {
-    double vs, ve;                  // volume: Sum2 (sum, error) of 6 V
+    alignas(64) double s[8], e[8];  // volume: Sum2 (sum, error) of 6 V in 8 lanes (lane j: triangles j mod 8)
     double mom[3];                  // Σ d s_i (24 ∫x_i)
     double abs_d;                   // Σ |d|
     double area2;                   // Σ |n| (2 A)
     double cross;                   // Σ X (the products of the cross products)
+};
+
+// Pass 1 works on groups of up to kGroupBlocks consecutive blocks of a task:
+// their volume sums and fingerprints are combined before they go into the
+// superaccumulators (the error analysis at the top), the rest block by block.
+constexpr int kGroupBlocks = 4;
+
+struct Pass1Group {
+    Pass1Block block[kGroupBlocks];  // per block: moments, area (vs, ve: see pass1_group)
+    uint32_t mx[kGroupBlocks];       // per block: the largest |coordinate| bit pattern
+    double vs, ve;                   // the group's Sum2 (sum, error) of 6 V
+    uint64_t fp[kFpLanes];           // the group's fingerprint (mod p)
 };
 
 constexpr int kSumLanes = 8;  // lanes of the per-block sums (kB / kSumLanes terms each)
@@ -195,6 +207,19 @@ POLYVOL_INLINE double lane_sum(const double* v) {
     alignas(64) double a[kSumLanes];
     std::memcpy(a, &a8, sizeof a);
     return lane_sum8(a);
+}
+
+// Sum2's lanes (sums s, errors e) into one pair (vs, ve): the sums by
+// two_sum in lane order, their errors and the lanes' in double.
+POLYVOL_INLINE void combine_lanes(const double* s, const double* e, double& vs, double& ve) {
+    vs = s[0];
+    ve = lane_sum8(e);
+    for (int j = 1; j < kSumLanes; ++j) {
+        double ns, ne;
+        two_sum(vs, s[j], ns, ne);
+        vs = ns;
+        ve += ne;
+    }
 }
 
 // kMA: the first moments and t² (area) as well as the volume.
@@ -254,18 +279,8 @@ POLYVOL_INLINE void pass1_arith(const Coords& co, Pass1Block& out, double* t2) {
         S = ns;
         E += ne + L;
     }
-    alignas(64) double s[kSumLanes], e[kSumLanes];
-    std::memcpy(s, &S, sizeof s);
-    std::memcpy(e, &E, sizeof e);
-    double vs = s[0], ve = lane_sum8(e);
-    for (int j = 1; j < kSumLanes; ++j) {
-        double ns, ne;
-        two_sum(vs, s[j], ns, ne);
-        vs = ns;
-        ve += ne;
-    }
-    out.vs = vs;
-    out.ve = ve;
+    std::memcpy(out.s, &S, sizeof out.s);
+    std::memcpy(out.e, &E, sizeof out.e);
     if constexpr (kMA) {
         for (int k = 0; k < 3; ++k) out.mom[k] = lane_sum(m[k]);
         out.abs_d = lane_sum(ad);
@@ -523,8 +538,8 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline __m512i whitened_v
 // multiplies, the product's bits 0..51 and 52..103 summed apart (2^52 ≡ 2^21).
 // Bounds: hashes h <= p; d = h_y + (p - h_x) <= 2p < 2^32; e = fold(d1 d2) <
 // 2^31 + 2^33 < 2^34 (d1 d2 < 2^64); e d3 < 2^66, so its low 52 bits are
-// < 2^52 and its high part < 2^14; over the 8 steps of a block the sums
-// stay below 2^55 and 2^17, and lo + 2^21 hi < 2^56 per 64-bit element.
+// < 2^52 and its high part < 2^14; over the 32 steps of a group (4 blocks)
+// the sums stay below 2^57 and 2^19, and lo + 2^21 hi < 2^58 per 64-bit element.
 struct Fingerprint512 {
     __m512i k0, k1, k2, k3;
     __m512i even_lo, even_hi, odd_lo, odd_hi;
@@ -609,19 +624,20 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline void two_sum8(__m5
     e = _mm512_add_pd(_mm512_sub_pd(a, _mm512_sub_pd(s, bb)), _mm512_sub_pd(b, bb));
 }
 
-// The whole of pass 1 for one block (see pass1_portable). The arithmetic is
-// pass1_arith's, operation for operation and lane for lane (the same bits):
-// the block in four groups of eight triangles, each group's coordinates in
-// nine registers (lane j of group g is triangle 8 g + j, which is lane j of
-// the per-block sums), nothing stored in between. kFp, kMA: as pass1_portable.
+// Pass 1 for one block of a group (see pass1_portable and pass1_avx512). The
+// arithmetic is pass1_arith's, operation for operation and lane for lane
+// (the same bits): the block in four sets of eight triangles, each set's
+// coordinates in nine registers (lane j of set g is triangle 8 g + j, which
+// is lane j of the block's Sum2 lanes S, E), nothing stored in between; the
+// fingerprint goes on in fpr. Returns the largest |coordinate| bit pattern;
+// kMA: the moments and area into out. kFp, kMA: as pass1_portable.
 template <bool kFull, bool kFp, bool kMA>  // kFull: n == kB
 __attribute__((target(POLYVOL_AVX512), always_inline)) inline uint32_t pass1_avx512_body(
-    const std::byte* base, std::size_t stride, int n, const Keys& key, Pass1Block& out, uint64_t fp[kFpLanes]) {
+    const std::byte* base, std::size_t stride, int n, Fingerprint512& fpr, __m512d& S, __m512d& E, Pass1Block& out) {
     const __m512d neg = _mm512_set1_pd(-0.0);
     const __m512i col8_index = _mm512_setr_epi32(8, 9, 10, 11, 24, 25, 26, 27, 8, 9, 10, 11, 24, 25, 26, 27);
-    Fingerprint512 fpr(key);
     __m512 mx = _mm512_setzero_ps();
-    __m512d S = _mm512_setzero_pd(), E = S, M0 = S, M1 = S, M2 = S, AD = S, X = S, T = S;
+    __m512d M0 = _mm512_setzero_pd(), M1 = M0, M2 = M0, AD = M0, X = M0, T = M0;
     for (int g = 0; g < kB / 8; ++g) {
         const int i0 = 8 * g;
         // Rows: the nine floats of triangle i0 + j in words 0..8 (zero past n).
@@ -721,47 +737,60 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline uint32_t pass1_avx
     // Magnitudes' bit patterns order as the magnitudes (inf above all finite ones).
     const uint32_t m = _mm512_reduce_max_epu32(_mm512_castps_si512(mx));
     if (m >= 0x7F800000u) return m;
-    alignas(64) double sums[8], s[kSumLanes];
     if constexpr (kMA) {
-        const __m512d lanes[8] = {E, M0, M1, M2, AD, X, T, T};
+        alignas(64) double sums[8];
+        const __m512d lanes[8] = {M0, M1, M2, AD, X, T, T, T};
         _mm512_store_pd(sums, lane_sums8(lanes));
         // A NaN coordinate makes one of the differences b - a, c - a NaN; each
         // of the six is a factor of a product in X, so Σ X is then NaN (and it is
         // finite when the coordinates are).
-        if (std::isnan(sums[5])) return 0x7FC00000u;
-    } else {
-        _mm512_store_pd(sums, E);
-        sums[0] = lane_sum8(sums);
-    }
-    _mm512_store_pd(s, S);
-    double vs = s[0], ve = sums[0];
-    for (int j = 1; j < kSumLanes; ++j) {
-        double ns, ne;
-        two_sum(vs, s[j], ns, ne);
-        vs = ns;
-        ve += ne;
-    }
-    // Without the area: every coordinate is a factor of a product in h (a
-    // NaN one makes vs NaN), and finite coordinates keep vs and ve finite.
-    if (!kMA && std::isnan(vs + ve)) return 0x7FC00000u;
-    if constexpr (kFp) fpr.finish(fp);
-    out.vs = vs;
-    out.ve = ve;
-    if constexpr (kMA) {
-        for (int k = 0; k < 3; ++k) out.mom[k] = sums[1 + k];
-        out.abs_d = sums[4];
-        out.cross = sums[5];
-        out.area2 = sums[6];
+        if (std::isnan(sums[4])) return 0x7FC00000u;
+        for (int k = 0; k < 3; ++k) out.mom[k] = sums[k];
+        out.abs_d = sums[3];
+        out.cross = sums[4];
+        out.area2 = sums[5];
     }
     return m;
 }
 
+// Pass 1 for a group of up to kGroupBlocks blocks (n triangles) with
+// AVX-512: the volume's lanes and the fingerprint's sums run on across the
+// blocks (the error analysis at the top), so the lanes are combined and the
+// fingerprint reduced once a group.
 template <bool kFp, bool kMA>
-__attribute__((target(POLYVOL_AVX512))) uint32_t pass1_avx512(const std::byte* base, std::size_t stride, int n,
-                                                                const Keys& key, Pass1Block& out,
-                                                                uint64_t fp[kFpLanes]) {
-    return n == kB ? pass1_avx512_body<true, kFp, kMA>(base, stride, n, key, out, fp)
-                   : pass1_avx512_body<false, kFp, kMA>(base, stride, n, key, out, fp);
+__attribute__((target(POLYVOL_AVX512))) bool pass1_avx512(const std::byte* base, std::size_t stride, int n,
+                                                            const Keys& key, Pass1Group& g) {
+    Fingerprint512 fpr(key);
+    __m512d GS = _mm512_setzero_pd(), GE = GS;
+    for (int b = 0; b * kB < n; ++b) {
+        const int nb = std::min(kB, n - b * kB);
+        const std::byte* const bb = base + static_cast<std::size_t>(b * kB) * stride;
+        __m512d S, E;
+        const uint32_t m = nb == kB ? pass1_avx512_body<true, kFp, kMA>(bb, stride, nb, fpr, S, E, g.block[b])
+                                    : pass1_avx512_body<false, kFp, kMA>(bb, stride, nb, fpr, S, E, g.block[b]);
+        if (m >= 0x7F800000u) return false;
+        g.mx[b] = m;
+        if (b == 0) {
+            GS = S, GE = E;
+        } else {
+            __m512d ns, t;
+            two_sum8(GS, S, ns, t);
+            GS = ns;
+            GE = _mm512_add_pd(GE, _mm512_add_pd(E, t));
+        }
+    }
+    alignas(64) double s[kSumLanes], e[kSumLanes];
+    _mm512_store_pd(s, GS);
+    _mm512_store_pd(e, GE);
+    double vs, ve;
+    combine_lanes(s, e, vs, ve);
+    // Without the area: every coordinate is a factor of a product in h (a
+    // NaN one makes vs NaN), and finite coordinates keep vs and ve finite.
+    if (!kMA && std::isnan(vs + ve)) return false;
+    g.vs = vs;
+    g.ve = ve;
+    if constexpr (kFp) fpr.finish(g.fp);
+    return true;
 }
 
 #undef POLYVOL_AVX512
@@ -794,47 +823,13 @@ struct Partial {
     }
 };
 
-// Pass 1's volume pairs (sum, error) of up to kGroupBlocks consecutive
-// blocks, summed in double-double before they go into the superaccumulator
-// (three exact additions a group instead of three a block; the error
-// analysis at the top). The volume is correctly rounded, so the grouping,
-// which follows the windows, cannot change it.
-constexpr int kGroupBlocks = 4;
-
-struct VolumeGroup {
-    double s = 0, e = 0, mag = 0;  // Σ vs (two_sum), Σ errors, Σ 6 M_b^3 n_b
-    int blocks = 0;
-
-    void add(double vs, double ve, double magnitude) {
-        if (blocks++ == 0) {
-            s = vs, e = ve, mag = magnitude;
-            return;
-        }
-        double ns, t;
-        two_sum(s, vs, ns, t);
-        s = ns;
-        e += t;
-        e += ve;
-        mag += magnitude;
-    }
-    void flush(Partial& p) {
-        if (blocks == 0) return;
-        p.vol.add(s);
-        p.vol.add(e);
-        p.vol_mag.add(mag);
-        blocks = 0;
-    }
-};
-
-// Pass 1 for one block at the best instruction-set level: the largest
-// |coordinate| bit pattern (>= 0x7F800000: NaN or infinity, and then nothing
-// else is set).
+// Pass 1 for one block below AVX-512: the largest |coordinate| bit pattern
+// (>= 0x7F800000: NaN or infinity, and then nothing else is set).
 template <bool kFp, bool kMA>
 uint32_t pass1_block(const std::byte* base, std::size_t stride, int n, const Keys& keys, Pass1Block& r,
                      uint64_t fp[kFpLanes]) {
 #if POLYVOL_SOUP_X86
-    if (const int level = isa_level(); level == 2) return pass1_avx512<kFp, kMA>(base, stride, n, keys, r, fp);
-    else if (level == 1) {
+    if (isa_level() == 1) {
         const uint32_t mx = arith_avx2<kMA>(base, stride, n, r);
         if (kFp && mx < 0x7F800000u) fingerprint_aesni(base, stride, n, keys, fp);
         return mx;
@@ -843,11 +838,49 @@ uint32_t pass1_block(const std::byte* base, std::size_t stride, int n, const Key
     return pass1_portable<kFp, kMA>(base, stride, n, keys, r, fp);
 }
 
-using Pass1Fn = uint32_t (*)(const std::byte*, std::size_t, int, const Keys&, Pass1Block&, uint64_t*);
+// Pass 1 for a group (n <= kGroupBlocks kB triangles) at the best
+// instruction-set level; false when a coordinate is NaN or infinite (then
+// nothing else is set). Below AVX-512 block by block: the blocks' volume
+// pairs by two_sum, their errors in double (the error analysis at the top).
+template <bool kFp, bool kMA>
+bool pass1_group(const std::byte* base, std::size_t stride, int n, const Keys& keys, Pass1Group& g) {
+#if POLYVOL_SOUP_X86
+    if (isa_level() == 2) return pass1_avx512<kFp, kMA>(base, stride, n, keys, g);
+#endif
+    for (int l = 0; l < kFpLanes; ++l) g.fp[l] = 0;
+    V8 GS = {}, GE = {};  // set by the first block (n >= 1)
+    for (int b = 0; b * kB < n; ++b) {
+        uint64_t fp[kFpLanes] = {};
+        Pass1Block& r = g.block[b];
+        g.mx[b] = pass1_block<kFp, kMA>(base + static_cast<std::size_t>(b * kB) * stride, stride,
+                                        std::min(kB, n - b * kB), keys, r, fp);
+        if (g.mx[b] >= 0x7F800000u) return false;
+        V8 S, E;
+        load8(S, r.s);
+        load8(E, r.e);
+        if (b == 0) {
+            GS = S, GE = E;
+        } else {
+            const V8 ns = GS + S;
+            const V8 bb = ns - GS;
+            const V8 t = (GS - (ns - bb)) + (S - bb);  // two_sum(GS, S)
+            GS = ns;
+            GE = GE + (E + t);
+        }
+        for (int l = 0; l < kFpLanes; ++l) g.fp[l] = (g.fp[l] + fp[l]) % kP;
+    }
+    alignas(64) double s[kSumLanes], e[kSumLanes];
+    std::memcpy(s, &GS, sizeof s);
+    std::memcpy(e, &GE, sizeof e);
+    combine_lanes(s, e, g.vs, g.ve);
+    return true;
+}
+
+using Pass1Fn = bool (*)(const std::byte*, std::size_t, int, const Keys&, Pass1Group&);
 
 Pass1Fn pass1_for(SoupWants w) {
-    if (w.closedness) return w.moments_and_area ? pass1_block<true, true> : pass1_block<true, false>;
-    return w.moments_and_area ? pass1_block<false, true> : pass1_block<false, false>;
+    if (w.closedness) return w.moments_and_area ? pass1_group<true, true> : pass1_group<true, false>;
+    return w.moments_and_area ? pass1_group<false, true> : pass1_group<false, false>;
 }
 
 double up(double x) { return std::nextafter(x, kInf); }
@@ -893,34 +926,39 @@ struct SoupAccumulator::State {
             for (auto& x : k) x = splitmix(s) | 1;
     }
 
-    // One block: triangles [first, first + n) of t, n <= kB, relative index
-    // (first is a multiple of kB in the whole input).
-    void block(const Float32Triangles& t, std::size_t first, int n, Partial& p, VolumeGroup& group) const {
-        const std::byte* base = t.data + first * t.stride + t.offset;
-        if (pass == 1) {
-            p.triangles += static_cast<uint64_t>(n);
-            uint64_t fp[kFpLanes] = {};
-            Pass1Block r;
-            const uint32_t mx = pass1(base, t.stride, n, keys, r, fp);
-            if (mx >= 0x7F800000u) {  // NaN or infinity: nothing else is meaningful
-                p.nonfinite = true;
-                return;
-            }
-            for (int l = 0; l < kFpLanes; ++l) {
-                p.fp[l] += fp[l];
-                if (p.fp[l] >= kP) p.fp[l] -= kP;
-            }
-            const double M = static_cast<double>(std::bit_cast<float>(mx));
-            const double nn = static_cast<double>(n);
-            group.add(r.vs, r.ve, 6 * (M * M * M) * nn);
-            if (group.blocks == kGroupBlocks) group.flush(p);
-            if (!wants.moments_and_area) return;
-            for (int k = 0; k < 3; ++k) p.mom[k].add(r.mom[k]);
-            p.mom_mag.add(3 * M * r.abs_d + 0x1p-43 * ((M * M) * (M * M)) * nn);
-            p.area2.add(r.area2);
-            p.cross.add(r.cross);
+    // Pass 1 over a group: triangles [first, first + n) of t, n <= kGroupBlocks
+    // kB, relative index (first is a multiple of kB in the whole input).
+    void group(const Float32Triangles& t, std::size_t first, int n, Partial& p) const {
+        p.triangles += static_cast<uint64_t>(n);
+        Pass1Group g;
+        if (!pass1(t.data + first * t.stride + t.offset, t.stride, n, keys, g)) {
+            p.nonfinite = true;  // NaN or infinity: nothing else is meaningful
             return;
         }
+        for (int l = 0; l < kFpLanes; ++l) {
+            p.fp[l] += g.fp[l];
+            if (p.fp[l] >= kP) p.fp[l] -= kP;
+        }
+        p.vol.add(g.vs);
+        p.vol.add(g.ve);
+        double magnitude = 0;
+        for (int b = 0; b * kB < n; ++b) {
+            const double M = static_cast<double>(std::bit_cast<float>(g.mx[b]));
+            const double nb = static_cast<double>(std::min(kB, n - b * kB));
+            magnitude += 6 * (M * M * M) * nb;
+            if (!wants.moments_and_area) continue;
+            const Pass1Block& r = g.block[b];
+            for (int k = 0; k < 3; ++k) p.mom[k].add(r.mom[k]);
+            p.mom_mag.add(3 * M * r.abs_d + 0x1p-43 * ((M * M) * (M * M)) * nb);
+            p.area2.add(r.area2);
+            p.cross.add(r.cross);
+        }
+        p.vol_mag.add(magnitude);
+    }
+
+    // Passes 2 and 3 over one block: triangles [first, first + n) of t, n <= kB.
+    void block(const Float32Triangles& t, std::size_t first, int n, Partial& p) const {
+        const std::byte* base = t.data + first * t.stride + t.offset;
         cone::TriangleBlock b;
         for (int i = 0; i < n; ++i) {
             float f[9];
@@ -940,10 +978,12 @@ struct SoupAccumulator::State {
 
     void range(const Float32Triangles& t, std::size_t begin, std::size_t end) {
         Partial& p = tls.local();
-        VolumeGroup group;
-        for (std::size_t i = begin; i < end; i += kB)
-            block(t, i, static_cast<int>(std::min<std::size_t>(kB, end - i)), p, group);
-        group.flush(p);
+        const std::size_t step = pass == 1 ? kGroupBlocks * kB : kB;
+        for (std::size_t i = begin; i < end; i += step) {
+            const int n = static_cast<int>(std::min(step, end - i));
+            if (pass == 1) group(t, i, n, p);
+            else block(t, i, n, p);
+        }
     }
 };
 
