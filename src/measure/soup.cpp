@@ -195,6 +195,16 @@ POLYVOL_INLINE double lane_sum8(const double* a) { return ((a[0] + a[1]) + (a[2]
 typedef double V8 __attribute__((vector_size(64)));
 POLYVOL_INLINE void load8(V8& v, const double* p) { std::memcpy(&v, p, sizeof v); }
 
+// One step of Sum2 in eight lanes: (S, E) takes in the pair (H, L), S by
+// two_sum, its error and L into E.
+POLYVOL_INLINE void sum2_add(V8& S, V8& E, const V8& H, const V8& L) {
+    const V8 ns = S + H;
+    const V8 bb = ns - S;
+    const V8 ne = (S - (ns - bb)) + (H - bb);  // two_sum(S, H)
+    S = ns;
+    E = E + (ne + L);
+}
+
 // Σ of a block's kB values: lane j sums j, j + 8, j + 16, j + 24, then the
 // lanes pairwise: depth 6.
 POLYVOL_INLINE double lane_sum(const double* v) {
@@ -273,11 +283,7 @@ POLYVOL_INLINE void pass1_arith(const Coords& co, Pass1Block& out, double* t2) {
         V8 H, L;
         load8(H, h + r * kSumLanes);
         load8(L, lo + r * kSumLanes);
-        const V8 ns = S + H;
-        const V8 bb = ns - S;
-        const V8 ne = (S - (ns - bb)) + (H - bb);  // two_sum(S, H)
-        S = ns;
-        E += ne + L;
+        sum2_add(S, E, H, L);
     }
     std::memcpy(out.s, &S, sizeof out.s);
     std::memcpy(out.e, &E, sizeof out.e);
@@ -624,6 +630,15 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline void two_sum8(__m5
     e = _mm512_add_pd(_mm512_sub_pd(a, _mm512_sub_pd(s, bb)), _mm512_sub_pd(b, bb));
 }
 
+// sum2_add on eight lanes (the same operations).
+__attribute__((target(POLYVOL_AVX512), always_inline)) inline void sum2_add8(__m512d& S, __m512d& E, __m512d h,
+                                                                               __m512d l) {
+    __m512d ns, ne;
+    two_sum8(S, h, ns, ne);
+    S = ns;
+    E = _mm512_add_pd(E, _mm512_add_pd(ne, l));
+}
+
 // Pass 1 for one block of a group (see pass1_portable and pass1_avx512). The
 // arithmetic is pass1_arith's, operation for operation and lane for lane
 // (the same bits): the block in four sets of eight triangles, each set's
@@ -701,10 +716,7 @@ __attribute__((target(POLYVOL_AVX512), always_inline)) inline uint32_t pass1_avx
         if (g == 0) {
             S = h, E = l;
         } else {
-            __m512d ns, ne;
-            two_sum8(S, h, ns, ne);
-            S = ns;
-            E = _mm512_add_pd(E, _mm512_add_pd(ne, l));
+            sum2_add8(S, E, h, l);
         }
         if constexpr (kMA) {
             // First moments.
@@ -773,10 +785,7 @@ __attribute__((target(POLYVOL_AVX512))) bool pass1_avx512(const std::byte* base,
         if (b == 0) {
             GS = S, GE = E;
         } else {
-            __m512d ns, t;
-            two_sum8(GS, S, ns, t);
-            GS = ns;
-            GE = _mm512_add_pd(GE, _mm512_add_pd(E, t));
+            sum2_add8(GS, GE, S, E);
         }
     }
     alignas(64) double s[kSumLanes], e[kSumLanes];
@@ -840,8 +849,9 @@ uint32_t pass1_block(const std::byte* base, std::size_t stride, int n, const Key
 
 // Pass 1 for a group (n <= kGroupBlocks kB triangles) at the best
 // instruction-set level; false when a coordinate is NaN or infinite (then
-// nothing else is set). Below AVX-512 block by block: the blocks' volume
-// pairs by two_sum, their errors in double (the error analysis at the top).
+// nothing else is set). Below AVX-512 block by block, the blocks' Sum2
+// lanes then combined as pass1_avx512 combines them (the same operations,
+// so the same bits; the error analysis at the top).
 template <bool kFp, bool kMA>
 bool pass1_group(const std::byte* base, std::size_t stride, int n, const Keys& keys, Pass1Group& g) {
 #if POLYVOL_SOUP_X86
@@ -861,11 +871,7 @@ bool pass1_group(const std::byte* base, std::size_t stride, int n, const Keys& k
         if (b == 0) {
             GS = S, GE = E;
         } else {
-            const V8 ns = GS + S;
-            const V8 bb = ns - GS;
-            const V8 t = (GS - (ns - bb)) + (S - bb);  // two_sum(GS, S)
-            GS = ns;
-            GE = GE + (E + t);
+            sum2_add(GS, GE, S, E);
         }
         for (int l = 0; l < kFpLanes; ++l) g.fp[l] = (g.fp[l] + fp[l]) % kP;
     }
