@@ -67,6 +67,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -217,6 +218,19 @@ POLYVOL_INLINE double lane_sum(const double* v) {
     alignas(64) double a[kSumLanes];
     std::memcpy(a, &a8, sizeof a);
     return lane_sum8(a);
+}
+
+// Asks for the cache lines of the records kPrefetchAhead bytes past a
+// block's start (bytes: the block's extent). The records stream in from
+// memory (page cache, a mapping) faster with this than with the hardware
+// prefetcher alone: 8M records in memory on one core, 40 -> 33 ms (AMD
+// Zen 4); 4 KB and 16 KB ahead did less. Integer arithmetic: the address
+// may lie past the input, which a prefetch never faults on.
+constexpr std::uintptr_t kPrefetchAhead = 8192;
+
+POLYVOL_INLINE void prefetch_ahead(const std::byte* block, std::size_t bytes) {
+    const std::uintptr_t a = reinterpret_cast<std::uintptr_t>(block) + kPrefetchAhead;
+    for (std::size_t o = 0; o < bytes; o += 64) __builtin_prefetch(reinterpret_cast<const void*>(a + o));
 }
 
 // Sum2's lanes (sums s, errors e) into one pair (vs, ve): the sums by
@@ -777,6 +791,7 @@ __attribute__((target(POLYVOL_AVX512))) bool pass1_avx512(const std::byte* base,
     for (int b = 0; b * kB < n; ++b) {
         const int nb = std::min(kB, n - b * kB);
         const std::byte* const bb = base + static_cast<std::size_t>(b * kB) * stride;
+        prefetch_ahead(bb, kB * stride);
         __m512d S, E;
         const uint32_t m = nb == kB ? pass1_avx512_body<true, kFp, kMA>(bb, stride, nb, fpr, S, E, g.block[b])
                                     : pass1_avx512_body<false, kFp, kMA>(bb, stride, nb, fpr, S, E, g.block[b]);
@@ -862,8 +877,9 @@ bool pass1_group(const std::byte* base, std::size_t stride, int n, const Keys& k
     for (int b = 0; b * kB < n; ++b) {
         uint64_t fp[kFpLanes] = {};
         Pass1Block& r = g.block[b];
-        g.mx[b] = pass1_block<kFp, kMA>(base + static_cast<std::size_t>(b * kB) * stride, stride,
-                                        std::min(kB, n - b * kB), keys, r, fp);
+        const std::byte* const bb = base + static_cast<std::size_t>(b * kB) * stride;
+        prefetch_ahead(bb, kB * stride);
+        g.mx[b] = pass1_block<kFp, kMA>(bb, stride, std::min(kB, n - b * kB), keys, r, fp);
         if (g.mx[b] >= 0x7F800000u) return false;
         V8 S, E;
         load8(S, r.s);
