@@ -98,8 +98,10 @@ struct StlStreamOptions {
     // must then be thread-safe; windows arrive in no particular order.
     bool parallel = true;
     // Map the file and hand out windows of the mapping (no copy), dropping
-    // each finished slab of slab_bytes from the process, so the resident set
-    // stays about threads x slab_bytes (the pages stay in the page cache).
+    // each finished slab of slab_bytes from the process (in whole 2 MiB
+    // units when slabs are at least that long, so that a page cache in large
+    // folios is never split), so the resident set stays about threads x
+    // (slab_bytes + 4 MiB) (the pages stay in the page cache).
     // A file truncated by another process while mapped ends the process
     // with SIGBUS; map = false reads with pread(2) into per-thread buffers
     // instead and reports it as a ReadError (the offset where data stopped).
