@@ -35,7 +35,8 @@
 //   exactly into a superaccumulator.
 //   Total <= (29.2 + 57.2 + 70.8 + 244) u² Σ S < 402 u² Σ S.
 //   Bound used: 512 u² (1 + 2^-10) Σ_blocks 6 M_b^3 n_b (a factor 1.27 of safety;
-//   (1 + 2^-10) covers the rounding of the block magnitudes and of the bound).
+//   (1 + 2^-10) covers the rounding of the block magnitudes, of their sums
+//   per group (at most four) and of the bound).
 //   Blocks far from the origin compared with their size (M_b^3 much larger
 //   than the volume they enclose) defeat this filter: pass 2 then uses
 //   cone.cpp's kernel, which translates each triangle to its first vertex.
@@ -164,7 +165,8 @@ struct Coords {
     alignas(64) double c[9][kB];
 };
 
-// Per-block results of pass 1 before they go into the superaccumulators.
+// Per-block results of pass 1: the volume's lanes (which go on into the
+// group's), the rest for the superaccumulators.
 struct Pass1Block {
     alignas(64) double s[8], e[8];  // volume: Sum2 (sum, error) of 6 V in 8 lanes (lane j: triangles j mod 8)
     double mom[3];                  // Σ d s_i (24 ∫x_i)
@@ -179,7 +181,7 @@ struct Pass1Block {
 constexpr int kGroupBlocks = 4;
 
 struct Pass1Group {
-    Pass1Block block[kGroupBlocks];  // per block: moments, area (vs, ve: see pass1_group)
+    Pass1Block block[kGroupBlocks];  // per block: moments and area (the lanes: see pass1_group)
     uint32_t mx[kGroupBlocks];       // per block: the largest |coordinate| bit pattern
     double vs, ve;                   // the group's Sum2 (sum, error) of 6 V
     uint64_t fp[kFpLanes];           // the group's fingerprint (mod p)
@@ -323,7 +325,7 @@ void pass1_arith_base(const Coords& c, Pass1Block& out) {
     }
 }
 
-// The whole of pass 1 for one block, portable (see pass1_avx512). kFp: the
+// The whole of pass 1 for one block, portable (see pass1_avx512_body). kFp: the
 // fingerprint (into fp); kMA: first moments and area.
 template <bool kFp, bool kMA>
 uint32_t pass1_portable(const std::byte* base, std::size_t stride, int n, const Keys& key, Pass1Block& out,
@@ -517,7 +519,7 @@ __attribute__((target("avx2,aes"))) void fingerprint_aesni(const std::byte* base
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wuninitialized"
 
-// ---- AVX-512 + IFMA + VAES: the whole of pass 1 for a block in one kernel ----
+// ---- AVX-512 + IFMA + VAES: the whole of pass 1 for a group in one kernel ----
 
 #define POLYVOL_AVX512 "avx512f,avx512vl,avx512dq,avx512bw,avx512ifma,avx2,fma,aes,vaes"
 
@@ -813,7 +815,11 @@ __attribute__((target(POLYVOL_AVX512))) bool pass1_avx512(const std::byte* base,
     if (!kMA && std::isnan(vs + ve)) return false;
     g.vs = vs;
     g.ve = ve;
-    if constexpr (kFp) fpr.finish(g.fp);
+    if constexpr (kFp) {
+        fpr.finish(g.fp);
+    } else {
+        for (int l = 0; l < kFpLanes; ++l) g.fp[l] = 0;
+    }
     return true;
 }
 
