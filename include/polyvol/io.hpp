@@ -100,8 +100,9 @@ struct StlStreamOptions {
     // Map the file and hand out windows of the mapping (no copy), dropping
     // each finished slab of slab_bytes from the process (in whole 2 MiB
     // units when slabs are at least that long, so that a page cache in large
-    // folios is never split), so the resident set stays about threads x
-    // (slab_bytes + 4 MiB) (the pages stay in the page cache).
+    // folios is never split; a unit two slabs share goes when both have
+    // finished), so the resident set stays about threads x slab_bytes plus
+    // a few shared units per thread (the pages stay in the page cache).
     // A file truncated by another process while mapped ends the process
     // with SIGBUS; map = false reads with pread(2) into per-thread buffers
     // instead and reports it as a ReadError (the offset where data stopped).

@@ -31,6 +31,7 @@
 #include <cerrno>
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -139,12 +140,20 @@ bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t pe
     // in large folios is mapped a PMD at a time; dropping part of one splits
     // it first, which costs a TLB flush on every core running the process
     // (an IPI, expensive in a VM). A unit shared by two slabs is dropped by
-    // whichever finishes second (done[u] counts them).
-    const uint64_t unit = per_slab * kRecord >= kHugeUnit && kHugeUnit % page == 0 ? kHugeUnit : page;
-    const uint64_t units = (size + unit - 1) / unit;
-    std::vector<std::atomic<uint8_t>> done(units);
-    // The number of slabs whose bytes lie in unit u (the header is slab 0's).
+    // whichever finishes second (a counter kept with the first of them).
+    // Units are file offsets, so they are PMDs only when the mapping starts
+    // on a 2 MiB boundary (the kernel places large file mappings so).
+    const bool huge = per_slab * kRecord >= kHugeUnit && kHugeUnit % page == 0 &&
+                      reinterpret_cast<std::uintptr_t>(base) % kHugeUnit == 0;
+    const uint64_t unit = huge ? kHugeUnit : page;
+    // The slab whose bytes hold file offset `byte` (the header is slab 0's).
     auto slab_at = [&](uint64_t byte) { return byte < 84 ? 0 : std::min(slabs - 1, (byte - 84) / kRecord / per_slab); };
+    // done[s]: how many users of the shared unit whose first user is slab s
+    // have finished (two shared units never have the same first user).
+    std::vector<std::atomic<uint8_t>> done(slabs);
+    // The number of slabs whose bytes lie in unit u (at most 2 for 2 MiB
+    // units; a page-sized unit holds at least 1600 bytes of each but its
+    // first and last users: at most 4 with 4 KiB pages, 42 with 64 KiB).
     auto users = [&](uint64_t u) {
         const uint64_t lo = u * unit, hi = std::min(size, lo + unit) - 1;
         return static_cast<uint8_t>(slab_at(hi) - slab_at(lo) + 1);
@@ -166,7 +175,7 @@ bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t pe
         const uint64_t u0 = from / unit, u1 = (to - 1) / unit;
         auto finished = [&](uint64_t u) {
             const uint8_t k = users(u);
-            return k == 1 || done[u].fetch_add(1) + 1 == k;
+            return k == 1 || done[slab_at(u * unit)].fetch_add(1) + 1 == k;
         };
         const bool drop_first = finished(u0);
         const bool drop_last = u1 == u0 ? drop_first : finished(u1);
