@@ -60,9 +60,9 @@
 // a sum mod p, so the results are bit-identical for any window sizes, any
 // order of the windows and any number of threads. (Pass 1 sums the volume
 // of up to four neighbouring blocks in double-double first, so its
-// approximation depends a little on the windows: `passes` could differ between two window
-// sizes when 6 V is within the filter's bound, 2^-97 Σ 6 M_b^3 n_b, of a
-// rounding boundary; the volume cannot.)
+// approximation depends a little on the windows: `passes` could differ
+// between two window sizes when 6 V is within the filter's bound, 2^-97
+// Σ 6 M_b^3 n_b, of a rounding boundary; the volume cannot.)
 //
 // Thread safety: add() may be called concurrently (different windows);
 // next_pass() and result() must not run concurrently with add().

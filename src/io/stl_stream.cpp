@@ -5,9 +5,11 @@
 // (oneTBB), each walks its slab window by window (~200 KB) and then drops
 // the slab's pages from the process in whole 2 MiB units (madvise
 // DONTNEED: they stay in the page cache, so the resident set stays about
-// threads × (slab_bytes + 4 MiB) whatever the file size). No copy: with the page cache in large folios a fault maps many
-// pages at once, and pread's copy out of the cache was the largest single
-// cost of `polyvol volume` on an 8M-triangle file (docs/benchmarks.md).
+// threads × slab_bytes, plus a few units shared by neighbouring slabs,
+// whatever the file size). No copy: with the page cache in large folios a
+// fault maps many pages at once, and pread's copy out of the cache was the
+// largest single cost of `polyvol volume` on an 8M-triangle file
+// (docs/benchmarks.md).
 // Mapping each window on its own was measured slower than either (a new
 // mapping, faults and an unmap with its TLB shootdown per window).
 // Fallback (options.map = false, or when mmap fails): pread(2) into one
@@ -160,7 +162,8 @@ bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t pe
     };
     auto drop = [&](uint64_t u0, uint64_t u1) {  // units [u0, u1), within the mapping's pages
         const uint64_t lo = u0 * unit, hi = std::min((size + page - 1) / page * page, u1 * unit);
-        if (hi > lo) (void)::madvise(const_cast<std::byte*>(base) + lo, static_cast<std::size_t>(hi - lo), MADV_DONTNEED);
+        if (hi > lo)
+            (void)::madvise(const_cast<std::byte*>(base) + lo, static_cast<std::size_t>(hi - lo), MADV_DONTNEED);
     };
 
     auto slab = [&](uint64_t s) {

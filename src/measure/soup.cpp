@@ -225,7 +225,7 @@ POLYVOL_INLINE double lane_sum(const double* v) {
 // Asks for the cache lines of the records kPrefetchAhead bytes past a
 // block's start (bytes: the block's extent). The records stream in from
 // memory (page cache, a mapping) faster with this than with the hardware
-// prefetcher alone: 8M records in memory on one core, 40 -> 33 ms (AMD
+// prefetcher alone: 8M records in memory on one core, 42 -> 38 ms (AMD
 // Zen 4); 4 KB and 16 KB ahead did less. Integer arithmetic: the address
 // may lie past the input, which a prefetch never faults on.
 constexpr std::uintptr_t kPrefetchAhead = 8192;
