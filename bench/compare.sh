@@ -139,7 +139,7 @@ def inmem_of(tool, out):
 
 def field_of(out, i):
     """polyvol-harness only: field i (5: READ_SECONDS, 6: NAIVE_SECONDS, 7: WELDED_SECONDS, 8: PACKED_LOAD_SECONDS,
-    9: PACKED_SECONDS), None when absent or negative."""
+    9: PACKED_SECONDS, 10: WELDED_LOAD_SECONDS), None when absent or negative."""
     try:
         x = float(out.split()[i])
         return x if x >= 0 else None
@@ -240,12 +240,13 @@ print("read loop / naive det: plain scalar loops over the same arrays on all cor
 print("coordinates (no determinant) / summing det in plain double (bench/peers/polyvol_volume.cpp); for")
 print("scale, not lower bounds. 5x the fastest peer needs a call below fastest/5. welded: polyvol's call on")
 print("welded(mesh), the indexed mesh the peers hold (their readers merge points; polyvol's STL reader keeps")
-print("three vertices per triangle), with its ratio. packed (binary STL only): the file read as its own")
+print("three vertices per triangle), with its ratio, and its load (reading, welding and the first call on it,")
+print("timed as the peers' loads are, which include their merging) with that ratio. packed (binary STL only): the file read as its own")
 print("float32 triangles (read_binary_stl_triangles, 36 bytes a triangle) and soup_volume on them, load and")
 print("call, with the call's ratio; the same correctly rounded volume.")
 print()
-print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | polyvol call, welded s | welded call ratio | packed load s | packed call s | packed call ratio | fastest/5 s | read loop s | naive det s |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | polyvol call, welded s | welded call ratio | welded load s | welded load ratio | packed load s | packed call s | packed call ratio | fastest/5 s | read loop s | naive det s |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for tag, ext, res in rows:
     h = res.get("polyvol-harness")
     if h is None:
@@ -255,6 +256,7 @@ for tag, ext, res in rows:
         return statistics.median(xs) if xs else None
     pl, pc = med(load_of, "polyvol-harness", h), med(inmem_of, "polyvol-harness", h)
     pw = med(lambda n, o: field_of(o, 7), "polyvol-harness", h)
+    pwl = med(lambda n, o: field_of(o, 10), "polyvol-harness", h)
     ppl = med(lambda n, o: field_of(o, 8), "polyvol-harness", h)
     pp = med(lambda n, o: field_of(o, 9), "polyvol-harness", h)
     loads = {n: med(load_of, n, res[n]) for n in ("cgal", "vtk") if res.get(n)}
@@ -265,6 +267,7 @@ for tag, ext, res in rows:
     print(f"| {tag} | {ext} | {fmt(pl)} | {fmt(loads.get('cgal'))} | {fmt(loads.get('vtk'))} | "
           f"{'' if not (fl and pl) else f'{fl / pl:.1f}'} | {fmt(pc)} | {fmt(calls.get('cgal'))} | {fmt(calls.get('vtk'))} | "
           f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} | {fmt(pw)} | {'' if not (fc and pw) else f'{fc / pw:.1f}'} | "
+          f"{fmt(pwl)} | {'' if not (fl and pwl) else f'{fl / pwl:.1f}'} | "
           f"{fmt(ppl)} | {fmt(pp)} | {'' if not (fc and pp) else f'{fc / pp:.1f}'} | "
           f"{fmt(fc / 5 if fc else None)} | "
           f"{fmt(med(lambda n, o: field_of(o, 5), 'polyvol-harness', h))} | {fmt(med(lambda n, o: field_of(o, 6), 'polyvol-harness', h))} |")
