@@ -22,7 +22,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "core/huge_pages.hpp"
+#include "core/prefault.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace polyvol {
@@ -124,10 +124,10 @@ void weld_partitioned(const double* pos, std::size_t n, uint32_t* out) {
         }
     }
     bucket_begin[buckets] = at;
-    // Not value-initialised (the scatter writes every entry), with huge
-    // pages: 32 bytes a vertex, written once and read once.
+    // Not value-initialised (the scatter writes every entry), faulted in on
+    // every core: 32 bytes a vertex, written once and read once.
     const std::unique_ptr<Entry[]> entries(new Entry[n]);
-    core::advise_huge_pages(entries.get(), n * sizeof(Entry));
+    core::prefault(entries.get(), n * sizeof(Entry));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t c = r.begin(); c < r.end(); ++c) {
             uint32_t* next = &count[c * buckets];

@@ -11,7 +11,7 @@
 #include <emmintrin.h>
 #endif
 
-#include "core/huge_pages.hpp"
+#include "core/prefault.hpp"
 #include "io/text.hpp"
 
 namespace polyvol::io {

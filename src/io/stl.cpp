@@ -32,7 +32,7 @@
 #include <string>
 
 #include "io/chunks.hpp"
-#include "core/huge_pages.hpp"
+#include "core/prefault.hpp"
 #include "io/readers.hpp"
 #include "io/text.hpp"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/huge_pages.hpp"
+#include "core/prefault.hpp"
 #include "polyvol/io.hpp"
 
 namespace polyvol {
