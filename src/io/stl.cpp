@@ -216,6 +216,7 @@ private:
         for (tok = cur_.next(); iequals(tok, "vertex"); tok = cur_.next()) {
             double xyz[3];
             for (double& c : xyz) {
+                if (cur_.next_finite_number(c)) continue;  // the usual case
                 const std::string_view num = cur_.next();
                 if (!text::parse_double(num, c)) fail("expected a number after 'vertex', found " + found(num));
                 if (!std::isfinite(c)) fail("non-finite coordinate " + text::quote(num));

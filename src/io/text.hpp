@@ -175,6 +175,35 @@ public:
         }
     }
 
+    // The next token as a finite number, parsed where it stands: one scan of
+    // its characters where next() and parse_double make two. Gives what
+    // next() and parse_double would (fast_float reads the longest number at
+    // the token's start; the token must end right after it). False, with
+    // the token left unconsumed, for anything else: no number, a leading
+    // '+', a comment or other characters right after the digits, or an
+    // infinite or NaN value; the caller then reads it with next() and
+    // parse_double, for the same value or its error message.
+    bool next_finite_number(double& out) {
+        for (;;) {
+            while (p_ < end_ && is_blank(*p_)) ++p_;
+            if (p_ == end_) return false;
+            if (is_eol(*p_)) {
+                eat_eol();
+            } else if (has_comment_ && *p_ == comment_) {
+                skip_to_eol();
+            } else {
+                break;
+            }
+        }
+        if (*p_ == '+') return false;
+        double v;
+        const auto r = fast_float::from_chars(p_, end_, v);
+        if (r.ec != std::errc() || (r.ptr != end_ && !is_space(*r.ptr)) || !std::isfinite(v)) return false;
+        p_ = r.ptr;
+        out = v;
+        return true;
+    }
+
     // The next token on the current line; empty at the end of the line (the
     // line end is not consumed).
     std::string_view next_on_line() {
