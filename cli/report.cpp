@@ -87,20 +87,20 @@ std::string shortest(double v) {
 // file is not binary STL, cannot be probed, or is not closed (the full path
 // then reports it).
 std::optional<FileResult> stream_binary_stl(const std::string& path, bool volume_only) {
-    BinaryStlProbe probe;
+    std::optional<BinaryStlFile> file;
     try {
-        probe = probe_binary_stl(path);
+        file.emplace(path);
     } catch (const ReadError&) {
         return std::nullopt;
     }
-    if (!probe.binary_stl) return std::nullopt;
+    if (!file->probe().binary_stl) return std::nullopt;
     FileResult r;
     r.file = path;
     const auto t0 = std::chrono::steady_clock::now();
     SoupAccumulator acc(SoupWants{.closedness = true, .moments_and_area = !volume_only});
     try {
         do {
-            for_each_stl_window(path, [&](std::span<const std::byte> records, uint64_t first) {
+            file->for_each_window([&](std::span<const std::byte> records, uint64_t first) {
                 acc.add(stl_records(records), first);
             });
         } while (acc.next_pass());

@@ -86,7 +86,7 @@ struct BinaryStlProbe {
 // Decides as read_mesh_file's detection does (docs at the top of this file):
 // not gzip, not zip, not PLY, and size == 84 + 50 n. Reads 84 bytes. A path
 // that is not a regular file ("-", a pipe) is never binary STL here. Throws
-// ReadError when the file cannot be opened.
+// ReadError when the file cannot be opened. (BinaryStlFile(path).probe().)
 BinaryStlProbe probe_binary_stl(const std::string& path);
 
 struct StlStreamOptions {
@@ -112,6 +112,29 @@ struct StlStreamOptions {
 
 // records: whole 50-byte records; first_triangle: index of the first one.
 using StlWindowFn = std::function<void(std::span<const std::byte> records, uint64_t first_triangle)>;
+
+// A file opened and probed once (probe_binary_stl's rules; throws ReadError
+// when it cannot be opened; "-" is never opened), then streamed any number
+// of times (for_each_stl_window's rules, one pass per call) from the same
+// open file: the records streamed are those of the file probed, even if
+// its path is replaced meanwhile, and a pass costs no new open or probe.
+class BinaryStlFile {
+public:
+    explicit BinaryStlFile(const std::string& path);
+    ~BinaryStlFile();
+    BinaryStlFile(const BinaryStlFile&) = delete;
+    BinaryStlFile& operator=(const BinaryStlFile&) = delete;
+
+    const BinaryStlProbe& probe() const { return probe_; }
+    void for_each_window(const StlWindowFn& fn, const StlStreamOptions& options = {}) const;
+
+private:
+    std::string path_;
+    int fd_ = -1;
+    BinaryStlProbe probe_;
+    unsigned char head_[84] = {};
+    std::size_t head_len_ = 0;
+};
 
 // Streams every record of a binary STL file through fn. Throws ReadError
 // (file, byte offset, message) when the file is not binary STL by the size

@@ -37,6 +37,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "polyvol/io.hpp"
@@ -53,6 +54,7 @@ struct Fd {
     ~Fd() {
         if (fd >= 0) ::close(fd);
     }
+    int release() { return std::exchange(fd, -1); }
 };
 
 bool is_space(unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
@@ -190,19 +192,32 @@ bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t pe
 
 }  // namespace
 
-BinaryStlProbe probe_binary_stl(const std::string& path) {
-    if (path == "-") return {};
-    const Fd f = open_file(path);
-    unsigned char head[84];
-    std::size_t head_len;
-    return probe_fd(f.fd, path, head, head_len);
+BinaryStlFile::BinaryStlFile(const std::string& path) : path_(path) {
+    if (path == "-") return;  // standard input: never a file to map
+    fd_ = open_file(path).release();
+    try {
+        probe_ = probe_fd(fd_, path, head_, head_len_);
+    } catch (...) {
+        ::close(fd_);
+        throw;
+    }
 }
 
+BinaryStlFile::~BinaryStlFile() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+BinaryStlProbe probe_binary_stl(const std::string& path) { return BinaryStlFile(path).probe(); }
+
 void for_each_stl_window(const std::string& path, const StlWindowFn& fn, const StlStreamOptions& options) {
-    const Fd f = open_file(path);
-    unsigned char head[84];
-    std::size_t head_len;
-    const BinaryStlProbe p = probe_fd(f.fd, path, head, head_len);
+    BinaryStlFile(path).for_each_window(fn, options);
+}
+
+void BinaryStlFile::for_each_window(const StlWindowFn& fn, const StlStreamOptions& options) const {
+    const BinaryStlProbe& p = probe_;
+    const std::string& path = path_;
+    const unsigned char* head = head_;
+    const std::size_t head_len = head_len_;
     if (!p.binary_stl) {
         const bool regular = p.file_bytes > 0 || head_len > 0;
         const bool other_format = head_len >= 2 && ((head[0] == 0x1f && head[1] == 0x8b) ||
@@ -219,10 +234,10 @@ void for_each_stl_window(const std::string& path, const StlWindowFn& fn, const S
     }
     const uint64_t n = p.triangles;
     if (n == 0) return;
-    (void)::posix_fadvise(f.fd, 0, 0, POSIX_FADV_SEQUENTIAL);
+    (void)::posix_fadvise(fd_, 0, 0, POSIX_FADV_SEQUENTIAL);
     const uint64_t groups = std::max<uint64_t>(1, options.window_bytes / (kRecord * kGroup));
     const uint64_t per_window = groups * kGroup;  // records
-    if (options.map && for_each_mapped_window(f.fd, p.file_bytes, n, per_window, fn, options)) return;
+    if (options.map && for_each_mapped_window(fd_, p.file_bytes, n, per_window, fn, options)) return;
 
     const uint64_t windows = (n + per_window - 1) / per_window;
     tbb::enumerable_thread_specific<std::vector<std::byte>> buffers;  // one per thread
@@ -233,7 +248,7 @@ void for_each_stl_window(const std::string& path, const StlWindowFn& fn, const S
         const std::size_t bytes = static_cast<std::size_t>(count * kRecord);
         if (buf.size() < bytes) buf.resize(static_cast<std::size_t>(per_window * kRecord));
         const uint64_t offset = 84 + first * kRecord;
-        const std::size_t got = read_at(f.fd, buf.data(), bytes, offset, path);
+        const std::size_t got = read_at(fd_, buf.data(), bytes, offset, path);
         if (got < bytes)
             throw ReadError::at_byte(path, offset + got,
                                      "unexpected end of file: expected " + std::to_string(84 + n * kRecord) +

@@ -14,21 +14,18 @@
 namespace polyvol {
 
 std::vector<float> read_binary_stl_triangles(const std::string& path) {
-    const BinaryStlProbe probe = probe_binary_stl(path);
+    const BinaryStlFile file(path);
+    const BinaryStlProbe& probe = file.probe();
     std::vector<float> out;
     // The count is trustworthy only when the size rule holds; otherwise
-    // for_each_stl_window throws its ReadError (where and why) before any
+    // for_each_window throws its ReadError (where and why) before any
     // window, and nothing was allocated.
     if (probe.binary_stl) core::resize_for_filling(out, std::size_t{9} * probe.triangles);
     // The first record with a NaN or infinite coordinate, over all windows
     // (windows run in parallel and in any order: the smallest index wins).
     std::atomic<uint64_t> first_bad{std::numeric_limits<uint64_t>::max()};
-    std::atomic<uint64_t> seen{0};
-    for_each_stl_window(path, [&](std::span<const std::byte> records, uint64_t first) {
+    file.for_each_window([&](std::span<const std::byte> records, uint64_t first) {
         const std::size_t n = records.size() / 50;
-        if (first + n > probe.triangles)  // the file grew after the probe
-            throw ReadError::whole_file(path, "the file changed while it was read");
-        seen.fetch_add(n, std::memory_order_relaxed);
         float* dst = out.data() + 9 * first;
         uint32_t bad = 0;  // 1 once a coordinate of the window is NaN or infinite
         for (std::size_t t = 0; t < n; ++t) {
@@ -50,7 +47,6 @@ std::vector<float> read_binary_stl_triangles(const std::string& path) {
                     return;
                 }
     });
-    if (seen.load() != probe.triangles) throw ReadError::whole_file(path, "the file changed while it was read");
     if (const uint64_t at = first_bad.load(); at != std::numeric_limits<uint64_t>::max())
         throw ReadError::at_byte(path, 84 + 50 * (at / 9) + 12 + 4 * (at % 9),
                                  "non-finite coordinate in triangle " + std::to_string(at / 9));

@@ -276,3 +276,42 @@ TEST(StlStream, BinaryStlTrianglesErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+// BinaryStlFile streams the file it opened and probed, pass after pass, even
+// when its path is replaced between the passes (two opens, one to probe and
+// one to stream, would read the other file).
+TEST(StlStream, AnOpenFileStreamsWhatItProbed) {
+    const TempFile f("replaced.stl"), g("other.stl");
+    const std::vector<std::byte> first = numbered_stl(1000);
+    f.write(first);
+    std::vector<std::byte> other = numbered_stl(2000);
+    other[84] = std::byte{0x55};  // differs from first in record 0 as well as in length
+    g.write(other);
+    const BinaryStlFile file(f.path.string());
+    ASSERT_TRUE(file.probe().binary_stl);
+    EXPECT_EQ(file.probe().triangles, 1000u);
+    fs::rename(g.path, f.path);  // the path now names the other file
+    for (bool map : {true, false}) {
+        for (int pass = 0; pass < 2; ++pass) {
+            std::vector<std::byte> got(50 * 1000);
+            std::vector<int> seen(1000, 0);
+            std::mutex m;
+            file.for_each_window(
+                [&](std::span<const std::byte> records, uint64_t at) {
+                    std::lock_guard<std::mutex> lock(m);
+                    ASSERT_LE(at + records.size() / 50, 1000u);
+                    std::memcpy(got.data() + 50 * at, records.data(), records.size());
+                    for (uint64_t t = at; t < at + records.size() / 50; ++t) ++seen[t];
+                },
+                {1600, true, map});
+            EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+            EXPECT_TRUE(std::equal(got.begin(), got.end(), first.begin() + 84)) << "map " << map << " pass " << pass;
+        }
+    }
+    // The path itself now streams the other file.
+    EXPECT_EQ(probe_binary_stl(f.path.string()).triangles, 2000u);
+}
+
+}  // namespace
