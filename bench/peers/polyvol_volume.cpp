@@ -7,10 +7,13 @@
 // WELDED_SECONDS is the call (median of 5) on welded(mesh): for an STL soup
 // (three vertices per triangle as read) the indexed mesh the peers hold
 // after their own loading (CGAL's and VTK's readers merge points); for the
-// other formats the same mesh. WELDED_LOAD_SECONDS is what holding that mesh
-// costs, timed like LOAD_SECONDS: reading, welding and the first call on the
-// welded mesh (so the welded call and its load compare like for like with
-// the peers', whose loads include their merging).
+// other formats the same mesh; its five timed calls follow one untimed
+// call, as VOLUME_SECONDS's do (until the seventh session the first call was
+// one of the five). WELDED_LOAD_SECONDS is what holding that mesh costs: the
+// reading of LOAD_SECONDS (the process cold) plus welding and the first call
+// on the welded mesh, timed later in the same process (oneTBB started, the
+// caches warm), so a slight underestimate; the peers' loads include their
+// merging.
 //
 // PACKED_*: binary STL only (else -1): the file read as its own float32
 // triangles (read_binary_stl_triangles, 36 bytes a triangle) plus one

@@ -73,8 +73,9 @@ LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& 
 
 // ---- Streaming binary STL (src/io/stl_stream.cpp) --------------------------
 // For files too large to hold: the 50-byte triangle records are handed to the
-// caller window by window, read with pread into a fixed buffer per thread, so
-// memory stays constant (about threads × window_bytes) whatever the file size.
+// caller window by window, from a mapping of the file whose finished slabs are
+// dropped (or, with StlStreamOptions::map = false, read with pread into a
+// fixed buffer per thread), so memory stays constant whatever the file size.
 
 struct BinaryStlProbe {
     bool binary_stl = false;      // what read_mesh_file would read as binary STL
@@ -113,17 +114,27 @@ struct StlStreamOptions {
 // records: whole 50-byte records; first_triangle: index of the first one.
 using StlWindowFn = std::function<void(std::span<const std::byte> records, uint64_t first_triangle)>;
 
-// A file opened and probed once (probe_binary_stl's rules; throws ReadError
-// when it cannot be opened; "-" is never opened), then streamed any number
-// of times (for_each_stl_window's rules, one pass per call) from the same
-// open file: the records streamed are those of the file probed, even if
-// its path is replaced meanwhile, and a pass costs no new open or probe.
+// A file opened and probed once, then streamed any number of times from the
+// same open descriptor (kept open for the object's lifetime):
+//   * the constructor opens and probes as probe_binary_stl does, and throws
+//     ReadError when the file cannot be opened, stat'ed or read; "-" (standard
+//     input) is never opened and probes as not binary STL;
+//   * for_each_window is one pass, with for_each_stl_window's rules (it
+//     throws ReadError for a file that is not binary STL, "-" included); it
+//     may run concurrently with itself (pread and mmap of a shared
+//     descriptor).
+// The records streamed are those of the file probed even if its path is
+// replaced meanwhile (a rename over it), and a pass costs no new open or
+// probe; a file truncated or rewritten in place is not protected (see
+// StlStreamOptions::map).
 class BinaryStlFile {
 public:
     explicit BinaryStlFile(const std::string& path);
     ~BinaryStlFile();
     BinaryStlFile(const BinaryStlFile&) = delete;
     BinaryStlFile& operator=(const BinaryStlFile&) = delete;
+    BinaryStlFile(BinaryStlFile&& other) noexcept;
+    BinaryStlFile& operator=(BinaryStlFile&& other) noexcept;
 
     const BinaryStlProbe& probe() const { return probe_; }
     void for_each_window(const StlWindowFn& fn, const StlStreamOptions& options = {}) const;
@@ -138,9 +149,10 @@ private:
 
 // Streams every record of a binary STL file through fn. Throws ReadError
 // (file, byte offset, message) when the file is not binary STL by the size
-// rule (byte offset 80, as read_mesh_file), cannot be read, or ends early
-// while being read (the offset where the data stopped). Exceptions thrown by
-// fn propagate (other windows may still have been called).
+// rule (byte offset 80, as read_mesh_file), is "-" or not a regular file,
+// cannot be read, or ends early while being read (the offset where the data
+// stopped). Exceptions thrown by fn propagate (other windows may still have
+// been called). (BinaryStlFile(path).for_each_window(fn, options).)
 void for_each_stl_window(const std::string& path, const StlWindowFn& fn, const StlStreamOptions& options = {});
 
 // The triangles of a binary STL file as float32, nine per triangle (a, b, c)

@@ -8,19 +8,24 @@
 namespace polyvol::core {
 
 // Faults in (writable) the whole pages inside [data, data + bytes) of a
-// large buffer nothing has touched yet, in parallel slices on oneTBB. Below
-// 8 MiB it does nothing. Advice only (madvise MADV_POPULATE_WRITE, Linux
-// 5.14): where the kernel declines, the first writes fault the pages in.
+// large buffer, in parallel slices on oneTBB; contents are kept (a buffer
+// already partly filled is fine). Below 8 MiB it does nothing. Advice only
+// (madvise MADV_POPULATE_WRITE, Linux 5.14): where the kernel declines, the
+// first writes fault the pages in.
 //
 // Why, and why not transparent huge pages (which an earlier version asked
 // for): a page fault costs the same whether the first write comes from
 // std::vector's zero fill on one core or from the filling pass, so faulting
-// in on every core first halves it. Huge pages were measured to be a bad
-// bet on the reference machine (a Firecracker VM; docs/benchmarks.md): once
-// the machine has idled for a few seconds, the host has taken back the free
-// 2 MiB blocks, and a first touch of huge pages runs at 0.4-0.6 GB/s against
-// 2-2.8 GB/s for 4 KiB pages (4-5 GB/s on two cores), while later passes over
-// the array were no faster with them.
+// in on every core divides that time by the number of cores. Huge pages were
+// measured to be a bad bet on the reference machine (a Firecracker VM;
+// docs/benchmarks.md, seventh session): once the machine has idled a few
+// seconds, the host has taken back the free 2 MiB blocks, and a first touch
+// of 84 MB in huge pages took 155 ms (0.5 GB/s) against 32-45 ms in 4 KiB
+// pages and 21-23 ms faulted in by two threads. Right after another process
+// freed them they are faster (4.4 ms), so back to back huge pages won by
+// about 15 ms on a 1M-triangle load, and lost 200 ms after an idle pause.
+// Where the system itself gives huge pages (THP "always") this still faults
+// them in, in parallel.
 void prefault(void* data, std::size_t bytes);
 
 // v.resize(n) for an array a reader is about to fill: its pages faulted in

@@ -51,6 +51,10 @@ constexpr uint64_t kHugeUnit = uint64_t{2} << 20;  // bytes dropped at once (see
 
 struct Fd {
     int fd = -1;
+    Fd() = default;
+    Fd(const Fd&) = delete;
+    Fd& operator=(const Fd&) = delete;
+    Fd(Fd&& o) noexcept : fd(std::exchange(o.fd, -1)) {}
     ~Fd() {
         if (fd >= 0) ::close(fd);
     }
@@ -205,6 +209,25 @@ BinaryStlFile::BinaryStlFile(const std::string& path) : path_(path) {
 
 BinaryStlFile::~BinaryStlFile() {
     if (fd_ >= 0) ::close(fd_);
+}
+
+// A moved-from file holds nothing: it probes as not binary STL, as "-" does.
+BinaryStlFile::BinaryStlFile(BinaryStlFile&& other) noexcept
+    : path_(std::move(other.path_)), fd_(std::exchange(other.fd_, -1)), probe_(std::exchange(other.probe_, {})),
+      head_len_(std::exchange(other.head_len_, 0)) {
+    std::memcpy(head_, other.head_, sizeof head_);
+}
+
+BinaryStlFile& BinaryStlFile::operator=(BinaryStlFile&& other) noexcept {
+    if (this != &other) {
+        if (fd_ >= 0) ::close(fd_);
+        path_ = std::move(other.path_);
+        fd_ = std::exchange(other.fd_, -1);
+        probe_ = std::exchange(other.probe_, {});
+        head_len_ = std::exchange(other.head_len_, 0);
+        std::memcpy(head_, other.head_, sizeof head_);
+    }
+    return *this;
 }
 
 BinaryStlProbe probe_binary_stl(const std::string& path) { return BinaryStlFile(path).probe(); }

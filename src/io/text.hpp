@@ -157,7 +157,8 @@ class Cursor {
 public:
     explicit Cursor(std::string_view text, char comment = '\0')
         : begin_(text.data()), p_(text.data()), end_(text.data() + text.size()),
-          comment_(comment), has_comment_(comment != '\0') {}
+          comment_(comment), has_comment_(comment != '\0'),
+          comment_in_numbers_(has_comment_ && std::string_view("0123456789.eE+-").find(comment) != std::string_view::npos) {}
 
     // The next token, across line ends and comments; empty at the end of input.
     std::string_view next() {
@@ -182,8 +183,11 @@ public:
     // the token left unconsumed, for anything else: no number, a leading
     // '+', a comment or other characters right after the digits, or an
     // infinite or NaN value; the caller then reads it with next() and
-    // parse_double, for the same value or its error message.
+    // parse_double, for the same value or its error message. (Always false
+    // with a comment character that can occur in a number, where next()
+    // would end the token early.)
     bool next_finite_number(double& out) {
+        if (comment_in_numbers_) return false;
         for (;;) {
             while (p_ < end_ && is_blank(*p_)) ++p_;
             if (p_ == end_) return false;
@@ -263,6 +267,7 @@ private:
     uint64_t line_ = 1;
     char comment_;
     bool has_comment_;
+    bool comment_in_numbers_;  // comment_ is a digit, '.', 'e', 'E', '+' or '-'
 };
 
 // The OFF header keyword [ST][C][N][4][n]OFF (Geomview's prefixes, in that

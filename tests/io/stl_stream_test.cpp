@@ -1,4 +1,4 @@
-// Streaming binary STL (polyvol/io.hpp: probe_binary_stl, for_each_stl_window):
+// Streaming binary STL (polyvol/io.hpp: BinaryStlFile, probe_binary_stl, for_each_stl_window):
 // detection as read_mesh_file decides it, windows that cover every record
 // once at multiples of 32, and errors with the byte offset.
 #include <gtest/gtest.h>
@@ -289,7 +289,10 @@ TEST(StlStream, AnOpenFileStreamsWhatItProbed) {
     std::vector<std::byte> other = numbered_stl(2000);
     other[84] = std::byte{0x55};  // differs from first in record 0 as well as in length
     g.write(other);
-    const BinaryStlFile file(f.path.string());
+    BinaryStlFile opened(f.path.string());
+    const BinaryStlFile file = std::move(opened);  // the descriptor moves with it
+    EXPECT_FALSE(opened.probe().binary_stl);         // NOLINT(bugprone-use-after-move): moved-from holds nothing
+    EXPECT_THROW(opened.for_each_window([](auto, uint64_t) {}), ReadError);
     ASSERT_TRUE(file.probe().binary_stl);
     EXPECT_EQ(file.probe().triangles, 1000u);
     fs::rename(g.path, f.path);  // the path now names the other file
