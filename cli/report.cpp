@@ -279,7 +279,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     else
         out << "volume\n";
     bool any_rounded = false, any_bound = false;
-    std::string streamed_notes;
+    std::string streamed_notes, loaded_notes;
     for (const auto& r : results) {
         if (r.streamed) {
             const SoupResult& s = *r.streamed;
@@ -312,12 +312,18 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         }
         out << pad(vol, 24) << "  " << pad(shortest(m.area), 24) << "  "
             << point_text(m.centroid[0], m.centroid[1], m.centroid[2]) << "\n";
+        loaded_notes += "  " + r.file + ": area relative error <= " + shortest(m.area_relative_error) + "; centroid " +
+                        (m.moments_correctly_rounded
+                             ? std::string("correctly rounded")
+                             : "within " + shortest(m.moments_relative_error) + " of its largest coordinate's magnitude") +
+                        "\n";
     }
     out << "method: " << method_name(request.measure.method) << ". ";
     if (any_rounded) out << "Volumes without ± are correctly rounded: the exact volume of the coordinates as read, rounded once. ";
     if (any_bound) out << "± is a rigorous absolute error bound. ";
-    if (all) out << "Area carries a relative error bound; centroid and inertia: see `polyvol measure`.";
+    if (all) out << "Area and centroid: their guarantees below; inertia: `polyvol measure`.";
     out << "\n";
+    out << loaded_notes;
     if (!streamed_notes.empty())
         out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded): closed 2-cycle by a "
                "randomized edge fingerprint (an open surface passes with probability < 2^-113; a failing file is "

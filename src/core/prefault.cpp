@@ -16,8 +16,8 @@ void prefault(void* data, std::size_t bytes) {
 #ifdef MADV_POPULATE_WRITE
     constexpr std::size_t kMin = std::size_t{8} << 20;    // smaller: one core's faults cost less than the loop
     // Bytes per madvise call: at 8 MiB and more, at least two slices (one per
-    // core here); the call itself costs about a microsecond against about a
-    // millisecond to fault in 4 MiB, so smaller slices would only add calls.
+    // core here); the call itself costs about a microsecond against 1-2 ms
+    // to fault in 4 MiB, so smaller slices would only add calls.
     constexpr std::size_t kSlice = std::size_t{4} << 20;
     if (bytes < kMin) return;
     const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));

@@ -85,9 +85,18 @@ TEST(Cli, TableStatesTheGuarantee) {
     const CliRun r = polyvol("volume " + corpus("stl-models/unitCube.ascii.stl"));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("correctly rounded"), std::string::npos) << r.out;
+    // Area and centroid carry theirs too, per file: the values, not a pointer elsewhere.
+    EXPECT_NE(r.out.find("unitCube.ascii.stl: area relative error <= "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("; centroid correctly rounded"), std::string::npos) << r.out;
     const CliRun fast = polyvol("volume --accuracy fast " + corpus("stl-models/unitCube.ascii.stl"));
     ASSERT_EQ(fast.code, 0);
     EXPECT_NE(fast.out.find("±"), std::string::npos) << fast.out;
+    EXPECT_NE(fast.out.find("; centroid within "), std::string::npos) << fast.out;
+    EXPECT_NE(fast.out.find(" of its largest coordinate's magnitude"), std::string::npos) << fast.out;
+    // --volume-only prints neither column, nor their notes.
+    const CliRun vo = polyvol("volume --volume-only " + corpus("stl-models/unitCube.ascii.stl"));
+    ASSERT_EQ(vo.code, 0);
+    EXPECT_EQ(vo.out.find("area relative error"), std::string::npos) << vo.out;
 }
 
 TEST(Cli, OpenSurfaceExitsThreeButStillReports) {
