@@ -47,6 +47,15 @@ POLYVOL_INLINE void two_sum(double a, double b, double& s, double& e) {
     e = (a - (s - bb)) + (b - bb);
 }
 
+// two_sum in every element of a GCC vector of doubles (vector_size): the
+// same operations element by element, so each lane gets two_sum's bits.
+template <class V>
+POLYVOL_INLINE void two_sum_lanes(const V& a, const V& b, V& s, V& e) {
+    s = a + b;
+    const V bb = s - a;
+    e = (a - (s - bb)) + (b - bb);
+}
+
 // s + e == a + b exactly, provided a == 0 or exponent(a) >= exponent(b)
 // (e.g. |a| >= |b|) (Dekker).
 POLYVOL_INLINE void fast_two_sum(double a, double b, double& s, double& e) {

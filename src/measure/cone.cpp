@@ -134,6 +134,7 @@ namespace {
 using exact::ExactSum;
 using exact::two_prod_t;
 using exact::two_sum;
+using exact::two_sum_lanes;
 
 constexpr int kLanes = 4;
 constexpr int kPerLane = 8;
@@ -609,13 +610,6 @@ POLYVOL_INLINE void halves(const W& w, V& lo, V& hi) {
     std::memcpy(&lo, &w, sizeof lo);
     std::memcpy(&hi, reinterpret_cast<const char*>(&w) + sizeof lo, sizeof hi);
 }
-// two_sum in every element (exact: s + e == a + b).
-template <class V>
-POLYVOL_INLINE void two_sum_v(const V& a, const V& b, V& s, V& e) {
-    s = a + b;
-    const V bb = s - a;
-    e = (a - (s - bb)) + (b - bb);
-}
 // One level of the lane tree: the (sum, error, magnitude) lanes of W folded
 // into half as many: the sums' halves by two_sum, its error added to the
 // halves' error terms.
@@ -625,7 +619,7 @@ POLYVOL_INLINE void fold_lanes(const W& S, const W& E, const W& M, V& s, V& e, V
     halves(S, sa, sb);
     halves(E, ea, eb);
     halves(M, ma, mb);
-    two_sum_v(sa, sb, s, t);
+    two_sum_lanes(sa, sb, s, t);
     e = (ea + eb) + t;
     m = ma + mb;
 }
@@ -651,7 +645,7 @@ POLYVOL_INLINE void volume_block(const Block& b, VolumeSums& out) {
         V8 H, L, ns, ne;
         vload(H, t.h[kV] + r * kVolLanes);
         vload(L, t.l[kV] + r * kVolLanes);
-        two_sum_v(S, H, ns, ne);
+        two_sum_lanes(S, H, ns, ne);
         S = ns;
         E += ne + L;
         if constexpr (kTranslate) {

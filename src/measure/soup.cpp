@@ -201,9 +201,8 @@ POLYVOL_INLINE void load8(V8& v, const double* p) { std::memcpy(&v, p, sizeof v)
 // One step of Sum2 in eight lanes: (S, E) takes in the pair (H, L), S by
 // two_sum, its error and L into E.
 POLYVOL_INLINE void sum2_add(V8& S, V8& E, const V8& H, const V8& L) {
-    const V8 ns = S + H;
-    const V8 bb = ns - S;
-    const V8 ne = (S - (ns - bb)) + (H - bb);  // two_sum(S, H)
+    V8 ns, ne;
+    exact::two_sum_lanes(S, H, ns, ne);
     S = ns;
     E = E + (ne + L);
 }
