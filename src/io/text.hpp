@@ -162,18 +162,8 @@ public:
 
     // The next token, across line ends and comments; empty at the end of input.
     std::string_view next() {
-        for (;;) {
-            while (p_ < end_ && is_blank(*p_)) ++p_;
-            if (p_ == end_) return {};
-            const char c = *p_;
-            if (is_eol(c)) {
-                eat_eol();
-            } else if (has_comment_ && c == comment_) {
-                skip_to_eol();
-            } else {
-                return take_token();
-            }
-        }
+        skip_space();
+        return p_ == end_ ? std::string_view() : take_token();
     }
 
     // The next token as a finite number, parsed where it stands: one scan of
@@ -188,18 +178,8 @@ public:
     // would end the token early.)
     bool next_finite_number(double& out) {
         if (comment_in_numbers_) return false;
-        for (;;) {
-            while (p_ < end_ && is_blank(*p_)) ++p_;
-            if (p_ == end_) return false;
-            if (is_eol(*p_)) {
-                eat_eol();
-            } else if (has_comment_ && *p_ == comment_) {
-                skip_to_eol();
-            } else {
-                break;
-            }
-        }
-        if (*p_ == '+') return false;
+        skip_space();
+        if (p_ == end_ || *p_ == '+') return false;
         double v;
         const auto r = fast_float::from_chars(p_, end_, v);
         if (r.ec != std::errc() || (r.ptr != end_ && !is_space(*r.ptr)) || !std::isfinite(v)) return false;
@@ -254,6 +234,20 @@ private:
     }
     void skip_to_eol() {
         while (p_ < end_ && !is_eol(*p_)) ++p_;
+    }
+    // Blanks, line ends and comments: what comes before a token.
+    void skip_space() {
+        for (;;) {
+            while (p_ < end_ && is_blank(*p_)) ++p_;
+            if (p_ == end_) return;
+            if (is_eol(*p_)) {
+                eat_eol();
+            } else if (has_comment_ && *p_ == comment_) {
+                skip_to_eol();
+            } else {
+                return;
+            }
+        }
     }
     void eat_eol() {  // at '\n' or '\r'
         if (*p_ == '\r' && p_ + 1 < end_ && p_[1] == '\n') ++p_;
