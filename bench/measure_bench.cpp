@@ -2,7 +2,9 @@
 //   ./build/bench/polyvol_bench --benchmark_filter=Volume
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <map>
+#include <random>
 
 #include "generate.hpp"
 #include "polyvol/measure.hpp"
@@ -43,6 +45,34 @@ void Topology(benchmark::State& state) {
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * m.face_count()));
 }
 
+// The sphere as an STL reader gives it: three vertices per triangle, the
+// triangles in the generator's order (strips: a position's copies close
+// together, as exporters write them) or shuffled (arg 1: no order to use).
+Mesh sphere_soup(std::size_t n, bool shuffled) {
+    const Mesh& m = sphere(n, 0);
+    std::vector<std::size_t> order(m.face_count());
+    for (std::size_t f = 0; f < order.size(); ++f) order[f] = f;
+    if (shuffled) std::shuffle(order.begin(), order.end(), std::mt19937_64(42));
+    Mesh soup;
+    for (const std::size_t f : order) {
+        uint32_t v[3];
+        for (int k = 0; k < 3; ++k) {
+            const double* p = &m.positions[3 * std::size_t{m.indices[3 * f + k]}];
+            v[k] = soup.add_vertex(p[0], p[1], p[2]);
+        }
+        soup.add_triangle(v[0], v[1], v[2]);
+    }
+    return soup;
+}
+
+// welded() of a triangle soup (weld_vertices, then the indexed mesh). Args:
+// triangles, shuffled.
+void WeldSoup(benchmark::State& state) {
+    const Mesh soup = sphere_soup(static_cast<std::size_t>(state.range(0)), state.range(1) != 0);
+    for (auto _ : state) benchmark::DoNotOptimize(welded(soup.view()));
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * soup.vertex_count()));
+}
+
 }  // namespace
 
 BENCHMARK(Volume<Method::cone, Accuracy::correctly_rounded>)
@@ -60,3 +90,4 @@ BENCHMARK(Volume<Method::pyramid, Accuracy::fast>)->Args({1 << 20, 1000000})->Un
 BENCHMARK(Volume<Method::vtnb, Accuracy::fast>)->Args({1 << 20, 1000000})->Unit(benchmark::kMillisecond);
 BENCHMARK(AllMassProperties)->Arg(1 << 20)->Unit(benchmark::kMillisecond);
 BENCHMARK(Topology)->Arg(1 << 20)->Unit(benchmark::kMillisecond);
+BENCHMARK(WeldSoup)->ArgNames({"tris", "shuffled"})->Args({1 << 20, 0})->Args({1 << 20, 1})->Unit(benchmark::kMillisecond);

@@ -4,14 +4,24 @@
 //
 // Small inputs: one open-addressing hash table of vertex ids (linear
 // probing, capacity a power of two >= 2n, so probes stay short and no
-// allocation happens per vertex). Large ones (a table of 2n ids no longer
-// fits in cache, and most probes miss it): partitioned, as a radix hash
-// join does. The vertices go into 2^k buckets by the top bits of their
-// hash (each bucket a few thousand, copied with their coordinates, in
-// increasing index order: counting pass, prefix sums, scatter), then each
-// bucket is welded with a small table that stays in cache. Chunks and
-// buckets run on oneTBB. Within a bucket the first of a class is its
-// smallest index, so the result is the serial one, whatever the schedule.
+// allocation happens per vertex). Large ones, in two levels:
+//   1. Local: runs of kLocal consecutive vertices are welded on their own,
+//      each with a table that stays in the core's L2. Triangle soups (an
+//      STL as read) repeat each position about six times, nearly always a
+//      few hundred triangles apart, so about five vertices in six are
+//      settled here and only the runs' firsts (representatives) go on.
+//   2. Global, over the representatives: partitioned, as a radix hash join
+//      does (a table of 2n ids no longer fits in cache, and most probes
+//      would miss it). They go into 2^k buckets by the top bits of their
+//      hash (each bucket a few thousand, copied with their coordinates, in
+//      increasing index order: counting pass, prefix sums, scatter), then
+//      each bucket is welded with a small table that stays in cache.
+// Then each vertex takes its representative's answer. Runs, chunks and
+// buckets go on oneTBB. The first of a class is its smallest index at each
+// level (the class's smallest index is the first of its run, so a
+// representative), so the result is the serial one, whatever the schedule.
+// An input in no useful order (few copies within a run: the first run
+// tells) skips the local level after its first run.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -21,6 +31,7 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "core/prefault.hpp"
 #include "polyvol/mesh.hpp"
@@ -95,22 +106,26 @@ struct Entry {
 constexpr std::size_t kSerialBelow = std::size_t{1} << 16;  // vertices
 constexpr std::size_t kChunk = std::size_t{1} << 16;        // vertices per task of the two passes, at least
 constexpr std::size_t kPerBucket = 4096;                    // about, on average
+constexpr std::size_t kLocal = std::size_t{1} << 15;        // vertices per run of the local level (a 256 KiB table)
 
-void weld_partitioned(const double* pos, std::size_t n, uint32_t* out) {
-    const int bits = std::clamp(static_cast<int>(std::bit_width(n / kPerBucket)) - 1, 1, 16);
+// Welds m vertices (position(j), original index(j), increasing in j) by
+// partitioning: out[index(j)] = index of the first of j's class.
+template <class Position, class Index>
+void weld_partitioned(std::size_t m, Position position, Index index, uint32_t* out) {
+    const int bits = std::clamp(static_cast<int>(std::bit_width(m / kPerBucket)) - 1, 1, 16);
     const std::size_t buckets = std::size_t{1} << bits;
     const int shift = 64 - bits;
     // At most 64 chunks: the counts stay below 64 * 2^16 words.
-    const std::size_t chunk = std::max(kChunk, (n + 63) / 64);
-    const std::size_t chunks = (n + chunk - 1) / chunk;
+    const std::size_t chunk = std::max(kChunk, (m + 63) / 64);
+    const std::size_t chunks = (m + chunk - 1) / chunk;
     // count[c * buckets + b]: vertices of chunk c in bucket b, then (prefix
     // sums in bucket-major order) where chunk c's first one goes.
     std::vector<uint32_t> count(chunks * buckets, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t c = r.begin(); c < r.end(); ++c) {
             uint32_t* mine = &count[c * buckets];
-            const std::size_t end = std::min(n, (c + 1) * chunk);
-            for (std::size_t v = c * chunk; v < end; ++v) ++mine[position_hash(pos + 3 * v) >> shift];
+            const std::size_t end = std::min(m, (c + 1) * chunk);
+            for (std::size_t j = c * chunk; j < end; ++j) ++mine[position_hash(position(j)) >> shift];
         }
     });
     std::vector<uint32_t> bucket_begin(buckets + 1);
@@ -126,18 +141,18 @@ void weld_partitioned(const double* pos, std::size_t n, uint32_t* out) {
     bucket_begin[buckets] = at;
     // Not value-initialised (the scatter writes every entry), faulted in on
     // every core: 32 bytes a vertex, written once and read once.
-    const std::unique_ptr<Entry[]> entries(new Entry[n]);
-    core::prefault(entries.get(), n * sizeof(Entry));
+    const std::unique_ptr<Entry[]> entries(new Entry[m]);
+    core::prefault(entries.get(), m * sizeof(Entry));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t c = r.begin(); c < r.end(); ++c) {
             uint32_t* next = &count[c * buckets];
-            const std::size_t end = std::min(n, (c + 1) * chunk);
-            for (std::size_t v = c * chunk; v < end; ++v) {
-                const double* p = pos + 3 * v;
+            const std::size_t end = std::min(m, (c + 1) * chunk);
+            for (std::size_t j = c * chunk; j < end; ++j) {
+                const double* p = position(j);
                 const uint64_t h = position_hash(p);
                 Entry& e = entries[next[h >> shift]++];
                 std::memcpy(e.xyz, p, sizeof e.xyz);
-                e.index = static_cast<uint32_t>(v);
+                e.index = index(j);
                 e.hash = static_cast<uint32_t>(h);
             }
         }
@@ -154,16 +169,84 @@ void weld_partitioned(const double* pos, std::size_t n, uint32_t* out) {
     });
 }
 
+// The two levels (see the top of this file) for n >= kSerialBelow vertices.
+void weld_large(const double* pos, std::size_t n, uint32_t* out) {
+    const std::size_t runs = (n + kLocal - 1) / kLocal;
+    // 1. Each run welded alone: out[v] = the first of v's class in its run;
+    // run_firsts[r]: how many firsts run r has, then (prefix sums) where
+    // they go in `firsts`.
+    std::vector<uint32_t> run_firsts(runs + 1, 0);
+    const auto weld_run = [&](std::size_t run, std::vector<uint32_t>& slots) {
+        const std::size_t v0 = run * kLocal, m = std::min(kLocal, n - v0);
+        const double* p0 = pos + 3 * v0;
+        weld_with_table(
+            m, [p0](std::size_t j) { return p0 + 3 * j; }, [v0](std::size_t j) { return static_cast<uint32_t>(v0 + j); },
+            [p0](std::size_t j) { return position_hash(p0 + 3 * j); }, slots, out);
+        uint32_t k = 0;
+        for (std::size_t v = v0; v < v0 + m; ++v) k += out[v] == v;
+        run_firsts[run] = k;
+    };
+    // The first run decides whether the local level pays: when more than half
+    // of its vertices are firsts, the input has its copies far apart (e.g.
+    // triangles in random order) and the global level takes every vertex.
+    {
+        std::vector<uint32_t> slots;
+        weld_run(0, slots);
+        if (2 * std::size_t{run_firsts[0]} > kLocal) {
+            weld_partitioned(
+                n, [pos](std::size_t v) { return pos + 3 * v; }, [](std::size_t v) { return static_cast<uint32_t>(v); },
+                out);
+            return;
+        }
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(1, runs, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::vector<uint32_t> slots;
+        for (std::size_t run = r.begin(); run < r.end(); ++run) weld_run(run, slots);
+    });
+    uint32_t at = 0;
+    for (std::size_t run = 0; run < runs; ++run) at += std::exchange(run_firsts[run], at);
+    run_firsts[runs] = at;
+    std::vector<uint32_t> firsts(at);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t run = r.begin(); run < r.end(); ++run) {
+            uint32_t* f = &firsts[run_firsts[run]];
+            const std::size_t end = std::min(n, (run + 1) * kLocal);
+            for (std::size_t v = run * kLocal; v < end; ++v)
+                if (out[v] == v) *f++ = static_cast<uint32_t>(v);
+        }
+    });
+    // 2. The firsts across runs: out[f] = the first of f's class.
+    const auto position = [&](std::size_t j) { return pos + 3 * std::size_t{firsts[j]}; };
+    const auto index = [&](std::size_t j) { return firsts[j]; };
+    if (firsts.size() < kSerialBelow) {
+        std::vector<uint32_t> slots;
+        weld_with_table(
+            firsts.size(), position, index, [&](std::size_t j) { return position_hash(position(j)); }, slots, out);
+    } else {
+        weld_partitioned(firsts.size(), position, index, out);
+    }
+    // 3. Every other vertex takes the answer of its run's first r = out[v]:
+    // out[r] is final and is never written here (for a first, out[out[r]]
+    // == out[r]), so the pass is free of races.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kChunk), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t v = r.begin(); v < r.end(); ++v) {
+            const uint32_t first = out[v], root = out[first];
+            if (root != first) out[v] = root;
+        }
+    });
+}
+
 }  // namespace
 
 std::vector<uint32_t> weld_vertices(std::span<const double> positions) {
     const std::size_t n = positions.size() / 3;
     if (n >= UINT32_MAX) throw std::length_error("weld_vertices: more than 2^32 - 2 vertices");
-    std::vector<uint32_t> out(n);
+    std::vector<uint32_t> out;
+    core::resize_for_filling(out, n);
     if (n < kSerialBelow) {
         weld_serial(positions.data(), n, out.data());
     } else {
-        weld_partitioned(positions.data(), n, out.data());
+        weld_large(positions.data(), n, out.data());
     }
     return out;
 }
@@ -171,23 +254,45 @@ std::vector<uint32_t> weld_vertices(std::span<const double> positions) {
 Mesh welded(const MeshView& mesh) {
     const std::vector<uint32_t> canonical = weld_vertices(mesh.positions);
     const std::size_t n = canonical.size();
-    std::vector<uint32_t> id(n);
-    std::size_t classes = 0;
-    for (std::size_t v = 0; v < n; ++v) classes += canonical[v] == v;
-    Mesh out;
-    out.positions.resize(3 * classes);
-    uint32_t next = 0;
-    for (std::size_t v = 0; v < n; ++v) {
-        if (canonical[v] == v) {  // the first of its class (canonical[v] <= v)
-            std::memcpy(&out.positions[3 * std::size_t{next}], &mesh.positions[3 * v], 3 * sizeof(double));
-            id[v] = next++;
-        } else {
-            id[v] = id[canonical[v]];
+    // id[v]: the new index of v's class, the classes numbered in the order
+    // of their firsts (canonical[v] == v): a count of firsts per run, prefix
+    // sums, then the firsts numbered and copied and the others looked up,
+    // each in parallel.
+    const std::size_t runs = (n + kChunk - 1) / kChunk;
+    std::vector<uint32_t> run_begin(runs + 1, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t run = r.begin(); run < r.end(); ++run) {
+            uint32_t k = 0;
+            for (std::size_t v = run * kChunk; v < std::min(n, (run + 1) * kChunk); ++v) k += canonical[v] == v;
+            run_begin[run] = k;
         }
-    }
+    });
+    uint32_t classes = 0;
+    for (std::size_t run = 0; run < runs; ++run) classes += std::exchange(run_begin[run], classes);
+    run_begin[runs] = classes;
+    // The new arrays are faulted in on every core (core/prefault.hpp): a
+    // first touch from one core took longer than the passes that fill them.
+    Mesh out;
+    core::resize_for_filling(out.positions, 3 * std::size_t{classes});
+    std::vector<uint32_t> id;
+    core::resize_for_filling(id, n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t run = r.begin(); run < r.end(); ++run) {
+            uint32_t next = run_begin[run];
+            for (std::size_t v = run * kChunk; v < std::min(n, (run + 1) * kChunk); ++v)
+                if (canonical[v] == v) {
+                    std::memcpy(&out.positions[3 * std::size_t{next}], &mesh.positions[3 * v], 3 * sizeof(double));
+                    id[v] = next++;
+                }
+        }
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kChunk), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t v = r.begin(); v < r.end(); ++v)
+            if (canonical[v] != v) id[v] = id[canonical[v]];  // a first: numbered in the pass before
+    });
     out.face_offsets.assign(mesh.face_offsets.begin(), mesh.face_offsets.end());
-    out.indices.resize(mesh.indices.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.indices.size(), std::size_t{1} << 16),
+    core::resize_for_filling(out.indices, mesh.indices.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.indices.size(), kChunk),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i < r.end(); ++i) out.indices[i] = id[mesh.indices[i]];
                       });

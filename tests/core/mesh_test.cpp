@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "polyvol/mesh.hpp"
@@ -106,6 +107,43 @@ TEST(Weld, SerialAndPartitionedPathsAgreeAtTheirBoundary) {
         const std::vector<double> p = duplicated_positions(n, n);
         std::size_t distinct = 0;
         EXPECT_EQ(polyvol::weld_vertices(p), map_reference(p, &distinct)) << n << " vertices";
+    }
+}
+
+// A triangle soup in strips, as an STL holds it (each grid point repeated
+// up to six times, mostly close by, and across the 2^15-vertex runs that
+// welding settles locally first), with -0.0 in some copies and a NaN
+// vertex in every 997th triangle: against the map reference, for a grid
+// whose runs leave few firsts (the second level in one table), one that
+// leaves many (partitioned), and the latter with its triangles shuffled
+// (copies far apart: the local level is skipped).
+TEST(Weld, TriangleSoupMatchesAnOrderedMapReference) {
+    struct Case {
+        int w, h;
+        bool shuffled;
+    };
+    for (const Case c : {Case{300, 100, false}, Case{1200, 100, false}, Case{1200, 100, true}}) {
+        std::vector<std::array<int, 2>> corners;  // (i, j) of each triangle's corners, in order
+        for (int j = 0; j + 1 < c.h; ++j)
+            for (int i = 0; i + 1 < c.w; ++i)
+                corners.insert(corners.end(), {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j}, {i + 1, j + 1}, {i, j + 1}});
+        const std::size_t triangles = corners.size() / 3;
+        std::vector<std::size_t> order(triangles);
+        for (std::size_t t = 0; t < triangles; ++t) order[t] = c.shuffled ? (t * 7919) % triangles : t;
+        ASSERT_TRUE(!c.shuffled || triangles % 7919 != 0);  // a permutation
+        std::vector<double> p;
+        for (std::size_t t = 0; t < triangles; ++t)
+            for (int k = 0; k < 3; ++k) {
+                const auto [i, j] = corners[3 * order[t] + k];
+                const double x = i - c.w / 2, y = j - c.h / 2;
+                p.push_back(t % 2 == 1 && x == 0 ? -0.0 : x);
+                p.push_back(t % 997 == 5 ? std::nan("") : y);
+                p.push_back(0.25 * x * y);
+            }
+        std::size_t distinct = 0;
+        const std::vector<uint32_t> ref = map_reference(p, &distinct);
+        EXPECT_EQ(polyvol::weld_vertices(p), ref) << c.w << " x " << c.h << (c.shuffled ? ", shuffled" : "");
+        EXPECT_LT(distinct, p.size() / 5);
     }
 }
 
