@@ -1,16 +1,13 @@
 #include "topology/shells.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
+#include <span>
+#include <vector>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
-#include "exact/eft.hpp"
-#include "exact/exact_sum.hpp"
-#include "exact/expansion.hpp"
+#include "polyvol/measure.hpp"
 
 namespace polyvol::topology {
 
@@ -68,66 +65,31 @@ EdgeDefects count_shell_edges(const ShellLabels& shells, const EdgeTable& edges,
     return d;
 }
 
-// Every coordinate is 0 or 2^-160 <= |x| <= 2^190: then the error-free
-// products of det3_exact neither underflow nor overflow (as in measure's
-// cone rule), so the expansion is exact.
-bool in_safe_range(const double* p) {
-    return exact::in_safe_range(p[0]) && exact::in_safe_range(p[1]) && exact::in_safe_range(p[2]);
-}
-
-// Σ det(a, b, c) / 6 over the triangles, rounded once: each det as an exact
-// expansion (Shewchuk), summed in a superaccumulator. About the origin,
-// which for a balanced shell gives the origin-free value too.
-// Large shells are split into blocks summed in parallel; the merge is exact,
-// so the result does not depend on the split.
-double exact_cone_volume(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris) {
-    const auto add_block = [&](std::size_t begin, std::size_t end, exact::ExactSum& sum) {
-        double det[exact::kDetTerms];
-        for (std::size_t i = begin; i < end; ++i) {
-            const auto& t = tris[i];
-            const int n = exact::det3_exact<false>(m.position(t[0]), m.position(t[1]), m.position(t[2]), det);
-            for (int k = 0; k < n; ++k) sum.add(det[k]);
+// Σ det(a, b, c) / 6 over a shell's triangles about the origin (which for a
+// balanced shell is the origin-free value too), correctly rounded: measure's
+// cone rule, whose filter decides nearly always and which is exact for any
+// finite coordinates. A shell with at least a quarter as many triangles as
+// the mesh has vertices (at most eight of them) is passed as indices into
+// the welded positions; a smaller one as its own soup of corners, so that
+// what the call reads (measure checks the positions it is given) stays in
+// proportion to the shell, whatever the number of shells.
+double shell_volume(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris) {
+    std::vector<uint32_t> indices(3 * tris.size());
+    std::vector<double> corners;
+    const bool indexed = 4 * tris.size() >= m.referenced();
+    if (!indexed) corners.resize(9 * tris.size());
+    for (std::size_t t = 0; t < tris.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const std::size_t at = 3 * t + k;
+            if (indexed) {
+                indices[at] = tris[t][k];
+            } else {
+                indices[at] = static_cast<uint32_t>(at);
+                std::copy_n(m.position(tris[t][k]), 3, &corners[3 * at]);
+            }
         }
-    };
-    constexpr std::size_t kBlock = 1 << 14;
-    if (tris.size() <= kBlock) {
-        exact::ExactSum sum;
-        add_block(0, tris.size(), sum);
-        return sum.round_div(6);
-    }
-    const exact::ExactSum total = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, tris.size(), kBlock), exact::ExactSum{},
-        [&](const tbb::blocked_range<std::size_t>& r, exact::ExactSum sum) {
-            add_block(r.begin(), r.end(), sum);
-            return sum;
-        },
-        [](exact::ExactSum a, const exact::ExactSum& b) {
-            a.merge(b);
-            return a;
-        });
-    return total.round_div(6);
-}
-
-// Fallback outside the safe range: Σ det(a - o, b - o, c - o) / 6 in doubles,
-// compensated (Neumaier), o one of the shell's vertices when it is balanced
-// (same value, fewer cancellations), the origin otherwise.
-double compensated_cone_volume(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris,
-                               bool balanced) {
-    static constexpr double kOrigin[3] = {0, 0, 0};
-    const double* o = balanced && !tris.empty() ? m.position(tris[0][0]) : kOrigin;
-    double sum = 0, compensation = 0;
-    for (const auto& t : tris) {
-        const double *a = m.position(t[0]), *b = m.position(t[1]), *c = m.position(t[2]);
-        const double ax = a[0] - o[0], ay = a[1] - o[1], az = a[2] - o[2];
-        const double bx = b[0] - o[0], by = b[1] - o[1], bz = b[2] - o[2];
-        const double cx = c[0] - o[0], cy = c[1] - o[1], cz = c[2] - o[2];
-        const double det = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
-        double s, e;
-        exact::two_sum(sum, det, s, e);
-        sum = s;
-        compensation += e;
-    }
-    return (sum + compensation) / 6;
+    const MeshView shell{indexed ? std::span<const double>(m.xyz) : std::span<const double>(corners), {}, indices};
+    return signed_volume(shell, Method::cone, Accuracy::correctly_rounded);
 }
 
 // Twice the squared area of triangle (a, b, c), up to a factor: |(b-a)×(c-a)|².
@@ -142,7 +104,6 @@ double cross_norm2(const double* a, const double* b, const double* c) {
 void measure_geometry(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris,
                       ShellGeometry& g) {
     double largest = -1;
-    bool safe = true;
     constexpr double inf = std::numeric_limits<double>::infinity();
     g.box = {inf, inf, inf, -inf, -inf, -inf};
     for (const auto& t : tris) {
@@ -153,14 +114,13 @@ void measure_geometry(const WeldedMesh& m, std::span<const std::array<uint32_t, 
             for (int k = 0; k < 3; ++k) g.probe[k] = (a[k] + b[k] + c[k]) / 3.0;
         }
         for (const double* p : {a, b, c}) {
-            safe = safe && in_safe_range(p);
             for (int k = 0; k < 3; ++k) {
                 g.box[k] = std::min(g.box[k], p[k]);
                 g.box[k + 3] = std::max(g.box[k + 3], p[k]);
             }
         }
     }
-    g.report.signed_volume = safe ? exact_cone_volume(m, tris) : compensated_cone_volume(m, tris, g.balanced());
+    g.report.signed_volume = shell_volume(m, tris);
 }
 
 }  // namespace

@@ -42,9 +42,8 @@ struct ShellGeometry {
 // Per shell: faces, vertices, edge counts, Euler characteristic, genus,
 // signed volume, probe point and bounding box. The volume is the cone rule
 // about the origin (the convention for open surfaces; any origin gives the
-// same for a balanced shell), correctly rounded (exact determinants in a
-// superaccumulator) when the coordinates are in the safe range 0 or
-// 2^-160..2^190, else a compensated double sum.
+// same for a balanced shell), correctly rounded (measure's signed_volume:
+// exact for any finite coordinates).
 std::vector<ShellGeometry> measure_shells(const WeldedMesh& mesh, const ShellLabels& shells,
                                           const EdgeTable& edges, const ShellTriangles& triangles);
 

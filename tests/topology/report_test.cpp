@@ -503,3 +503,49 @@ TEST(Topology, NonFiniteCoordinatesDoNotBreakTheReport) {
 
 }  // namespace
 }  // namespace polyvol
+
+namespace polyvol {
+namespace {
+
+// Each shell's volume is correctly rounded for any finite coordinates, also
+// outside the safe range 2^-160..2^190 (where the exact path needs big
+// integers): a tetrahedron of generic coordinates, scaled by 2^195 and by
+// 2^-200, has exactly 2^585 and 2^-600 times the volume of the unscaled
+// one (scaling by a power of two is exact, and so is rounding the scaled
+// value). With ten unit boxes beside it, every shell is measured as its own
+// soup; without, as indices into the welded positions.
+TEST(Topology, ShellVolumesAreCorrectlyRoundedOutsideTheSafeRange) {
+    const double tet[4][3] = {{1.0000000000000002, -0.3333333333333333, 0.0017071067811865475},
+                              {-1.9999999999999998, 1.1428571428571428, 1.4142135623730951},
+                              {0.015, -1.9, -1.0999999999999999},
+                              {1.2, 1.25, 1.9999999999999996}};
+    const auto add_tet = [&](Mesh& m, double scale) {
+        uint32_t v[4];
+        for (int i = 0; i < 4; ++i) v[i] = m.add_vertex(tet[i][0] * scale, tet[i][1] * scale, tet[i][2] * scale);
+        // Faces in one orientation; v1 below gives the sign.
+        m.add_triangle(v[0], v[2], v[1]);
+        m.add_triangle(v[0], v[1], v[3]);
+        m.add_triangle(v[0], v[3], v[2]);
+        m.add_triangle(v[1], v[2], v[3]);
+    };
+    Mesh unit;
+    add_tet(unit, 1.0);
+    const double v1 = analyze_topology(unit.view()).shells.at(0).signed_volume;
+    ASSERT_NE(v1, 0.0);
+    for (const bool with_boxes : {false, true}) {
+        Mesh m;
+        add_tet(m, 0x1p195);
+        add_tet(m, 0x1p-200);
+        for (int i = 0; with_boxes && i < 10; ++i) test::add_box(m, {10.0 + 2 * i, 0, 0}, {11.0 + 2 * i, 1, 1});
+        const TopologyReport r = analyze_topology(m.view());
+        ASSERT_EQ(r.shells.size(), with_boxes ? 12u : 2u);
+        EXPECT_EQ(r.shells[0].signed_volume, std::ldexp(v1, 585)) << with_boxes;
+        EXPECT_EQ(r.shells.back().signed_volume, std::ldexp(v1, -600)) << with_boxes;
+        if (with_boxes) {
+            EXPECT_EQ(r.shells[1].signed_volume, 1.0);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace polyvol
