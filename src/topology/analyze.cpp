@@ -89,8 +89,9 @@ TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& opt
     r.vertices_welded = m.welded;
     r.vertices_referenced = m.referenced();
 
-    topology::UnionFind polygon_sets(m.polygons);
-    const EdgeTable edges = topology::build_edge_table(m, polygon_sets);
+    // The polygon sets (shells) only when they are asked for.
+    topology::UnionFind polygon_sets(options.shells ? m.polygons : 0);
+    const EdgeTable edges = topology::build_edge_table(m, options.shells ? &polygon_sets : nullptr);
     count_edges(m, edges, r);
     r.euler_characteristic = static_cast<int64_t>(r.vertices_referenced) -
                              static_cast<int64_t>(r.edges) + static_cast<int64_t>(m.polygons);

@@ -1,6 +1,7 @@
 #include "topology/edges.hpp"
 
 #include <algorithm>
+#include <memory>
 
 namespace polyvol::topology {
 namespace {
@@ -41,7 +42,7 @@ void sort_bucket(EdgeUse* begin, EdgeUse* end) {
 
 }  // namespace
 
-EdgeTable build_edge_table(const WeldedMesh& m, UnionFind& polygon_sets) {
+EdgeTable build_edge_table(const WeldedMesh& m, UnionFind* polygon_sets) {
     EdgeTable t;
     const std::size_t nv = m.referenced();
 
@@ -51,7 +52,8 @@ EdgeTable build_edge_table(const WeldedMesh& m, UnionFind& polygon_sets) {
         t.degenerate_uses += for_each_side(m, c, [&](uint32_t a, uint32_t b) { ++start[std::min(a, b) + 1]; });
     });
     for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-    std::vector<EdgeUse> uses(start[nv]);
+    // Not value-initialised: the filling pass writes every use.
+    const std::unique_ptr<EdgeUse[]> uses(new EdgeUse[start[nv]]);
     {
         std::vector<std::size_t> fill(start.begin(), start.end() - 1);
         m.for_each_polygon([&](uint32_t poly, std::span<const uint32_t> c) {
@@ -63,17 +65,17 @@ EdgeTable build_edge_table(const WeldedMesh& m, UnionFind& polygon_sets) {
     }
 
     // Runs of equal (smaller, larger) ends are the undirected edges.
-    t.polygon.reserve(uses.size() / 2 + 1);
-    t.flags.reserve(uses.size() / 2 + 1);
+    t.polygon.reserve(start[nv] / 2 + 1);
+    t.flags.reserve(start[nv] / 2 + 1);
     for (uint32_t a = 0; a < nv; ++a) {
-        EdgeUse* const bucket_end = uses.data() + start[a + 1];
-        sort_bucket(uses.data() + start[a], bucket_end);
-        for (EdgeUse* run = uses.data() + start[a]; run != bucket_end;) {
+        EdgeUse* const bucket_end = uses.get() + start[a + 1];
+        sort_bucket(uses.get() + start[a], bucket_end);
+        for (EdgeUse* run = uses.get() + start[a]; run != bucket_end;) {
             EdgeUse* run_end = run;
             std::size_t forward = 0, backward = 0;
             for (; run_end != bucket_end && run_end->other == run->other; ++run_end) {
                 (run_end->polygon_dir & 1 ? backward : forward) += 1;
-                polygon_sets.unite(run->polygon_dir >> 1, run_end->polygon_dir >> 1);
+                if (polygon_sets) polygon_sets->unite(run->polygon_dir >> 1, run_end->polygon_dir >> 1);
             }
             const std::size_t n = forward + backward;
             uint8_t f = 0;

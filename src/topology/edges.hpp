@@ -37,8 +37,9 @@ struct EdgeTable {
     std::size_t size() const { return flags.size(); }
 };
 
-// Builds the table and unites, in polygon_sets (one element per polygon),
-// the polygons that share an edge.
-EdgeTable build_edge_table(const WeldedMesh& mesh, UnionFind& polygon_sets);
+// Builds the table and, unless polygon_sets is null (the shells are not
+// wanted), unites in it (one element per polygon) the polygons that share
+// an edge.
+EdgeTable build_edge_table(const WeldedMesh& mesh, UnionFind* polygon_sets);
 
 }  // namespace polyvol::topology
