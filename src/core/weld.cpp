@@ -7,9 +7,10 @@
 // allocation happens per vertex). Large ones, in two levels:
 //   1. Local: runs of kLocal consecutive vertices are welded on their own,
 //      each with a table that stays in the core's L2. Triangle soups (an
-//      STL as read) repeat each position about six times, nearly always a
-//      few hundred triangles apart, so about five vertices in six are
-//      settled here and only the runs' firsts (representatives) go on.
+//      STL as read) repeat each position about six times, mostly within a
+//      few thousand triangles (neighbouring strips of the surface), so about
+//      five vertices in six are settled here and only the runs' firsts
+//      (representatives) go on.
 //   2. Global, over the representatives: partitioned, as a radix hash join
 //      does (a table of 2n ids no longer fits in cache, and most probes
 //      would miss it). They go into 2^k buckets by the top bits of their
@@ -107,6 +108,7 @@ constexpr std::size_t kSerialBelow = std::size_t{1} << 16;  // vertices
 constexpr std::size_t kChunk = std::size_t{1} << 16;        // vertices per task of the two passes, at least
 constexpr std::size_t kPerBucket = 4096;                    // about, on average
 constexpr std::size_t kLocal = std::size_t{1} << 15;        // vertices per run of the local level (a 256 KiB table)
+static_assert(kLocal <= kSerialBelow);  // weld_large's first run is a whole one
 
 // Welds m vertices (position(j), original index(j), increasing in j) by
 // partitioning: out[index(j)] = index of the first of j's class.

@@ -1,6 +1,7 @@
 #include "topology/shells.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <vector>
@@ -69,14 +70,15 @@ EdgeDefects count_shell_edges(const ShellLabels& shells, const EdgeTable& edges,
 // balanced shell is the origin-free value too), correctly rounded: measure's
 // cone rule, whose filter decides nearly always and which is exact for any
 // finite coordinates. A shell with at least a quarter as many triangles as
-// the mesh has vertices (at most eight of them) is passed as indices into
-// the welded positions; a smaller one as its own soup of corners, so that
-// what the call reads (measure checks the positions it is given) stays in
-// proportion to the shell, whatever the number of shells.
+// the mesh has vertices is passed as indices into the welded positions
+// (measure may read every position it is given: at most four per
+// triangle); a smaller one as its own soup of corners. So the calls read
+// O(triangles) in all, whatever the number of shells.
 double shell_volume(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris) {
     std::vector<uint32_t> indices(3 * tris.size());
     std::vector<double> corners;
-    const bool indexed = 4 * tris.size() >= m.referenced();
+    // (indices too when a soup's corner ids would not fit in 32 bits)
+    const bool indexed = 4 * tris.size() >= m.referenced() || 3 * tris.size() > UINT32_MAX;
     if (!indexed) corners.resize(9 * tris.size());
     for (std::size_t t = 0; t < tris.size(); ++t)
         for (int k = 0; k < 3; ++k) {
