@@ -58,9 +58,9 @@ enum class ShellRole {
 // "closed" here means balanced (no unbalanced edge), and volume 0 counts as positive.
 
 struct Shell {
-    double signed_volume = 0;        // cone-rule volume of this shell's fan triangles (compensated
-                                     // double sum); about the origin for an open shell, origin-free
-                                     // for a balanced one (summed about one of its vertices)
+    double signed_volume = 0;        // cone-rule volume of this shell's fan triangles about the
+                                     // origin (any origin gives the same for a balanced shell),
+                                     // correctly rounded (NaN with a non-finite coordinate)
     std::size_t faces = 0;
     std::size_t vertices = 0;        // welded vertices it references
     std::size_t edges = 0;
