@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "exact/eft.hpp"
 #include "polyvol/measure.hpp"
 
 namespace polyvol::topology {
@@ -72,13 +73,15 @@ EdgeDefects count_shell_edges(const ShellLabels& shells, const EdgeTable& edges,
 // finite coordinates. A shell with at least a quarter as many triangles as
 // the mesh has vertices is passed as indices into the welded positions
 // (measure may read every position it is given: at most four per
-// triangle); a smaller one as its own soup of corners. So the calls read
-// O(triangles) in all, whatever the number of shells.
-double shell_volume(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris) {
+// triangle), when all of them are in measure's safe range (one coordinate
+// out of it elsewhere would send every such shell down measure's
+// big-integer path); any other shell as its own soup of corners. So the
+// calls read O(triangles) in all, whatever the number of shells.
+double shell_volume(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris, bool positions_safe) {
     std::vector<uint32_t> indices(3 * tris.size());
     std::vector<double> corners;
     // (indices too when a soup's corner ids would not fit in 32 bits)
-    const bool indexed = 4 * tris.size() >= m.referenced() || 3 * tris.size() > UINT32_MAX;
+    const bool indexed = (positions_safe && 4 * tris.size() >= m.referenced()) || 3 * tris.size() > UINT32_MAX;
     if (!indexed) corners.resize(9 * tris.size());
     for (std::size_t t = 0; t < tris.size(); ++t)
         for (int k = 0; k < 3; ++k) {
@@ -103,7 +106,7 @@ double cross_norm2(const double* a, const double* b, const double* c) {
 }
 
 // Volume, probe point and bounding box of a shell from its triangles.
-void measure_geometry(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris,
+void measure_geometry(const WeldedMesh& m, std::span<const std::array<uint32_t, 3>> tris, bool positions_safe,
                       ShellGeometry& g) {
     double largest = -1;
     constexpr double inf = std::numeric_limits<double>::infinity();
@@ -122,7 +125,7 @@ void measure_geometry(const WeldedMesh& m, std::span<const std::array<uint32_t, 
             }
         }
     }
-    g.report.signed_volume = shell_volume(m, tris);
+    g.report.signed_volume = shell_volume(m, tris, positions_safe);
 }
 
 }  // namespace
@@ -155,7 +158,9 @@ std::vector<ShellGeometry> measure_shells(const WeldedMesh& m, const ShellLabels
             r.euler_characteristic <= 2 && r.euler_characteristic % 2 == 0)
             r.genus = (2 - r.euler_characteristic) / 2;
     }
-    tbb::parallel_for(std::size_t{0}, shells.count, [&](std::size_t s) { measure_geometry(m, shell_tris(s), out[s]); });
+    const bool positions_safe = std::all_of(m.xyz.begin(), m.xyz.end(), exact::in_safe_range);
+    tbb::parallel_for(std::size_t{0}, shells.count,
+                      [&](std::size_t s) { measure_geometry(m, shell_tris(s), positions_safe, out[s]); });
     return out;
 }
 

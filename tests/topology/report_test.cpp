@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "fixtures.hpp"
@@ -512,8 +513,8 @@ namespace {
 // integers): a tetrahedron of generic coordinates, scaled by 2^195 and by
 // 2^-200, has exactly 2^585 and 2^-600 times the volume of the unscaled
 // one (scaling by a power of two is exact, and so is rounding the scaled
-// value). With ten unit boxes beside it, every shell is measured as its own
-// soup; without, as indices into the welded positions.
+// value); ten unit boxes beside them keep their volume 1. (Some positions
+// being out of the range, each shell is measured as its own soup.)
 TEST(Topology, ShellVolumesAreCorrectlyRoundedOutsideTheSafeRange) {
     const double tet[4][3] = {{1.0000000000000002, -0.3333333333333333, 0.0017071067811865475},
                               {-1.9999999999999998, 1.1428571428571428, 1.4142135623730951},
@@ -545,6 +546,27 @@ TEST(Topology, ShellVolumesAreCorrectlyRoundedOutsideTheSafeRange) {
             EXPECT_EQ(r.shells[1].signed_volume, 1.0);
         }
     }
+}
+
+}  // namespace
+}  // namespace polyvol
+
+namespace polyvol {
+namespace {
+
+// An infinite coordinate makes its shell's volume NaN (as measure's sums
+// are), listed last; the other shells keep theirs.
+TEST(Topology, AnInfiniteCoordinateGivesItsShellANaNVolume) {
+    Mesh m;
+    test::add_box(m, {0, 0, 0}, {1, 1, 1});
+    test::add_box(m, {3, 0, 0}, {5, 1, 1});
+    m.positions[3 * 8] = std::numeric_limits<double>::infinity();  // a corner of the second box
+    test::add_box(m, {6, 0, 0}, {9, 1, 1});
+    const TopologyReport r = analyze_topology(m.view());
+    ASSERT_EQ(r.shells.size(), 3u);
+    EXPECT_EQ(r.shells[0].signed_volume, 3.0);
+    EXPECT_EQ(r.shells[1].signed_volume, 1.0);
+    EXPECT_TRUE(std::isnan(r.shells[2].signed_volume));
 }
 
 }  // namespace
