@@ -34,6 +34,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/classes.hpp"
 #include "core/prefault.hpp"
 #include "polyvol/mesh.hpp"
 
@@ -253,13 +254,15 @@ std::vector<uint32_t> weld_vertices(std::span<const double> positions) {
     return out;
 }
 
-Mesh welded(const MeshView& mesh) {
-    const std::vector<uint32_t> canonical = weld_vertices(mesh.positions);
+namespace core {
+
+// A count of firsts per run, prefix sums, then the firsts numbered and
+// copied and the others looked up, each pass in parallel. The arrays are
+// faulted in on every core (core/prefault.hpp): a first touch from one core
+// took longer than the passes that fill them.
+void number_classes(std::span<const uint32_t> canonical, std::span<const double> positions,
+                    std::vector<uint32_t>& id, std::vector<double>& xyz) {
     const std::size_t n = canonical.size();
-    // id[v]: the new index of v's class, the classes numbered in the order
-    // of their firsts (canonical[v] == v): a count of firsts per run, prefix
-    // sums, then the firsts numbered and copied and the others looked up,
-    // each in parallel.
     const std::size_t runs = (n + kChunk - 1) / kChunk;
     std::vector<uint32_t> run_begin(runs + 1, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs, 1), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -272,18 +275,16 @@ Mesh welded(const MeshView& mesh) {
     uint32_t classes = 0;
     for (std::size_t run = 0; run < runs; ++run) classes += std::exchange(run_begin[run], classes);
     run_begin[runs] = classes;
-    // The new arrays are faulted in on every core (core/prefault.hpp): a
-    // first touch from one core took longer than the passes that fill them.
-    Mesh out;
-    core::resize_for_filling(out.positions, 3 * std::size_t{classes});
-    std::vector<uint32_t> id;
-    core::resize_for_filling(id, n);
+    xyz.clear();
+    resize_for_filling(xyz, 3 * std::size_t{classes});
+    id.clear();
+    resize_for_filling(id, n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t run = r.begin(); run < r.end(); ++run) {
             uint32_t next = run_begin[run];
             for (std::size_t v = run * kChunk; v < std::min(n, (run + 1) * kChunk); ++v)
                 if (canonical[v] == v) {
-                    std::memcpy(&out.positions[3 * std::size_t{next}], &mesh.positions[3 * v], 3 * sizeof(double));
+                    std::memcpy(&xyz[3 * std::size_t{next}], &positions[3 * v], 3 * sizeof(double));
                     id[v] = next++;
                 }
         }
@@ -292,6 +293,15 @@ Mesh welded(const MeshView& mesh) {
         for (std::size_t v = r.begin(); v < r.end(); ++v)
             if (canonical[v] != v) id[v] = id[canonical[v]];  // a first: numbered in the pass before
     });
+}
+
+}  // namespace core
+
+Mesh welded(const MeshView& mesh) {
+    const std::vector<uint32_t> canonical = weld_vertices(mesh.positions);
+    Mesh out;
+    std::vector<uint32_t> id;
+    core::number_classes(canonical, mesh.positions, id, out.positions);
     out.face_offsets.assign(mesh.face_offsets.begin(), mesh.face_offsets.end());
     core::resize_for_filling(out.indices, mesh.indices.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.indices.size(), kChunk),

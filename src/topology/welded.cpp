@@ -1,8 +1,13 @@
 #include "topology/welded.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "core/classes.hpp"
 
 namespace polyvol::topology {
 
@@ -35,12 +40,37 @@ void check_mesh_arrays(const MeshView& mesh) {
                                         std::to_string(n));
 }
 
+namespace {
+
+// A soup as an STL reader gives it: all triangles, and corner i is vertex i.
+bool corners_are_vertices(const MeshView& mesh) {
+    if (!mesh.all_triangles() || mesh.indices.size() != mesh.vertex_count()) return false;
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, mesh.indices.size(), std::size_t{1} << 16), true,
+        [&](const tbb::blocked_range<std::size_t>& r, bool ok) {
+            for (std::size_t i = r.begin(); ok && i < r.end(); ++i) ok = mesh.indices[i] == i;
+            return ok;
+        },
+        [](bool a, bool b) { return a && b; });
+}
+
+}  // namespace
+
 WeldedMesh weld_polygons(const MeshView& mesh) {
     WeldedMesh w;
     w.mesh = mesh;
     const std::size_t n = mesh.vertex_count();
     // canonical[v]: smallest original index with v's position.
     std::vector<uint32_t> canonical = weld_vertices(mesh.positions);
+    if (corners_are_vertices(mesh)) {
+        // Every vertex is used, in index order, so a class is first used at
+        // its first vertex: the dense ids are the classes numbered in the
+        // order of their firsts (in parallel; the loop below is serial).
+        core::number_classes(canonical, mesh.positions, w.id, w.xyz);
+        w.welded = w.referenced();
+        w.polygons = mesh.face_count();
+        return w;
+    }
     for (std::size_t v = 0; v < n; ++v) w.welded += canonical[v] == v;
 
     // Dense ids for canonical vertices, in order of first use.
