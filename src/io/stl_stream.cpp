@@ -198,13 +198,9 @@ bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t pe
 
 BinaryStlFile::BinaryStlFile(const std::string& path) : path_(path) {
     if (path == "-") return;  // standard input: never a file to map
-    fd_ = open_file(path).release();
-    try {
-        probe_ = probe_fd(fd_, path, head_, head_len_);
-    } catch (...) {
-        ::close(fd_);
-        throw;
-    }
+    Fd f = open_file(path);   // closed if the probe throws
+    probe_ = probe_fd(f.fd, path, head_, head_len_);
+    fd_ = f.release();
 }
 
 BinaryStlFile::~BinaryStlFile() {
