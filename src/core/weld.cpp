@@ -90,12 +90,20 @@ void weld_with_table(std::size_t m, Position position, Index index, Hash hash, s
     }
 }
 
-// One table for vertices [0, n) (the small-input path).
-void weld_serial(const double* pos, std::size_t n, uint32_t* out) {
-    std::vector<uint32_t> slots;
-    weld_with_table(
-        n, [pos](std::size_t v) { return pos + 3 * v; }, [](std::size_t v) { return static_cast<uint32_t>(v); },
-        [pos](std::size_t v) { return position_hash(pos + 3 * v); }, slots, out);
+// One table for m vertices (position(j), original index(j), increasing in
+// j), each position hashed as it comes.
+template <class Position, class Index>
+void weld_serial(std::size_t m, Position position, Index index, std::vector<uint32_t>& slots, uint32_t* out) {
+    weld_with_table(m, position, index, [&](std::size_t j) { return position_hash(position(j)); }, slots, out);
+}
+
+// Accessors for consecutive vertices: the position of the j-th of an array,
+// and the original index of the j-th of those that start at v0.
+auto vertex_at(const double* pos) {
+    return [pos](std::size_t j) { return pos + 3 * j; };
+}
+auto index_from(std::size_t v0) {
+    return [v0](std::size_t j) { return static_cast<uint32_t>(v0 + j); };
 }
 
 // A vertex copied into its bucket.
@@ -181,10 +189,7 @@ void weld_large(const double* pos, std::size_t n, uint32_t* out) {
     std::vector<uint32_t> run_firsts(runs + 1, 0);
     const auto weld_run = [&](std::size_t run, std::vector<uint32_t>& slots) {
         const std::size_t v0 = run * kLocal, m = std::min(kLocal, n - v0);
-        const double* p0 = pos + 3 * v0;
-        weld_with_table(
-            m, [p0](std::size_t j) { return p0 + 3 * j; }, [v0](std::size_t j) { return static_cast<uint32_t>(v0 + j); },
-            [p0](std::size_t j) { return position_hash(p0 + 3 * j); }, slots, out);
+        weld_serial(m, vertex_at(pos + 3 * v0), index_from(v0), slots, out);
         uint32_t k = 0;
         for (std::size_t v = v0; v < v0 + m; ++v) k += out[v] == v;
         run_firsts[run] = k;
@@ -196,9 +201,7 @@ void weld_large(const double* pos, std::size_t n, uint32_t* out) {
         std::vector<uint32_t> slots;
         weld_run(0, slots);
         if (2 * std::size_t{run_firsts[0]} > kLocal) {
-            weld_partitioned(
-                n, [pos](std::size_t v) { return pos + 3 * v; }, [](std::size_t v) { return static_cast<uint32_t>(v); },
-                out);
+            weld_partitioned(n, vertex_at(pos), index_from(0), out);
             return;
         }
     }
@@ -223,8 +226,7 @@ void weld_large(const double* pos, std::size_t n, uint32_t* out) {
     const auto index = [&](std::size_t j) { return firsts[j]; };
     if (firsts.size() < kSerialBelow) {
         std::vector<uint32_t> slots;
-        weld_with_table(
-            firsts.size(), position, index, [&](std::size_t j) { return position_hash(position(j)); }, slots, out);
+        weld_serial(firsts.size(), position, index, slots, out);
     } else {
         weld_partitioned(firsts.size(), position, index, out);
     }
@@ -247,7 +249,8 @@ std::vector<uint32_t> weld_vertices(std::span<const double> positions) {
     std::vector<uint32_t> out;
     core::resize_for_filling(out, n);
     if (n < kSerialBelow) {
-        weld_serial(positions.data(), n, out.data());
+        std::vector<uint32_t> slots;
+        weld_serial(n, vertex_at(positions.data()), index_from(0), slots, out.data());
     } else {
         weld_large(positions.data(), n, out.data());
     }
