@@ -102,10 +102,6 @@ std::string_view first_word(std::string_view line) {
     return line.substr(0, i);
 }
 
-bool is_ply(Bytes data) {
-    return starts_with(data, "ply") && (data.size() == 3 || text::is_space(static_cast<char>(data[3])));
-}
-
 bool is_ascii_stl(std::string_view s) {
     std::size_t i = 0;
     while (i < s.size() && text::is_space(s[i])) ++i;
@@ -113,12 +109,7 @@ bool is_ascii_stl(std::string_view s) {
            (s.size() - i == 5 || text::is_space(s[i + 5]));
 }
 
-bool is_binary_stl(Bytes data) {
-    if (data.size() < 84) return false;
-    const auto* b = reinterpret_cast<const unsigned char*>(data.data()) + 80;
-    const uint64_t n = uint64_t{b[0]} | uint64_t{b[1]} << 8 | uint64_t{b[2]} << 16 | uint64_t{b[3]} << 24;
-    return 84 + 50 * n == data.size();
-}
+bool is_binary_stl(Bytes data) { return data.size() >= 84 && 84 + 50 * io::stl_triangle_count(data) == data.size(); }
 
 bool is_off(std::string_view s) {
     return text::parse_off_keyword(first_word(first_statement(s))).valid;
@@ -220,14 +211,14 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth) {
         }
         throw ReadError::whole_file(name, "empty file");
     }
-    if (starts_with(data, "\x1f\x8b")) {
+    if (io::is_gzip(data)) {
         if (depth >= 3) throw ReadError::whole_file(name, "gzip nested too deeply");
         const std::vector<std::byte> inner = io::gunzip(data, name);
         LoadedMesh m = detect(inner, name, hint, depth + 1);
         m.gzip = true;
         return with_note_first(std::move(m), "gzip-compressed");
     }
-    if (starts_with(data, "PK\x03\x04")) {
+    if (io::is_zip(data)) {
         if (contains(data, "3D/3dmodel.model")) return io::read_3mf_zip(data, name);
         if (hint == Format::threemf) return io::read_3mf_zip(data, name);
         return io::read_amf_zip(data, name);
@@ -243,7 +234,7 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth) {
             return with_note_first(detect(data.subspan(3), name, hint, depth + 1), "utf8-bom");
     }
     const std::string_view s = text::as_text(data);
-    if (is_ply(data)) return io::read_ply(data, name);
+    if (io::is_ply(data)) return io::read_ply(data, name);
     if (!binary_stl) {
         const std::string_view root = xml_root(s.substr(0, 1 << 16));
         if (!root.empty()) {
@@ -279,6 +270,16 @@ LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& 
 }
 
 namespace io {
+
+bool is_gzip(Bytes head) { return starts_with(head, "\x1f\x8b"); }
+bool is_zip(Bytes head) { return starts_with(head, "PK\x03\x04"); }
+bool is_ply(Bytes head) {
+    return starts_with(head, "ply") && (head.size() == 3 || text::is_space(static_cast<char>(head[3])));
+}
+uint64_t stl_triangle_count(Bytes head) {
+    const auto* b = reinterpret_cast<const unsigned char*>(head.data()) + 80;
+    return uint64_t{b[0]} | uint64_t{b[1]} << 8 | uint64_t{b[2]} << 16 | uint64_t{b[3]} << 24;
+}
 
 std::vector<std::byte> read_whole_input(const std::string& path, std::string& name) {
     const bool from_stdin = path == "-";

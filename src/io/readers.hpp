@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,6 +27,16 @@ LoadedMesh read_amf_zip(Bytes data, const std::string& name);
 // The whole content of a file, or of standard input for "-"; name is set to
 // the name for messages ("<stdin>" or the path). Throws ReadError.
 std::vector<std::byte> read_whole_input(const std::string& path, std::string& name);
+
+// Content tests on the first bytes, shared by read_mesh_file's detection
+// (detect.cpp) and the binary STL stream's probe (stl_stream.cpp), so the
+// two decide alike: gzip magic 1f 8b, zip magic "PK\3\4", a "ply" line.
+bool is_gzip(Bytes head);
+bool is_zip(Bytes head);
+bool is_ply(Bytes head);
+// A binary STL header's triangle count: bytes 80..83, little-endian
+// (head.size() >= 84).
+uint64_t stl_triangle_count(Bytes head);
 
 // zlib: the decompressed bytes of a gzip stream (throws ReadError on corrupt data).
 std::vector<std::byte> gunzip(Bytes data, const std::string& name);

@@ -40,6 +40,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/readers.hpp"
 #include "polyvol/io.hpp"
 
 namespace polyvol {
@@ -60,12 +61,6 @@ struct Fd {
     }
     int release() { return std::exchange(fd, -1); }
 };
-
-bool is_space(unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
-
-uint32_t load_u32_le(const unsigned char* b) {
-    return uint32_t{b[0]} | uint32_t{b[1]} << 8 | uint32_t{b[2]} << 16 | uint32_t{b[3]} << 24;
-}
 
 // Reads exactly len bytes at offset (fewer only at the end of the file);
 // returns the number read. Throws ReadError on an I/O error.
@@ -92,11 +87,10 @@ BinaryStlProbe probe_fd(int fd, const std::string& name, unsigned char (&head)[8
     if (!S_ISREG(st.st_mode)) return p;
     p.file_bytes = static_cast<uint64_t>(st.st_size);
     head_len = read_at(fd, reinterpret_cast<std::byte*>(head), sizeof head, 0, name);
-    if (head_len >= 2 && head[0] == 0x1f && head[1] == 0x8b) return p;  // gzip
-    if (head_len >= 4 && std::memcmp(head, "PK\x03\x04", 4) == 0) return p;  // zip: 3MF / AMF
-    if (head_len >= 3 && std::memcmp(head, "ply", 3) == 0 && (head_len == 3 || is_space(head[3]))) return p;
+    const io::Bytes bytes(reinterpret_cast<const std::byte*>(head), head_len);
+    if (io::is_gzip(bytes) || io::is_zip(bytes) || io::is_ply(bytes)) return p;  // read_mesh_file's order
     if (head_len < 84) return p;
-    p.triangles = load_u32_le(head + 80);
+    p.triangles = io::stl_triangle_count(bytes);
     p.header_starts_with_solid = std::memcmp(head, "solid", 5) == 0;
     p.binary_stl = 84 + kRecord * p.triangles == p.file_bytes;
     return p;
@@ -239,9 +233,8 @@ void BinaryStlFile::for_each_window(const StlWindowFn& fn, const StlStreamOption
     const std::size_t head_len = head_len_;
     if (!p.binary_stl) {
         const bool regular = p.file_bytes > 0 || head_len > 0;
-        const bool other_format = head_len >= 2 && ((head[0] == 0x1f && head[1] == 0x8b) ||
-                                                     (head_len >= 4 && std::memcmp(head, "PK\x03\x04", 4) == 0) ||
-                                                     std::memcmp(head, "ply", 3) == 0);
+        const io::Bytes bytes(reinterpret_cast<const std::byte*>(head), head_len);
+        const bool other_format = io::is_gzip(bytes) || io::is_zip(bytes) || io::is_ply(bytes);
         if (!regular) throw ReadError::whole_file(path, "not a regular, non-empty file: cannot stream it as binary STL");
         if (other_format) throw ReadError::whole_file(path, "not binary STL (gzip, zip or PLY content)");
         if (p.file_bytes < 84)
