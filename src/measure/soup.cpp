@@ -52,11 +52,10 @@
 //   sum adds <= γ6 Σ t (9 u is used below). Bound used: 15 u A + 5 u ΣX (A = Σ of block sums),
 //   then halving is exact and the final rounding adds u.
 //
-// Fingerprint: see soup.hpp. Arithmetic mod p = 2^31 - 1 in 64-bit words,
-// reduced lazily (2^31 ≡ 1): differences are formed as x + p - y (<= 2p <
-// 2^32), products (< 2^64) folded as (x mod 2^31) + (x >> 31). Vectorised:
-// 32 x 32 -> 64-bit multiplies on the even and the odd 32-bit lanes apart
-// (with AVX-512 IFMA, the last product in 52-bit halves: Fingerprint512).
+// Fingerprint: see soup.hpp, and measure/fingerprint.hpp for its arithmetic.
+// Vectorised: 32 x 32 -> 64-bit multiplies on the even and the odd 32-bit
+// lanes apart (with AVX-512 IFMA, the last product in 52-bit halves:
+// Fingerprint512).
 #include "polyvol/soup.hpp"
 
 #include <tbb/blocked_range.h>
@@ -79,6 +78,7 @@
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "measure/cone.hpp"
+#include "measure/fingerprint.hpp"
 #include "measure/soup_testing.hpp"
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -97,15 +97,17 @@ using exact::two_sum;
 namespace cone = measure::cone;
 
 constexpr int kB = cone::kBlockTriangles;  // triangles per block (32)
-constexpr uint64_t kP = (uint64_t{1} << 31) - 1;  // the fingerprint field F_p
-constexpr int kFpLanes = 4;
+using measure::fingerprint::fold;
+using measure::fingerprint::kP;
+using measure::fingerprint::mum;
+using measure::fingerprint::reduce;
+using measure::fingerprint::vandermonde;
+constexpr int kFpLanes = measure::fingerprint::kLanes;
 constexpr double kU = 0x1p-53;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kChunk = 8192;  // triangles per parallel task (a multiple of kB)
 static_assert(kChunk % kB == 0);
-
-__extension__ typedef unsigned __int128 u128;
 
 // ---- the fingerprint ---------------------------------------------------------
 
@@ -113,25 +115,6 @@ struct Keys {
     alignas(16) uint64_t aes[4][2];  // AES: whitening key, then three round keys
     uint64_t mix[2][4];              // portable hash: four keys per lane
 };
-
-POLYVOL_INLINE uint64_t fold(uint64_t x) { return (x & kP) + (x >> 31); }  // ≡ x (mod p)
-
-// (hb - ha)(hc - ha)(hc - hb) mod p as a value < 2^34 congruent to it (h* <= p).
-POLYVOL_INLINE uint64_t vandermonde(uint64_t ha, uint64_t hb, uint64_t hc) {
-    const uint64_t d1 = hb + kP - ha, d2 = hc + kP - ha, d3 = hc + kP - hb;  // <= 2p < 2^32
-    const uint64_t x = fold(fold(d1 * d2));                                  // < 2^31 + 8
-    return fold(x * d3);                                                     // < 2^31 + 2^33
-}
-
-POLYVOL_INLINE uint64_t reduce(uint64_t x) {  // x mod p
-    x = fold(fold(x));
-    return x >= kP ? x - kP : x;
-}
-
-POLYVOL_INLINE uint64_t mum(uint64_t a, uint64_t b) {
-    const u128 r = static_cast<u128>(a) * b;
-    return static_cast<uint64_t>(r) ^ static_cast<uint64_t>(r >> 64);
-}
 
 // Words of a block: w[i][3 v + k] is the canonical bit pattern of coordinate
 // k of vertex v of triangle i (-0.0 mapped to +0.0).
@@ -912,13 +895,6 @@ Pass1Fn pass1_for(SoupWants w) {
 
 double up(double x) { return std::nextafter(x, kInf); }
 
-uint64_t splitmix(uint64_t& s) {
-    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
 }  // namespace
 
 void measure::cap_soup_kernels(int max_level) {
@@ -948,9 +924,9 @@ struct SoupAccumulator::State {
     State(uint64_t seed, SoupWants w) : wants(w), pass1(pass1_for(w)) {
         uint64_t s = seed;
         for (auto& k : keys.aes)
-            for (auto& x : k) x = splitmix(s);
+            for (auto& x : k) x = measure::fingerprint::splitmix(s);
         for (auto& k : keys.mix)
-            for (auto& x : k) x = splitmix(s) | 1;
+            for (auto& x : k) x = measure::fingerprint::splitmix(s) | 1;
     }
 
     // Pass 1 over a group: triangles [first, first + n) of t, n <= kGroupBlocks
@@ -1021,9 +997,9 @@ SoupAccumulator::SoupAccumulator(SoupWants wants) {
     // More entropy than one 64-bit seed for the keys themselves.
     s_ = std::make_unique<State>(seed, wants);
     for (auto& k : s_->keys.aes)
-        for (auto& x : k) x ^= static_cast<uint64_t>(rd()) << 32 | rd();
+        for (auto& x : k) x ^= measure::fingerprint::random_word(rd);
     for (auto& k : s_->keys.mix)
-        for (auto& x : k) x ^= (static_cast<uint64_t>(rd()) << 32 | rd()) | 1;
+        for (auto& x : k) x ^= measure::fingerprint::random_word(rd) | 1;
 }
 
 SoupAccumulator::SoupAccumulator(uint64_t seed, SoupWants wants) : s_(std::make_unique<State>(seed, wants)) {}

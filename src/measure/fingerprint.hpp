@@ -1,0 +1,51 @@
+// measure/fingerprint.hpp — the arithmetic of the closedness fingerprint
+// (polyvol/soup.hpp explains it and bounds its error), shared by the soup
+// pass (soup.cpp) and by fingerprint_closedness on a mesh (closedness.cpp).
+//
+// Arithmetic mod p = 2^31 - 1 in 64-bit words, reduced lazily (2^31 ≡ 1):
+// differences are formed as x + p - y (<= 2p < 2^32), products (< 2^64)
+// folded as (x mod 2^31) + (x >> 31).
+#pragma once
+
+#include <cstdint>
+#include <random>
+
+namespace polyvol::measure::fingerprint {
+
+constexpr uint64_t kP = (uint64_t{1} << 31) - 1;  // the fingerprint field F_p
+constexpr int kLanes = 4;                         // independent lanes (four 31-bit hash words)
+
+inline uint64_t fold(uint64_t x) { return (x & kP) + (x >> 31); }  // ≡ x (mod p)
+
+// (hb - ha)(hc - ha)(hc - hb) mod p as a value < 2^34 congruent to it (h* <= p):
+// the triangle's sum over its directed edges x→y of H(x) H(y)^2 - H(x)^2 H(y).
+inline uint64_t vandermonde(uint64_t ha, uint64_t hb, uint64_t hc) {
+    const uint64_t d1 = hb + kP - ha, d2 = hc + kP - ha, d3 = hc + kP - hb;  // <= 2p < 2^32
+    const uint64_t x = fold(fold(d1 * d2));                                  // < 2^31 + 8
+    return fold(x * d3);                                                     // < 2^31 + 2^33
+}
+
+inline uint64_t reduce(uint64_t x) {  // x mod p
+    x = fold(fold(x));
+    return x >= kP ? x - kP : x;
+}
+
+// wyhash's multiply-xor: the two halves of the 128-bit product, xored.
+inline uint64_t mum(uint64_t a, uint64_t b) {
+    __extension__ typedef unsigned __int128 u128;
+    const u128 r = static_cast<u128>(a) * b;
+    return static_cast<uint64_t>(r) ^ static_cast<uint64_t>(r >> 64);
+}
+
+// A step of SplitMix64: keys derived from a seed (reproducible, for tests).
+inline uint64_t splitmix(uint64_t& s) {
+    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+// 64 bits from std::random_device (keys no input can be chosen against).
+inline uint64_t random_word(std::random_device& rd) { return static_cast<uint64_t>(rd()) << 32 | rd(); }
+
+}  // namespace polyvol::measure::fingerprint
