@@ -73,6 +73,17 @@ void WeldSoup(benchmark::State& state) {
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * soup.vertex_count()));
 }
 
+// fingerprint_closedness (the volume table's closedness check) on the
+// indexed sphere (arg 1 = 0: a hash per vertex) or on its soup (arg 1 = 1:
+// a hash per corner), against Topology's full analysis.
+void FingerprintClosedness(benchmark::State& state) {
+    const bool as_soup = state.range(1) != 0;
+    const Mesh soup = as_soup ? sphere_soup(static_cast<std::size_t>(state.range(0)), false) : Mesh{};
+    const Mesh& m = as_soup ? soup : sphere(static_cast<std::size_t>(state.range(0)));
+    for (auto _ : state) benchmark::DoNotOptimize(fingerprint_closedness(m.view(), 1));
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * m.face_count()));
+}
+
 }  // namespace
 
 BENCHMARK(Volume<Method::cone, Accuracy::correctly_rounded>)
@@ -90,4 +101,5 @@ BENCHMARK(Volume<Method::pyramid, Accuracy::fast>)->Args({1 << 20, 1000000})->Un
 BENCHMARK(Volume<Method::vtnb, Accuracy::fast>)->Args({1 << 20, 1000000})->Unit(benchmark::kMillisecond);
 BENCHMARK(AllMassProperties)->Arg(1 << 20)->Unit(benchmark::kMillisecond);
 BENCHMARK(Topology)->Arg(1 << 20)->Unit(benchmark::kMillisecond);
+BENCHMARK(FingerprintClosedness)->ArgNames({"tris", "soup"})->Args({1 << 20, 0})->Args({1 << 20, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(WeldSoup)->ArgNames({"tris", "shuffled"})->Args({1 << 20, 0})->Args({1 << 20, 1})->Unit(benchmark::kMillisecond);
