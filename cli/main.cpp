@@ -82,6 +82,7 @@ int run(Command command, const Common& c) {
     request.stream = command == Command::volume && (!c.json || c.stream);
     request.volume_only = command == Command::volume && c.volume_only;
     request.table_only = command == Command::volume && (!c.json || request.volume_only);
+    request.closedness_by_fingerprint = command == Command::volume && !c.json;
     if (request.table_only) {
         request.measure.second_moments = false;
         request.measure.edge_length = false;

@@ -135,9 +135,11 @@ FileResult process_file(const std::string& path, const Request& request) {
     r.seconds_read = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
     const MeshView view = r.loaded->mesh.view();
-    r.topology = analyze_topology(view, TopologyOptions{.shells = !request.table_only});
+    r.closed_by_fingerprint =
+        request.closedness_by_fingerprint && fingerprint_closedness(view) == Closedness::closed;
+    if (!r.closed_by_fingerprint) r.topology = analyze_topology(view, TopologyOptions{.shells = !request.table_only});
     if (request.need_mass) {
-        if (!r.topology->closed_2_cycle) {
+        if (!r.closed_by_fingerprint && !r.topology->closed_2_cycle) {
             if (request.allow_open) {
                 r.warning = path + ": " + std::to_string(r.topology->unbalanced_edges) +
                             " unbalanced edges: the surface is not closed, so the figures depend on "
@@ -278,9 +280,10 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         out << pad("volume", 24) << "  " << pad("area", 24) << "  centroid\n";
     else
         out << "volume\n";
-    bool any_rounded = false, any_bound = false;
+    bool any_rounded = false, any_bound = false, any_fingerprint = false;
     std::string streamed_notes, loaded_notes;
     for (const auto& r : results) {
+        any_fingerprint = any_fingerprint || r.streamed || r.closed_by_fingerprint;
         if (r.streamed) {
             const SoupResult& s = *r.streamed;
             any_rounded = true;
@@ -324,11 +327,11 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     if (all) out << "Area and centroid: their guarantees below; inertia: `polyvol measure`.";
     out << "\n";
     out << loaded_notes;
+    if (any_fingerprint)
+        out << "Closed 2-cycle checked by a randomized edge fingerprint (an open surface passes with probability "
+               "< 2^-113; a file that fails is analysed in full and its unbalanced edges reported).\n";
     if (!streamed_notes.empty())
-        out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded): closed 2-cycle by a "
-               "randomized edge fingerprint (an open surface passes with probability < 2^-113; a failing file is "
-               "read in full and its unbalanced edges reported);\n"
-            << streamed_notes;
+        out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded):\n" << streamed_notes;
     return out.str();
 }
 

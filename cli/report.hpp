@@ -24,7 +24,10 @@ struct FileResult {
     int exit_code = Exit::ok;
     std::string error;                       // set when exit_code != ok
     std::optional<LoadedMesh> loaded;        // when the file was read
-    std::optional<TopologyReport> topology;  // when read
+    std::optional<TopologyReport> topology;  // when read (not when closed_by_fingerprint)
+    // Request::closedness_by_fingerprint: the fingerprint found the loaded
+    // mesh closed, so analyze_topology was not run.
+    bool closed_by_fingerprint = false;
     std::optional<MassProperties> mass;      // when measured
     std::string warning;                     // e.g. the origin dependence with --allow-open
     double seconds_read = 0, seconds_measure = 0;
@@ -46,6 +49,11 @@ struct Request {
     // closedness it needs: topology without shells, no second moments, no
     // edge length.
     bool table_only = false;
+    // `volume`'s table: a loaded mesh's closedness by fingerprint_closedness
+    // (measure.hpp; the streamed binary STL's check, on the loaded mesh);
+    // analyze_topology runs only when it does not say closed, to name the
+    // unbalanced edges.
+    bool closedness_by_fingerprint = false;
     // `volume --volume-only`: the volume, its guarantee and the closedness
     // check, nothing else (table and JSON; the JSON keeps the edge counts,
     // not the shells): the streamed pass skips area and first moments, the

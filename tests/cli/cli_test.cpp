@@ -117,6 +117,34 @@ TEST(Cli, OpenSurfaceExitsThreeButStillReports) {
     EXPECT_TRUE(json::parse(open.out)[0].contains("warning"));
 }
 
+TEST(Cli, TableChecksClosednessByFingerprintAndNamesTheEdgesOfOpenSurfaces) {
+    // Every readable corpus file the table loads (binary STL is streamed:
+    // stream_test.cpp): a closed one is measured on the fingerprint's word,
+    // which the table states; an open one is analysed in full, so the error
+    // gives the manifest's count of unbalanced edges.
+    int closed = 0, open = 0;
+    for (const json& e : polyvol::test::corpus_manifest()) {
+        if (polyvol::test::invalid_entry(e)) continue;
+        if (e.value("format", "") == "stl" && e.value("encoding", "") == "binary_le") continue;
+        const std::string rel = e["path"].get<std::string>();
+        SCOPED_TRACE(rel);
+        const CliRun r = polyvol("volume '" + (kCorpus / rel).string() + "'");
+        if (e["topology"]["closed_2_cycle"].get<bool>()) {
+            ++closed;
+            EXPECT_EQ(r.code, 0) << r.err;
+            EXPECT_NE(r.out.find("Closed 2-cycle checked by a randomized edge fingerprint"), std::string::npos) << r.out;
+        } else {
+            ++open;
+            EXPECT_EQ(r.code, 3);
+            const int64_t n = e["topology"]["unbalanced_edges"].get<int64_t>();
+            EXPECT_NE(r.err.find(": " + std::to_string(n) + " unbalanced edge"), std::string::npos) << r.err;
+            EXPECT_NE(r.out.find("open surface: not measured"), std::string::npos) << r.out;
+        }
+    }
+    EXPECT_GE(closed, 30);
+    EXPECT_GE(open, 5);
+}
+
 TEST(Cli, EveryInvalidCorpusFileExitsTwoWithItsName) {
     const json& m = polyvol::test::corpus_manifest();
     ASSERT_FALSE(m.empty()) << "corpus missing";
