@@ -53,6 +53,9 @@ for n in $SIZES; do
   done
 done
 ls -l "$tmp" | sed 's/^/    /'
+# The meshes just written are still being flushed to disk: writeback would
+# take a core from the timed runs (polyvol uses both), so wait for it.
+sync
 
 python3 - "$build" "$tmp" "$RUNS" "$TIMEOUT" "$BIG_TRIANGLES" "$OFFSET" "$tags" "$OPEN3D_TIMEOUT" "$PEERS" <<'PY'
 import os, subprocess, sys, time, statistics, signal
@@ -284,6 +287,7 @@ print(f"## peak RSS on a {big}-triangle binary STL")
 bigf = os.path.join(tmp, "big.stl")
 t0 = time.monotonic()
 subprocess.run([B("bench", "make_mesh"), str(big), offset, bigf], check=True)
+os.sync()  # its writeback would take a core from the timed runs
 print(f"    generated {os.path.getsize(bigf) / 1e9:.2f} GB in {time.monotonic() - t0:.1f} s; MemAvailable "
       + open("/proc/meminfo").read().split("MemAvailable:")[1].split("\n")[0].strip())
 for name, cmd in (("polyvol volume", [B("polyvol"), "volume", bigf]), ("naive (mmap)", [B("bench", "naive_stl_volume"), bigf])):
