@@ -128,11 +128,14 @@ double total_edge_length(const MeshView& mesh);
 // fraction of analyze_topology's time). Keys come from std::random_device
 // (the overload with a seed derives them from it, for reproducible tests).
 //   closed     the fingerprint is zero: a closed 2-cycle; an open surface
-//              gets here with probability < 2^-113 over the keys;
+//              gets here with probability < 2^-113 over the keys (assuming
+//              the keyed hash behaves as a random function: closedness.cpp);
 //   open       certainly not a closed 2-cycle (analyze_topology counts and
 //              names its unbalanced edges);
 //   undecided  a vertex some face uses has a NaN or infinite coordinate
-//              (topology never welds NaN vertices: analyze_topology decides).
+//              (topology never welds NaN vertices), or there are 2^31 - 1
+//              fan triangles or more (beyond the argument): analyze_topology
+//              decides.
 enum class Closedness { closed, open, undecided };
 Closedness fingerprint_closedness(const MeshView& mesh);
 Closedness fingerprint_closedness(const MeshView& mesh, uint64_t seed);

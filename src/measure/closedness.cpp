@@ -8,9 +8,12 @@
 // bit patterns, -0.0 as +0.0), so two vertices at one point are one point, as
 // topology's welding makes them, and a polygon's fan sums to its boundary's
 // terms (the diagonals cancel). The sum is zero for every closed 2-cycle and,
-// for any other surface, nonzero but with probability < 2^-113 over the keys
-// (soup.hpp gives the argument; H here is two keyed multiply-xor chains per
-// point, the assumption soup.hpp states for its portable hash).
+// for any other surface with fewer than p fan triangles, nonzero but with
+// probability < 2^-113 over the keys (soup.hpp gives the argument). That
+// bound assumes, as soup.hpp does for its portable hash, that H behaves as a
+// random function of the point with four independent 31-bit words: H here is
+// two keyed multiply-xor chains over the 192 bits of a point, each giving two
+// words, which is a heuristic hash, not a proven universal family.
 //
 // Cost: one hash per vertex when vertices are shared (an indexed mesh: each
 // read about six times), else one per corner (a soup, every vertex its own),
@@ -60,22 +63,24 @@ Hash point_hash(const double* p, const Keys& key) {
 
 bool finite_point(const double* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
-// The lanes' sums (each < 2^63: folded before 2^28 terms of < 2^34 pile up)
-// and whether a non-finite coordinate was met.
+// The lanes' sums (each < 2^63: folded before 2^28 terms of < 2^34 pile up),
+// the fan triangles summed, and whether a non-finite coordinate was met.
 struct Sums {
     uint64_t s[kLanes] = {};
+    uint64_t triangles = 0;
     bool nonfinite = false;
     void fold_all() {
         for (uint64_t& x : s) x = fp::fold(x);
     }
     void merge(const Sums& o) {
         for (int l = 0; l < kLanes; ++l) s[l] = fp::fold(s[l]) + fp::fold(o.s[l]);
+        triangles += o.triangles;
         nonfinite = nonfinite || o.nonfinite;
     }
 };
 
-constexpr std::size_t kGrain = 8192;                       // faces per task (at most)
-constexpr uint64_t kFoldEvery = uint64_t{1} << 28;         // terms between folds
+constexpr std::size_t kGrain = 8192;               // faces per task (the partitioner's grain)
+constexpr uint64_t kFoldEvery = uint64_t{1} << 12;  // terms between folds (any < 2^28 keeps the sums < 2^63)
 
 // Σ over the fan triangles of the faces, hash(v) giving vertex v's Hash (and
 // false when it has a non-finite coordinate).
@@ -100,6 +105,7 @@ Sums fan_sums(const MeshView& mesh, HashOf hash_of) {
                     }
                     for (int l = 0; l < kLanes; ++l) acc.s[l] += fp::vandermonde(h0[l], h1[l], h2[l]);
                     h1 = h2;
+                    ++acc.triangles;
                     if (++pending == kFoldEvery) {
                         acc.fold_all();
                         pending = 0;
@@ -141,7 +147,9 @@ Closedness closedness_with(const MeshView& mesh, const Keys& key) {
             return true;
         });
     }
-    if (sums.nonfinite) return Closedness::undecided;
+    // The argument needs every edge's net use count below p in magnitude:
+    // certain with fewer than p fan triangles.
+    if (sums.nonfinite || sums.triangles >= fp::kP) return Closedness::undecided;
     for (const uint64_t s : sums.s)
         if (fp::reduce(s) != 0) return Closedness::open;
     return Closedness::closed;
@@ -150,7 +158,7 @@ Closedness closedness_with(const MeshView& mesh, const Keys& key) {
 Keys keys_from_seed(uint64_t seed) {
     Keys key;
     for (auto& chain : key.k)
-        for (auto& x : chain) x = fp::splitmix(seed) | 1;
+        for (auto& x : chain) x = fp::splitmix(seed);
     return key;
 }
 

@@ -10,28 +10,30 @@
 #include <cstdint>
 #include <random>
 
+#include "exact/eft.hpp"  // POLYVOL_INLINE
+
 namespace polyvol::measure::fingerprint {
 
 constexpr uint64_t kP = (uint64_t{1} << 31) - 1;  // the fingerprint field F_p
 constexpr int kLanes = 4;                         // independent lanes (four 31-bit hash words)
 
-inline uint64_t fold(uint64_t x) { return (x & kP) + (x >> 31); }  // ≡ x (mod p)
+POLYVOL_INLINE uint64_t fold(uint64_t x) { return (x & kP) + (x >> 31); }  // ≡ x (mod p)
 
 // (hb - ha)(hc - ha)(hc - hb) mod p as a value < 2^34 congruent to it (h* <= p):
 // the triangle's sum over its directed edges x→y of H(x) H(y)^2 - H(x)^2 H(y).
-inline uint64_t vandermonde(uint64_t ha, uint64_t hb, uint64_t hc) {
+POLYVOL_INLINE uint64_t vandermonde(uint64_t ha, uint64_t hb, uint64_t hc) {
     const uint64_t d1 = hb + kP - ha, d2 = hc + kP - ha, d3 = hc + kP - hb;  // <= 2p < 2^32
     const uint64_t x = fold(fold(d1 * d2));                                  // < 2^31 + 8
     return fold(x * d3);                                                     // < 2^31 + 2^33
 }
 
-inline uint64_t reduce(uint64_t x) {  // x mod p
+POLYVOL_INLINE uint64_t reduce(uint64_t x) {  // x mod p
     x = fold(fold(x));
     return x >= kP ? x - kP : x;
 }
 
 // wyhash's multiply-xor: the two halves of the 128-bit product, xored.
-inline uint64_t mum(uint64_t a, uint64_t b) {
+POLYVOL_INLINE uint64_t mum(uint64_t a, uint64_t b) {
     __extension__ typedef unsigned __int128 u128;
     const u128 r = static_cast<u128>(a) * b;
     return static_cast<uint64_t>(r) ^ static_cast<uint64_t>(r >> 64);

@@ -999,7 +999,7 @@ SoupAccumulator::SoupAccumulator(SoupWants wants) {
     for (auto& k : s_->keys.aes)
         for (auto& x : k) x ^= measure::fingerprint::random_word(rd);
     for (auto& k : s_->keys.mix)
-        for (auto& x : k) x ^= measure::fingerprint::random_word(rd) | 1;
+        for (auto& x : k) x ^= measure::fingerprint::random_word(rd);
 }
 
 SoupAccumulator::SoupAccumulator(uint64_t seed, SoupWants wants) : s_(std::make_unique<State>(seed, wants)) {}
