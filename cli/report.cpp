@@ -329,7 +329,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     out << loaded_notes;
     if (any_fingerprint)
         out << "Closed 2-cycle checked by a randomized edge fingerprint (an open surface passes with probability "
-               "< 2^-113; a file that fails is analysed in full and its unbalanced edges reported).\n";
+               "< 2^-113); a file it finds open, or cannot decide (e.g. a NaN or infinite coordinate), is analysed in full "
+               "and its unbalanced edges reported.\n";
     if (!streamed_notes.empty())
         out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded):\n" << streamed_notes;
     return out.str();

@@ -143,6 +143,15 @@ TEST(Cli, TableChecksClosednessByFingerprintAndNamesTheEdgesOfOpenSurfaces) {
     }
     EXPECT_GE(closed, 30);
     EXPECT_GE(open, 5);
+    // A binary STL measured by another method than cone is loaded, not
+    // streamed: the same check on the loaded mesh.
+    const CliRun torus = polyvol("volume --method prism " + corpus("prusa-slicer/torus.stl"));
+    EXPECT_EQ(torus.code, 0) << torus.err;
+    EXPECT_NE(torus.out.find("Closed 2-cycle checked by a randomized edge fingerprint"), std::string::npos);
+    EXPECT_EQ(torus.out.find("Streamed binary STL"), std::string::npos);
+    const CliRun bunny = polyvol("volume --method prism " + corpus("stl-models/bunny.bin.stl"));
+    EXPECT_EQ(bunny.code, 3);
+    EXPECT_NE(bunny.err.find(" unbalanced edge"), std::string::npos) << bunny.err;
 }
 
 TEST(Cli, EveryInvalidCorpusFileExitsTwoWithItsName) {
