@@ -939,27 +939,6 @@ ConeSums filtered_impl(const MeshView& mesh, bool dd) {
 __extension__ typedef unsigned __int128 u128;
 __extension__ typedef __int128 i128;
 
-constexpr int kLimbs = 6;
-
-// acc += (negative ? -x : x); x has n limbs (magnitude), acc two's complement.
-POLYVOL_INLINE void wide_add(uint64_t* acc, const uint64_t* x, int n, bool negative) {
-    if (!negative) {
-        u128 c = 0;
-        for (int i = 0; i < kLimbs; ++i) {
-            c += static_cast<u128>(acc[i]) + (i < n ? x[i] : 0);
-            acc[i] = static_cast<uint64_t>(c);
-            c >>= 64;
-        }
-    } else {
-        uint64_t borrow = 0;
-        for (int i = 0; i < kLimbs; ++i) {
-            const u128 t = static_cast<u128>(acc[i]) - (i < n ? x[i] : 0) - borrow;
-            acc[i] = static_cast<uint64_t>(t);
-            borrow = static_cast<uint64_t>(t >> 64) != 0 ? 1 : 0;
-        }
-    }
-}
-
 // out[0 .. nx+ny) = x * y (magnitudes).
 POLYVOL_INLINE void wide_mul(const uint64_t* x, int nx, const uint64_t* y, int ny, uint64_t* out) {
     for (int i = 0; i < nx + ny; ++i) out[i] = 0;
@@ -1025,22 +1004,26 @@ bool integer_triangle(const double* a, const double* b, const double* c, uint32_
         B[k] = static_cast<int64_t>(b[k] * scale);
         C[k] = static_cast<int64_t>(c[k] * scale);
     }
-    // det = Σ A_k (B_j C_l - B_l C_j), in a 4-limb two's complement.
-    uint64_t det_tc[kLimbs] = {};
+    // det = Σ A_k x_k, x_k = B_j C_l - B_l C_j (|x_k| < 2^121), as
+    // hi 2^64 + lo: with x_k = xh_k 2^64 + xl_k (xl_k unsigned, |xh_k| <=
+    // 2^57), Σ A_k xl_k (|.| < 3 2^124) and Σ A_k xh_k (< 2^119) in 128-bit
+    // integers, the first's high word carried into the second (|hi| < 2^120).
+    i128 lo_sum = 0, hi = 0;
     for (int k = 0; k < 3; ++k) {
         const int j = (k + 1) % 3, l = (k + 2) % 3;
         const i128 x = static_cast<i128>(B[j]) * C[l] - static_cast<i128>(B[l]) * C[j];
-        uint64_t xm[2], am[1], p[3];
-        bool xn;
-        split_i128(x, xm, xn);
-        am[0] = A[k] < 0 ? static_cast<uint64_t>(0) - static_cast<uint64_t>(A[k]) : static_cast<uint64_t>(A[k]);
-        wide_mul(am, 1, xm, 2, p);
-        wide_add(det_tc, p, 3, xn != (A[k] < 0));
+        lo_sum += static_cast<i128>(A[k]) * static_cast<i128>(static_cast<uint64_t>(x));
+        hi += static_cast<i128>(A[k]) * static_cast<int64_t>(x >> 64);
     }
-    const bool dn = (det_tc[kLimbs - 1] >> 63) != 0;
-    uint64_t d[kLimbs] = {};
-    wide_add(d, det_tc, kLimbs, dn);  // |det|
-    if ((d[0] | d[1] | d[2]) == 0) return true;  // det == 0: every term is 0
+    hi += lo_sum >> 64;  // arithmetic shift: lo_sum = (lo_sum >> 64) 2^64 + its low word
+    uint64_t lo = static_cast<uint64_t>(lo_sum);
+    if (hi == 0 && lo == 0) return true;  // det == 0: every term is 0
+    const bool dn = hi < 0;
+    if (dn) {  // |det| = -(hi 2^64 + lo)
+        hi = -hi - (lo != 0 ? 1 : 0);
+        lo = static_cast<uint64_t>(0) - lo;
+    }
+    const uint64_t d[3] = {lo, static_cast<uint64_t>(hi), static_cast<uint64_t>(hi >> 64)};  // |det| < 2^183
     const int ev = e[0] + e[1] + e[2];
     if (mask & (1u << kV)) acc[kV].add_wide(d, 3, dn, ev);
     int64_t s[3];
