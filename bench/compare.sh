@@ -212,6 +212,7 @@ print("Binary STL, polyvol volume (and volume --volume-only) against the naive l
 print("runs (the order rotating; the shared machine's state drifts, so neighbours compare like with like):")
 print("median of the per-round ratios. warm: the file read once before each run; fresh: its pages evicted")
 print("and read afresh before each run (large folios: the naive loop's best case).")
+interleaved = {}  # (tag, state) -> median of the rounds' volume-only / naive
 for tag in tags:
     f = os.path.join(tmp, f"sphere{tag}.stl")
     cmds = {"polyvol": [B("polyvol"), "volume", f], "volume-only": [B("polyvol"), "volume", "--volume-only", f],
@@ -227,6 +228,7 @@ for tag in tags:
                 t[name] = run_wait4(cmds[name])[0]
             rounds.append(t)
         n = statistics.median(r["naive"] for r in rounds)
+        interleaved[(tag, state)] = statistics.median(r["volume-only"] / r["naive"] for r in rounds)
         line = f"    {tag} {state}: naive {n * 1e3:.1f} ms"
         for name in ("polyvol", "volume-only"):
             ratios = sorted(r[name] / r["naive"] for r in rounds)
@@ -290,11 +292,48 @@ subprocess.run([B("bench", "make_mesh"), str(big), offset, bigf], check=True)
 os.sync()  # its writeback would take a core from the timed runs
 print(f"    generated {os.path.getsize(bigf) / 1e9:.2f} GB in {time.monotonic() - t0:.1f} s; MemAvailable "
       + open("/proc/meminfo").read().split("MemAvailable:")[1].split("\n")[0].strip())
+big_rss = None
 for name, cmd in (("polyvol volume", [B("polyvol"), "volume", bigf]), ("naive (mmap)", [B("bench", "naive_stl_volume"), bigf])):
     r = bench(cmd, 3)
     if r is None:
         print(f"    {name}: timeout")
     else:
+        if name == "polyvol volume":
+            big_rss = r[1] / 1024
         print(f"    {name}: median wall {r[0]:.3f} s, median peak RSS {r[1]/1024:.1f} MB, volume {volume_of('polyvol' if name.startswith('polyvol') else 'naive', r[2])!r}")
+
+# The issue's targets, from this run's own figures (docs/benchmarks.md says
+# how to read them). A ratio is "fastest peer / polyvol" unless said.
+print()
+print("## issue #3 targets in this run")
+for (tag, state), q in sorted(interleaved.items()):
+    print(f"    {tag} binary STL, {state}: volume --volume-only / naive loop, median of rounds {q:.2f} (target <= 1)")
+for tag, ext, res in rows:
+    if not with_peers:
+        break
+    pv = res.get("polyvol")
+    peers = [res[n][0] for n in ("cgal", "vtk", "open3d") if res.get(n)]
+    if pv and peers:
+        print(f"    {tag} {ext}: end to end {min(peers) / pv[0]:.1f}x (target >= 20 for binary STL)")
+    h = res.get("polyvol-harness")
+    if h is None:
+        continue
+    def med(fn, name):
+        xs = [x for x in (fn(name, o) for o in res[name][4]) if x is not None] if res.get(name) else []
+        return statistics.median(xs) if xs else None
+    calls = [c for c in (med(inmem_of, n) for n in ("cgal", "vtk")) if c]
+    loads = [c for c in (med(load_of, n) for n in ("cgal", "vtk")) if c]
+    parts = []
+    for label, x in (("as read", med(inmem_of, "polyvol-harness")), ("welded", med(lambda n, o: field_of(o, 7), "polyvol-harness")),
+                     ("packed", med(lambda n, o: field_of(o, 9), "polyvol-harness"))):
+        if calls and x:
+            parts.append(f"{label} {min(calls) / x:.1f}x")
+    if parts:
+        print(f"    {tag} {ext}: in memory " + ", ".join(parts) + " (target >= 5)")
+    pl = med(load_of, "polyvol-harness")
+    if loads and pl:
+        print(f"    {tag} {ext}: loading {min(loads) / pl:.1f}x (target >= 5 for ASCII STL and PLY)")
+if big_rss is not None:
+    print(f"    {big}-triangle binary STL: peak RSS {big_rss:.1f} MB (target: constant)")
 PY
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
