@@ -34,6 +34,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/canonical_bits.hpp"
 #include "core/classes.hpp"
 #include "core/prefault.hpp"
 #include "polyvol/mesh.hpp"
@@ -41,8 +42,7 @@
 namespace polyvol {
 namespace {
 
-// Bit pattern with -0.0 mapped to +0.0, so the two hash alike.
-uint64_t canonical_bits(double v) { return std::bit_cast<uint64_t>(v == 0.0 ? 0.0 : v); }
+using core::canonical_bits;  // -0.0 and +0.0 hash alike
 
 // Mixes the three bit patterns (multiply-xorshift, as in splitmix64).
 uint64_t position_hash(const double* p) {

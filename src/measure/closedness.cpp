@@ -23,12 +23,12 @@
 #include <tbb/parallel_reduce.h>
 
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
 
+#include "core/canonical_bits.hpp"
 #include "measure/fingerprint.hpp"
 #include "polyvol/measure.hpp"
 
@@ -44,13 +44,11 @@ struct Keys {
     uint64_t k[2][4];  // two chains of four keys
 };
 
-// The bit pattern that identifies a coordinate: -0.0 as +0.0 (they weld).
-uint64_t pattern(double x) { return x == 0 ? 0 : std::bit_cast<uint64_t>(x); }
-
 // H(point): per chain, mum(mum(x ^ k0, y ^ k1) ^ k2, z ^ k3); its two 32-bit
 // halves cut to 31 bits are two lanes.
 Hash point_hash(const double* p, const Keys& key) {
-    const uint64_t x = pattern(p[0]), y = pattern(p[1]), z = pattern(p[2]);
+    // The patterns weld_vertices compares (-0.0 as +0.0: they weld).
+    const uint64_t x = core::canonical_bits(p[0]), y = core::canonical_bits(p[1]), z = core::canonical_bits(p[2]);
     Hash h;
     for (int c = 0; c < 2; ++c) {
         const uint64_t* k = key.k[c];
