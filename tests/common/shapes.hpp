@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "polyvol/mesh.hpp"
 
@@ -65,6 +66,19 @@ inline Mesh box(std::array<double, 3> lo, std::array<double, 3> hi, BoxOptions o
     Mesh m;
     add_box(m, lo, hi, o);
     return m;
+}
+
+// Every face with its own vertices, as an STL file stores a mesh.
+inline Mesh unwelded(const Mesh& in) {
+    Mesh out;
+    const MeshView v = in.view();
+    for (std::size_t f = 0; f < v.face_count(); ++f) {
+        std::vector<uint32_t> face;
+        for (uint32_t i : v.face(f))
+            face.push_back(out.add_vertex(in.positions[3 * i], in.positions[3 * i + 1], in.positions[3 * i + 2]));
+        out.add_face(face);
+    }
+    return out;
 }
 
 }  // namespace polyvol::test

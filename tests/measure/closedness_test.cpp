@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/manifest.hpp"
+#include "common/shapes.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/mesh.hpp"
@@ -78,26 +79,9 @@ TEST(Closedness, EveryCorpusMeshAgreesWithTheManifestOnBothPaths) {
     EXPECT_GE(open, 10);
 }
 
-// A cube of six quads (outward), vertices 0..7 at the corners of [0,1]^3.
-Mesh cube() {
-    Mesh m;
-    for (int i = 0; i < 8; ++i) m.add_vertex(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) m.add_face(q);
-    return m;
-}
-
-// The faces of m as a soup: every corner its own vertex (as an STL reads).
-Mesh soup_of(const Mesh& m) {
-    Mesh out;
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-        std::vector<uint32_t> face;
-        for (const uint32_t v : m.view().face(f))
-            face.push_back(out.add_vertex(m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]));
-        out.add_face(face);
-    }
-    return out;
-}
+// The unit cube as six quads (common/shapes.hpp: vertex i at corner
+// (i & 1, i >> 1 & 1, i >> 2 & 1); face 0 is {0, 2, 3, 1}, face 2 {0, 1, 5, 4}).
+Mesh cube() { return test::box({0, 0, 0}, {1, 1, 1}, {.quads = true}); }
 
 // Faces of m, the k-th replaced by `face` (or dropped when empty), plus `extra`.
 Mesh edited(const Mesh& m, std::size_t k, std::vector<uint32_t> face, std::vector<std::vector<uint32_t>> extra = {}) {
@@ -114,7 +98,7 @@ Mesh edited(const Mesh& m, std::size_t k, std::vector<uint32_t> face, std::vecto
 
 // Both paths (indexed and as a soup), two keys.
 void expect_closedness(const Mesh& m, Closedness want) {
-    for (const Mesh& x : {m, soup_of(m), with_unused_vertices(m)})
+    for (const Mesh& x : {m, test::unwelded(m), with_unused_vertices(m)})
         for (uint64_t seed : {7u, 8u}) EXPECT_EQ(fingerprint_closedness(x.view(), seed), want);
 }
 

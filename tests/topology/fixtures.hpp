@@ -38,17 +38,4 @@ inline Mesh quad_torus(uint32_t n, uint32_t k) {
     return m;
 }
 
-// Every triangle with its own three vertices, as an STL file stores it.
-inline Mesh unwelded(const Mesh& in) {
-    Mesh out;
-    const MeshView v = in.view();
-    for (std::size_t f = 0; f < v.face_count(); ++f) {
-        std::vector<uint32_t> face;
-        for (uint32_t i : v.face(f))
-            face.push_back(out.add_vertex(in.positions[3 * i], in.positions[3 * i + 1], in.positions[3 * i + 2]));
-        out.add_face(face);
-    }
-    return out;
-}
-
 }  // namespace polyvol::test
