@@ -253,13 +253,15 @@ print("call, with the call's ratio; the same correctly rounded volume.")
 print()
 print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | polyvol call, welded s | welded call ratio | welded load s | welded load ratio | packed load s | packed call s | packed call ratio | fastest/5 s | read loop s | naive det s |")
 print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+def med(fn, name, r):
+    """Median over a tool's runs of fn(name, output); None when no run gave a figure."""
+    xs = [x for x in (fn(name, o) for o in r[4]) if x is not None]
+    return statistics.median(xs) if xs else None
+harness = {}  # (tag, ext) -> (fastest peer load, fastest peer call, polyvol load, call, welded call, packed call)
 for tag, ext, res in rows:
     h = res.get("polyvol-harness")
     if h is None:
         continue
-    def med(fn, name, r):
-        xs = [x for x in (fn(name, o) for o in r[4]) if x is not None]
-        return statistics.median(xs) if xs else None
     pl, pc = med(load_of, "polyvol-harness", h), med(inmem_of, "polyvol-harness", h)
     pw = med(lambda n, o: field_of(o, 7), "polyvol-harness", h)
     pwl = med(lambda n, o: field_of(o, 10), "polyvol-harness", h)
@@ -269,6 +271,7 @@ for tag, ext, res in rows:
     calls = {n: med(inmem_of, n, res[n]) for n in ("cgal", "vtk") if res.get(n)}
     fl = min([x for x in loads.values() if x], default=None)
     fc = min([x for x in calls.values() if x], default=None)
+    harness[(tag, ext)] = (fl, fc, pl, pc, pw, pp)
     fmt = lambda x: "" if x is None else f"{x:.4f}"
     print(f"| {tag} | {ext} | {fmt(pl)} | {fmt(loads.get('cgal'))} | {fmt(loads.get('vtk'))} | "
           f"{'' if not (fl and pl) else f'{fl / pl:.1f}'} | {fmt(pc)} | {fmt(calls.get('cgal'))} | {fmt(calls.get('vtk'))} | "
@@ -309,30 +312,16 @@ print("## issue #3 targets in this run")
 for (tag, state), q in sorted(interleaved.items()):
     print(f"    {tag} binary STL, {state}: volume --volume-only / naive loop, median of rounds {q:.2f} (target <= 1)")
 for tag, ext, res in rows:
-    if not with_peers:
-        break
     pv = res.get("polyvol")
     peers = [res[n][0] for n in ("cgal", "vtk", "open3d") if res.get(n)]
     if pv and peers:
         print(f"    {tag} {ext}: end to end {min(peers) / pv[0]:.1f}x (target >= 20 for binary STL)")
-    h = res.get("polyvol-harness")
-    if h is None:
-        continue
-    def med(fn, name):
-        xs = [x for x in (fn(name, o) for o in res[name][4]) if x is not None] if res.get(name) else []
-        return statistics.median(xs) if xs else None
-    calls = [c for c in (med(inmem_of, n) for n in ("cgal", "vtk")) if c]
-    loads = [c for c in (med(load_of, n) for n in ("cgal", "vtk")) if c]
-    parts = []
-    for label, x in (("as read", med(inmem_of, "polyvol-harness")), ("welded", med(lambda n, o: field_of(o, 7), "polyvol-harness")),
-                     ("packed", med(lambda n, o: field_of(o, 9), "polyvol-harness"))):
-        if calls and x:
-            parts.append(f"{label} {min(calls) / x:.1f}x")
+    fl, fc, pl, pc, pw, pp = harness.get((tag, ext), (None,) * 6)
+    parts = [f"{label} {fc / x:.1f}x" for label, x in (("as read", pc), ("welded", pw), ("packed", pp)) if fc and x]
     if parts:
         print(f"    {tag} {ext}: in memory " + ", ".join(parts) + " (target >= 5)")
-    pl = med(load_of, "polyvol-harness")
-    if loads and pl:
-        print(f"    {tag} {ext}: loading {min(loads) / pl:.1f}x (target >= 5 for ASCII STL and PLY)")
+    if fl and pl:
+        print(f"    {tag} {ext}: loading {fl / pl:.1f}x (target >= 5 for ASCII STL and PLY)")
 if big_rss is not None:
     print(f"    {big}-triangle binary STL: peak RSS {big_rss:.1f} MB (target: constant)")
 PY
