@@ -101,10 +101,11 @@
 // all ten filtered sums 31 (double-double) / 15 (fast), exact volume 55,
 // all ten exact 148. Blocks are processed in parallel (TBB). With AVX-512
 // (the same machine class, 2 cores, polyvol_bench, a welded 1M-triangle
-// sphere): the double-double volume takes 2.2 ms around (1e6, 1e6, 1e6)
-// (translated form) and 1.5 ms around the origin (origin form), about 4.2
-// and 2.9 ns per triangle per core, where a plain double loop over the same
-// arrays takes about 2.6.
+// sphere, the rows of each block built in registers): the double-double
+// volume takes 2.1 ms around (1e6, 1e6, 1e6) (translated form) and 1.4 ms
+// around the origin (origin form), about 4.0 and 2.7 ns per triangle per
+// core (with the Block in between: 2.5 and 1.7 ms), where a plain double
+// loop over the same arrays takes about 2.6.
 #include "measure/cone.hpp"
 
 #include <tbb/blocked_range.h>
@@ -438,6 +439,22 @@ void accumulate(const Terms<N>& t, bool dd, Accumulator<N>& acc) {
 // Calls fn(block) for blocks of up to kBlock fan triangles of faces
 // [f0, f1) (all-triangle meshes: triangles [f0, f1)).
 #if POLYVOL_HAVE_FMA_CLONE
+// Whether every index of a block (t: its 96 indices) is below nv - 1, so
+// that a 256-bit load at each vertex (one double past it) stays inside the
+// nv vertices' positions.
+__attribute__((target("avx2"))) inline bool block_loads_within(std::size_t nv, const uint32_t* t) {
+    if (nv == 0) return false;
+    if (nv - 1 > std::numeric_limits<uint32_t>::max()) return true;  // every index is below nv - 1
+    // Some index >= nv - 1: max(index, nv - 1) == index (unsigned).
+    const __m256i last = _mm256_set1_epi32(static_cast<int>(static_cast<uint32_t>(nv - 1)));
+    __m256i far = _mm256_setzero_si256();
+    for (int j = 0; j < 3 * kBlock; j += 8) {
+        const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t + j));
+        far = _mm256_or_si256(far, _mm256_cmpeq_epi32(_mm256_max_epu32(x, last), x));
+    }
+    return _mm256_testz_si256(far, far);
+}
+
 // A whole block of an all-triangle mesh (t: its 96 indices, pos: the
 // positions of nv vertices) with AVX2: per 4 triangles and vertex, each
 // vertex's (x, y, z, next) by one 256-bit load, then a 4 x 4 transpose
@@ -446,22 +463,14 @@ void accumulate(const Terms<N>& t, bool dd, Accumulator<N>& acc) {
 // load reads one double past the vertex, so a block that uses the last
 // vertex (or an index out of range) is left to the caller (false).
 // Measured on AMD Zen 5 against other ways: as fast as 512-bit registers
-// (vertex i and i + 4 in one register, permutations across 512 bits);
-// hardware gathers, and masked loads of exactly three doubles, are much
-// slower than this.
+// (vertex i and i + 4 in one register, permutations across 512 bits) when
+// the rows still go through the Block; hardware gathers, and masked loads
+// of exactly three doubles, are much slower than this. With AVX-512 the
+// volume pass builds the rows in registers instead and never stores them
+// (volume_block_in_registers); this one serves AVX2.
 __attribute__((target("avx2"))) inline bool gather_block_avx2(const double* pos, std::size_t nv, const uint32_t* t,
                                                                 Block& b) {
-    if (nv == 0) return false;
-    if (nv - 1 <= std::numeric_limits<uint32_t>::max()) {  // else every index is below nv - 1
-        // Some index >= nv - 1: max(index, nv - 1) == index (unsigned).
-        const __m256i last = _mm256_set1_epi32(static_cast<int>(static_cast<uint32_t>(nv - 1)));
-        __m256i far = _mm256_setzero_si256();
-        for (int j = 0; j < 3 * kBlock; j += 8) {
-            const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t + j));
-            far = _mm256_or_si256(far, _mm256_cmpeq_epi32(_mm256_max_epu32(x, last), x));
-        }
-        if (!_mm256_testz_si256(far, far)) return false;
-    }
+    if (!block_loads_within(nv, t)) return false;
     for (int g = 0; g < kBlock; g += 4) {
         for (int v = 0; v < 3; ++v) {
             __m256d r[4];
@@ -630,29 +639,26 @@ struct VolumeSums {
     double s, e, m;
 };
 
-template <bool kFma, bool kTranslate = true>
-POLYVOL_INLINE void volume_block(const Block& b, VolumeSums& out) {
-    Terms<1> t;
-    block_terms<kFma, true, 1, kTranslate>(b, t);
-    // Sum2: lane j holds triangles j, j + 8, j + 16, j + 24. The origin form
-    // has no per-triangle magnitudes (out.m = 0; volume_sums bounds them).
-    V8 S, E, M = {};
-    vload(S, t.h[kV]);
-    vload(E, t.l[kV]);
-    if constexpr (kTranslate) vload(M, t.m[kV]);
+// A block's 32 (h, lo) pairs and magnitudes (translated form) summed:
+// H[r], L[r], P[r] hold triangles 8r .. 8r + 7, so lane j takes triangles
+// j, j + 8, j + 16, j + 24 (Sum2 in 8 lanes of 4; see the top of this file).
+// Shared by volume_block and the AVX-512 kernel that forms the terms in
+// registers (volume_block_in_registers): the same additions in the same
+// order, hence the same bits.
+template <bool kTranslate>
+POLYVOL_INLINE void sum_volume_lanes(const V8 (&H)[kVolPerLane], const V8 (&L)[kVolPerLane],
+                                     const V8 (&P)[kVolPerLane], VolumeSums& out) {
+    // The origin form has no per-triangle magnitudes (out.m = 0;
+    // volume_sums bounds them).
+    V8 S = H[0], E = L[0], M = {};
+    if constexpr (kTranslate) M = P[0];
     #pragma GCC unroll 4
     for (int r = 1; r < kVolPerLane; ++r) {
-        V8 H, L, ns, ne;
-        vload(H, t.h[kV] + r * kVolLanes);
-        vload(L, t.l[kV] + r * kVolLanes);
-        two_sum_lanes(S, H, ns, ne);
+        V8 ns, ne;
+        two_sum_lanes(S, H[r], ns, ne);
         S = ns;
-        E += ne + L;
-        if constexpr (kTranslate) {
-            V8 P;
-            vload(P, t.m[kV] + r * kVolLanes);
-            M += P;
-        }
+        E += ne + L[r];
+        if constexpr (kTranslate) M += P[r];
     }
     // The lanes into one pair: a two_sum tree (8 -> 4 -> 2 -> 1), the errors
     // of each level added to the lanes' error terms.
@@ -665,6 +671,19 @@ POLYVOL_INLINE void volume_block(const Block& b, VolumeSums& out) {
     out.s = s1;
     out.e = (e2[0] + e2[1]) + t1;
     out.m = m2[0] + m2[1];
+}
+
+template <bool kFma, bool kTranslate = true>
+POLYVOL_INLINE void volume_block(const Block& b, VolumeSums& out) {
+    Terms<1> t;
+    block_terms<kFma, true, 1, kTranslate>(b, t);
+    V8 H[kVolPerLane], L[kVolPerLane], P[kVolPerLane] = {};
+    for (int r = 0; r < kVolPerLane; ++r) {
+        vload(H[r], t.h[kV] + r * kVolLanes);
+        vload(L[r], t.l[kV] + r * kVolLanes);
+        if constexpr (kTranslate) vload(P[r], t.m[kV] + r * kVolLanes);
+    }
+    sum_volume_lanes<kTranslate>(H, L, P, out);
 }
 
 // The range check of a block's coordinates (zero slots pass): over the bit
@@ -721,6 +740,122 @@ POLYVOL_INLINE void range_block(const Block& b, U8& hi, U8& lo) {
 // still far below what deciding the rounding needs (likely_volume_form).
 double origin_magnitude(double M, std::size_t n) { return (M * M) * (M * (6.0 * static_cast<double>(n))); }
 
+#if POLYVOL_HAVE_FMA_CLONE
+// ---- the AVX-512 volume pass in registers ----------------------------------
+//
+// With AVX-512 a whole block of an all-triangle mesh goes from the positions
+// to its VolumeSums without the Block in between: each group of 8
+// triangles' rows of coordinates is built in registers (rows_of_vertex),
+// its terms formed there (volume_terms8: terms_dd's operations, lane by
+// lane) and the 4 groups summed by sum_volume_lanes, as volume_block sums
+// the Block's. Every operation is the scalar code's, elementwise (FMA only
+// where two_prod has one), so the bits are the same as on every other path.
+// What it saves is the Block's stores and reloads (9 rows of 32 doubles a
+// block): 0.81 of the time with the Block around the origin, 0.86 far
+// from it (polyvol_bench, welded 1M-triangle sphere, 2 cores).
+#define POLYVOL_AVX512_INLINE \
+    __attribute__((always_inline, target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) inline
+
+// The permutations below are the _mm512_mask_ forms with every lane
+// selected: the same instructions, without the plain forms' undefined
+// source operand (that GCC 12 reports as used uninitialized).
+constexpr __mmask8 kAllLanes = 0xFF;
+
+// Vertices i and j's (x, y, z, next) in the low and high halves.
+POLYVOL_AVX512_INLINE __m512d two_vertices(const double* p, const double* q) {
+    const __m512d low = _mm512_castpd256_pd512(_mm256_loadu_pd(p));
+    return _mm512_mask_insertf64x4(low, kAllLanes, low, _mm256_loadu_pd(q), 1);
+}
+
+// Vertex v (0, 1, 2) of 8 triangles (t: their 24 indices) as rows of x, y
+// and z, lane j from triangle j. Triangles j and j + 2 of each four share a
+// register, the order in which per-128-bit-lane unpacks and a selection of
+// 128-bit lanes put the rows back together. Each load reads one double past
+// its vertex (block_loads_within).
+POLYVOL_AVX512_INLINE void rows_of_vertex(const double* pos, const uint32_t* t, int v, V8 (&row)[3]) {
+    const double* p[8];
+    for (int i = 0; i < 8; ++i) p[i] = pos + 3 * std::size_t{t[3 * i + v]};
+    const __m512d r0 = two_vertices(p[0], p[2]), r1 = two_vertices(p[1], p[3]);
+    const __m512d r2 = two_vertices(p[4], p[6]), r3 = two_vertices(p[5], p[7]);
+    const __m512d lo01 = _mm512_mask_unpacklo_pd(r0, kAllLanes, r0, r1);  // x0 x1 | z0 z1 | x2 x3 | z2 z3
+    const __m512d hi01 = _mm512_mask_unpackhi_pd(r0, kAllLanes, r0, r1);  // y0 y1 | .  .  | y2 y3 | .  .
+    const __m512d lo23 = _mm512_mask_unpacklo_pd(r2, kAllLanes, r2, r3);  // x4 x5 | z4 z5 | x6 x7 | z6 z7
+    const __m512d hi23 = _mm512_mask_unpackhi_pd(r2, kAllLanes, r2, r3);
+    row[0] = _mm512_mask_shuffle_f64x2(lo01, kAllLanes, lo01, lo23, 0x88);  // 128-bit lanes 0 and 2 of each
+    row[1] = _mm512_mask_shuffle_f64x2(hi01, kAllLanes, hi01, hi23, 0x88);
+    row[2] = _mm512_mask_shuffle_f64x2(lo01, kAllLanes, lo01, lo23, 0xDD);  // lanes 1 and 3
+}
+
+// x y - p with one rounding (std::fma(x, y, -p) in each lane).
+POLYVOL_AVX512_INLINE V8 fms_lanes(const V8& x, const V8& y, const V8& p) { return _mm512_fmsub_pd(x, y, p); }
+POLYVOL_AVX512_INLINE V8 abs_lanes(const V8& x) { return (V8)((U8)x & kAbsMask); }
+
+// terms_dd<true, 1, kTranslate> for 8 triangles (a, b, c: rows of x, y, z):
+// the same operations in the same order, in each lane.
+template <bool kTranslate>
+POLYVOL_AVX512_INLINE void volume_terms8(const V8 (&a)[3], const V8 (&bb)[3], const V8 (&cc)[3], V8& h, V8& lo,
+                                         V8& perm) {
+    V8 uh[3], ul[3] = {}, wh[3], wl[3] = {};
+    for (int k = 0; k < 3; ++k) {
+        if constexpr (kTranslate) {
+            two_sum_lanes(bb[k], -a[k], uh[k], ul[k]);
+            two_sum_lanes(cc[k], -a[k], wh[k], wl[k]);
+        } else {
+            uh[k] = bb[k];
+            wh[k] = cc[k];
+        }
+    }
+    V8 ns[3], nl[3], pn[3], corr[3];
+    for (int k = 0; k < 3; ++k) {
+        const int j = (k + 1) % 3, l = (k + 2) % 3;
+        const V8 p1 = uh[j] * wh[l], e1 = fms_lanes(uh[j], wh[l], p1);
+        const V8 p2 = uh[l] * wh[j], e2 = fms_lanes(uh[l], wh[j], p2);
+        V8 tt;
+        two_sum_lanes(p1, -p2, ns[k], tt);
+        nl[k] = (e1 - e2) + tt;
+        if constexpr (kTranslate) {
+            pn[k] = abs_lanes(p1) + abs_lanes(p2);
+            corr[k] = ((uh[j] * wl[l] - uh[l] * wl[j]) + (ul[j] * wh[l] - ul[l] * wh[j])) +
+                      (ul[j] * wl[l] - ul[l] * wl[j]);
+        }
+    }
+    V8 P[3], Q[3];
+    for (int k = 0; k < 3; ++k) {
+        P[k] = a[k] * ns[k];
+        Q[k] = fms_lanes(a[k], ns[k], P[k]);
+    }
+    V8 h1, g1, g2;
+    two_sum_lanes(P[0], P[1], h1, g1);
+    two_sum_lanes(h1, P[2], h, g2);
+    lo = ((g1 + g2) + ((Q[0] + Q[1]) + Q[2])) + ((a[0] * nl[0] + a[1] * nl[1]) + a[2] * nl[2]);
+    if constexpr (kTranslate) {
+        lo += (a[0] * corr[0] + a[1] * corr[1]) + a[2] * corr[2];
+        perm = (abs_lanes(a[0]) * pn[0] + abs_lanes(a[1]) * pn[1]) + abs_lanes(a[2]) * pn[2];
+    }
+}
+
+// One whole block (t: its 96 indices; block_loads_within holds) into out,
+// as volume_block on the gathered Block; kCheck: its coordinates into the
+// range check's lanes, as range_block (the same values, so the same
+// extremes).
+template <bool kTranslate, bool kCheck>
+__attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) inline void
+volume_block_in_registers(const double* pos, const uint32_t* t, VolumeSums& out, U8& hi, U8& lo) {
+    V8 H[kVolPerLane], L[kVolPerLane], P[kVolPerLane] = {};
+    for (int r = 0; r < kVolPerLane; ++r) {
+        V8 x[3][3];  // [vertex][axis]
+        for (int v = 0; v < 3; ++v) rows_of_vertex(pos, t + 3 * kVolLanes * r, v, x[v]);
+        if constexpr (kCheck) {
+            for (int v = 0; v < 3; ++v)
+                for (int k = 0; k < 3; ++k) extremes_step((U8)x[v][k], hi, lo);
+        }
+        volume_terms8<kTranslate>(x[0], x[1], x[2], H[r], L[r], P[r]);
+    }
+    sum_volume_lanes<kTranslate>(H, L, P, out);
+}
+#undef POLYVOL_AVX512_INLINE
+#endif
+
 constexpr int kGroupBlocks = 4;  // blocks per superaccumulator pair (volume_faces)
 
 // Per task: the exact sum of the blocks' pairs, of their magnitudes
@@ -760,9 +895,7 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
     // per group instead of per block; see the top of this file).
     double gs = 0, ge = 0;
     int grouped = 0;
-    for_each_block<kLevel>(mesh, f0, f1, [&](const Block& b) __attribute__((always_inline)) {
-        VolumeSums v;
-        volume_block<kFma, kTranslate>(b, v);
+    const auto add = [&](const VolumeSums& v, int n) __attribute__((always_inline)) {
         if (grouped == 0) {
             gs = v.s;
             ge = v.e;
@@ -777,10 +910,42 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
             acc.sum.add(ge);
             grouped = 0;
         }
-        if constexpr (kCheck) range_block(b, hi, lo);
         if constexpr (kTranslate) magnitude += v.m;
-        triangles += static_cast<std::size_t>(b.n);
-    });
+        triangles += static_cast<std::size_t>(n);
+    };
+    const auto per_block = [&](const Block& b) __attribute__((always_inline)) {
+        VolumeSums v;
+        volume_block<kFma, kTranslate>(b, v);
+        if constexpr (kCheck) range_block(b, hi, lo);
+        add(v, b.n);
+    };
+    bool walked = false;
+#if POLYVOL_HAVE_FMA_CLONE
+    if constexpr (kLevel >= 2) {
+        if (mesh.all_triangles()) {
+            // Whole blocks in registers where their loads stay inside the
+            // positions, else through the Block (the scalar gather); then
+            // the rest as one partial block: the blocks of for_each_block.
+            const double* pos = mesh.positions.data();
+            const uint32_t* idx = mesh.indices.data();
+            const std::size_t nv = mesh.vertex_count();
+            std::size_t f = f0;
+            for (; f + kBlock <= f1; f += kBlock) {
+                const uint32_t* t = idx + 3 * f;
+                if (block_loads_within(nv, t)) {
+                    VolumeSums v;
+                    volume_block_in_registers<kTranslate, kCheck>(pos, t, v, hi, lo);
+                    add(v, kBlock);
+                } else {
+                    for_each_block<0>(mesh, f, f + kBlock, per_block);
+                }
+            }
+            if (f < f1) for_each_block<0>(mesh, f, f1, per_block);
+            walked = true;
+        }
+    }
+#endif
+    if (!walked) for_each_block<kLevel>(mesh, f0, f1, per_block);
     if (grouped > 0) {
         acc.sum.add(gs);
         acc.sum.add(ge);
