@@ -88,9 +88,10 @@
 // coordinate), sums in mpz: exact for any finite input.
 //
 // Range check. The filtered and exact paths need Range::safe (cone.hpp).
-// The double-double volume alone checks every position first when each
-// vertex is read about twice or more (at least two indices per vertex) or
-// below AVX-512 (position_extremes: 4 integer operations per 8 coordinates);
+// The double-double volume alone checks every position when each vertex
+// is read about twice or more (at least two indices per vertex) or below
+// AVX-512 (extremes_of: 4 integer operations per 8 coordinates), each task
+// of the pass a slice of them beside its faces (RangeCheck::positions);
 // with AVX-512, a soup, or positions out of range somewhere, the pass checks
 // the coordinates it reads (range_block), so vertices no face uses do not
 // matter. Everything else calls coordinate_range (every position).
@@ -732,6 +733,24 @@ POLYVOL_INLINE void range_block(const Block& b, U8& hi, U8& lo) {
         }
 }
 
+// The extremes of the bit patterns of |x| over positions (as range_block),
+// 8 independent lanes per chunk (one running max/min would serialise on its
+// latency), chunks on oneTBB (the pass is bound by memory). Compiled for
+// AVX-512 too, where the 64-bit minimum and maximum are single instructions.
+POLYVOL_INLINE void extremes_of(const double* x, std::size_t n, Extremes& e) {
+    U8 hi = {}, lo = ~U8{};
+    std::size_t i = 0;
+    for (; i + kVolLanes <= n; i += kVolLanes) {
+        U8 v;
+        vload(v, x + i);
+        extremes_step(v, hi, lo);
+    }
+    e.merge(hi, lo);
+    for (; i < n; ++i) {
+        const uint64_t a = std::bit_cast<uint64_t>(x[i]) & kAbsMask;
+        e.merge(Extremes{a, a - 1});
+    }
+}
 // The origin form's magnitude: 6 M^3 n >= Σ Perm over n triangles whose
 // coordinates are at most M in magnitude (Perm = Σ_i |a_i| (|b_j c_k| +
 // |b_k c_j|) <= 6 M^3 per triangle). Rounded three times (relative error
@@ -871,17 +890,25 @@ struct VolumeAccumulator {
     bool safe() const { return range.safe(); }
 };
 
+// What a volume pass checks of the coordinates' range (acc.range):
+//   none: nothing (the caller has; acc.range is never safe());
+//   referenced: the coordinates the pass reads (range_block; AVX-512 only:
+//     before it there are no 64-bit integer minimum and maximum, and a
+//     check in floating point (7 operations per vector) cost more than a
+//     separate pass over the positions: AVX2 + FMA +19% against +15%,
+//     baseline +25% against +4%, measured);
+//   positions: every position, each task a slice of them in proportion to
+//     its faces (extremes_of), read while the task's blocks are computed,
+//     where a separate pass before (position_extremes) read them alone.
+enum class RangeCheck { none, referenced, positions };
+
 // Faces [f0, f1) into acc. The blocks' magnitudes (translated form) are
 // summed in double over the range (a fixed range: the same bits for every
-// split of the work), then added exactly. kCheck: the range check of the
-// coordinates the pass reads (range_block; AVX-512 only: before it there
-// are no 64-bit integer minimum and maximum, and a check in floating point
-// (7 operations per vector) cost more than a separate pass over the
-// positions: AVX2 + FMA +19% against +15%, baseline +25% against +4%,
-// measured). Everything is inlined into the per-level entry points below.
-template <bool kFma, int kLevel, bool kTranslate, bool kCheck>
+// split of the work), then added exactly; kCheck as above. Everything is
+// inlined into the per-level entry points below.
+template <bool kFma, int kLevel, bool kTranslate, RangeCheck kCheck>
 POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
-    static_assert(!kCheck || kLevel >= 2);
+    static_assert(kCheck != RangeCheck::referenced || kLevel >= 2);
     U8 hi = {}, lo = ~U8{};
     double magnitude = 0;
     std::size_t triangles = 0;
@@ -911,12 +938,12 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
     const auto per_block = [&](const Block& b) __attribute__((always_inline)) {
         VolumeSums v;
         volume_block<kFma, kTranslate>(b, v);
-        if constexpr (kCheck) range_block(b, hi, lo);
+        if constexpr (kCheck == RangeCheck::referenced) range_block(b, hi, lo);
         add(v, b.n);
     };
     bool walked = false;
 #if POLYVOL_HAVE_FMA_CLONE
-    if constexpr (kLevel >= 2 && !kCheck) {
+    if constexpr (kLevel >= 2 && kCheck != RangeCheck::referenced) {
         if (mesh.all_triangles()) {
             // Whole blocks in registers where their loads stay inside the
             // positions, else through the Block (the scalar gather); then
@@ -950,8 +977,16 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
     }
     acc.magnitude.add(magnitude);
     acc.triangles += triangles;
-    if constexpr (kCheck) {
+    if constexpr (kCheck == RangeCheck::referenced) {
         acc.range.merge(hi, lo);
+    } else if constexpr (kCheck == RangeCheck::positions) {
+        // Vertices [f0 nv / nf, f1 nv / nf): the ranges' slices tile them.
+        __extension__ typedef unsigned __int128 u128;
+        const std::size_t nv = mesh.vertex_count(), nf = mesh.face_count();
+        const auto v0 = static_cast<std::size_t>(u128{f0} * nv / nf), v1 = static_cast<std::size_t>(u128{f1} * nv / nf);
+        Extremes e;
+        extremes_of(mesh.positions.data() + 3 * v0, 3 * (v1 - v0), e);
+        acc.range.merge(e);
     } else {
         acc.range.hi = ~uint64_t{0};  // not checked: never safe()
     }
@@ -959,22 +994,22 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
 
 #if POLYVOL_HAVE_FMA_CLONE
 #define POLYVOL_AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512")))
-template <bool kTranslate, bool kCheck>
+template <bool kTranslate, RangeCheck kCheck>
 POLYVOL_AVX512 void volume_faces_avx512(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
     volume_faces<true, 2, kTranslate, kCheck>(mesh, f0, f1, acc);
 }
 POLYVOL_AVX512 void volume_block_avx512(const Block& b, VolumeSums& out) { volume_block<true>(b, out); }
 #undef POLYVOL_AVX512
-template <bool kTranslate>
+template <bool kTranslate, RangeCheck kCheck>
 __attribute__((target("avx2,fma"))) void volume_faces_fma(const MeshView& mesh, std::size_t f0, std::size_t f1,
                                                           VolumeAccumulator& acc) {
-    volume_faces<true, 1, kTranslate, false>(mesh, f0, f1, acc);
+    volume_faces<true, 1, kTranslate, kCheck>(mesh, f0, f1, acc);
 }
 __attribute__((target("avx2,fma"))) void volume_block_fma(const Block& b, VolumeSums& out) { volume_block<true>(b, out); }
 #endif
-template <bool kTranslate>
+template <bool kTranslate, RangeCheck kCheck>
 void volume_faces_base(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
-    volume_faces<false, 0, kTranslate, false>(mesh, f0, f1, acc);
+    volume_faces<false, 0, kTranslate, kCheck>(mesh, f0, f1, acc);
 }
 void volume_block_base(const Block& b, VolumeSums& out) { volume_block<false>(b, out); }
 
@@ -1000,22 +1035,33 @@ void volume_block_any(const Block& b, VolumeSums& out) {
     volume_block_base(b, out);
 }
 
-// The pass with the kernels of `level` (from volume_level()) in the given
-// form; check (level 2 only): the range check in the pass.
-VolumeAccumulator volume_pass(const MeshView& mesh, int level, VolumeForm form, bool check) {
-    using Fn = void (*)(const MeshView&, std::size_t, std::size_t, VolumeAccumulator&);
-    const bool translate = form == VolumeForm::translated;
-    Fn fn = translate ? volume_faces_base<true> : volume_faces_base<false>;
+using VolumeFacesFn = void (*)(const MeshView&, std::size_t, std::size_t, VolumeAccumulator&);
+
+// The per-level entry point of volume_faces for a form and a check.
+template <RangeCheck kCheck>
+VolumeFacesFn volume_faces_of(int level, bool translate) {
 #if POLYVOL_HAVE_FMA_CLONE
-    if (level == 2) {
-        fn = translate ? (check ? volume_faces_avx512<true, true> : volume_faces_avx512<true, false>)
-                       : (check ? volume_faces_avx512<false, true> : volume_faces_avx512<false, false>);
-    } else if (level == 1) {
-        fn = translate ? volume_faces_fma<true> : volume_faces_fma<false>;
+    if (level == 2) return translate ? volume_faces_avx512<true, kCheck> : volume_faces_avx512<false, kCheck>;
+    if constexpr (kCheck != RangeCheck::referenced) {
+        if (level == 1) return translate ? volume_faces_fma<true, kCheck> : volume_faces_fma<false, kCheck>;
     }
 #else
     (void)level;
 #endif
+    if constexpr (kCheck == RangeCheck::referenced) {
+        return nullptr;  // level 2 only
+    } else {
+        return translate ? volume_faces_base<true, kCheck> : volume_faces_base<false, kCheck>;
+    }
+}
+
+// The pass with the kernels of `level` (from volume_level()) in the given
+// form and with the given check (referenced: level 2 only).
+VolumeAccumulator volume_pass(const MeshView& mesh, int level, VolumeForm form, RangeCheck check) {
+    const bool translate = form == VolumeForm::translated;
+    const VolumeFacesFn fn = check == RangeCheck::none        ? volume_faces_of<RangeCheck::none>(level, translate)
+                             : check == RangeCheck::positions ? volume_faces_of<RangeCheck::positions>(level, translate)
+                                                              : volume_faces_of<RangeCheck::referenced>(level, translate);
     return reduce_face_ranges<VolumeAccumulator>(
         mesh, [&](std::size_t f0, std::size_t f1, VolumeAccumulator& acc) { fn(mesh, f0, f1, acc); });
 }
@@ -1031,24 +1077,6 @@ ConeSums volume_sums(const VolumeAccumulator& acc, VolumeForm form, double M) {
     return out;
 }
 
-// The extremes of the bit patterns of |x| over positions (as range_block),
-// 8 independent lanes per chunk (one running max/min would serialise on its
-// latency), chunks on oneTBB (the pass is bound by memory). Compiled for
-// AVX-512 too, where the 64-bit minimum and maximum are single instructions.
-POLYVOL_INLINE void extremes_of(const double* x, std::size_t n, Extremes& e) {
-    U8 hi = {}, lo = ~U8{};
-    std::size_t i = 0;
-    for (; i + kVolLanes <= n; i += kVolLanes) {
-        U8 v;
-        vload(v, x + i);
-        extremes_step(v, hi, lo);
-    }
-    e.merge(hi, lo);
-    for (; i < n; ++i) {
-        const uint64_t a = std::bit_cast<uint64_t>(x[i]) & kAbsMask;
-        e.merge(Extremes{a, a - 1});
-    }
-}
 #if POLYVOL_HAVE_FMA_CLONE
 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,prefer-vector-width=512"))) void extremes_avx512(
     const double* x, std::size_t n, Extremes& e) {
@@ -1080,7 +1108,10 @@ Extremes position_extremes(std::span<const double> x) {
 template <int N>
 ConeSums filtered_impl(const MeshView& mesh, bool dd) {
     if constexpr (N == 1) {
-        if (dd) return volume_sums(volume_pass(mesh, volume_level(), VolumeForm::translated, false), VolumeForm::translated, 0);
+        if (dd) {
+            return volume_sums(volume_pass(mesh, volume_level(), VolumeForm::translated, RangeCheck::none),
+                               VolumeForm::translated, 0);
+        }
     }
     const Accumulator<N> acc = reduce_blocks<Accumulator<N>>(mesh, [dd](const Block& b, Accumulator<N>& a) {
         Terms<N> t;
@@ -1389,25 +1420,25 @@ VolumeForm likely_volume_form(const MeshView& mesh) {
 
 ConeSums filtered_volume(const MeshView& mesh, bool& safe, VolumeForm form) {
     const int level = volume_level();  // once: the passes below run this level
-    // Every position first when that costs less than checking each used
-    // coordinate in the pass (at least two indices per vertex: each vertex
-    // is read about twice or more there), and always below AVX-512, where
-    // the pass cannot check. The origin form's M is then the largest
-    // |coordinate| of any position, else of any used one.
+    // Every position checked (in the pass) when that costs less than
+    // checking each used coordinate (at least two indices per vertex: each
+    // vertex is read about twice or more there), and always below AVX-512,
+    // where the pass cannot check what it reads. The origin form's M is
+    // then the largest |coordinate| of any position, else of any used one.
     if (level < 2 || 2 * mesh.vertex_count() <= mesh.indices.size()) {
-        const Extremes e = position_extremes(mesh.positions);
-        if (e.safe()) {
+        const VolumeAccumulator acc = volume_pass(mesh, level, form, RangeCheck::positions);
+        if (acc.safe()) {
             safe = true;
-            return volume_sums(volume_pass(mesh, level, form, false), form, e.largest());
+            return volume_sums(acc, form, acc.range.largest());
         }
         if (level < 2) {  // stricter than the definition; the caller's exact fallback gives the same results
             safe = false;
             return ConeSums{.count = 1};
         }
         // Out of range somewhere, maybe only on vertices no face uses: the
-        // check in the pass decides.
+        // check of what the pass reads decides.
     }
-    const VolumeAccumulator acc = volume_pass(mesh, level, form, true);
+    const VolumeAccumulator acc = volume_pass(mesh, level, form, RangeCheck::referenced);
     safe = acc.safe();
     return volume_sums(acc, form, acc.range.largest());
 }
