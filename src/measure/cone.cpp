@@ -771,8 +771,7 @@ double origin_magnitude(double M, std::size_t n) { return (M * M) * (M * (6.0 * 
 // where two_prod has one), so the bits are the same as on every other path.
 // What it saves is the Block's stores and reloads (9 rows of 32 doubles a
 // block): 0.81 of the time with the Block around the origin, 0.86 far
-// from it (polyvol_bench, welded 1M-triangle sphere, 2 cores). Used when
-// the positions were checked before the pass (volume_faces says why).
+// from it (polyvol_bench, welded 1M-triangle sphere, 2 cores).
 #define POLYVOL_AVX512_INLINE \
     __attribute__((always_inline, target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) inline
 
@@ -855,16 +854,27 @@ POLYVOL_AVX512_INLINE void volume_terms8(const V8 (&a)[3], const V8 (&bb)[3], co
 }
 
 // One whole block (t: its 96 indices; block_loads_within holds) into out,
-// as volume_block on the gathered Block.
-template <bool kTranslate>
+// as volume_block on the gathered Block; kCheck: its coordinates into the
+// range check's lanes hi_out, lo_out, as range_block (the same values, so
+// the same extremes). The lanes are copied in and out: updated through the
+// references, each step was a load and a store (the soup an STL is read
+// as, 1M triangles: 3.1 ms against the Block's 2.6; copied: 2.4).
+template <bool kTranslate, bool kCheck>
 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) inline void
-volume_block_in_registers(const double* pos, const uint32_t* t, VolumeSums& out) {
+volume_block_in_registers(const double* pos, const uint32_t* t, VolumeSums& out, U8& hi_out, U8& lo_out) {
     V8 H[kVolPerLane], L[kVolPerLane], P[kVolPerLane] = {};
+    U8 hi = hi_out, lo = lo_out;
     for (int r = 0; r < kVolPerLane; ++r) {
         V8 x[3][3];  // [vertex][axis]
         for (int v = 0; v < 3; ++v) rows_of_vertex(pos, t + 3 * kVolLanes * r, v, x[v]);
+        if constexpr (kCheck) {
+            for (int v = 0; v < 3; ++v)
+                for (int k = 0; k < 3; ++k) extremes_step((U8)x[v][k], hi, lo);
+        }
         volume_terms8<kTranslate>(x[0], x[1], x[2], H[r], L[r], P[r]);
     }
+    hi_out = hi;
+    lo_out = lo;
     sum_volume_lanes<kTranslate>(H, L, P, out);
 }
 #undef POLYVOL_AVX512_INLINE
@@ -943,14 +953,11 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
     };
     bool walked = false;
 #if POLYVOL_HAVE_FMA_CLONE
-    if constexpr (kLevel >= 2 && kCheck != RangeCheck::referenced) {
+    if constexpr (kLevel >= 2) {
         if (mesh.all_triangles()) {
             // Whole blocks in registers where their loads stay inside the
             // positions, else through the Block (the scalar gather); then
             // the rest as one partial block: the blocks of for_each_block.
-            // Not with the range check in the pass (soups, or positions
-            // out of range somewhere): on the soup an STL is read as, that
-            // was slower than the Block (2.6 -> 3.1 ms for 1M triangles).
             const double* pos = mesh.positions.data();
             const uint32_t* idx = mesh.indices.data();
             const std::size_t nv = mesh.vertex_count();
@@ -959,7 +966,7 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
                 const uint32_t* t = idx + 3 * f;
                 if (block_loads_within(nv, t)) {
                     VolumeSums v;
-                    volume_block_in_registers<kTranslate>(pos, t, v);
+                    volume_block_in_registers<kTranslate, kCheck == RangeCheck::referenced>(pos, t, v, hi, lo);
                     add(v, kBlock);
                 } else {
                     for_each_block<0>(mesh, f, f + kBlock, per_block);
