@@ -20,8 +20,8 @@
 //   The origin form (VolumeForm::origin, the volume alone) is the same
 //   computation with uh = b, wh = c and ul = wl = 0: det = a · (b × c),
 //   corr = 0 and Perm = Σ_i |a_i| (|b_j c_k| + |b_k c_j|) <= 6 M^3, M the
-//   largest |coordinate| the pass reads (or of any position, when those were
-//   checked first); every bound below holds as it stands with Σ magnitude =
+//   largest |coordinate| the pass reads (or of any position, when the pass
+//   checks every position); every bound below holds as it stands with Σ magnitude =
 //   6 M^3 n (n triangles), which is what the origin form uses instead of
 //   Σ Perm. It skips the six two_sums, the corr terms and the per-triangle
 //   magnitudes (about 40% of the operations), but its bound grows with M^3
@@ -93,8 +93,11 @@
 // AVX-512 (extremes_of: 4 integer operations per 8 coordinates), each task
 // of the pass a slice of them beside its faces (RangeCheck::positions);
 // with AVX-512, a soup, or positions out of range somewhere, the pass checks
-// the coordinates it reads (range_block), so vertices no face uses do not
-// matter. Everything else calls coordinate_range (every position).
+// the coordinates it reads (range_block, or the same steps on the rows in
+// registers), so vertices no face uses do not matter; a mesh out of range
+// thus costs a pass more than it used to (the positions' pass, then this
+// one), and one below AVX-512 a pass before the exact fallback. Everything
+// else calls coordinate_range (every position).
 //
 // Cost (one core of a shared 2-core AMD EPYC with AVX2/FMA, 2M triangles
 // far from the origin, where a naive double loop takes 2.2-2.4 ns/triangle):
@@ -103,9 +106,9 @@
 // all ten exact 148. Blocks are processed in parallel (TBB). With AVX-512
 // (the same machine class, 2 cores, polyvol_bench, a welded 1M-triangle
 // sphere, the rows of each block built in registers): the double-double
-// volume takes 2.1 ms around (1e6, 1e6, 1e6) (translated form) and 1.4 ms
-// around the origin (origin form), about 4.0 and 2.7 ns per triangle per
-// core (with the Block in between: 2.5 and 1.7 ms), where a plain double
+// volume takes 1.8 ms around (1e6, 1e6, 1e6) (translated form) and 1.2 ms
+// around the origin (origin form), about 3.4 and 2.2 ns per triangle per
+// core (with the Block in between: 2.1 and 1.4 ms), where a plain double
 // loop over the same arrays takes about 2.6.
 #include "measure/cone.hpp"
 
@@ -594,12 +597,13 @@ Acc reduce_blocks(const MeshView& mesh, PerBlock per_block) {
 // ---- the double-double volume alone ------------------------------------------
 //
 // The common call (signed_volume, correctly rounded) in one pass: per block
-// the terms (block_terms), Sum2 in 8 lanes of 4 and the lanes combined into
-// one (sum, error) pair, written with vectors of 8 doubles (GCC vector
-// extensions: elementwise IEEE operations, -ffp-contract=off, so the same
-// bits on every target), and (AVX-512) the range check of the block's
-// coordinates. Compiled once per instruction-set level like the kernels
-// above, with the gather of the triangles inside.
+// the terms (block_terms; with AVX-512, volume_terms8 on rows built in
+// registers), Sum2 in 8 lanes of 4 and the lanes combined into one (sum,
+// error) pair, written with vectors of 8 doubles (GCC vector extensions:
+// elementwise IEEE operations, -ffp-contract=off, so the same bits on every
+// target), and the range check (RangeCheck below). Compiled once per
+// instruction-set level like the kernels above, with the gather of the
+// triangles inside.
 
 typedef double V8 __attribute__((vector_size(64)));
 typedef double V4 __attribute__((vector_size(32)));
@@ -733,10 +737,11 @@ POLYVOL_INLINE void range_block(const Block& b, U8& hi, U8& lo) {
         }
 }
 
-// The extremes of the bit patterns of |x| over positions (as range_block),
-// 8 independent lanes per chunk (one running max/min would serialise on its
-// latency), chunks on oneTBB (the pass is bound by memory). Compiled for
-// AVX-512 too, where the 64-bit minimum and maximum are single instructions.
+// The extremes of the bit patterns of |x| over n doubles (as range_block),
+// in 8 independent lanes (one running max/min would serialise on its
+// latency). Inlined into each level's volume pass (a task's slice of the
+// positions) and into position_extremes (chunks on oneTBB), also compiled
+// for AVX-512, where the 64-bit minimum and maximum are single instructions.
 POLYVOL_INLINE void extremes_of(const double* x, std::size_t n, Extremes& e) {
     U8 hi = {}, lo = ~U8{};
     std::size_t i = 0;
@@ -751,6 +756,7 @@ POLYVOL_INLINE void extremes_of(const double* x, std::size_t n, Extremes& e) {
         e.merge(Extremes{a, a - 1});
     }
 }
+
 // The origin form's magnitude: 6 M^3 n >= Σ Perm over n triangles whose
 // coordinates are at most M in magnitude (Perm = Σ_i |a_i| (|b_j c_k| +
 // |b_k c_j|) <= 6 M^3 per triangle). Rounded three times (relative error
@@ -770,8 +776,10 @@ double origin_magnitude(double M, std::size_t n) { return (M * M) * (M * (6.0 * 
 // the Block's. Every operation is the scalar code's, elementwise (FMA only
 // where two_prod has one), so the bits are the same as on every other path.
 // What it saves is the Block's stores and reloads (9 rows of 32 doubles a
-// block): 0.81 of the time with the Block around the origin, 0.86 far
-// from it (polyvol_bench, welded 1M-triangle sphere, 2 cores).
+// block): 0.81 of the time with the Block around the origin, 0.84 far
+// from it (polyvol_bench, welded 1M-triangle sphere, 2 cores, with the
+// range check's slices below); on a soup, where each position is read once
+// and memory bounds the pass, about the same time.
 #define POLYVOL_AVX512_INLINE \
     __attribute__((always_inline, target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) inline
 
@@ -810,7 +818,9 @@ POLYVOL_AVX512_INLINE V8 fms_lanes(const V8& x, const V8& y, const V8& p) { retu
 POLYVOL_AVX512_INLINE V8 abs_lanes(const V8& x) { return (V8)((U8)x & kAbsMask); }
 
 // terms_dd<true, 1, kTranslate> for 8 triangles (a, b, c: rows of x, y, z):
-// the same operations in the same order, in each lane.
+// the same operations in the same order, in each lane. A twin rather than
+// one template over double and V8: GCC has no fma on generic vectors, and
+// a template without the AVX-512 target cannot inline the intrinsic.
 template <bool kTranslate>
 POLYVOL_AVX512_INLINE void volume_terms8(const V8 (&a)[3], const V8 (&bb)[3], const V8 (&cc)[3], V8& h, V8& lo,
                                          V8& perm) {
@@ -883,9 +893,9 @@ volume_block_in_registers(const double* pos, const uint32_t* t, VolumeSums& out,
 constexpr int kGroupBlocks = 4;  // blocks per superaccumulator pair (volume_faces)
 
 // Per task: the exact sum of the blocks' pairs, of their magnitudes
-// (translated form), and the extremes of the coordinates the pass read
-// (only when it checked the range, else hi is the largest pattern, so
-// safe() is false).
+// (translated form), and the extremes of what the pass checked (RangeCheck:
+// the coordinates it read, or its slice of the positions; with no check, hi
+// is the largest pattern, so safe() is false).
 struct VolumeAccumulator {
     ExactSum sum;
     ExactSum magnitude;

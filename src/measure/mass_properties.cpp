@@ -181,12 +181,13 @@ std::optional<double> volume_decided(const ConeSums& sums) {
 
 ConeResults cone_results(const MeshView& mesh, int count, Accuracy accuracy, double density) {
     if (count == 1 && accuracy == Accuracy::correctly_rounded && density == 1) {
-        // The common signed_volume call: no rationals needed, and (with
-        // AVX-512) the range check in the same pass as the filtered sum. It
-        // looks at the coordinates that some face uses (the only ones any sum
-        // reads); a used coordinate outside the safe range (or not finite)
-        // sends the call down the general path below, which checks every
-        // coordinate and takes the big-integer path (or gives NaN) as before.
+        // The common signed_volume call: no rationals needed, and the range
+        // check in the same pass as the filtered sum (filtered_volume: every
+        // position for an indexed mesh or below AVX-512, else the
+        // coordinates that some face uses, the only ones any sum reads); a
+        // coordinate out of the safe range (or not finite) that the check
+        // sees sends the call down the general path below, which checks
+        // every coordinate and takes the big-integer path (or gives NaN).
         // The cheaper origin form first when it is likely to decide; the
         // translated form when it does not (same result: correctly rounded).
         // Each call reads the kernel level afresh (a test may cap it
