@@ -583,14 +583,26 @@ Acc reduce_face_ranges(const MeshView& mesh, PerRange per_range) {
         tbb::simple_partitioner());
 }
 
-// Acc: as above, with a triangles count.
+// Acc: as above, with a triangles count. With AVX2, whole blocks come from
+// gather_block_avx2 (called, not inlined: this code is compiled for the
+// baseline), the same values as the scalar gather's.
 template <class Acc, class PerBlock>
 Acc reduce_blocks(const MeshView& mesh, PerBlock per_block) {
+#if POLYVOL_HAVE_FMA_CLONE
+    const bool avx2 = cpu_has_fma();
+#else
+    const bool avx2 = false;
+#endif
     return reduce_face_ranges<Acc>(mesh, [&](std::size_t f0, std::size_t f1, Acc& acc) {
-        for_each_block(mesh, f0, f1, [&](const Block& b) {
+        const auto fn = [&](const Block& b) {
             acc.triangles += static_cast<std::size_t>(b.n);
             per_block(b, acc);
-        });
+        };
+        if (avx2) {
+            for_each_block<1>(mesh, f0, f1, fn);
+        } else {
+            for_each_block<0>(mesh, f0, f1, fn);
+        }
     });
 }
 
