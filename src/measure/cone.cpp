@@ -471,7 +471,8 @@ __attribute__((target("avx2"))) inline bool block_loads_within(std::size_t nv, c
 // the rows still go through the Block; hardware gathers, and masked loads
 // of exactly three doubles, are much slower than this. With AVX-512 the
 // volume pass builds the rows in registers instead and never stores them
-// (volume_block_in_registers); this one serves AVX2.
+// (volume_block_in_registers); this one serves the volume pass on AVX2
+// and, from AVX2 up, the other passes over blocks (reduce_blocks).
 __attribute__((target("avx2"))) inline bool gather_block_avx2(const double* pos, std::size_t nv, const uint32_t* t,
                                                                 Block& b) {
     if (!block_loads_within(nv, t)) return false;
