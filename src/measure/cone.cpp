@@ -801,7 +801,7 @@ double origin_magnitude(double M, std::size_t n) { return (M * M) * (M * (6.0 * 
 // source operand (that GCC 12 reports as used uninitialized).
 constexpr __mmask8 kAllLanes = 0xFF;
 
-// Vertices i and j's (x, y, z, next) in the low and high halves.
+// The (x, y, z, next) at p and at q in the low and high halves.
 POLYVOL_AVX512_INLINE __m512d two_vertices(const double* p, const double* q) {
     const __m512d low = _mm512_castpd256_pd512(_mm256_loadu_pd(p));
     return _mm512_mask_insertf64x4(low, kAllLanes, low, _mm256_loadu_pd(q), 1);
