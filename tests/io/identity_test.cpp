@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/shapes.hpp"
 #include "io_helpers.hpp"
 
 namespace {
@@ -16,18 +17,6 @@ std::vector<std::vector<uint32_t>> faces(const Mesh& m) {
     std::vector<std::vector<uint32_t>> f;
     for (std::size_t i = 0; i < m.face_count(); ++i) f.push_back(face_of(m, i));
     return f;
-}
-
-// m as a triangle soup: what an STL reader gives.
-Mesh soup(const Mesh& m) {
-    Mesh s;
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-        std::vector<uint32_t> face;
-        for (uint32_t i : face_of(m, f))
-            face.push_back(s.add_vertex(m.positions[3 * i], m.positions[3 * i + 1], m.positions[3 * i + 2]));
-        s.add_face(face);
-    }
-    return s;
 }
 
 void expect_same(const Mesh& got, const Mesh& want) {
@@ -61,7 +50,7 @@ std::vector<Case> cases(const Mesh& m, bool triangles) {
 }
 
 void check_all(const Mesh& m, bool triangles) {
-    const Mesh as_soup = soup(m);
+    const Mesh as_soup = polyvol::test::unwelded(m);  // what an STL reader gives
     for (const Case& c : cases(m, triangles)) {
         SCOPED_TRACE(c.name);
         // Detected by content: the name gives no hint.
@@ -98,7 +87,7 @@ TEST(Identity, DoublePrecisionTextKeepsEveryBit) {
     m.add_vertex(1e-310, 6.02214076e23, 0.30000000000000004);
     m.add_vertex(-123456.789, 9007199254740993.0, 5e-324);
     m.add_triangle(0, 1, 2);
-    const Mesh as_soup = soup(m);
+    const Mesh as_soup = polyvol::test::unwelded(m);  // what an STL reader gives
     expect_same(read(write_ascii_stl(m), "d.stl").mesh, as_soup);
     expect_same(read(write_obj(m), "d.obj").mesh, m);
     expect_same(read(write_off(m), "d.off").mesh, m);

@@ -16,6 +16,7 @@
 #include <random>
 #include <vector>
 
+#include "common/shapes.hpp"
 #include "cone_fixtures.hpp"
 #include "exact/rational.hpp"
 #include "measure/cone.hpp"
@@ -51,17 +52,6 @@ bool cpu_has_avx512() {
 struct LevelGuard {
     ~LevelGuard() { cap_kernel_level(2); }
 };
-
-// The same triangles with three vertices each (as STL reads keep them).
-Mesh as_soup(const Mesh& indexed) {
-    Mesh soup;
-    for (uint32_t i : indexed.indices) {
-        const double* p = &indexed.positions[3 * std::size_t{i}];
-        soup.add_vertex(p[0], p[1], p[2]);
-    }
-    for (uint32_t f = 0; f < indexed.face_count(); ++f) soup.add_triangle(3 * f, 3 * f + 1, 3 * f + 2);
-    return soup;
-}
 
 // Meshes with every shape of work: partial blocks, several parallel tasks,
 // polygon faces, the last vertex used early and late (the AVX2 gather leaves
@@ -102,8 +92,8 @@ std::vector<Mesh> meshes() {
     fan.add_face(face);
     fan.add_face(face);
     ms.push_back(std::move(fan));
-    ms.push_back(as_soup(fx::random_sphere(rng, 4, 1.0, {0.5, 0, -0.25})));
-    ms.push_back(as_soup(fx::random_sphere(rng, 5, 1.0, {1e6, 2e6, 0})));
+    ms.push_back(test::unwelded(fx::random_sphere(rng, 4, 1.0, {0.5, 0, -0.25})));
+    ms.push_back(test::unwelded(fx::random_sphere(rng, 5, 1.0, {1e6, 2e6, 0})));
     return ms;
 }
 
@@ -448,7 +438,7 @@ TEST(ConeVolume, WeldingASoupChangesNoVolume) {
     std::mt19937_64 rng(12);
     for (const std::array<double, 3> t : {std::array<double, 3>{0, 0, 0}, std::array<double, 3>{1e6, -1e6, 1e6}}) {
         const Mesh indexed = fx::random_sphere(rng, 5, 1.0, t);
-        const Mesh soup = as_soup(indexed);
+        const Mesh soup = test::unwelded(indexed);
         const Mesh w = welded(soup.view());
         EXPECT_EQ(w.vertex_count(), indexed.vertex_count());
         const double expect = rnd(fx::reference_sums(indexed.view())[kV] / 6);
