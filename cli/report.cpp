@@ -192,7 +192,7 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["encoding"] = l.encoding;
         j["gzip"] = l.gzip;
         j["notes"] = l.notes;
-        j["vertices"] = l.mesh.vertex_count();
+        j["vertices"] = l.vertices_in_file;
         j["faces"] = l.mesh.face_count();
         j["triangles"] = l.mesh.view().triangle_count();
     } else {
@@ -341,7 +341,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     const auto& l = *r.loaded;
     const auto& m = *r.mass;
     out << r.file << "  (" << format_name(l.format) << ", " << l.encoding << (l.gzip ? ", gzip" : "")
-        << "; " << l.mesh.vertex_count() << " vertices, " << l.mesh.face_count() << " faces, "
+        << "; " << l.vertices_in_file << " vertices, " << l.mesh.face_count() << " faces, "
         << l.mesh.view().triangle_count() << " triangles)\n";
     out << "  method          " << method_name(request.measure.method) << ", density " << shortest(request.measure.density) << "\n";
     out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m) << "]\n";
@@ -377,7 +377,7 @@ std::string check_report(const FileResult& r) {
     const auto& l = *r.loaded;
     out << r.file << "  (" << format_name(l.format) << ", " << l.encoding << (l.gzip ? ", gzip" : "") << ")\n";
     for (const auto& n : l.notes) out << "  note: " << n << "\n";
-    out << "  vertices        " << l.mesh.vertex_count() << " read, " << t.vertices_welded << " after welding, "
+    out << "  vertices        " << l.vertices_in_file << " read, " << t.vertices_welded << " after welding, "
         << t.vertices_referenced << " used by faces\n";
     out << "  faces           " << t.faces << " (" << t.faces_with_lt3_vertices << " with fewer than 3 vertices, ignored), "
         << t.triangles << " fan triangles\n";

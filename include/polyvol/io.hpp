@@ -55,8 +55,16 @@ struct ReadError : std::runtime_error {
     static ReadError whole_file(std::string file, std::string message);
 };
 
+// STL lists three vertices for every facet and shares none, so the STL
+// reader welds them (weld_vertices, mesh.hpp: bit-identical coordinates,
+// -0.0 equal to +0.0): `mesh` is the indexed mesh CGAL's and VTK's readers
+// give too, its facets as faces in file order, its vertices numbered in the
+// order of their first corner (exactly welded(soup) of the facets' corners).
+// Welding only merges equal values, so every exact and correctly rounded
+// result is that of the soup. The other formats' vertices are kept as listed.
 struct LoadedMesh {
     Mesh mesh;
+    std::size_t vertices_in_file = 0;  // as the file lists them (STL: per facet corner; else mesh.vertex_count())
     Format format = Format::unknown;
     std::string encoding;             // "ascii", "binary_le", "binary_be", "zip", "xml"
     bool gzip = false;                // the bytes were gzip-compressed

@@ -60,6 +60,9 @@ struct ParseOptions {
     // binary PLY: what is left at an element's start) are read serially,
     // where splitting would cost more than it saves.
     std::size_t min_parallel_bytes = std::size_t{1} << 20;
+    // STL: weld the facets' corners into an indexed mesh (LoadedMesh, io.hpp).
+    // false keeps the soup, every corner its own vertex (for tests).
+    bool weld_stl = true;
 };
 
 // The options of the calling thread, used by the readers when they are
@@ -83,7 +86,7 @@ private:
 // What the last text reader called on this thread did, for tests and
 // benchmarks (reset by every call of read_stl/obj/off/ply).
 struct ParseReport {
-    std::size_t chunks = 0;        // chunks read in parallel (0: read serially)
+    std::size_t chunks = 0;        // chunks (binary STL: blocks of records) read in parallel (0: read serially)
     bool serial_fallback = false;  // the chunks could not decide alone; then read serially
 };
 ParseReport& thread_parse_report();

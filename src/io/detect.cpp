@@ -266,7 +266,9 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth) {
 
 LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& name, Format hint) {
     if (hint == Format::unknown) hint = format_from_extension(name);
-    return detect(data, name, hint, 0);
+    LoadedMesh m = detect(data, name, hint, 0);
+    if (m.format != Format::stl) m.vertices_in_file = m.mesh.vertex_count();  // the STL reader counts its own
+    return m;
 }
 
 namespace io {

@@ -536,10 +536,14 @@ TEST(Soup, EveryCorpusBinaryStlReadAsPackedTrianglesGivesTheManifestVolume) {
         SCOPED_TRACE(c.path);
         const std::vector<float> tri = read_binary_stl_triangles((kCorpus / c.path).string());
         const LoadedMesh full = read_mesh_file((kCorpus / c.path).string());
-        ASSERT_EQ(tri.size(), full.mesh.positions.size());  // 9 per triangle either way
-        // The same coordinates (the Mesh's are the floats widened).
-        EXPECT_TRUE(std::equal(tri.begin(), tri.end(), full.mesh.positions.begin(),
-                               [](float f, double d) { return static_cast<double>(f) == d; }));
+        ASSERT_EQ(tri.size(), 3 * full.vertices_in_file);  // 9 per triangle either way
+        // The same coordinates (the Mesh's are the floats widened, welded).
+        ASSERT_EQ(full.mesh.indices.size(), tri.size() / 3);
+        for (std::size_t i = 0; i < full.mesh.indices.size(); ++i)
+            for (std::size_t k = 0; k < 3; ++k)
+                ASSERT_EQ(static_cast<double>(tri[3 * i + k]),
+                          full.mesh.positions[3 * std::size_t{full.mesh.indices[i]} + k])
+                    << i;
         EXPECT_EQ(bits(soup_volume(packed_triangles(tri))), bits(c.volume));
     }
 }
