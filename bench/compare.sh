@@ -10,8 +10,8 @@
 #     median peak RSS, the volumes, and the ratios polyvol/naive and
 #     peer/polyvol;
 #   * prints loading and the in-memory volume call of each tool's harness
-#     (their own medians; polyvol's also on welded(mesh), the indexed mesh
-#     the peers hold, and two plain loops for scale) and polyvol_bench's;
+#     (their own medians; polyvol's also on the binary STL's packed float32
+#     triangles, and two plain loops for scale) and polyvol_bench's;
 #   * measures peak RSS of `polyvol volume` (and of the naive mmap loop) on a
 #     BIG_TRIANGLES-triangle binary STL (default 60M = 3 GB).
 # Usage: bench/compare.sh [BUILD_DIR]      (env: RUNS=5, TIMEOUT=600, JOBS=2,
@@ -243,41 +243,34 @@ print("harness (medians over runs of the in-process figures); ratio = fastest pe
 print()
 print("read loop / naive det: plain scalar loops over the same arrays on all cores, reading and adding the")
 print("coordinates (no determinant) / summing det in plain double (bench/peers/polyvol_volume.cpp); for")
-print("scale, not lower bounds. 5x the fastest peer needs a call below fastest/5. welded: polyvol's call on")
-print("welded(mesh), the indexed mesh the peers hold (their readers merge points; polyvol's STL reader keeps")
-print("three vertices per triangle), with its ratio, and its load with that ratio: the reading of the load")
-print("column plus welding and the first call on the welded mesh, timed later in the same process (the peers'")
-print("loads include their merging). packed (binary STL only): the file read as its own")
+print("scale, not lower bounds. 5x the fastest peer needs a call below fastest/5. Every tool holds an indexed")
+print("mesh (the STL readers, polyvol's too, merge the facets' corners). packed (binary STL only): the file read as its own")
 print("float32 triangles (read_binary_stl_triangles, 36 bytes a triangle) and soup_volume on them, load and")
 print("call, with the call's ratio; the same correctly rounded volume.")
 print()
-print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | polyvol call, welded s | welded call ratio | welded load s | welded load ratio | packed load s | packed call s | packed call ratio | fastest/5 s | read loop s | naive det s |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | packed load s | packed call s | packed call ratio | fastest/5 s | read loop s | naive det s |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 def med(fn, name, r):
     """Median over a tool's runs of fn(name, output); None when no run gave a figure."""
     xs = [x for x in (fn(name, o) for o in r[4]) if x is not None]
     return statistics.median(xs) if xs else None
-harness = {}  # (tag, ext) -> (fastest peer load, fastest peer call, polyvol load, call, welded call, packed call)
+harness = {}  # (tag, ext) -> (fastest peer load, fastest peer call, polyvol load, call, packed call)
 for tag, ext, res in rows:
     h = res.get("polyvol-harness")
     if h is None:
         continue
     pl, pc = med(load_of, "polyvol-harness", h), med(inmem_of, "polyvol-harness", h)
-    pw = med(lambda n, o: field_of(o, 7), "polyvol-harness", h)
-    pwl = med(lambda n, o: field_of(o, 10), "polyvol-harness", h)
-    ppl = med(lambda n, o: field_of(o, 8), "polyvol-harness", h)
-    pp = med(lambda n, o: field_of(o, 9), "polyvol-harness", h)
+    ppl = med(lambda n, o: field_of(o, 7), "polyvol-harness", h)
+    pp = med(lambda n, o: field_of(o, 8), "polyvol-harness", h)
     loads = {n: med(load_of, n, res[n]) for n in ("cgal", "vtk") if res.get(n)}
     calls = {n: med(inmem_of, n, res[n]) for n in ("cgal", "vtk") if res.get(n)}
     fl = min([x for x in loads.values() if x], default=None)
     fc = min([x for x in calls.values() if x], default=None)
-    harness[(tag, ext)] = (fl, fc, pl, pc, pw, pp)
+    harness[(tag, ext)] = (fl, fc, pl, pc, pp)
     fmt = lambda x: "" if x is None else f"{x:.4f}"
     print(f"| {tag} | {ext} | {fmt(pl)} | {fmt(loads.get('cgal'))} | {fmt(loads.get('vtk'))} | "
           f"{'' if not (fl and pl) else f'{fl / pl:.1f}'} | {fmt(pc)} | {fmt(calls.get('cgal'))} | {fmt(calls.get('vtk'))} | "
-          f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} | {fmt(pw)} | {'' if not (fc and pw) else f'{fc / pw:.1f}'} | "
-          f"{fmt(pwl)} | {'' if not (fl and pwl) else f'{fl / pwl:.1f}'} | "
-          f"{fmt(ppl)} | {fmt(pp)} | {'' if not (fc and pp) else f'{fc / pp:.1f}'} | "
+          f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} | {fmt(ppl)} | {fmt(pp)} | {'' if not (fc and pp) else f'{fc / pp:.1f}'} | "
           f"{fmt(fc / 5 if fc else None)} | "
           f"{fmt(med(lambda n, o: field_of(o, 5), 'polyvol-harness', h))} | {fmt(med(lambda n, o: field_of(o, 6), 'polyvol-harness', h))} |")
 
@@ -316,8 +309,8 @@ for tag, ext, res in rows:
     peers = [res[n][0] for n in ("cgal", "vtk", "open3d") if res.get(n)]
     if pv and peers:
         print(f"    {tag} {ext}: end to end {min(peers) / pv[0]:.1f}x (target >= 20 for binary STL)")
-    fl, fc, pl, pc, pw, pp = harness.get((tag, ext), (None,) * 6)
-    parts = [f"{label} {fc / x:.1f}x" for label, x in (("as read", pc), ("welded", pw), ("packed", pp)) if fc and x]
+    fl, fc, pl, pc, pp = harness.get((tag, ext), (None,) * 5)
+    parts = [f"{label} {fc / x:.1f}x" for label, x in (("as read", pc), ("packed", pp)) if fc and x]
     if parts:
         print(f"    {tag} {ext}: in memory " + ", ".join(parts) + " (target >= 5)")
     if fl and pl:

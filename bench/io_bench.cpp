@@ -1,7 +1,8 @@
 // Reading throughput (MB/s and triangles/s) of in-memory files of a
 // generated closed mesh of about 1M triangles, through read_mesh_memory:
-// ASCII STL, OBJ, OFF, ASCII PLY and binary PLY, with the serial text
-// readers and with the parallel ones (src/io/chunks.hpp).
+// ASCII STL, binary STL, OBJ, OFF, ASCII PLY and binary PLY, with the
+// serial readers and with the parallel ones (src/io/chunks.hpp; binary STL:
+// blocks of records). Both STL readers weld the facets' corners.
 //   ./build/bench/polyvol_bench --benchmark_filter=Read
 // Coordinates are float32 values written as their shortest decimal (as most
 // exporters write them). Wall-clock time (the parallel readers use other
@@ -24,7 +25,7 @@ namespace {
 
 using namespace polyvol;
 
-enum class File { stl_ascii, obj, off, ply_ascii, ply_binary };
+enum class File { stl_ascii, stl_binary, obj, off, ply_ascii, ply_binary };
 
 const Mesh& source() {
     static const Mesh m = [] {
@@ -71,6 +72,24 @@ std::string write(File f) {
             }
             s += "endsolid sphere\n";
             break;
+        case File::stl_binary: {
+            s = std::string(80, ' ');
+            const auto n = static_cast<uint32_t>(nf);
+            char b[4];
+            std::memcpy(b, &n, 4);  // little-endian hosts only, as the benchmarks run
+            s.append(b, 4);
+            for (std::size_t t = 0; t < nf; ++t) {
+                s.append(12, '\0');  // normal
+                for (int k = 0; k < 3; ++k)
+                    for (int c = 0; c < 3; ++c) {
+                        const auto x = static_cast<float>(m.positions[3 * std::size_t{m.indices[3 * t + k]} + c]);
+                        std::memcpy(b, &x, 4);
+                        s.append(b, 4);
+                    }
+                s.append(2, '\0');  // attribute bytes
+            }
+            break;
+        }
         case File::obj:
             s = "# sphere\no sphere\n";
             for (uint32_t v = 0; v < nv; ++v) {
@@ -147,7 +166,8 @@ const std::string& file(File f) {
 
 const char* name_of(File f) {
     switch (f) {
-        case File::stl_ascii: return "sphere.stl";
+        case File::stl_ascii:
+        case File::stl_binary: return "sphere.stl";
         case File::obj: return "sphere.obj";
         case File::off: return "sphere.off";
         case File::ply_ascii:
@@ -191,6 +211,7 @@ void Read(benchmark::State& state) {
         ->UseRealTime()
 
 POLYVOL_READ_BENCH(stl_ascii);
+POLYVOL_READ_BENCH(stl_binary);
 POLYVOL_READ_BENCH(obj);
 POLYVOL_READ_BENCH(off);
 POLYVOL_READ_BENCH(ply_ascii);
