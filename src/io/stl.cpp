@@ -3,7 +3,8 @@
 // Binary STL: an 80-byte header, a uint32 little-endian triangle count n at
 // byte 80, then n records of 50 bytes (normal, three vertices as float32 LE,
 // a 2-byte attribute). A file is binary exactly when its size is 84 + 50 n,
-// whatever its header says (many binary files start with "solid").
+// whatever its header says (many binary files start with "solid"). Large
+// files are read in blocks of records on several threads (read_binary_stl).
 //
 // ASCII STL:
 //   solid NAME
@@ -67,16 +68,20 @@ bool starts_with_solid(std::string_view s) {
 
 // Triangles per task of the welding binary reader: 24576 corners, welded
 // with one table that stays in the core's L2 (weld_vertices' serial path).
-constexpr uint32_t kBinaryBlock = 8192;
+constexpr std::size_t kBinaryBlock = 8192;
+
+// Vertex ids are uint32 and weld_vertices numbers at most 2^32 - 2
+// vertices (UINT32_MAX is no index): the most corners a read may collect.
+constexpr std::size_t kMaxVertices = std::size_t{UINT32_MAX} - 1;
 
 // Widens records [t0, t1) into `m` (nine doubles a record: exact) with
 // corner i as vertex i. Returns the byte offset of the first non-finite
 // coordinate, or 0 when there is none (no coordinate is at offset 0).
-uint64_t read_binary_records(Bytes data, uint32_t t0, uint32_t t1, Mesh& m, bool& attributes) {
+uint64_t read_binary_records(Bytes data, std::size_t t0, std::size_t t1, Mesh& m, bool& attributes) {
     const std::size_t k = t1 - t0;
     core::resize_for_filling(m.positions, 9 * k);
     core::resize_for_filling(m.indices, 3 * k);
-    const std::byte* rec = data.data() + 84 + std::size_t{50} * t0;
+    const std::byte* rec = data.data() + 84 + 50 * t0;
     double* pos = m.positions.data();
     for (std::size_t t = 0; t < k; ++t, rec += 50) {
         for (int c = 0; c < 9; ++c) {
@@ -109,8 +114,14 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
         out.notes.emplace_back("binary-stl-header-starts-with-solid");
     // n is trustworthy here: the file size was checked against it.
     out.vertices_in_file = std::size_t{3} * n;
+    const auto too_many = [&](const char* what) {
+        return ReadError::at_byte(name, 80,
+                                  std::to_string(n) + " triangles have more " + what +
+                                      " than 32-bit vertex ids can number (2^32 - 2)");
+    };
     bool attributes = false;
     if (!options.weld_stl) {
+        if (out.vertices_in_file > kMaxVertices) throw too_many("corners");
         if (const uint64_t bad = read_binary_records(data, 0, n, out.mesh, attributes)) throw_nonfinite(name, bad);
     } else {
         const std::size_t blocks = (std::size_t{n} + kBinaryBlock - 1) / kBinaryBlock;
@@ -118,8 +129,7 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
         std::vector<uint64_t> bad(blocks, 0);
         std::vector<char> block_attributes(blocks, 0);
         const auto read_block = [&](std::size_t b) {
-            const auto t0 = static_cast<uint32_t>(b * kBinaryBlock);
-            const uint32_t t1 = std::min(n, t0 + kBinaryBlock);
+            const std::size_t t0 = b * kBinaryBlock, t1 = std::min<std::size_t>(n, t0 + kBinaryBlock);
             bool a = false;
             bad[b] = read_binary_records(data, t0, t1, parts[b], a);
             block_attributes[b] = a;
@@ -131,10 +141,13 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
         } else {
             for (std::size_t b = 0; b < blocks; ++b) read_block(b);
         }
+        std::size_t vertices = 0;  // the blocks' own classes: at least the mesh's
         for (std::size_t b = 0; b < blocks; ++b) {
             if (bad[b] != 0) throw_nonfinite(name, bad[b]);
             attributes = attributes || block_attributes[b] != 0;
+            vertices += parts[b].vertex_count();
         }
+        if (vertices > kMaxVertices) throw too_many("distinct points in their blocks");
         chunks::concat(parts, out.mesh, true);
         if (blocks > 1) out.mesh = welded(out.mesh.view());
     }
@@ -275,7 +288,7 @@ private:
             }
             // The count is the piece's; the join reads serially when all
             // pieces together pass the limit.
-            if (m.vertex_count() >= UINT32_MAX) fail("too many vertices");
+            if (m.vertex_count() >= kMaxVertices) fail("too many vertices");
             m.add_vertex(xyz[0], xyz[1], xyz[2]);
             ++k;
         }
@@ -336,7 +349,7 @@ bool pieces_agree(const std::vector<StlPiece>& pieces, std::string_view s, const
                   const std::string& name) {
     std::size_t vertices = 0;
     for (const StlPiece& p : pieces) vertices += p.vertices_read;
-    if (vertices >= UINT32_MAX) return false;  // the serial reader says where it stops
+    if (vertices >= kMaxVertices) return false;  // the serial reader says where it stops
     for (std::size_t i = 0; i < pieces.size(); ++i) {
         if (i > 0 && pieces[i - 1].end != StlPiece::End::in_solid) return false;
         const chunks::Outcome& o = pieces[i].outcome;

@@ -50,6 +50,7 @@ TEST(Cli, VolumeJsonHasEveryKeyAndExactValues) {
         EXPECT_TRUE(f.contains(key)) << key;
     EXPECT_EQ(f["format"], "stl");
     EXPECT_EQ(f["triangles"], 12);
+    EXPECT_EQ(f["vertices"], 36);  // as the file lists them (three a facet), though the reader welds them
     EXPECT_EQ(f["method"], "cone");
     EXPECT_EQ(f["accuracy"], "correctly-rounded");
     EXPECT_EQ(f["volume"].get<double>(), 1.0);
@@ -213,9 +214,12 @@ TEST(Cli, CheckReportsTopology) {
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("boundary"), std::string::npos);
     EXPECT_NE(r.out.find("closed 2-cycle  no"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("vertices        9 read, 4 after welding, 4 used by faces"), std::string::npos) << r.out;
     const CliRun j = polyvol("check --json " + corpus("stl-models/tetrahedron.min.ascii.stl"));
     ASSERT_EQ(j.code, 0);
     const json f = json::parse(j.out)[0];
+    EXPECT_EQ(f["vertices"], 12);
+    EXPECT_EQ(f["vertices_welded"], 4);
     EXPECT_EQ(f["euler_characteristic"], 2);
     EXPECT_EQ(f["shells"][0]["genus"], 0);
     EXPECT_EQ(f["shells"][0]["role"], "solid");

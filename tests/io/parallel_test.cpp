@@ -86,6 +86,7 @@ void expect_same(const Outcome& serial, const Outcome& par, const std::string& w
         << what << ": face offsets differ (" << a.mesh.face_offsets.size() << " vs " << b.mesh.face_offsets.size()
         << ")";
     EXPECT_EQ(a.notes, b.notes) << what;
+    EXPECT_EQ(a.vertices_in_file, b.vertices_in_file) << what;
     EXPECT_EQ(a.format, b.format) << what;
     EXPECT_EQ(a.encoding, b.encoding) << what;
     EXPECT_EQ(a.gzip, b.gzip) << what;

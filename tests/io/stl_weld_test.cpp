@@ -127,18 +127,52 @@ TEST(StlWeld, BinaryInBlocksIsTheWeldedSoup) {
     }
 }
 
+// Files of exactly one and two blocks, one more, and none: the same.
+TEST(StlWeld, BinaryAtBlockBoundaries) {
+    const Mesh big = lattice_soup(100, false, true, 5);  // 20 000 triangles
+    for (std::size_t triangles : {std::size_t{0}, std::size_t{1}, std::size_t{8191}, std::size_t{8192},
+                                  std::size_t{8193}, std::size_t{16384}}) {
+        Mesh m;
+        m.positions.assign(big.positions.begin(), big.positions.begin() + static_cast<std::ptrdiff_t>(9 * triangles));
+        m.indices.assign(big.indices.begin(), big.indices.begin() + static_cast<std::ptrdiff_t>(3 * triangles));
+        const std::string data = write_binary_stl(m);
+        const std::string what = std::to_string(triangles) + " triangles";
+        const LoadedMesh soup = read_with(data, "b.stl", kSoup);
+        ASSERT_EQ(soup.mesh.vertex_count(), 3 * triangles) << what;
+        const Mesh want = polyvol::welded(soup.mesh.view());
+        for (const ParseOptions& o : {kSerial, chunked(1)}) {
+            const LoadedMesh r = read_with(data, "b.stl", o);
+            expect_same_mesh(r.mesh, want, what);
+            EXPECT_EQ(r.vertices_in_file, 3 * triangles) << what;
+            EXPECT_EQ(r.mesh.face_count(), triangles) << what;
+        }
+    }
+}
+
 // The corners of a point keep the first one's sign of zero: welded(soup)
 // takes the first corner's position, and the reader does too.
+// Also when the corners are in different blocks or chunks: here the point
+// (0, 1, 2) is first met as -0 and (0, 3, 4) as +0, in the first facet, and
+// again with the other sign in the last.
 TEST(StlWeld, TheFirstCornerDecidesTheSignOfZero) {
-    Mesh soup;
-    soup.add_triangle(soup.add_vertex(-0.0, 1, 2), soup.add_vertex(1, 0, 0), soup.add_vertex(0, 1, 0));
-    soup.add_triangle(soup.add_vertex(0.0, 1, 2), soup.add_vertex(0, 1, 0), soup.add_vertex(1, 0, 0));
-    for (const std::string& data : {write_ascii_stl(soup), write_binary_stl(soup)}) {
-        const LoadedMesh r = read(data, "z.stl");
-        ASSERT_EQ(r.mesh.vertex_count(), 3u);
-        EXPECT_TRUE(std::signbit(r.mesh.positions[0]));
-        EXPECT_EQ(r.vertices_in_file, 6u);
-        EXPECT_EQ(face_of(r.mesh, 1), (std::vector<uint32_t>{0, 2, 1}));
+    for (std::size_t filler : {std::size_t{0}, std::size_t{20000}}) {
+        Mesh soup;
+        soup.add_triangle(soup.add_vertex(-0.0, 1, 2), soup.add_vertex(0.0, 3, 4), soup.add_vertex(0, 1, 0));
+        for (std::size_t t = 0; t < filler; ++t) {
+            const double x = static_cast<double>(t + 10);
+            soup.add_triangle(soup.add_vertex(x, 0, 0), soup.add_vertex(x, 1, 0), soup.add_vertex(x, 0, 1));
+        }
+        soup.add_triangle(soup.add_vertex(0.0, 1, 2), soup.add_vertex(0, 1, 0), soup.add_vertex(-0.0, 3, 4));
+        for (const std::string& data : {write_ascii_stl(soup), write_binary_stl(soup)}) {
+            for (const ParseOptions& o : {kSerial, chunked(64 << 10)}) {
+                const LoadedMesh r = read_with(data, "z.stl", o);
+                ASSERT_EQ(r.mesh.vertex_count(), 3 + 3 * filler);
+                EXPECT_TRUE(std::signbit(r.mesh.positions[0]));
+                EXPECT_FALSE(std::signbit(r.mesh.positions[3]));
+                EXPECT_EQ(r.vertices_in_file, 6 + 3 * filler);
+                EXPECT_EQ(face_of(r.mesh, filler + 1), (std::vector<uint32_t>{0, 2, 1}));
+            }
+        }
     }
 }
 
