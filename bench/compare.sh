@@ -141,8 +141,8 @@ def inmem_of(tool, out):
         return None
 
 def field_of(out, i):
-    """polyvol-harness only: field i (5: READ_SECONDS, 6: NAIVE_SECONDS, 7: WELDED_SECONDS, 8: PACKED_LOAD_SECONDS,
-    9: PACKED_SECONDS, 10: WELDED_LOAD_SECONDS), None when absent or negative."""
+    """polyvol-harness only: field i (5: READ_SECONDS, 6: NAIVE_SECONDS, 7: PACKED_LOAD_SECONDS,
+    8: PACKED_SECONDS), None when absent or negative."""
     try:
         x = float(out.split()[i])
         return x if x >= 0 else None

@@ -58,7 +58,7 @@ void Topology(benchmark::State& state) {
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * m.face_count()));
 }
 
-// The sphere as an STL reader gives it: three vertices per triangle, the
+// The sphere as an STL file lists it: three vertices per triangle, the
 // triangles in the generator's order (strips: a position's copies close
 // together, as exporters write them) or shuffled (arg 1: no order to use).
 Mesh sphere_soup(std::size_t n, bool shuffled) {
@@ -78,9 +78,10 @@ Mesh sphere_soup(std::size_t n, bool shuffled) {
     return soup;
 }
 
-// The correctly rounded volume of the sphere's soup (arg: triangles), the
-// mesh an STL is read as: the pass checks the coordinates it reads (a
-// position is read once) instead of every position beside the faces.
+// The correctly rounded volume of the sphere's soup (arg: triangles), every
+// corner its own vertex (as an STL file lists them; the reader welds them):
+// the pass checks the coordinates it reads (a position is read once)
+// instead of every position beside the faces.
 void VolumeOfSoup(benchmark::State& state) {
     const Mesh soup = sphere_soup(static_cast<std::size_t>(state.range(0)), false);
     for (auto _ : state) benchmark::DoNotOptimize(signed_volume(soup.view()));

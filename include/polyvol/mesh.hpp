@@ -85,9 +85,9 @@ std::vector<uint32_t> weld_vertices(std::span<const double> positions);
 // unchanged. Merged positions are equal values (they differ at most in the
 // sign of zeros), so exact and correctly rounded results do not change; a
 // plain double result (Accuracy::fast) that is zero may change its sign.
-// For triangle soups (STL
-// reads keep three vertices per triangle) it gives the indexed mesh other
-// libraries hold, about a sixth of the positions to read per call.
+// For triangle soups (every corner its own vertex, as an STL file lists
+// them; the STL reader welds them so: io.hpp) it gives the indexed mesh
+// other libraries hold, about a sixth of the positions to read per call.
 Mesh welded(const MeshView& mesh);
 
 }  // namespace polyvol

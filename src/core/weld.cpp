@@ -6,11 +6,13 @@
 // probing, capacity a power of two >= 2n, so probes stay short and no
 // allocation happens per vertex). Large ones, in two levels:
 //   1. Local: runs of kLocal consecutive vertices are welded on their own,
-//      each with a table that stays in the core's L2. Triangle soups (an
-//      STL as read) repeat each position about six times, mostly within a
-//      few thousand triangles (neighbouring strips of the surface), so about
-//      five vertices in six are settled here and only the runs' firsts
-//      (representatives) go on.
+//      each with a table that stays in the core's L2. Triangle soups (every
+//      corner its own vertex, as an STL file lists them) repeat each
+//      position about six times, mostly within a few thousand triangles
+//      (neighbouring strips of the surface), so about five vertices in six
+//      are settled here and only the runs' firsts (representatives) go on.
+//      (The STL reader welds its blocks first, so its last weld meets few
+//      copies in a run and goes straight to the global level.)
 //   2. Global, over the representatives: partitioned, as a radix hash join
 //      does (a table of 2n ids no longer fits in cache, and most probes
 //      would miss it). They go into 2^k buckets by the top bits of their

@@ -1,5 +1,6 @@
 // Parallel parsing of the text formats (ASCII STL, OBJ, OFF, ASCII PLY);
-// binary PLY uses the options and the report too (see ply.cpp).
+// binary PLY and binary STL use the options and the report too (see
+// ply.cpp and stl.cpp).
 //
 // The buffer is cut into chunks of about ParseOptions::chunk_bytes at line
 // starts that a chunk can recognise on its own; one oneTBB task parses each
@@ -49,8 +50,9 @@ namespace polyvol::io {
 
 struct ParseOptions {
     // Parse large inputs in chunks on several threads (oneTBB): ASCII STL,
-    // OBJ, OFF, PLY (ascii and binary bodies). false selects the serial
-    // readers.
+    // OBJ, OFF, PLY (ascii and binary bodies), binary STL (blocks of 8192
+    // records: chunk_bytes does not apply). false selects the serial
+    // readers (welding's own passes may still use other threads).
     bool parallel = true;
     // Bytes per chunk: a chunk ends at the first suitable line start at
     // least this far from its beginning (at least 1), or an eighth of the

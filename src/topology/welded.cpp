@@ -42,7 +42,8 @@ void check_mesh_arrays(const MeshView& mesh) {
 
 namespace {
 
-// A soup as an STL reader gives it: all triangles, and corner i is vertex i.
+// A soup (as an STL file lists its facets; polyvol's reader welds them):
+// all triangles, and corner i is vertex i.
 bool corners_are_vertices(const MeshView& mesh) {
     if (!mesh.all_triangles() || mesh.indices.size() != mesh.vertex_count()) return false;
     return tbb::parallel_reduce(

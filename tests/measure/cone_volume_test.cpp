@@ -433,7 +433,7 @@ TEST(ConeVolume, UnusedVerticesDoNotMatter) {
 }
 
 TEST(ConeVolume, WeldingASoupChangesNoVolume) {
-    // A sphere as a soup (three vertices per triangle, as STL reads keep it)
+    // A sphere as a soup (three vertices per triangle, as STL files list it)
     // and welded again: the same volume, bit for bit, in both forms.
     std::mt19937_64 rng(12);
     for (const std::array<double, 3> t : {std::array<double, 3>{0, 0, 0}, std::array<double, 3>{1e6, -1e6, 1e6}}) {
