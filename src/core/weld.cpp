@@ -302,6 +302,18 @@ void number_classes(std::span<const uint32_t> canonical, std::span<const double>
 
 }  // namespace core
 
+namespace {
+
+// out[i] = id[in[i]] for every index (in and out may be the same array).
+void map_indices(std::span<const uint32_t> in, const std::vector<uint32_t>& id, uint32_t* out) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.size(), kChunk),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i) out[i] = id[in[i]];
+                      });
+}
+
+}  // namespace
+
 Mesh welded(const MeshView& mesh) {
     const std::vector<uint32_t> canonical = weld_vertices(mesh.positions);
     Mesh out;
@@ -309,11 +321,17 @@ Mesh welded(const MeshView& mesh) {
     core::number_classes(canonical, mesh.positions, id, out.positions);
     out.face_offsets.assign(mesh.face_offsets.begin(), mesh.face_offsets.end());
     core::resize_for_filling(out.indices, mesh.indices.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.indices.size(), kChunk),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) out.indices[i] = id[mesh.indices[i]];
-                      });
+    map_indices(mesh.indices, id, out.indices.data());
     return out;
+}
+
+void weld_in_place(Mesh& mesh) {
+    const std::vector<uint32_t> canonical = weld_vertices(mesh.positions);
+    std::vector<uint32_t> id;
+    std::vector<double> xyz;
+    core::number_classes(canonical, mesh.positions, id, xyz);
+    mesh.positions = std::move(xyz);
+    map_indices(mesh.indices, id, mesh.indices.data());
 }
 
 }  // namespace polyvol

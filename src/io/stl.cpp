@@ -133,7 +133,7 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
             bool a = false;
             bad[b] = read_binary_records(data, t0, t1, parts[b], a);
             block_attributes[b] = a;
-            if (bad[b] == 0) parts[b] = welded(parts[b].view());
+            if (bad[b] == 0) weld_in_place(parts[b]);
         };
         if (chunks::use_parallel(options, data.size()) && blocks > 1) {
             thread_parse_report().chunks = blocks;
@@ -149,7 +149,7 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
         }
         if (vertices > kMaxVertices) throw too_many("distinct points in their blocks");
         chunks::concat(parts, out.mesh, true);
-        if (blocks > 1) out.mesh = welded(out.mesh.view());
+        if (blocks > 1) weld_in_place(out.mesh);
     }
     if (attributes) out.notes.emplace_back("stl-nonzero-attribute-bytes");
     return out;
@@ -384,7 +384,7 @@ void join_stl(std::vector<StlPiece>& pieces, LoadedMesh& out, bool weld) {
         parts.push_back(std::move(p.mesh));
     }
     chunks::concat(parts, out.mesh, true);
-    if (weld && parts.size() > 1) out.mesh = welded(out.mesh.view());
+    if (weld && parts.size() > 1) weld_in_place(out.mesh);
 }
 
 LoadedMesh read_ascii_stl(Bytes data, const std::string& name, const ParseOptions& options) {
@@ -407,7 +407,7 @@ LoadedMesh read_ascii_stl(Bytes data, const std::string& name, const ParseOption
                 StlPiece& p = pieces[i];
                 p.run();
                 // Welded while its positions are in cache (see read_binary_stl).
-                if (options.weld_stl && p.outcome.status == chunks::Outcome::Status::ok) p.mesh = welded(p.mesh.view());
+                if (options.weld_stl && p.outcome.status == chunks::Outcome::Status::ok) weld_in_place(p.mesh);
             });
             if (pieces_agree(pieces, s, starts, name)) {
                 join_stl(pieces, out, options.weld_stl);
@@ -421,7 +421,7 @@ LoadedMesh read_ascii_stl(Bytes data, const std::string& name, const ParseOption
     whole[0].run();
     const chunks::Outcome& o = whole[0].outcome;
     if (o.status != chunks::Outcome::Status::ok) throw ReadError(name, static_cast<uint64_t>(o.line), o.message);
-    if (options.weld_stl) whole[0].mesh = welded(whole[0].mesh.view());
+    if (options.weld_stl) weld_in_place(whole[0].mesh);
     join_stl(whole, out, options.weld_stl);
     return out;
 }

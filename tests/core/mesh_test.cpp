@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <utility>
 #include <vector>
@@ -193,4 +194,11 @@ TEST(Weld, WeldedMeshMergesEqualPositionsAndKeepsTheFaces) {
             const double b = w.positions[3 * std::size_t{w.indices[i]} + k];
             EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << "index " << i;
         }
+    // In place: the same mesh (positions compared as bits: NaN and -0).
+    polyvol::Mesh in_place = soup;
+    polyvol::weld_in_place(in_place);
+    ASSERT_EQ(in_place.positions.size(), w.positions.size());
+    EXPECT_EQ(std::memcmp(in_place.positions.data(), w.positions.data(), w.positions.size() * sizeof(double)), 0);
+    EXPECT_EQ(in_place.indices, w.indices);
+    EXPECT_EQ(in_place.face_offsets, w.face_offsets);
 }
