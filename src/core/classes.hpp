@@ -1,4 +1,4 @@
-// Private to the library (core and topology): numbering the classes that
+// Private to the library (core, io and topology): numbering the classes that
 // weld_vertices (polyvol/mesh.hpp) found.
 #pragma once
 

@@ -29,13 +29,17 @@
 // facet normals are ignored. A loop of k vertices becomes one face of k
 // vertices (k = 3 almost always; a 4-vertex loop is a quad, a 2-vertex loop
 // a face that measures ignore).
+#include <tbb/enumerable_thread_specific.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "io/chunks.hpp"
+#include "core/classes.hpp"
 #include "core/prefault.hpp"
 #include "io/readers.hpp"
 #include "io/text.hpp"
@@ -74,16 +78,12 @@ constexpr std::size_t kBinaryBlock = 8192;
 // vertices (UINT32_MAX is no index): the most corners a read may collect.
 constexpr std::size_t kMaxVertices = std::size_t{UINT32_MAX} - 1;
 
-// Widens records [t0, t1) into `m` (nine doubles a record: exact) with
-// corner i as vertex i. Returns the byte offset of the first non-finite
-// coordinate, or 0 when there is none (no coordinate is at offset 0).
-uint64_t read_binary_records(Bytes data, std::size_t t0, std::size_t t1, Mesh& m, bool& attributes) {
-    const std::size_t k = t1 - t0;
-    core::resize_for_filling(m.positions, 9 * k);
-    core::resize_for_filling(m.indices, 3 * k);
+// Widens records [t0, t1) into pos (nine doubles a record: exact).
+// Returns the byte offset of the first non-finite coordinate, or 0 when
+// there is none (no coordinate is at offset 0).
+uint64_t widen_records(Bytes data, std::size_t t0, std::size_t t1, double* pos, bool& attributes) {
     const std::byte* rec = data.data() + 84 + 50 * t0;
-    double* pos = m.positions.data();
-    for (std::size_t t = 0; t < k; ++t, rec += 50) {
+    for (std::size_t t = t0; t < t1; ++t, rec += 50) {
         for (int c = 0; c < 9; ++c) {
             const float f = load_f32_le(rec + 12 + 4 * c);
             if (!std::isfinite(f)) return static_cast<uint64_t>(rec + 12 + 4 * c - data.data());
@@ -92,7 +92,6 @@ uint64_t read_binary_records(Bytes data, std::size_t t0, std::size_t t1, Mesh& m
         pos += 9;
         attributes = attributes || rec[48] != std::byte{0} || rec[49] != std::byte{0};
     }
-    for (std::size_t i = 0; i < 3 * k; ++i) m.indices[i] = static_cast<uint32_t>(i);
     return 0;
 }
 
@@ -105,7 +104,11 @@ uint64_t read_binary_records(Bytes data, std::size_t t0, std::size_t t1, Mesh& m
 // block first while its positions are in cache leaves about a sixth of the
 // corners for the join and the last weld, and the result is the same as
 // welding the whole soup (each block keeps its classes' first corners, in
-// order). The error is that of the first bad coordinate in the file.
+// order). Each thread widens its blocks into one reused buffer, and a block
+// keeps only its classes' positions; its corners' class numbers go straight
+// into the mesh's indices, raised by the classes before the block when the
+// blocks are joined. The error is that of the first bad coordinate in the
+// file.
 LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, const ParseOptions& options) {
     LoadedMesh out;
     out.format = Format::stl;
@@ -119,37 +122,59 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
                                   std::to_string(n) + " triangles have more " + what +
                                       " than 32-bit vertex ids can number (2^32 - 2)");
     };
+    Mesh& m = out.mesh;
     bool attributes = false;
     if (!options.weld_stl) {
         if (out.vertices_in_file > kMaxVertices) throw too_many("corners");
-        if (const uint64_t bad = read_binary_records(data, 0, n, out.mesh, attributes)) throw_nonfinite(name, bad);
+        core::resize_for_filling(m.positions, std::size_t{9} * n);
+        if (const uint64_t bad = widen_records(data, 0, n, m.positions.data(), attributes)) throw_nonfinite(name, bad);
+        core::resize_for_filling(m.indices, std::size_t{3} * n);
+        for (std::size_t i = 0; i < m.indices.size(); ++i) m.indices[i] = static_cast<uint32_t>(i);
     } else {
         const std::size_t blocks = (std::size_t{n} + kBinaryBlock - 1) / kBinaryBlock;
-        std::vector<Mesh> parts(blocks);
+        std::vector<std::vector<double>> xyz(blocks);  // each block's classes' positions
         std::vector<uint64_t> bad(blocks, 0);
         std::vector<char> block_attributes(blocks, 0);
+        core::resize_for_filling(m.indices, std::size_t{3} * n);
+        tbb::enumerable_thread_specific<std::vector<double>> soups;
         const auto read_block = [&](std::size_t b) {
             const std::size_t t0 = b * kBinaryBlock, t1 = std::min<std::size_t>(n, t0 + kBinaryBlock);
+            std::vector<double>& soup = soups.local();
+            soup.resize(9 * (t1 - t0));
             bool a = false;
-            bad[b] = read_binary_records(data, t0, t1, parts[b], a);
+            bad[b] = widen_records(data, t0, t1, soup.data(), a);
             block_attributes[b] = a;
-            if (bad[b] == 0) weld_in_place(parts[b]);
+            if (bad[b] != 0) return;
+            std::vector<uint32_t> id;
+            core::number_classes(weld_vertices(soup), soup, id, xyz[b]);  // corner i is soup vertex i
+            std::copy(id.begin(), id.end(), m.indices.begin() + static_cast<std::ptrdiff_t>(3 * t0));
         };
-        if (chunks::use_parallel(options, data.size()) && blocks > 1) {
-            thread_parse_report().chunks = blocks;
-            chunks::for_each(blocks, read_block);
-        } else {
-            for (std::size_t b = 0; b < blocks; ++b) read_block(b);
-        }
-        std::size_t vertices = 0;  // the blocks' own classes: at least the mesh's
+        const bool parallel = chunks::use_parallel(options, data.size()) && blocks > 1;
+        const auto for_each_block = [&](const std::function<void(std::size_t)>& f) {
+            if (parallel) {
+                chunks::for_each(blocks, f);
+            } else {
+                for (std::size_t b = 0; b < blocks; ++b) f(b);
+            }
+        };
+        if (parallel) thread_parse_report().chunks = blocks;
+        for_each_block(read_block);
+        std::vector<std::size_t> base(blocks + 1, 0);  // the blocks' classes before block b
         for (std::size_t b = 0; b < blocks; ++b) {
             if (bad[b] != 0) throw_nonfinite(name, bad[b]);
             attributes = attributes || block_attributes[b] != 0;
-            vertices += parts[b].vertex_count();
+            base[b + 1] = base[b] + xyz[b].size() / 3;
         }
-        if (vertices > kMaxVertices) throw too_many("distinct points in their blocks");
-        chunks::concat(parts, out.mesh, true);
-        if (blocks > 1) weld_in_place(out.mesh);
+        if (base[blocks] > kMaxVertices) throw too_many("distinct points in their blocks");
+        core::resize_for_filling(m.positions, 3 * base[blocks]);
+        for_each_block([&](std::size_t b) {
+            std::copy(xyz[b].begin(), xyz[b].end(), m.positions.begin() + static_cast<std::ptrdiff_t>(3 * base[b]));
+            std::vector<double>().swap(xyz[b]);
+            const auto shift = static_cast<uint32_t>(base[b]);
+            const std::size_t end = std::min<std::size_t>(3 * std::size_t{n}, 3 * (b + 1) * kBinaryBlock);
+            for (std::size_t i = 3 * b * kBinaryBlock; i < end; ++i) m.indices[i] += shift;
+        });
+        if (blocks > 1) weld_in_place(m);
     }
     if (attributes) out.notes.emplace_back("stl-nonzero-attribute-bytes");
     return out;
