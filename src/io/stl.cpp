@@ -32,6 +32,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -137,14 +138,23 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
         std::vector<char> block_attributes(blocks, 0);
         core::resize_for_filling(m.indices, std::size_t{3} * n);
         tbb::enumerable_thread_specific<std::vector<double>> soups;
+        // The first block known to hold a bad coordinate: the blocks after it
+        // are skipped (the error is that block's or an earlier one's).
+        std::atomic<std::size_t> first_bad{blocks};
         const auto read_block = [&](std::size_t b) {
+            if (b > first_bad.load(std::memory_order_relaxed)) return;
             const std::size_t t0 = b * kBinaryBlock, t1 = std::min<std::size_t>(n, t0 + kBinaryBlock);
             std::vector<double>& soup = soups.local();
             soup.resize(9 * (t1 - t0));
             bool a = false;
             bad[b] = widen_records(data, t0, t1, soup.data(), a);
             block_attributes[b] = a;
-            if (bad[b] != 0) return;
+            if (bad[b] != 0) {
+                std::size_t f = first_bad.load();
+                while (b < f && !first_bad.compare_exchange_weak(f, b)) {
+                }
+                return;
+            }
             std::vector<uint32_t> id;
             core::number_classes(weld_vertices(soup), soup, id, xyz[b]);  // corner i is soup vertex i
             std::copy(id.begin(), id.end(), m.indices.begin() + static_cast<std::ptrdiff_t>(3 * t0));
