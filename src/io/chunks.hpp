@@ -50,7 +50,7 @@ namespace polyvol::io {
 
 struct ParseOptions {
     // Parse large inputs in chunks on several threads (oneTBB): ASCII STL,
-    // OBJ, OFF, PLY (ascii and binary bodies), binary STL (blocks of 8192
+    // OBJ, OFF, PLY (ascii and binary bodies), binary STL (blocks of 16384
     // records: chunk_bytes does not apply). false selects the serial
     // readers (welding's own passes may still use other threads).
     bool parallel = true;

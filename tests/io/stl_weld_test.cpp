@@ -119,7 +119,7 @@ TEST(StlWeld, AsciiInChunksIsTheWeldedSoup) {
 
 TEST(StlWeld, BinaryInBlocksIsTheWeldedSoup) {
     for (bool shuffled : {false, true}) {
-        const int n = 110;  // 24 200 triangles (1.2 MB): three blocks of the welding reader
+        const int n = 130;  // 33 800 triangles (1.7 MB): three blocks of the welding reader
         const Mesh soup = lattice_soup(n, false, shuffled, 11);
         const std::string data = write_binary_stl(soup);
         expect_welded_everywhere(data, shuffled ? "shuffled.bin.stl" : "ordered.bin.stl", std::size_t(n) * n,
@@ -129,9 +129,9 @@ TEST(StlWeld, BinaryInBlocksIsTheWeldedSoup) {
 
 // Files of exactly one and two blocks, one more, and none: the same.
 TEST(StlWeld, BinaryAtBlockBoundaries) {
-    const Mesh big = lattice_soup(100, false, true, 5);  // 20 000 triangles
-    for (std::size_t triangles : {std::size_t{0}, std::size_t{1}, std::size_t{8191}, std::size_t{8192},
-                                  std::size_t{8193}, std::size_t{16384}}) {
+    const Mesh big = lattice_soup(130, false, true, 5);  // 33 800 triangles
+    for (std::size_t triangles : {std::size_t{0}, std::size_t{1}, std::size_t{16383}, std::size_t{16384},
+                                  std::size_t{16385}, std::size_t{32768}}) {
         Mesh m;
         m.positions.assign(big.positions.begin(), big.positions.begin() + static_cast<std::ptrdiff_t>(9 * triangles));
         m.indices.assign(big.indices.begin(), big.indices.begin() + static_cast<std::ptrdiff_t>(3 * triangles));
@@ -179,7 +179,7 @@ TEST(StlWeld, TheFirstCornerDecidesTheSignOfZero) {
 // Blocks are read in parallel; the error is still the first bad coordinate
 // in the file.
 TEST(StlWeld, BinaryErrorIsTheFirstNonFiniteCoordinate) {
-    const std::string data = write_binary_stl(lattice_soup(100, false, false, 3));
+    const std::string data = write_binary_stl(lattice_soup(130, false, false, 3));  // 33 800 triangles
     auto nan_at = [](std::string s, std::size_t triangle, int coordinate) {
         const auto nan = std::bit_cast<std::array<char, 4>>(std::numeric_limits<float>::quiet_NaN());
         s.replace(84 + 50 * triangle + 12 + 4 * static_cast<std::size_t>(coordinate), 4, nan.data(), 4);
@@ -191,9 +191,9 @@ TEST(StlWeld, BinaryErrorIsTheFirstNonFiniteCoordinate) {
         int coordinate;
     };
     const std::vector<Case> cases = {
-        {nan_at(data, 19000, 4), 19000, 4},
-        {nan_at(nan_at(data, 19999, 8), 9000, 2), 9000, 2},
-        {nan_at(nan_at(data, 8192, 0), 8191, 8), 8191, 8},
+        {nan_at(data, 30000, 4), 30000, 4},
+        {nan_at(nan_at(data, 33799, 8), 9000, 2), 9000, 2},
+        {nan_at(nan_at(data, 16384, 0), 16383, 8), 16383, 8},
     };
     for (const Case& c : cases) {
         for (const ParseOptions& o : {kSerial, chunked(1 << 20), kSoup}) {
