@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "common/topology_compare.hpp"
 #include "fixtures.hpp"
 #include "polyvol/topology.hpp"
 
@@ -13,6 +14,7 @@ namespace {
 
 using test::add_box;
 using test::box;
+using test::expect_same_counts;
 using test::quad_torus;
 using test::tetrahedron;
 using test::triangle;
@@ -20,38 +22,6 @@ using test::unit_cube;
 using test::unwelded;
 
 TopologyReport analyze(const Mesh& m) { return analyze_topology(m.view()); }
-
-// Everything but the shells, which are compared where a test needs them.
-void expect_same_counts(const TopologyReport& a, const TopologyReport& b) {
-    EXPECT_EQ(a.faces, b.faces);
-    EXPECT_EQ(a.faces_with_lt3_vertices, b.faces_with_lt3_vertices);
-    EXPECT_EQ(a.triangles, b.triangles);
-    EXPECT_EQ(a.vertices_welded, b.vertices_welded);
-    EXPECT_EQ(a.vertices_referenced, b.vertices_referenced);
-    EXPECT_EQ(a.edges, b.edges);
-    EXPECT_EQ(a.boundary_edges, b.boundary_edges);
-    EXPECT_EQ(a.nonmanifold_edges, b.nonmanifold_edges);
-    EXPECT_EQ(a.misoriented_edges, b.misoriented_edges);
-    EXPECT_EQ(a.unbalanced_edges, b.unbalanced_edges);
-    EXPECT_EQ(a.degenerate_edge_uses, b.degenerate_edge_uses);
-    EXPECT_EQ(a.triangles_with_repeated_vertex, b.triangles_with_repeated_vertex);
-    EXPECT_EQ(a.zero_area_triangles, b.zero_area_triangles);
-    EXPECT_EQ(a.euler_characteristic, b.euler_characteristic);
-    EXPECT_EQ(a.components_vertex_connected, b.components_vertex_connected);
-    EXPECT_EQ(a.components_edge_connected, b.components_edge_connected);
-    EXPECT_EQ(a.closed, b.closed);
-    EXPECT_EQ(a.edge_manifold, b.edge_manifold);
-    EXPECT_EQ(a.consistently_oriented, b.consistently_oriented);
-    EXPECT_EQ(a.closed_2_cycle, b.closed_2_cycle);
-    ASSERT_EQ(a.shells.size(), b.shells.size());
-    for (std::size_t s = 0; s < a.shells.size(); ++s) {
-        EXPECT_EQ(a.shells[s].faces, b.shells[s].faces);
-        EXPECT_EQ(a.shells[s].vertices, b.shells[s].vertices);
-        EXPECT_EQ(a.shells[s].edges, b.shells[s].edges);
-        EXPECT_EQ(a.shells[s].role, b.shells[s].role);
-        EXPECT_DOUBLE_EQ(a.shells[s].signed_volume, b.shells[s].signed_volume);
-    }
-}
 
 void expect_closed_oriented_manifold(const TopologyReport& r) {
     EXPECT_EQ(r.boundary_edges, 0u);
