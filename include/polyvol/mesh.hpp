@@ -90,8 +90,9 @@ std::vector<uint32_t> weld_vertices(std::span<const double> positions);
 // other libraries hold, about a sixth of the positions to read per call.
 Mesh welded(const MeshView& mesh);
 
-// mesh = welded(mesh), its index and face arrays rewritten where they are
-// (no copy of them: what a reader that builds a soup wants).
+// mesh = welded(mesh) without a second index array: the indices are mapped
+// where they are, the faces' sizes stay, and the positions become the
+// classes' (what a reader that builds a soup wants).
 void weld_in_place(Mesh& mesh);
 
 }  // namespace polyvol

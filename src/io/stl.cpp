@@ -30,6 +30,7 @@
 // vertices (k = 3 almost always; a 4-vertex loop is a quad, a 2-vertex loop
 // a face that measures ignore).
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -159,9 +160,13 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
                 }
                 return;
             }
-            std::vector<uint32_t> id;
-            core::number_classes(weld_vertices(soup), soup, id, xyz[b]);  // corner i is soup vertex i
-            std::copy(id.begin(), id.end(), m.indices.begin() + static_cast<std::ptrdiff_t>(3 * t0));
+            // Isolated: while this block's passes wait for their own oneTBB
+            // work, the thread takes no other block, which would reuse `soup`.
+            tbb::this_task_arena::isolate([&] {
+                std::vector<uint32_t> id;
+                core::number_classes(weld_vertices(soup), soup, id, xyz[b]);  // corner i is soup vertex i
+                std::copy(id.begin(), id.end(), m.indices.begin() + static_cast<std::ptrdiff_t>(3 * t0));
+            });
         };
         const bool parallel = chunks::use_parallel(options, data.size()) && blocks > 1;
         const auto for_each_block = [&](const std::function<void(std::size_t)>& f) {
