@@ -25,6 +25,7 @@
 #include "io/chunks.hpp"
 #include "io/text.hpp"
 #include "io_helpers.hpp"
+#include "parse_helpers.hpp"
 
 namespace {
 
@@ -32,12 +33,6 @@ using namespace iotest;
 using polyvol::io::ParseOptions;
 using polyvol::io::ParseReport;
 using polyvol::io::ScopedParseOptions;
-
-const ParseOptions kSerial{.parallel = false};
-
-ParseOptions chunked(std::size_t bytes) {
-    return {.parallel = true, .chunk_bytes = bytes, .min_parallel_bytes = 0};
-}
 
 struct Outcome {
     bool ok = false;
@@ -62,11 +57,6 @@ Outcome read_with(const std::string& data, const std::string& name, const ParseO
     return r;
 }
 
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
 // Compares a parallel reading with the serial one.
 void expect_same(const Outcome& serial, const Outcome& par, const std::string& what) {
     ASSERT_EQ(serial.ok, par.ok) << what << ": serial " << (serial.ok ? "read" : serial.what) << ", parallel "
@@ -78,13 +68,7 @@ void expect_same(const Outcome& serial, const Outcome& par, const std::string& w
     }
     const LoadedMesh& a = serial.mesh;
     const LoadedMesh& b = par.mesh;
-    EXPECT_TRUE(same_bytes(a.mesh.positions, b.mesh.positions))
-        << what << ": positions differ (" << a.mesh.positions.size() << " vs " << b.mesh.positions.size() << ")";
-    EXPECT_TRUE(same_bytes(a.mesh.indices, b.mesh.indices))
-        << what << ": indices differ (" << a.mesh.indices.size() << " vs " << b.mesh.indices.size() << ")";
-    EXPECT_TRUE(same_bytes(a.mesh.face_offsets, b.mesh.face_offsets))
-        << what << ": face offsets differ (" << a.mesh.face_offsets.size() << " vs " << b.mesh.face_offsets.size()
-        << ")";
+    expect_same_mesh(b.mesh, a.mesh, what);
     EXPECT_EQ(a.notes, b.notes) << what;
     EXPECT_EQ(a.vertices_in_file, b.vertices_in_file) << what;
     EXPECT_EQ(a.format, b.format) << what;

@@ -8,7 +8,6 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <random>
@@ -20,6 +19,7 @@
 #include "common/manifest.hpp"
 #include "io/chunks.hpp"
 #include "io_helpers.hpp"
+#include "parse_helpers.hpp"
 
 namespace {
 
@@ -33,23 +33,6 @@ LoadedMesh read_with(const std::string& data, const std::string& name, const Par
 }
 
 const ParseOptions kSoup{.weld_stl = false};
-const ParseOptions kSerial{.parallel = false};
-
-ParseOptions chunked(std::size_t bytes) {
-    return {.parallel = true, .chunk_bytes = bytes, .min_parallel_bytes = 0};
-}
-
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
-void expect_same_mesh(const Mesh& got, const Mesh& want, const std::string& what) {
-    EXPECT_TRUE(same_bytes(got.positions, want.positions))
-        << what << ": positions (" << got.positions.size() << " vs " << want.positions.size() << ")";
-    EXPECT_TRUE(same_bytes(got.indices, want.indices)) << what << ": indices";
-    EXPECT_TRUE(same_bytes(got.face_offsets, want.face_offsets)) << what << ": face offsets";
-}
 
 // A closed surface with shared vertices as an STL soup: the n x n lattice
 // on a torus, (i, j) at (i - n/2, j - n/2, (7i + 3j) mod 5 / 4), two
