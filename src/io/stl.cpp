@@ -406,9 +406,9 @@ bool pieces_agree(const std::vector<StlPiece>& pieces, std::string_view s, const
     return true;
 }
 
-// The pieces joined: the mesh (welded across pieces when `weld`: each piece
-// was welded on its own, see read_binary_stl), and the notes in the serial
-// reader's order.
+// The pieces joined: the mesh (welded when `weld`: across the pieces of a
+// parallel read, each welded on its own first, see read_binary_stl; the
+// whole soup of a serial one), and the notes in the serial reader's order.
 void join_stl(std::vector<StlPiece>& pieces, LoadedMesh& out, bool weld) {
     std::string_view open_name;  // the solid open at the start of the piece
     std::size_t solids = 0;
@@ -428,7 +428,7 @@ void join_stl(std::vector<StlPiece>& pieces, LoadedMesh& out, bool weld) {
         parts.push_back(std::move(p.mesh));
     }
     chunks::concat(parts, out.mesh, true);
-    if (weld && parts.size() > 1) weld_in_place(out.mesh);
+    if (weld) weld_in_place(out.mesh);
 }
 
 LoadedMesh read_ascii_stl(Bytes data, const std::string& name, const ParseOptions& options) {
@@ -465,7 +465,6 @@ LoadedMesh read_ascii_stl(Bytes data, const std::string& name, const ParseOption
     whole[0].run();
     const chunks::Outcome& o = whole[0].outcome;
     if (o.status != chunks::Outcome::Status::ok) throw ReadError(name, static_cast<uint64_t>(o.line), o.message);
-    if (options.weld_stl) weld_in_place(whole[0].mesh);
     join_stl(whole, out, options.weld_stl);
     return out;
 }
