@@ -23,6 +23,7 @@
 #include "grid_command.hpp"
 #include "implicit_command.hpp"
 #include "report.hpp"
+#include "worker_warm_up.hpp"
 
 namespace {
 
@@ -156,6 +157,7 @@ int main(int argc, char** argv) {
         app.exit(e);
         return Exit::usage;
     }
+    const WorkerWarmUp warm_up;  // before the first parallel loop; joined when main returns
     try {
         if (const int code = run_ndim_commands(ndim_commands); code >= 0) return code;
         if (*grid) return run_grid_command(grid_args);
