@@ -11,7 +11,13 @@ namespace polyvol::cli {
 WorkerWarmUp::WorkerWarmUp() {
     try {
         // One index per thread of the arena, so that oneTBB asks for every worker.
-        helper_ = std::thread([] { tbb::parallel_for(0, tbb::this_task_arena::max_concurrency(), [](int) {}); });
+        helper_ = std::thread([] {
+            try {
+                tbb::parallel_for(0, tbb::this_task_arena::max_concurrency(), [](int) {});
+            } catch (...) {
+                // Out of memory or threads: the first real loop will say so, or manage without.
+            }
+        });
     } catch (const std::system_error&) {
         // No thread to spare: the first parallel loop starts the workers, as without this.
     }
