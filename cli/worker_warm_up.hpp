@@ -9,7 +9,7 @@ namespace polyvol::cli {
 // oneTBB initialises itself (its allocator library, its thread pool) and
 // creates its workers at the first parallel loop, on the thread that runs
 // it. On the machine of docs/benchmarks.md (a virtual machine, two cores)
-// the first worker then often joined that loop 1-5 ms after it had begun,
+// the first worker then often joined that loop 1.5-5 ms after it had begun,
 // which cost a whole-process `polyvol volume` of an 8M-triangle binary STL
 // about a tenth of its time. A helper thread that runs an empty parallel
 // loop as soon as the arguments are parsed takes both off the critical path:
