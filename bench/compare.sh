@@ -6,12 +6,13 @@
 #     (deleted at the end);
 #   * runs `polyvol volume`, naive_stl_volume (binary STL only), peer_cgal,
 #     peer_vtk and peer_open3d (1M files only: its watertightness check is
-#     quadratic) RUNS times each and prints the median wall seconds, the
-#     median peak RSS, the volumes, and the ratios polyvol/naive and
-#     peer/polyvol;
+#     quadratic) RUNS times each, in rounds (each tool once per round, the
+#     order rotating), and prints the median wall seconds, the median peak
+#     RSS, the volumes, and the ratios polyvol/naive and peer/polyvol;
 #   * prints loading and the in-memory volume call of each tool's harness
-#     (their own medians; polyvol's also on the binary STL's packed float32
-#     triangles, and two plain loops for scale) and polyvol_bench's;
+#     (their own medians, and the call's ratio per round; polyvol's also on
+#     the binary STL's packed float32 triangles, and two plain loops for
+#     scale) and polyvol_bench's;
 #   * measures peak RSS of `polyvol volume` (and of the naive mmap loop) on a
 #     BIG_TRIANGLES-triangle binary STL (default 60M = 3 GB).
 # Usage: bench/compare.sh [BUILD_DIR]      (env: RUNS=5, TIMEOUT=600, JOBS=2,
@@ -156,7 +157,53 @@ def load_of(tool, out):
     except Exception:
         return None
 
+def bench_rounds(tools, n):
+    """Each tool once per round, n rounds, the order rotating: the shared machine's state drifts, so
+    the runs of one round, minutes apart at most, see much the same machine. Returns bench()'s tuple
+    per tool (None once a run timed out; that tool is not run again) and the rounds themselves
+    (name -> that run's stdout)."""
+    walls = {name: [] for name, _ in tools}
+    rss = {name: [] for name, _ in tools}
+    outs = {name: [] for name, _ in tools}
+    codes = {}
+    dead = set()
+    rounds = []
+    for i in range(n):
+        k = i % len(tools)
+        this = {}
+        for name, cmd in tools[k:] + tools[:k]:
+            if name in dead:
+                continue
+            limit = min(timeout, open3d_timeout) if name == "open3d" else timeout
+            if os.path.isfile(cmd[-1]):
+                warm(cmd[-1])
+            w, m, o, c = run_wait4(cmd, limit)
+            if c is None:
+                dead.add(name)
+                continue
+            walls[name].append(w); rss[name].append(m); outs[name].append(o); codes[name] = c
+            this[name] = o
+        rounds.append(this)
+    res = {}
+    for name, _ in tools:
+        if name in dead or not walls[name]:
+            res[name] = None
+        else:
+            res[name] = (statistics.median(walls[name]), statistics.median(rss[name]), outs[name][-1], codes[name], outs[name])
+    return res, rounds
+
+def paired_call_ratios(rounds):
+    """Per round: the fastest peer's in-memory call (CGAL or VTK) / polyvol's, both from that round's runs."""
+    ratios = []
+    for r in rounds:
+        pc = inmem_of("polyvol-harness", r["polyvol-harness"]) if "polyvol-harness" in r else None
+        peer = [x for x in (inmem_of(n, r[n]) for n in ("cgal", "vtk") if n in r) if x]
+        if pc and peer:
+            ratios.append(min(peer) / pc)
+    return sorted(ratios)
+
 rows = []
+paired = {}  # (tag, ext) -> sorted per-round ratios of the in-memory call (fastest peer / polyvol)
 for tag in tags:
     for ext in ("stl", "ascii.stl", "ply", "obj"):
         f = os.path.join(tmp, f"sphere{tag}.{ext}")
@@ -167,17 +214,17 @@ for tag in tags:
             tools += [("cgal", [B("bench", "peer_cgal"), f]), ("vtk", [B("bench", "peer_vtk"), f])]
         if with_peers and tag == tags[0]:
             tools.append(("open3d", [B("bench", "peer_open3d"), f]))
-        res = {}
-        for name, cmd in tools:
-            limit = min(timeout, open3d_timeout) if name == "open3d" else timeout
-            r = bench(cmd, runs, limit)
-            res[name] = r
+        res, rounds = bench_rounds(tools, runs)
+        for name, _ in tools:
+            r = res[name]
             if r is None:
+                limit = min(timeout, open3d_timeout) if name == "open3d" else timeout
                 print(f"    {tag} {ext:9} {name:8} timeout (> {limit:.0f} s)", flush=True)
             else:
                 print(f"    {tag} {ext:9} {name:8} {r[0]:8.3f} s  {r[1]/1024:8.1f} MB  exit {r[3]}  volume {volume_of(name, r[2])!r}"
                       + (f"  in-memory {inmem_of(name, r[2]):.4f} s" if inmem_of(name, r[2]) is not None else ""), flush=True)
         rows.append((tag, ext, res))
+        paired[(tag, ext)] = paired_call_ratios(rounds)
 
 print()
 print("| mesh | format | tool | median wall s | median peak RSS MB | ratio to polyvol | volume | peer in-memory volume call s |")
@@ -246,14 +293,17 @@ print("coordinates (no determinant) / summing det in plain double (bench/peers/p
 print("scale, not lower bounds. 5x the fastest peer needs a call below fastest/5. Every tool holds an indexed")
 print("mesh (the STL readers, polyvol's too, merge the facets' corners). packed (binary STL only): the file read as its own")
 print("float32 triangles (read_binary_stl_triangles, 36 bytes a triangle) and soup_volume on them, load and")
-print("call, with the call's ratio; the same correctly rounded volume.")
+print("call, with the call's ratio; the same correctly rounded volume. paired: the call ratio per round")
+print("(the fastest peer's call / polyvol's, both from the same round of runs), median and range over the rounds.")
 print()
-print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | packed load s | packed call s | packed call ratio | fastest/5 s | read loop s | naive det s |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+print("| mesh | format | polyvol load s | CGAL load s | VTK load s | load ratio | polyvol volume call s | CGAL call s | VTK call s | call ratio | paired call ratio | packed load s | packed call s | packed call ratio | fastest/5 s | read loop s | naive det s |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 def med(fn, name, r):
     """Median over a tool's runs of fn(name, output); None when no run gave a figure."""
     xs = [x for x in (fn(name, o) for o in r[4]) if x is not None]
     return statistics.median(xs) if xs else None
+def paired_text(ratios):
+    return "" if not ratios else f"{statistics.median(ratios):.1f} ({ratios[0]:.1f}..{ratios[-1]:.1f})"
 harness = {}  # (tag, ext) -> (fastest peer load, fastest peer call, polyvol load, call, packed call)
 for tag, ext, res in rows:
     h = res.get("polyvol-harness")
@@ -270,7 +320,7 @@ for tag, ext, res in rows:
     fmt = lambda x: "" if x is None else f"{x:.4f}"
     print(f"| {tag} | {ext} | {fmt(pl)} | {fmt(loads.get('cgal'))} | {fmt(loads.get('vtk'))} | "
           f"{'' if not (fl and pl) else f'{fl / pl:.1f}'} | {fmt(pc)} | {fmt(calls.get('cgal'))} | {fmt(calls.get('vtk'))} | "
-          f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} | {fmt(ppl)} | {fmt(pp)} | {'' if not (fc and pp) else f'{fc / pp:.1f}'} | "
+          f"{'' if not (fc and pc) else f'{fc / pc:.1f}'} | {paired_text(paired.get((tag, ext)))} | {fmt(ppl)} | {fmt(pp)} | {'' if not (fc and pp) else f'{fc / pp:.1f}'} | "
           f"{fmt(fc / 5 if fc else None)} | "
           f"{fmt(med(lambda n, o: field_of(o, 5), 'polyvol-harness', h))} | {fmt(med(lambda n, o: field_of(o, 6), 'polyvol-harness', h))} |")
 
@@ -312,6 +362,8 @@ for tag, ext, res in rows:
     fl, fc, pl, pc, pp = harness.get((tag, ext), (None,) * 5)
     parts = [f"{label} {fc / x:.1f}x" for label, x in (("as read", pc), ("packed", pp)) if fc and x]
     if parts:
+        if paired.get((tag, ext)):
+            parts.append(f"as read, paired rounds {paired_text(paired[(tag, ext)])}")
         print(f"    {tag} {ext}: in memory " + ", ".join(parts) + " (target >= 5)")
     if fl and pl:
         print(f"    {tag} {ext}: loading {fl / pl:.1f}x (target >= 5 for ASCII STL and PLY)")
