@@ -5,9 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cfloat>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <random>
 #include <utility>
 
@@ -399,25 +397,4 @@ TEST(MassProperties, OtherMethodsReportTheirBounds) {
     }
     EXPECT_NEAR(surface_area(m.view()), 2 * (1.5 * 6 + 6 * 10 + 1.5 * 10), 1e-10);
     EXPECT_NEAR(total_edge_length(m.view()), 4 * (1.5 + 6 + 10), 1e-10);
-}
-
-// A quick throughput report (not a benchmark): ~0.5M triangles in memory.
-TEST(MassProperties, ThroughputReport) {
-    std::mt19937_64 rng(25);
-    const Mesh m = fx::random_sphere(rng, 8, 1.0, {1e6, 0, 0});  // 2^19 triangles
-    const double n = static_cast<double>(m.face_count());
-    auto time = [&](auto&& fn) {
-        const auto t0 = std::chrono::steady_clock::now();
-        volatile double sink = fn();
-        (void)sink;
-        return std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() / n;
-    };
-    const double naive = time([&] { return naive_volume(m.view()); });
-    const double vol_cr = time([&] { return signed_volume(m.view()); });
-    const double vol_fast = time([&] { return signed_volume(m.view(), Method::cone, Accuracy::fast); });
-    const double mp_cr = time([&] { return cr(m).volume; });
-    std::printf("ns/triangle (%g triangles): naive %.2f, volume correctly-rounded %.2f, volume fast %.2f, "
-                "mass_properties correctly-rounded %.2f\n",
-                n, naive, vol_cr, vol_fast, mp_cr);
-    EXPECT_GT(n, 5e5);
 }
