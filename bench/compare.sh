@@ -112,17 +112,44 @@ def warm(path):
         while f.read(1 << 22):
             pass
 
-def bench(cmd, n=runs, limit=timeout):
-    walls, rss, out, code, outs = [], [], "", 0, []
-    for _ in range(n):
-        if os.path.isfile(cmd[-1]):
-            warm(cmd[-1])
-        w, m, o, c = run_wait4(cmd, limit)
-        if c is None:
-            return None
-        walls.append(w); rss.append(m); out, code = o, c
-        outs.append(o)
-    return statistics.median(walls), statistics.median(rss), out, code, outs
+def limit_of(name):
+    """A run's time limit: Open3D's is shorter (its watertightness check is quadratic)."""
+    return min(timeout, open3d_timeout) if name == "open3d" else timeout
+
+def bench_rounds(tools, n):
+    """Each tool once per round, n rounds, the order rotating: the shared machine's state drifts, so
+    the runs of one round, minutes apart at most, see much the same machine. Returns
+    per tool (median wall s, median peak RSS KB, last stdout, last exit code, every stdout), or None
+    once a run timed out (that tool is not run again); and the rounds themselves (name -> that
+    run's stdout)."""
+    walls = {name: [] for name, _ in tools}
+    rss = {name: [] for name, _ in tools}
+    outs = {name: [] for name, _ in tools}
+    codes = {}
+    dead = set()
+    rounds = []
+    for i in range(n):
+        k = i % len(tools)
+        this = {}
+        for name, cmd in tools[k:] + tools[:k]:
+            if name in dead:
+                continue
+            if os.path.isfile(cmd[-1]):
+                warm(cmd[-1])
+            w, m, o, c = run_wait4(cmd, limit_of(name))
+            if c is None:
+                dead.add(name)
+                continue
+            walls[name].append(w); rss[name].append(m); outs[name].append(o); codes[name] = c
+            this[name] = o
+        rounds.append(this)
+    res = {}
+    for name, _ in tools:
+        if name in dead or not walls[name]:
+            res[name] = None
+        else:
+            res[name] = (statistics.median(walls[name]), statistics.median(rss[name]), outs[name][-1], codes[name], outs[name])
+    return res, rounds
 
 def volume_of(tool, out):
     try:
@@ -157,41 +184,6 @@ def load_of(tool, out):
     except Exception:
         return None
 
-def bench_rounds(tools, n):
-    """Each tool once per round, n rounds, the order rotating: the shared machine's state drifts, so
-    the runs of one round, minutes apart at most, see much the same machine. Returns bench()'s tuple
-    per tool (None once a run timed out; that tool is not run again) and the rounds themselves
-    (name -> that run's stdout)."""
-    walls = {name: [] for name, _ in tools}
-    rss = {name: [] for name, _ in tools}
-    outs = {name: [] for name, _ in tools}
-    codes = {}
-    dead = set()
-    rounds = []
-    for i in range(n):
-        k = i % len(tools)
-        this = {}
-        for name, cmd in tools[k:] + tools[:k]:
-            if name in dead:
-                continue
-            limit = min(timeout, open3d_timeout) if name == "open3d" else timeout
-            if os.path.isfile(cmd[-1]):
-                warm(cmd[-1])
-            w, m, o, c = run_wait4(cmd, limit)
-            if c is None:
-                dead.add(name)
-                continue
-            walls[name].append(w); rss[name].append(m); outs[name].append(o); codes[name] = c
-            this[name] = o
-        rounds.append(this)
-    res = {}
-    for name, _ in tools:
-        if name in dead or not walls[name]:
-            res[name] = None
-        else:
-            res[name] = (statistics.median(walls[name]), statistics.median(rss[name]), outs[name][-1], codes[name], outs[name])
-    return res, rounds
-
 def paired_call_ratios(rounds):
     """Per round: the fastest peer's in-memory call (CGAL or VTK) / polyvol's, both from that round's runs."""
     ratios = []
@@ -218,8 +210,7 @@ for tag in tags:
         for name, _ in tools:
             r = res[name]
             if r is None:
-                limit = min(timeout, open3d_timeout) if name == "open3d" else timeout
-                print(f"    {tag} {ext:9} {name:8} timeout (> {limit:.0f} s)", flush=True)
+                print(f"    {tag} {ext:9} {name:8} timeout (> {limit_of(name):.0f} s)", flush=True)
             else:
                 print(f"    {tag} {ext:9} {name:8} {r[0]:8.3f} s  {r[1]/1024:8.1f} MB  exit {r[3]}  volume {volume_of(name, r[2])!r}"
                       + (f"  in-memory {inmem_of(name, r[2]):.4f} s" if inmem_of(name, r[2]) is not None else ""), flush=True)
@@ -233,8 +224,7 @@ for tag, ext, res in rows:
     pv = res.get("polyvol")
     for name, r in res.items():
         if r is None:
-            lim = min(timeout, open3d_timeout) if name == "open3d" else timeout
-            print(f"| {tag} | {ext} | {name} | timeout > {lim:.0f} | | | | |")
+            print(f"| {tag} | {ext} | {name} | timeout > {limit_of(name):.0f} | | | | |")
             continue
         ratio = "" if pv is None or name == "polyvol" else f"{r[0] / pv[0]:.2f}"
         im = inmem_of(name, r[2])
@@ -340,7 +330,7 @@ print(f"    generated {os.path.getsize(bigf) / 1e9:.2f} GB in {time.monotonic() 
       + open("/proc/meminfo").read().split("MemAvailable:")[1].split("\n")[0].strip())
 big_rss = None
 for name, cmd in (("polyvol volume", [B("polyvol"), "volume", bigf]), ("naive (mmap)", [B("bench", "naive_stl_volume"), bigf])):
-    r = bench(cmd, 3)
+    r = bench_rounds([(name, cmd)], 3)[0][name]
     if r is None:
         print(f"    {name}: timeout")
     else:
