@@ -1,0 +1,63 @@
+// polyvol/boolean.hpp — volumes of A ∩ B, A ∪ B, A − B and B − A of two
+// solids, exactly, without building the result.
+//
+// Conventions:
+//   * A and B are closed meshes (closed 2-cycles, topology.hpp), outward
+//     (counter-clockwise seen from outside), each bounding a solid: its
+//     winding number is 0 or 1 everywhere (several shells and cavities are
+//     fine; overlapping shells of one operand are not).
+//   * The boundary of A ∩ B is the part of A's surface inside B and of B's
+//     surface inside A; its pieces are summed by the cone rule like any
+//     boundary (measure.hpp), and no result mesh is built. The rest follows
+//     exactly: |A ∪ B| = |A| + |B| - |A ∩ B|, |A - B| = |A| - |A ∩ B|.
+//   * Touching and coincident geometry (shared faces, edges, vertices,
+//     identical operands) is resolved by one rule: B is translated by
+//     (ε, ε², ε³), ε -> 0+. Volume is continuous, so the volumes are those of
+//     the coordinates as given (docs/boolean.md).
+//   * Each volume is correctly rounded: the exact volume of the solid the
+//     coordinates define, rounded once to the nearest double.
+//   * Areas are those of the result's boundary in the perturbed limit (where
+//     faces of A and B coincide, the rule above decides whether they count),
+//     computed in double with one absolute bound for all of them.
+#pragma once
+
+#include <cstddef>
+
+#include "polyvol/mesh.hpp"
+
+namespace polyvol {
+
+enum class BooleanStatus {
+    ok,
+    a_not_closed,        // A has an unbalanced edge: no solid
+    b_not_closed,
+    a_inside_out,        // A's volume is negative: it bounds the complement of a solid
+    b_inside_out,
+    a_overlaps_itself,   // A's winding number is not 0 or 1 at a vertex of B (overlapping shells)
+    b_overlaps_itself,
+    invalid_coordinates, // a coordinate is not finite, or outside 0 ∪ [2^-160, 2^180] in magnitude
+};
+
+struct BooleanVolumes {
+    BooleanStatus status = BooleanStatus::ok;
+    // Correctly rounded volumes (NaN unless status == ok).
+    double volume_a = 0, volume_b = 0;
+    double intersection = 0, union_volume = 0, a_minus_b = 0, b_minus_a = 0;
+    // Boundary areas, each within area_error_bound of the exact value.
+    double area_a = 0, area_b = 0;
+    double area_intersection = 0, area_union = 0, area_a_minus_b = 0, area_b_minus_a = 0;
+    double area_error_bound = 0;
+    std::size_t triangles_a = 0, triangles_b = 0;  // fan triangles
+    std::size_t candidate_pairs = 0;  // triangle pairs whose boxes meet
+    std::size_t crossing_pairs = 0;   // triangle pairs whose surfaces cross (cut segments)
+    std::size_t rational_terms = 0;   // pieces whose contribution is a true fraction
+    int refinements = 0;              // precision raises needed to decide the rounding (-1: exact rationals)
+};
+
+// The volumes above. Throws std::invalid_argument for inconsistent mesh
+// arrays (an index out of range); every property of the input is a status.
+BooleanVolumes boolean_volumes(const MeshView& a, const MeshView& b);
+
+const char* boolean_status_message(BooleanStatus status);
+
+}  // namespace polyvol

@@ -1,0 +1,452 @@
+// boolean/boolean_volumes.cpp — |A ∩ B| and the rest from the pieces of the
+// result's boundary, summed exactly.
+//
+// The cone rule over the boundary of A ∩ B (A's surface inside B, B's inside
+// A). For a plane region R of triangle t = (a, b, c), fanning its boundary
+// cycle from a gives 6 cone(R) = Σ over the boundary segments p -> q of
+// det(a, p, q); segments on the lines through a give 0. R's boundary is
+//   * edge b -> c where inside the other solid: with w the other's winding
+//     number (0 or 1) and λ_i the edge's crossings (sign σ_i, +1 entering),
+//     its inside length is w(b) + Σ σ_i (1 - λ_i), worth that times det(a, b, c);
+//   * the cut segments P -> Q along N_t × N_s where t crosses s (oriented so
+//     that the inside of s is on their left; crossings.cpp).
+// A cut is shared by t (region inside B) and s (inside A, run Q -> P), so
+// together they give det(a_t - a_s, P, Q). Every term is linear: no sorting
+// along edges, no polygons, no result mesh.
+//
+// Exactness. Coordinates are x = X 2^e0 with integers X. A crossing of edge
+// p -> q with the plane of s is P = (D_p q - D_q p) / (D_p - D_q),
+// D = orient(s, ·), an exact integer ratio; so is 1 - λ = D_q / (D_q - D_p).
+// Terms whose points are input vertices (D = 0 at an end) are integers; the
+// rest are fractions N / D. The sum is decided as an interval: whole
+// triangles and integers exactly (ExactSum), each fraction as
+// floor(N 2^k / D) 2^-k, so the truth lies within n 2^-k above; k grows
+// until the rounding of every result is decided, and exact rationals settle
+// what no interval can (an exact double or a tie, e.g. touching boxes).
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "boolean/operand.hpp"
+#include "exact/eft.hpp"
+#include "exact/exact_sum.hpp"
+#include "exact/expansion.hpp"
+#include "exact/rational.hpp"
+#include "polyvol/boolean.hpp"
+#include "polyvol/topology.hpp"
+
+namespace polyvol {
+namespace boolean {
+namespace {
+
+static_assert(sizeof(mp_limb_t) == sizeof(uint64_t), "GMP limbs of 64 bits");
+constexpr double kU = 0x1p-53;
+
+using IntPoint = std::array<mpz_class, 3>;
+
+// x = X 2^e0 with X an integer, for every coordinate of both operands.
+struct Scale {
+    int e0 = 0;
+    mpz_class of(double x) const { return mpz_class(std::ldexp(x, -e0)); }
+    IntPoint of(const double* p) const { return {of(p[0]), of(p[1]), of(p[2])}; }
+};
+
+// The exponent of the lowest set bit of x != 0.
+int lowest_bit_exponent(double x) {
+    int e;
+    const double f = std::frexp(std::fabs(x), &e);  // x = f 2^e, f in [0.5, 1)
+    auto m = static_cast<uint64_t>(std::ldexp(f, 53));
+    return e - 53 + std::countr_zero(m);
+}
+
+mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c) {
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+           a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+// orient(s0, s1, s2, x) = det(s1 - s0, s2 - s0, x - s0).
+mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x) {
+    const IntPoint u = {s1[0] - s0[0], s1[1] - s0[1], s1[2] - s0[2]};
+    const IntPoint v = {s2[0] - s0[0], s2[1] - s0[1], s2[2] - s0[2]};
+    const IntPoint w = {x[0] - s0[0], x[1] - s0[1], x[2] - s0[2]};
+    return det3(u, v, w);
+}
+
+// n / d 2^e in double (relative error below 2^-51), without overflow on the way.
+double approx_ratio(const mpz_class& n, const mpz_class& d, int e) {
+    long ne, de;
+    const double mn = mpz_get_d_2exp(&ne, n.get_mpz_t());
+    const double md = mpz_get_d_2exp(&de, d.get_mpz_t());
+    return std::ldexp(mn / md, static_cast<int>(ne - de) + e);
+}
+
+// A crossing point num / den (den > 0) in units of 2^e0, and its double.
+struct CrossPoint {
+    IntPoint num;
+    mpz_class den;
+    std::array<double, 3> xyz;
+};
+
+// Where segment p -> q crosses the plane of s: D_p q - D_q p over D_p - D_q;
+// exactly p (q) when D_p (D_q) is 0.
+CrossPoint crossing_point(const IntPoint& p, const IntPoint& q, const IntPoint* s, const double* pd,
+                          const double* qd, const Scale& scale) {
+    const mpz_class dp = orient(s[0], s[1], s[2], p), dq = orient(s[0], s[1], s[2], q);
+    CrossPoint x;
+    if (dp == 0 || dq == 0) {
+        x.num = dp == 0 ? p : q;
+        x.den = 1;
+        const double* v = dp == 0 ? pd : qd;
+        x.xyz = {v[0], v[1], v[2]};
+        return x;
+    }
+    x.den = dp - dq;
+    for (int k = 0; k < 3; ++k) x.num[k] = dp * q[k] - dq * p[k];
+    if (x.den < 0) {
+        x.den = -x.den;
+        for (auto& c : x.num) c = -c;
+    }
+    for (int k = 0; k < 3; ++k) x.xyz[k] = approx_ratio(x.num[k], x.den, scale.e0);
+    return x;
+}
+
+double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+struct Geometry {
+    double normal_length;  // |N| in double
+    double normal_error;   // bound on its error: 16u |b - a| |c - a|
+    double n[3];           // N in double
+};
+Geometry triangle_geometry(const double* a, const double* b, const double* c) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    Geometry g;
+    g.n[0] = u[1] * v[2] - u[2] * v[1];
+    g.n[1] = u[2] * v[0] - u[0] * v[2];
+    g.n[2] = u[0] * v[1] - u[1] * v[0];
+    g.normal_length = norm3(g.n);
+    g.normal_error = 16 * kU * norm3(u) * norm3(v);
+    return g;
+}
+
+// 6 × the volume of the boundary pieces, in three exact parts.
+struct PieceSum {
+    exact::ExactSum whole;  // dets of whole triangles (real units)
+    mpz_class integer;      // integer terms, units of 2^(3 e0)
+    std::vector<std::pair<mpz_class, mpz_class>> fractions;  // N / D, D > 0, units of 2^(3 e0)
+
+    void add_fraction(mpz_class n, mpz_class d) {
+        if (d < 0) {
+            n = -n;
+            d = -d;
+        }
+        fractions.emplace_back(std::move(n), std::move(d));
+    }
+};
+
+// 2 × an area: terms summed exactly, with the sum of their error bounds.
+struct AreaSum {
+    exact::ExactSum sum;
+    double bound = 0;
+    void add(double value, double error) {
+        sum.add(value);
+        bound += error;
+    }
+};
+
+void add_det(exact::ExactSum& sum, const double* a, const double* b, const double* c, int sign = 1) {
+    double e[exact::kDetTerms];
+    const int n = exact::det3_exact<false>(a, b, c, e);
+    for (int i = 0; i < n; ++i) sum.add(sign * e[i]);
+}
+
+void add_integer(exact::ExactSum& sum, const mpz_class& z, int exponent) {
+    const mpz_srcptr p = z.get_mpz_t();
+    const int n = static_cast<int>(mpz_size(p));
+    std::vector<uint64_t> limbs(n);
+    for (int i = 0; i < n; ++i) limbs[i] = mpz_getlimbn(p, i);
+    sum.add_wide(limbs.data(), n, mpz_sgn(p) < 0, exponent);
+}
+
+mpq_class power_of_two(int e) {
+    mpz_class p = 1;
+    mpz_mul_2exp(p.get_mpz_t(), p.get_mpz_t(), static_cast<unsigned long>(std::abs(e)));
+    return e >= 0 ? mpq_class(p) : mpq_class(mpz_class(1), p);
+}
+
+struct Inputs {
+    const Operand& A;
+    const Operand& B;
+    const Crossings& cross;
+    const std::vector<int32_t>& wa;  // A's winding at B's vertices
+    const std::vector<int32_t>& wb;  // B's winding at A's vertices
+    Scale scale;
+    double max_coordinate;
+};
+
+// The pieces' volume and the areas of each operand's surface inside the other.
+void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSum& area_b_in_a) {
+    const Scale& scale = in.scale;
+    // Whole triangles, by the winding at corner b (edge b -> c starts inside).
+    auto whole = [&](const Operand& op, const std::vector<int32_t>& w, AreaSum& area) {
+        for (std::size_t t = 0; t < op.triangles(); ++t) {
+            if (w[op.tri[3 * t + 1]] == 0) continue;
+            add_det(volume.whole, op.corner(t, 0), op.corner(t, 1), op.corner(t, 2));
+            const Geometry g = triangle_geometry(op.corner(t, 0), op.corner(t, 1), op.corner(t, 2));
+            area.add(g.normal_length, g.normal_error + kU * g.normal_length);
+        }
+    };
+    whole(in.A, in.wb, area_a_in_b);
+    whole(in.B, in.wa, area_b_in_a);
+
+    // Crossings of edge b -> c: σ (1 - λ) det(a, b, c), 1 - λ = D_c / (D_c - D_b).
+    auto edge_terms = [&](const Operand& op, const Operand& other, const std::vector<EdgeHit>& hits, AreaSum& area) {
+        for (const EdgeHit& h : hits) {
+            if (h.edge != 1) continue;
+            const IntPoint a = scale.of(op.corner(h.tri, 0)), b = scale.of(op.corner(h.tri, 1)),
+                           c = scale.of(op.corner(h.tri, 2));
+            const IntPoint s[3] = {scale.of(other.corner(h.other, 0)), scale.of(other.corner(h.other, 1)),
+                                   scale.of(other.corner(h.other, 2))};
+            const mpz_class db = orient(s[0], s[1], s[2], b), dc = orient(s[0], s[1], s[2], c);
+            if (dc == 0) continue;
+            const Geometry g = triangle_geometry(op.corner(h.tri, 0), op.corner(h.tri, 1), op.corner(h.tri, 2));
+            const double error = 8 * kU * g.normal_length + g.normal_error;
+            if (db == 0) {
+                volume.integer += h.sign * det3(a, b, c);
+                area.add(h.sign * g.normal_length, error);
+                continue;
+            }
+            const mpz_class den = dc - db;
+            volume.add_fraction(h.sign * dc * det3(a, b, c), den);
+            area.add(h.sign * approx_ratio(dc, den, 0) * g.normal_length, error);
+        }
+    };
+    edge_terms(in.A, in.B, in.cross.a_hits, area_a_in_b);
+    edge_terms(in.B, in.A, in.cross.b_hits, area_b_in_a);
+
+    // Cut segments: det(a_t - a_s, P, Q); areas ±|(P - a) × (Q - a)| per side.
+    const double M = in.max_coordinate;
+    auto cut_area = [&](const double* a, const std::array<double, 3>& p, const std::array<double, 3>& q,
+                        const Geometry& g, int sign, AreaSum& area) {
+        const double u[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+        const double v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+        const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        const double len = norm3(c), lu = norm3(u), lv = norm3(v);
+        const double along = c[0] * g.n[0] + c[1] * g.n[1] + c[2] * g.n[2];
+        double error = 6 * 16 * kU * (M * (lu + lv) + lu * lv + 4 * kU * M * M);
+        if (!(g.normal_length > 4 * g.normal_error)) error += 2 * len;  // the side may be misjudged
+        area.add(along >= 0 ? sign * len : -sign * len, error);
+    };
+    for (const Cut& cut : in.cross.cuts) {
+        const IntPoint at = scale.of(in.A.corner(cut.a, 0)), as = scale.of(in.B.corner(cut.b, 0));
+        auto end_point = [&](const CutEnd& e) {
+            const Operand& owner = e.of_b ? in.B : in.A;
+            const Operand& plane = e.of_b ? in.A : in.B;
+            const uint32_t t = e.of_b ? cut.b : cut.a, s = e.of_b ? cut.a : cut.b;
+            const double* pd = owner.corner(t, e.edge);
+            const double* qd = owner.corner(t, (e.edge + 1) % 3);
+            const IntPoint sp[3] = {scale.of(plane.corner(s, 0)), scale.of(plane.corner(s, 1)),
+                                    scale.of(plane.corner(s, 2))};
+            return crossing_point(scale.of(pd), scale.of(qd), sp, pd, qd, scale);
+        };
+        const CrossPoint P = end_point(cut.start), Q = end_point(cut.end);
+        const IntPoint d = {at[0] - as[0], at[1] - as[1], at[2] - as[2]};
+        const mpz_class n = det3(d, P.num, Q.num);
+        const mpz_class den = P.den * Q.den;
+        if (den == 1) {
+            volume.integer += n;
+        } else {
+            volume.add_fraction(n, den);
+        }
+        const double* a = in.A.corner(cut.a, 0);
+        const double* b = in.B.corner(cut.b, 0);
+        cut_area(a, P.xyz, Q.xyz, triangle_geometry(a, in.A.corner(cut.a, 1), in.A.corner(cut.a, 2)), +1,
+                 area_a_in_b);
+        cut_area(b, Q.xyz, P.xyz, triangle_geometry(b, in.B.corner(cut.b, 1), in.B.corner(cut.b, 2)), +1,
+                 area_b_in_a);
+    }
+}
+
+// Σ dets of all triangles (6 × the operand's volume) and Σ |N| (2 × area).
+void whole_operand(const Operand& op, exact::ExactSum& volume, AreaSum& area) {
+    for (std::size_t t = 0; t < op.triangles(); ++t) {
+        add_det(volume, op.corner(t, 0), op.corner(t, 1), op.corner(t, 2));
+        const Geometry g = triangle_geometry(op.corner(t, 0), op.corner(t, 1), op.corner(t, 2));
+        area.add(g.normal_length, g.normal_error + kU * g.normal_length);
+    }
+}
+
+}  // namespace
+}  // namespace boolean
+
+const char* boolean_status_message(BooleanStatus status) {
+    switch (status) {
+        case BooleanStatus::ok: return "ok";
+        case BooleanStatus::a_not_closed: return "A is not a closed surface (it has unbalanced edges)";
+        case BooleanStatus::b_not_closed: return "B is not a closed surface (it has unbalanced edges)";
+        case BooleanStatus::a_inside_out: return "A is inside out (negative volume)";
+        case BooleanStatus::b_inside_out: return "B is inside out (negative volume)";
+        case BooleanStatus::a_overlaps_itself: return "A's shells overlap (its winding number exceeds 1 somewhere)";
+        case BooleanStatus::b_overlaps_itself: return "B's shells overlap (its winding number exceeds 1 somewhere)";
+        case BooleanStatus::invalid_coordinates:
+            return "a coordinate is not finite or outside 0 and 2^-160 .. 2^180 in magnitude";
+    }
+    return "unknown";
+}
+
+BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
+    using namespace boolean;
+    BooleanVolumes r;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    auto fail = [&](BooleanStatus s) {
+        r.status = s;
+        r.volume_a = r.volume_b = r.intersection = r.union_volume = r.a_minus_b = r.b_minus_a = nan;
+        r.area_a = r.area_b = r.area_intersection = r.area_union = r.area_a_minus_b = r.area_b_minus_a = nan;
+        r.area_error_bound = nan;
+        return r;
+    };
+    const Operand A = make_operand(a_view), B = make_operand(b_view);
+    r.triangles_a = A.triangles();
+    r.triangles_b = B.triangles();
+
+    // Coordinates: finite, in the exact kernels' range, and a common scale.
+    int e0 = std::numeric_limits<int>::max();
+    double max_coordinate = 0;
+    for (const Operand* op : {&A, &B}) {
+        for (uint32_t v : op->tri) {
+            for (int k = 0; k < 3; ++k) {
+                const double x = op->point(v)[k];
+                if (!exact::in_safe_range(x) || std::fabs(x) > 0x1p180) return fail(BooleanStatus::invalid_coordinates);
+                if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
+                max_coordinate = std::max(max_coordinate, std::fabs(x));
+            }
+        }
+    }
+    if (e0 == std::numeric_limits<int>::max()) e0 = 0;
+
+    TopologyOptions edges_only;
+    edges_only.shells = false;
+    if (!analyze_topology(A.mesh.view(), edges_only).closed_2_cycle) return fail(BooleanStatus::a_not_closed);
+    if (!analyze_topology(B.mesh.view(), edges_only).closed_2_cycle) return fail(BooleanStatus::b_not_closed);
+
+    exact::ExactSum six_a, six_b;
+    AreaSum area_a, area_b;
+    whole_operand(A, six_a, area_a);
+    whole_operand(B, six_b, area_b);
+    if (six_a.sign() < 0) return fail(BooleanStatus::a_inside_out);
+    if (six_b.sign() < 0) return fail(BooleanStatus::b_inside_out);
+
+    const Crossings cross = find_crossings(A, B);
+    r.candidate_pairs = cross.candidate_pairs;
+    r.crossing_pairs = cross.cuts.size();
+    const std::vector<int32_t> wb = vertex_windings(A, B, false, cross.a_hits);
+    const std::vector<int32_t> wa = vertex_windings(B, A, true, cross.b_hits);
+    if (std::any_of(wb.begin(), wb.end(), [](int32_t w) { return w != 0 && w != 1; }))
+        return fail(BooleanStatus::b_overlaps_itself);
+    if (std::any_of(wa.begin(), wa.end(), [](int32_t w) { return w != 0 && w != 1; }))
+        return fail(BooleanStatus::a_overlaps_itself);
+
+    PieceSum pieces;
+    AreaSum a_in_b, b_in_a;
+    const Inputs in{A, B, cross, wa, wb, Scale{e0}, max_coordinate};
+    sum_pieces(in, pieces, a_in_b, b_in_a);
+    r.rational_terms = pieces.fractions.size();
+
+    // 6 |A ∩ B| = known + Σ fractions; the other results are exact combinations.
+    exact::ExactSum known = pieces.whole;
+    add_integer(known, pieces.integer, 3 * e0);
+    auto results_from = [&](const exact::ExactSum& six_i, double bound, double out[4]) {
+        exact::ExactSum uni = six_a, a_b = six_a, b_a = six_b;
+        uni.merge(six_b);
+        uni.subtract(six_i);
+        a_b.subtract(six_i);
+        b_a.subtract(six_i);
+        const exact::ExactSum* sums[4] = {&six_i, &uni, &a_b, &b_a};
+        for (int i = 0; i < 4; ++i) {
+            const auto d = exact::decided_round_div(*sums[i], bound, 6);
+            if (!d) return false;
+            out[i] = *d;
+        }
+        return true;
+    };
+    double out[4];
+    bool decided = false;
+    if (pieces.fractions.empty()) {
+        decided = results_from(known, 0, out);
+    } else {
+        // The largest fraction is below 2^top (units included).
+        long top = std::numeric_limits<long>::min();
+        for (const auto& [n, d] : pieces.fractions)
+            top = std::max<long>(top, static_cast<long>(mpz_sizeinbase(n.get_mpz_t(), 2)) -
+                                          static_cast<long>(mpz_sizeinbase(d.get_mpz_t(), 2)) + 1 + 3 * e0);
+        const int count_bits = static_cast<int>(std::bit_width(pieces.fractions.size()));
+        long e = std::max<long>(-1074, top - 110 - count_bits);
+        for (int round = 0; round < 3 && !decided; ++round) {
+            exact::ExactSum six_i = known;
+            mpz_class q, shifted;
+            const long k = 3 * e0 - e;  // q = floor(N 2^k / D)
+            for (const auto& [n, d] : pieces.fractions) {
+                if (k >= 0) {
+                    mpz_mul_2exp(shifted.get_mpz_t(), n.get_mpz_t(), static_cast<unsigned long>(k));
+                    mpz_fdiv_q(q.get_mpz_t(), shifted.get_mpz_t(), d.get_mpz_t());
+                } else {
+                    mpz_mul_2exp(shifted.get_mpz_t(), d.get_mpz_t(), static_cast<unsigned long>(-k));
+                    mpz_fdiv_q(q.get_mpz_t(), n.get_mpz_t(), shifted.get_mpz_t());
+                }
+                add_integer(six_i, q, static_cast<int>(e));
+            }
+            const double bound = std::ldexp(static_cast<double>(pieces.fractions.size()), static_cast<int>(e));
+            decided = results_from(six_i, bound, out);
+            r.refinements = round;
+            if (e == -1074) break;
+            e = std::max<long>(-1074, e - 200);
+        }
+    }
+    if (!decided) {
+        // Exact rationals: the value is a double or a tie that no interval decides.
+        r.refinements = -1;
+        mpq_class sum = 0;
+        for (const auto& [n, d] : pieces.fractions) sum += mpq_class(n, d);
+        sum.canonicalize();
+        const mpq_class six_i = mpq_class(exact::Rational(known).get()) + sum * power_of_two(3 * e0);
+        const mpq_class sa(exact::Rational(six_a).get()), sb(exact::Rational(six_b).get());
+        const mpq_class values[4] = {six_i, sa + sb - six_i, sa - six_i, sb - six_i};
+        for (int i = 0; i < 4; ++i) {
+            const mpq_class v = values[i] / 6;
+            out[i] = exact::round_to_double(v.get_mpq_t());
+        }
+    }
+    r.volume_a = six_a.round_div(6);
+    r.volume_b = six_b.round_div(6);
+    r.intersection = out[0];
+    r.union_volume = out[1];
+    r.a_minus_b = out[2];
+    r.b_minus_a = out[3];
+
+    // Areas: 2 × each sum; one bound for every combination.
+    auto half = [](const exact::ExactSum& s) { return s.round_div(2); };
+    exact::ExactSum inter = a_in_b.sum, uni = area_a.sum, amb = area_a.sum, bma = area_b.sum;
+    inter.merge(b_in_a.sum);
+    uni.merge(area_b.sum);
+    uni.subtract(a_in_b.sum);
+    uni.subtract(b_in_a.sum);
+    amb.subtract(a_in_b.sum);
+    amb.merge(b_in_a.sum);
+    bma.subtract(b_in_a.sum);
+    bma.merge(a_in_b.sum);
+    r.area_a = half(area_a.sum);
+    r.area_b = half(area_b.sum);
+    r.area_intersection = half(inter);
+    r.area_union = half(uni);
+    r.area_a_minus_b = half(amb);
+    r.area_b_minus_a = half(bma);
+    const double largest = std::max({r.area_a + r.area_b, std::fabs(r.area_union), std::fabs(r.area_intersection)});
+    r.area_error_bound = ((area_a.bound + area_b.bound + a_in_b.bound + b_in_a.bound) / 2 + kU * largest) * (1 + 0x1p-40);
+    return r;
+}
+
+}  // namespace polyvol

@@ -1,0 +1,217 @@
+// boolean/crossings.cpp — where the surfaces of two operands cross.
+//
+// A triangle t of A and a triangle s of B (translated by δ) cross, in general
+// position, along a segment t ∩ s whose two ends are each an edge of one
+// crossing the other triangle. So six edge-through-triangle tests per pair
+// find everything: which edges cross (for the windings and the fractions of
+// edges inside), and the cut segment with its direction N_t × N_s.
+//   * edge p -> q through triangle (s0, s1, s2): p and q on opposite sides
+//     of its plane, and orient(p, q, s_j, s_j+1) of one sign for j = 0, 1, 2;
+//   * the crossing of edge b -> c of t is where the segment starts (along
+//     N_t × N_s) iff c is in front of s and b behind: there
+//     (N_t × N_s)·(N_t × (c - b)) = |N_t|² N_s·(c - b) > 0 enters t;
+//   * the crossing of edge u -> v of s starts it iff u is in front of t and
+//     v behind: (N_t × N_s)·(N_s × (v - u)) = -|N_s|² N_t·(v - u).
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "boolean/operand.hpp"
+#include "boolean/predicates.hpp"
+
+namespace polyvol::boolean {
+
+Operand make_operand(const MeshView& view) {
+    Operand op;
+    op.mesh = welded(view);
+    const MeshView m = op.mesh.view();
+    op.tri.reserve(3 * m.triangle_count());
+    for (std::size_t f = 0; f < m.face_count(); ++f) {
+        const auto face = m.face(f);
+        for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+            op.tri.push_back(face[0]);
+            op.tri.push_back(face[i]);
+            op.tri.push_back(face[i + 1]);
+        }
+    }
+    const std::size_t n = op.triangles();
+    op.degenerate.resize(n);
+    op.box.resize(6 * n);
+    op.bounds = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t t = 0; t < n; ++t) {
+        const double* c[3] = {op.corner(t, 0), op.corner(t, 1), op.corner(t, 2)};
+        op.degenerate[t] = first_cross_sign(c[0], c[1], c[0], c[2]) == 0;
+        for (int k = 0; k < 3; ++k) {
+            const double lo = std::min({c[0][k], c[1][k], c[2][k]});
+            const double hi = std::max({c[0][k], c[1][k], c[2][k]});
+            op.box[6 * t + k] = lo;
+            op.box[6 * t + 3 + k] = hi;
+            op.bounds[k] = std::min(op.bounds[k], lo);
+            op.bounds[3 + k] = std::max(op.bounds[3 + k], hi);
+        }
+    }
+    return op;
+}
+
+namespace {
+
+bool boxes_meet(const double* p, const double* q) {
+    return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] && q[2] <= p[5];
+}
+
+// Whether segment p -> q crosses triangle s (whose plane separates p and q):
+// `shift` is the translation of s relative to p q (+1: s in B).
+bool line_through(const double* p, const double* q, const double* const s[3], int shift) {
+    const int o0 = perturbed_orient_edges(p, q, s[0], s[1], shift);
+    const int o1 = perturbed_orient_edges(p, q, s[1], s[2], shift);
+    if (o0 != o1) return false;
+    return perturbed_orient_edges(p, q, s[2], s[0], shift) == o0;
+}
+
+// All crossings between triangle ta of A and triangle tb of B.
+void cross_pair(const Operand& A, uint32_t ta, const Operand& B, uint32_t tb, Crossings& out) {
+    const double* const T[3] = {A.corner(ta, 0), A.corner(ta, 1), A.corner(ta, 2)};
+    const double* const S[3] = {B.corner(tb, 0), B.corner(tb, 1), B.corner(tb, 2)};
+    const bool t_flat = A.degenerate[ta] != 0, s_flat = B.degenerate[tb] != 0;
+    if (t_flat && s_flat) return;
+    int side_t[3] = {0, 0, 0}, side_s[3] = {0, 0, 0};  // of t's corners w.r.t. s, of s's w.r.t. t
+    if (!s_flat) {
+        for (int i = 0; i < 3; ++i) side_t[i] = perturbed_side(S[0], S[1], S[2], T[i], -1);
+        if (side_t[0] == side_t[1] && side_t[1] == side_t[2]) return;
+    }
+    if (!t_flat) {
+        for (int j = 0; j < 3; ++j) side_s[j] = perturbed_side(T[0], T[1], T[2], S[j], +1);
+        if (side_s[0] == side_s[1] && side_s[1] == side_s[2]) return;
+    }
+    CutEnd ends[6];
+    bool starts[6];
+    int n = 0;
+    if (!s_flat) {
+        for (int i = 0; i < 3; ++i) {
+            const int i1 = (i + 1) % 3;
+            if (side_t[i] == side_t[i1] || !line_through(T[i], T[i1], S, +1)) continue;
+            out.a_hits.push_back({ta, tb, static_cast<uint8_t>(i), static_cast<int8_t>(side_t[i])});
+            ends[n] = {0, static_cast<uint8_t>(i)};
+            starts[n++] = side_t[i] < 0;
+        }
+    }
+    if (!t_flat) {
+        for (int j = 0; j < 3; ++j) {
+            const int j1 = (j + 1) % 3;
+            if (side_s[j] == side_s[j1] || !line_through(S[j], S[j1], T, -1)) continue;
+            out.b_hits.push_back({tb, ta, static_cast<uint8_t>(j), static_cast<int8_t>(side_s[j])});
+            ends[n] = {1, static_cast<uint8_t>(j)};
+            starts[n++] = side_s[j] > 0;
+        }
+    }
+    if (t_flat || s_flat || n == 0) return;
+    if (n != 2 || starts[0] == starts[1])
+        throw std::logic_error("boolean: a triangle pair crosses in other than one segment");
+    out.cuts.push_back({ta, tb, starts[0] ? ends[0] : ends[1], starts[0] ? ends[1] : ends[0]});
+}
+
+// A uniform grid over a box: about `target` cells, cubic where the box allows.
+struct CellGrid {
+    std::array<double, 6> box{};
+    std::array<uint32_t, 3> dims{1, 1, 1};
+
+    CellGrid(const std::array<double, 6>& b, std::size_t target) : box(b) {
+        const double ext[3] = {b[3] - b[0], b[4] - b[1], b[5] - b[2]};
+        const double longest = std::max({ext[0], ext[1], ext[2]});
+        if (!(longest > 0)) return;
+        double h = longest / std::cbrt(static_cast<double>(std::max<std::size_t>(target, 1)));
+        for (;;) {
+            std::size_t total = 1;
+            for (int k = 0; k < 3; ++k) {
+                dims[k] = static_cast<uint32_t>(std::clamp(std::ceil(ext[k] / h), 1.0, 1024.0));
+                total *= dims[k];
+            }
+            if (total <= 8 * std::max<std::size_t>(target, 1)) return;
+            h *= 1.5;
+        }
+    }
+    uint32_t index(int k, double x) const {
+        const double ext = box[3 + k] - box[k];
+        if (!(ext > 0)) return 0;
+        const double f = std::floor((x - box[k]) / ext * dims[k]);
+        return static_cast<uint32_t>(std::clamp(f, 0.0, static_cast<double>(dims[k] - 1)));
+    }
+    std::size_t cells() const { return std::size_t{dims[0]} * dims[1] * dims[2]; }
+    std::size_t cell(uint32_t i, uint32_t j, uint32_t k) const { return (std::size_t{i} * dims[1] + j) * dims[2] + k; }
+    // Calls f(cell) for every cell a box {xmin..zmax} overlaps.
+    template <class F>
+    void for_cells(const double* b, F&& f) const {
+        const uint32_t lo[3] = {index(0, b[0]), index(1, b[1]), index(2, b[2])};
+        const uint32_t hi[3] = {index(0, b[3]), index(1, b[4]), index(2, b[5])};
+        for (uint32_t i = lo[0]; i <= hi[0]; ++i)
+            for (uint32_t j = lo[1]; j <= hi[1]; ++j)
+                for (uint32_t k = lo[2]; k <= hi[2]; ++k) f(cell(i, j, k));
+    }
+};
+
+}  // namespace
+
+Crossings find_crossings(const Operand& A, const Operand& B) {
+    Crossings result;
+    std::array<double, 6> common{};
+    for (int k = 0; k < 3; ++k) {
+        common[k] = std::max(A.bounds[k], B.bounds[k]);
+        common[3 + k] = std::min(A.bounds[3 + k], B.bounds[3 + k]);
+        if (!(common[k] <= common[3 + k])) return result;  // boxes apart (or an empty operand)
+    }
+    std::vector<uint32_t> a_near, b_near;
+    for (uint32_t t = 0; t < A.triangles(); ++t)
+        if (boxes_meet(&A.box[6 * t], common.data())) a_near.push_back(t);
+    for (uint32_t t = 0; t < B.triangles(); ++t)
+        if (boxes_meet(&B.box[6 * t], common.data())) b_near.push_back(t);
+    if (a_near.empty() || b_near.empty()) return result;
+
+    // B's triangles binned into cells (compressed rows).
+    const CellGrid grid(common, (a_near.size() + b_near.size()) / 2);
+    std::vector<uint32_t> start(grid.cells() + 1, 0);
+    for (uint32_t t : b_near) grid.for_cells(&B.box[6 * t], [&](std::size_t c) { ++start[c + 1]; });
+    for (std::size_t c = 0; c < grid.cells(); ++c) start[c + 1] += start[c];
+    std::vector<uint32_t> binned(start.back());
+    {
+        std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+        for (uint32_t t : b_near) grid.for_cells(&B.box[6 * t], [&](std::size_t c) { binned[fill[c]++] = t; });
+    }
+
+    struct Local {
+        Crossings found;
+        std::vector<uint32_t> candidates;
+    };
+    tbb::enumerable_thread_specific<Local> locals;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a_near.size(), 256), [&](const auto& range) {
+        Local& local = locals.local();
+        for (std::size_t r = range.begin(); r != range.end(); ++r) {
+            const uint32_t ta = a_near[r];
+            const double* box = &A.box[6 * ta];
+            local.candidates.clear();
+            grid.for_cells(box, [&](std::size_t c) {
+                local.candidates.insert(local.candidates.end(), binned.begin() + start[c], binned.begin() + start[c + 1]);
+            });
+            std::sort(local.candidates.begin(), local.candidates.end());
+            local.candidates.erase(std::unique(local.candidates.begin(), local.candidates.end()), local.candidates.end());
+            for (uint32_t tb : local.candidates) {
+                if (!boxes_meet(box, &B.box[6 * tb])) continue;
+                ++local.found.candidate_pairs;
+                cross_pair(A, ta, B, tb, local.found);
+            }
+        }
+    });
+    for (Local& local : locals) {
+        auto& f = local.found;
+        result.a_hits.insert(result.a_hits.end(), f.a_hits.begin(), f.a_hits.end());
+        result.b_hits.insert(result.b_hits.end(), f.b_hits.begin(), f.b_hits.end());
+        result.cuts.insert(result.cuts.end(), f.cuts.begin(), f.cuts.end());
+        result.candidate_pairs += f.candidate_pairs;
+    }
+    return result;
+}
+
+}  // namespace polyvol::boolean
