@@ -7,6 +7,7 @@
 //   polyvol area FILE        area of plane polygons with holes
 //   polyvol grid MESH...     volume of the solid(s) in every cell of a grid (grid_command.cpp)
 //   polyvol implicit EXPR    volume of {F <= 0} in R^n from a PL surface (implicit_command.cpp)
+//   polyvol overlap A B      volumes of A∩B, A∪B, A−B, B−A without building them (overlap_command.cpp)
 //
 // Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid
 // for the request; with several files the highest of theirs, every file still
@@ -22,6 +23,7 @@
 #include "ndim_command.hpp"
 #include "grid_command.hpp"
 #include "implicit_command.hpp"
+#include "overlap_command.hpp"
 #include "report.hpp"
 #include "worker_warm_up.hpp"
 
@@ -148,6 +150,8 @@ int main(int argc, char** argv) {
     auto* grid = add_grid_command(app, grid_args);
     ImplicitArgs implicit_args;
     auto* implicit = add_implicit_command(app, implicit_args);
+    OverlapArgs overlap_args;
+    auto* overlap = add_overlap_command(app, overlap_args);
 
     try {
         app.parse(argc, argv);
@@ -162,6 +166,7 @@ int main(int argc, char** argv) {
         if (const int code = run_ndim_commands(ndim_commands); code >= 0) return code;
         if (*grid) return run_grid_command(grid_args);
         if (*implicit) return run_implicit_command(implicit_args);
+        if (*overlap) return run_overlap_command(overlap_args);
         if (*volume) return run(Command::volume, volume_opts);
         if (*measure) return run(Command::measure, measure_opts);
         return run(Command::check, check_opts);

@@ -1,0 +1,93 @@
+// `polyvol overlap A B` as users run it: the table, the JSON keys and values
+// for two overlapping cubes (closed forms), and the exit codes for an open
+// operand (3, naming it), an operand whose shells overlap (3) and a missing
+// file (2).
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/run_cli.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("polyvol_overlap_cli_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    return dir / name;
+}
+
+// An OBJ of axis-aligned boxes {lo, hi}, quads outward; `drop_last` leaves
+// the last face out (an open surface).
+fs::path write_boxes(const std::string& name, std::initializer_list<std::array<double, 6>> boxes,
+                     bool drop_last = false) {
+    const fs::path p = scratch(name);
+    std::ofstream out(p);
+    int base = 1;
+    std::string faces;
+    for (const auto& b : boxes) {
+        for (int i = 0; i < 8; ++i)
+            out << "v " << (i & 1 ? b[3] : b[0]) << " " << (i >> 1 & 1 ? b[4] : b[1]) << " "
+                << (i >> 2 & 1 ? b[5] : b[2]) << "\n";
+        const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+        for (const auto& f : q)
+            faces += "f " + std::to_string(base + f[0]) + " " + std::to_string(base + f[1]) + " " +
+                     std::to_string(base + f[2]) + " " + std::to_string(base + f[3]) + "\n";
+        base += 8;
+    }
+    if (drop_last) faces.erase(faces.rfind("f "));
+    out << faces;
+    return p;
+}
+
+TEST(OverlapCli, TwoCubesTableAndJson) {
+    const fs::path a = write_boxes("a.obj", {{0, 0, 0, 2, 2, 2}});
+    const fs::path b = write_boxes("b.obj", {{1, 1, 1, 3, 3, 3}});
+    const auto table = cli_test::run_polyvol("overlap '" + a.string() + "' '" + b.string() + "'");
+    ASSERT_EQ(table.code, 0) << table.err;
+    EXPECT_NE(table.out.find("A ∩ B   1 "), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("A ∪ B   15 "), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("correctly rounded"), std::string::npos) << table.out;
+
+    const auto run = cli_test::run_polyvol("overlap --json '" + a.string() + "' '" + b.string() + "'");
+    ASSERT_EQ(run.code, 0) << run.err;
+    const auto j = nlohmann::json::parse(run.out);
+    EXPECT_EQ(j["volume_a"], 8.0);
+    EXPECT_EQ(j["volume_b"], 8.0);
+    EXPECT_EQ(j["intersection"], 1.0);
+    EXPECT_EQ(j["union"], 15.0);
+    EXPECT_EQ(j["a_minus_b"], 7.0);
+    EXPECT_EQ(j["b_minus_a"], 7.0);
+    EXPECT_EQ(j["accuracy"], "correctly-rounded");
+    EXPECT_NEAR(j["area_intersection"].get<double>(), 6.0, j["area_error_bound"].get<double>());
+    EXPECT_NEAR(j["area_union"].get<double>(), 42.0, j["area_error_bound"].get<double>());
+    EXPECT_GT(j["crossing_pairs"].get<int>(), 0);
+    EXPECT_TRUE(j.contains("seconds"));
+}
+
+TEST(OverlapCli, InvalidOperandsExitWithTheirReason) {
+    const fs::path good = write_boxes("good.obj", {{0, 0, 0, 1, 1, 1}});
+    const fs::path open = write_boxes("open.obj", {{0, 0, 0, 1, 1, 1}}, true);
+    const auto r = cli_test::run_polyvol("overlap '" + good.string() + "' '" + open.string() + "'");
+    EXPECT_EQ(r.code, 3);
+    EXPECT_NE(r.err.find("open.obj (B): not a closed surface: 4 unbalanced edges"), std::string::npos) << r.err;
+
+    const fs::path twice = write_boxes("twice.obj", {{0, 0, 0, 2, 2, 2}, {1, 1, 1, 3, 3, 3}});
+    const fs::path probe = write_boxes("probe.obj", {{1.25, 1.25, 1.25, 1.5, 1.5, 1.5}});
+    const auto o = cli_test::run_polyvol("overlap '" + twice.string() + "' '" + probe.string() + "'");
+    EXPECT_EQ(o.code, 3);
+    EXPECT_NE(o.err.find("twice.obj (A): its shells overlap"), std::string::npos) << o.err;
+
+    const auto missing = cli_test::run_polyvol("overlap '" + good.string() + "' '" + scratch("none.obj").string() + "'");
+    EXPECT_EQ(missing.code, 2);
+    EXPECT_NE(missing.err.find("none.obj"), std::string::npos) << missing.err;
+}
+
+}  // namespace
