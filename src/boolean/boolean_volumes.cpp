@@ -31,6 +31,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include "boolean/operand.hpp"
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
@@ -158,12 +161,6 @@ struct AreaSum {
     }
 };
 
-void add_det(exact::ExactSum& sum, const double* a, const double* b, const double* c, int sign = 1) {
-    double e[exact::kDetTerms];
-    const int n = exact::det3_exact<false>(a, b, c, e);
-    for (int i = 0; i < n; ++i) sum.add(sign * e[i]);
-}
-
 void add_integer(exact::ExactSum& sum, const mpz_class& z, int exponent) {
     const mpz_srcptr p = z.get_mpz_t();
     const int n = static_cast<int>(mpz_size(p));
@@ -191,18 +188,6 @@ struct Inputs {
 // The pieces' volume and the areas of each operand's surface inside the other.
 void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSum& area_b_in_a) {
     const Scale& scale = in.scale;
-    // Whole triangles, by the winding at corner b (edge b -> c starts inside).
-    auto whole = [&](const Operand& op, const std::vector<int32_t>& w, AreaSum& area) {
-        for (std::size_t t = 0; t < op.triangles(); ++t) {
-            if (w[op.tri[3 * t + 1]] == 0) continue;
-            add_det(volume.whole, op.corner(t, 0), op.corner(t, 1), op.corner(t, 2));
-            const Geometry g = triangle_geometry(op.corner(t, 0), op.corner(t, 1), op.corner(t, 2));
-            area.add(g.normal_length, g.normal_error + kU * g.normal_length);
-        }
-    };
-    whole(in.A, in.wb, area_a_in_b);
-    whole(in.B, in.wa, area_b_in_a);
-
     // Crossings of edge b -> c: σ (1 - λ) det(a, b, c), 1 - λ = D_c / (D_c - D_b).
     auto edge_terms = [&](const Operand& op, const Operand& other, const std::vector<EdgeHit>& hits, AreaSum& area) {
         for (const EdgeHit& h : hits) {
@@ -271,13 +256,42 @@ void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSu
     }
 }
 
-// Σ dets of all triangles (6 × the operand's volume) and Σ |N| (2 × area).
-void whole_operand(const Operand& op, exact::ExactSum& volume, AreaSum& area) {
-    for (std::size_t t = 0; t < op.triangles(); ++t) {
-        add_det(volume, op.corner(t, 0), op.corner(t, 1), op.corner(t, 2));
-        const Geometry g = triangle_geometry(op.corner(t, 0), op.corner(t, 1), op.corner(t, 2));
-        area.add(g.normal_length, g.normal_error + kU * g.normal_length);
-    }
+// One operand's whole triangles, in parallel: Σ det (6 × its volume) and
+// Σ |N| (2 × its area) over all of them, and over those whose edge b -> c
+// starts inside the other solid (w = 1 at corner b: the whole triangle is
+// inside when nothing crosses it).
+struct WholeSums {
+    exact::ExactSum volume, volume_inside;
+    AreaSum area, area_inside;
+};
+WholeSums whole_triangles(const Operand& op, const std::vector<int32_t>& other_winding) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, op.triangles(), 4096), WholeSums{},
+        [&](const tbb::blocked_range<std::size_t>& range, WholeSums sums) {
+            for (std::size_t t = range.begin(); t != range.end(); ++t) {
+                const double *a = op.corner(t, 0), *b = op.corner(t, 1), *c = op.corner(t, 2);
+                double e[exact::kDetTerms];
+                const int n = exact::det3_exact<false>(a, b, c, e);
+                const Geometry g = triangle_geometry(a, b, c);
+                const double error = g.normal_error + kU * g.normal_length;
+                const bool inside = other_winding[op.tri[3 * t + 1]] != 0;
+                for (int i = 0; i < n; ++i) sums.volume.add(e[i]);
+                sums.area.add(g.normal_length, error);
+                if (!inside) continue;
+                for (int i = 0; i < n; ++i) sums.volume_inside.add(e[i]);
+                sums.area_inside.add(g.normal_length, error);
+            }
+            return sums;
+        },
+        [](WholeSums x, const WholeSums& y) {
+            x.volume.merge(y.volume);
+            x.volume_inside.merge(y.volume_inside);
+            x.area.sum.merge(y.area.sum);
+            x.area.bound += y.area.bound;
+            x.area_inside.sum.merge(y.area_inside.sum);
+            x.area_inside.bound += y.area_inside.bound;
+            return x;
+        });
 }
 
 }  // namespace
@@ -333,25 +347,27 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
     if (!analyze_topology(A.mesh.view(), edges_only).closed_2_cycle) return fail(BooleanStatus::a_not_closed);
     if (!analyze_topology(B.mesh.view(), edges_only).closed_2_cycle) return fail(BooleanStatus::b_not_closed);
 
-    exact::ExactSum six_a, six_b;
-    AreaSum area_a, area_b;
-    whole_operand(A, six_a, area_a);
-    whole_operand(B, six_b, area_b);
-    if (six_a.sign() < 0) return fail(BooleanStatus::a_inside_out);
-    if (six_b.sign() < 0) return fail(BooleanStatus::b_inside_out);
-
     const Crossings cross = find_crossings(A, B);
     r.candidate_pairs = cross.candidate_pairs;
     r.crossing_pairs = cross.cuts.size();
     const std::vector<int32_t> wb = vertex_windings(A, B, false, cross.a_hits);
     const std::vector<int32_t> wa = vertex_windings(B, A, true, cross.b_hits);
+
+    const WholeSums whole_a = whole_triangles(A, wb), whole_b = whole_triangles(B, wa);
+    const exact::ExactSum& six_a = whole_a.volume;
+    const exact::ExactSum& six_b = whole_b.volume;
+    const AreaSum& area_a = whole_a.area;
+    const AreaSum& area_b = whole_b.area;
+    if (six_a.sign() < 0) return fail(BooleanStatus::a_inside_out);
+    if (six_b.sign() < 0) return fail(BooleanStatus::b_inside_out);
     if (std::any_of(wb.begin(), wb.end(), [](int32_t w) { return w != 0 && w != 1; }))
         return fail(BooleanStatus::b_overlaps_itself);
     if (std::any_of(wa.begin(), wa.end(), [](int32_t w) { return w != 0 && w != 1; }))
         return fail(BooleanStatus::a_overlaps_itself);
-
     PieceSum pieces;
-    AreaSum a_in_b, b_in_a;
+    pieces.whole = whole_a.volume_inside;
+    pieces.whole.merge(whole_b.volume_inside);
+    AreaSum a_in_b = whole_a.area_inside, b_in_a = whole_b.area_inside;
     const Inputs in{A, B, cross, wa, wb, Scale{e0}, max_coordinate};
     sum_pieces(in, pieces, a_in_b, b_in_a);
     r.rational_terms = pieces.fractions.size();
