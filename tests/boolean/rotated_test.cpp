@@ -14,6 +14,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../../bench/generate.hpp"
 #include "common/shapes.hpp"
 #include "exact/rational.hpp"
 #include "polyvol/boolean.hpp"
@@ -98,29 +99,12 @@ TEST(BooleanRotated, CubeAgainstTurnedCube) {
     }
 }
 
-// A UV sphere of radius r about c, coordinates on a grid of 2^-30 (so exact
-// offsets up to 2^20 keep them exact), outward.
-Mesh sphere(std::array<double, 3> c, double r, int rings, int segments) {
-    Mesh m;
-    auto q = [](double x) { return std::ldexp(std::nearbyint(std::ldexp(x, 30)), -30); };
-    m.add_vertex(c[0], c[1], c[2] + q(r));
-    for (int i = 1; i < rings; ++i) {
-        const double th = M_PI * i / rings;
-        for (int j = 0; j < segments; ++j) {
-            const double ph = 2 * M_PI * j / segments;
-            m.add_vertex(c[0] + q(r * std::sin(th) * std::cos(ph)), c[1] + q(r * std::sin(th) * std::sin(ph)),
-                         c[2] + q(r * std::cos(th)));
-        }
-    }
-    const uint32_t south = m.add_vertex(c[0], c[1], c[2] - q(r));
-    auto ring = [&](int i, int j) { return static_cast<uint32_t>(1 + (i - 1) * segments + (j % segments)); };
-    for (int j = 0; j < segments; ++j) m.add_triangle(0, ring(1, j), ring(1, j + 1));
-    for (int i = 1; i + 1 < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-            m.add_triangle(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
-            m.add_triangle(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
-        }
-    for (int j = 0; j < segments; ++j) m.add_triangle(south, ring(rings - 1, j + 1), ring(rings - 1, j));
+// bench's UV sphere of radius r about c (rings bands, segments longitudes),
+// its coordinates rounded to multiples of 2^-30, so that moving it by an
+// offset up to 2^20 keeps them exact.
+Mesh sphere(std::array<double, 3> c, double r, uint32_t rings, uint32_t segments) {
+    Mesh m = bench::uv_sphere(rings, segments, r, c[0], c[1], c[2]);
+    for (double& x : m.positions) x = std::ldexp(std::nearbyint(std::ldexp(x, 30)), -30);
     return m;
 }
 
