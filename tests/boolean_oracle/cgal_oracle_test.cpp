@@ -259,8 +259,11 @@ void expect_matches_cgal(const Mesh& a, const Mesh& b) {
     expect_rounded("|B − A|", r.b_minus_a, e.b_minus_a);
 
     const auto ms = [](auto d) { return std::chrono::duration<double, std::milli>(d).count(); };
-    std::printf("    triangles %zu + %zu, crossing pairs %zu, polyvol %.1f ms, CGAL %.1f ms; |A ∩ B| = %s\n",
-                r.triangles_a, r.triangles_b, r.crossing_pairs, ms(t1 - t0), ms(t2 - t1), g17(r.intersection).c_str());
+    std::printf("    triangles %zu + %zu, crossing pairs %zu, polyvol %.1f ms, CGAL %.1f ms\n"
+                "    |A| %s  |B| %s  |A ∩ B| %s\n    |A ∪ B| %s  |A − B| %s  |B − A| %s\n",
+                r.triangles_a, r.triangles_b, r.crossing_pairs, ms(t1 - t0), ms(t2 - t1), g17(r.volume_a).c_str(),
+                g17(r.volume_b).c_str(), g17(r.intersection).c_str(), g17(r.union_volume).c_str(),
+                g17(r.a_minus_b).c_str(), g17(r.b_minus_a).c_str());
 }
 
 // ---- Pairs ------------------------------------------------------------------
@@ -331,8 +334,8 @@ INSTANTIATE_TEST_SUITE_P(Corpus, BooleanCgalOracleCorpus,
                          ::testing::Values("meshes/stl-models/gearwheel.ascii.stl",  // 2444 triangles
                                            "meshes/netgen-doc/hinge.stl",            // 1212 triangles
                                            "meshes/gmsh-doc/t13_data.stl.gz"),       // 1580 triangles
-                         [](const ::testing::TestParamInfo<const char*>& info) {
-                             std::string name = std::filesystem::path(info.param).filename().string();
+                         [](const ::testing::TestParamInfo<const char*>& param) {
+                             std::string name = std::filesystem::path(param.param).filename().string();
                              std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
                              return name;
                          });
