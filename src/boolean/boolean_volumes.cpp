@@ -323,6 +323,12 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
         r.area_error_bound = nan;
         return r;
     };
+    // Closed 2-cycles first: analyze_topology also checks the arrays (an
+    // index out of range throws std::invalid_argument before anything reads it).
+    TopologyOptions edges_only;
+    edges_only.shells = false;
+    if (!analyze_topology(a_view, edges_only).closed_2_cycle) return fail(BooleanStatus::a_not_closed);
+    if (!analyze_topology(b_view, edges_only).closed_2_cycle) return fail(BooleanStatus::b_not_closed);
     const Operand A = make_operand(a_view), B = make_operand(b_view);
     r.triangles_a = A.triangles();
     r.triangles_b = B.triangles();
@@ -342,10 +348,6 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
     }
     if (e0 == std::numeric_limits<int>::max()) e0 = 0;
 
-    TopologyOptions edges_only;
-    edges_only.shells = false;
-    if (!analyze_topology(A.mesh.view(), edges_only).closed_2_cycle) return fail(BooleanStatus::a_not_closed);
-    if (!analyze_topology(B.mesh.view(), edges_only).closed_2_cycle) return fail(BooleanStatus::b_not_closed);
 
     const Crossings cross = find_crossings(A, B);
     r.candidate_pairs = cross.candidate_pairs;

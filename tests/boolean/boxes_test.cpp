@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <random>
+#include <stdexcept>
 
 #include "common/shapes.hpp"
 #include "polyvol/boolean.hpp"
@@ -123,6 +124,10 @@ TEST(BooleanStatus, InvalidOperandsAreReported) {
     const BooleanVolumes r = boolean_volumes(probe.view(), twice.view());
     EXPECT_EQ(r.status, BooleanStatus::b_overlaps_itself);
     EXPECT_TRUE(std::isnan(r.intersection));
+    // Inconsistent arrays are a programming error: an exception, not a crash.
+    Mesh broken = good;
+    broken.indices[5] = 99;
+    EXPECT_THROW(boolean_volumes(broken.view(), good.view()), std::invalid_argument);
 }
 
 }  // namespace
