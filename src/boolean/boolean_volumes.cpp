@@ -34,6 +34,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include "boolean/exact_terms.hpp"
 #include "boolean/operand.hpp"
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
@@ -46,38 +47,7 @@ namespace polyvol {
 namespace boolean {
 namespace {
 
-static_assert(sizeof(mp_limb_t) == sizeof(uint64_t), "GMP limbs of 64 bits");
 constexpr double kU = 0x1p-53;
-
-using IntPoint = std::array<mpz_class, 3>;
-
-// x = X 2^e0 with X an integer, for every coordinate of both operands.
-struct Scale {
-    int e0 = 0;
-    mpz_class of(double x) const { return mpz_class(std::ldexp(x, -e0)); }
-    IntPoint of(const double* p) const { return {of(p[0]), of(p[1]), of(p[2])}; }
-};
-
-// The exponent of the lowest set bit of x != 0.
-int lowest_bit_exponent(double x) {
-    int e;
-    const double f = std::frexp(std::fabs(x), &e);  // x = f 2^e, f in [0.5, 1)
-    auto m = static_cast<uint64_t>(std::ldexp(f, 53));
-    return e - 53 + std::countr_zero(m);
-}
-
-mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c) {
-    return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
-           a[2] * (b[0] * c[1] - b[1] * c[0]);
-}
-
-// orient(s0, s1, s2, x) = det(s1 - s0, s2 - s0, x - s0).
-mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x) {
-    const IntPoint u = {s1[0] - s0[0], s1[1] - s0[1], s1[2] - s0[2]};
-    const IntPoint v = {s2[0] - s0[0], s2[1] - s0[1], s2[2] - s0[2]};
-    const IntPoint w = {x[0] - s0[0], x[1] - s0[1], x[2] - s0[2]};
-    return det3(u, v, w);
-}
 
 // n / d 2^e in double (relative error below 2^-51), without overflow on the way.
 double approx_ratio(const mpz_class& n, const mpz_class& d, int e) {
@@ -136,21 +106,6 @@ Geometry triangle_geometry(const double* a, const double* b, const double* c) {
     return g;
 }
 
-// 6 × the volume of the boundary pieces, in three exact parts.
-struct PieceSum {
-    exact::ExactSum whole;  // dets of whole triangles (real units)
-    mpz_class integer;      // integer terms, units of 2^(3 e0)
-    std::vector<std::pair<mpz_class, mpz_class>> fractions;  // N / D, D > 0, units of 2^(3 e0)
-
-    void add_fraction(mpz_class n, mpz_class d) {
-        if (d < 0) {
-            n = -n;
-            d = -d;
-        }
-        fractions.emplace_back(std::move(n), std::move(d));
-    }
-};
-
 // 2 × an area: terms summed exactly, with the sum of their error bounds.
 struct AreaSum {
     exact::ExactSum sum;
@@ -160,20 +115,6 @@ struct AreaSum {
         bound += error;
     }
 };
-
-void add_integer(exact::ExactSum& sum, const mpz_class& z, int exponent) {
-    const mpz_srcptr p = z.get_mpz_t();
-    const int n = static_cast<int>(mpz_size(p));
-    std::vector<uint64_t> limbs(n);
-    for (int i = 0; i < n; ++i) limbs[i] = mpz_getlimbn(p, i);
-    sum.add_wide(limbs.data(), n, mpz_sgn(p) < 0, exponent);
-}
-
-mpq_class power_of_two(int e) {
-    mpz_class p = 1;
-    mpz_mul_2exp(p.get_mpz_t(), p.get_mpz_t(), static_cast<unsigned long>(std::abs(e)));
-    return e >= 0 ? mpq_class(p) : mpq_class(mpz_class(1), p);
-}
 
 struct Inputs {
     const Operand& A;
@@ -329,7 +270,7 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
     edges_only.shells = false;
     if (!analyze_topology(a_view, edges_only).closed_2_cycle) return fail(BooleanStatus::a_not_closed);
     if (!analyze_topology(b_view, edges_only).closed_2_cycle) return fail(BooleanStatus::b_not_closed);
-    const Operand A = make_operand(a_view), B = make_operand(b_view);
+    const Operand A = make_operand(a_view, 0), B = make_operand(b_view, 1);
     r.triangles_a = A.triangles();
     r.triangles_b = B.triangles();
 
@@ -352,8 +293,8 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
     const Crossings cross = find_crossings(A, B);
     r.candidate_pairs = cross.candidate_pairs;
     r.crossing_pairs = cross.cuts.size();
-    const std::vector<int32_t> wb = vertex_windings(A, B, false, cross.a_hits);
-    const std::vector<int32_t> wa = vertex_windings(B, A, true, cross.b_hits);
+    const std::vector<int32_t> wb = vertex_windings(A, B, cross.a_hits);
+    const std::vector<int32_t> wa = vertex_windings(B, A, cross.b_hits);
 
     const WholeSums whole_a = whole_triangles(A, wb), whole_b = whole_triangles(B, wa);
     const exact::ExactSum& six_a = whole_a.volume;
@@ -374,70 +315,11 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
     sum_pieces(in, pieces, a_in_b, b_in_a);
     r.rational_terms = pieces.fractions.size();
 
-    // 6 |A ∩ B| = known + Σ fractions; the other results are exact combinations.
-    exact::ExactSum known = pieces.whole;
-    add_integer(known, pieces.integer, 3 * e0);
-    auto results_from = [&](const exact::ExactSum& six_i, double bound, double out[4]) {
-        exact::ExactSum uni = six_a, a_b = six_a, b_a = six_b;
-        uni.merge(six_b);
-        uni.subtract(six_i);
-        a_b.subtract(six_i);
-        b_a.subtract(six_i);
-        const exact::ExactSum* sums[4] = {&six_i, &uni, &a_b, &b_a};
-        for (int i = 0; i < 4; ++i) {
-            const auto d = exact::decided_round_div(*sums[i], bound, 6);
-            if (!d) return false;
-            out[i] = *d;
-        }
-        return true;
-    };
-    double out[4];
-    bool decided = false;
-    if (pieces.fractions.empty()) {
-        decided = results_from(known, 0, out);
-    } else {
-        // The largest fraction is below 2^top (units included).
-        long top = std::numeric_limits<long>::min();
-        for (const auto& [n, d] : pieces.fractions)
-            top = std::max<long>(top, static_cast<long>(mpz_sizeinbase(n.get_mpz_t(), 2)) -
-                                          static_cast<long>(mpz_sizeinbase(d.get_mpz_t(), 2)) + 1 + 3 * e0);
-        const int count_bits = static_cast<int>(std::bit_width(pieces.fractions.size()));
-        long e = std::max<long>(-1074, top - 110 - count_bits);
-        for (int round = 0; round < 3 && !decided; ++round) {
-            exact::ExactSum six_i = known;
-            mpz_class q, shifted;
-            const long k = 3 * e0 - e;  // q = floor(N 2^k / D)
-            for (const auto& [n, d] : pieces.fractions) {
-                if (k >= 0) {
-                    mpz_mul_2exp(shifted.get_mpz_t(), n.get_mpz_t(), static_cast<unsigned long>(k));
-                    mpz_fdiv_q(q.get_mpz_t(), shifted.get_mpz_t(), d.get_mpz_t());
-                } else {
-                    mpz_mul_2exp(shifted.get_mpz_t(), d.get_mpz_t(), static_cast<unsigned long>(-k));
-                    mpz_fdiv_q(q.get_mpz_t(), n.get_mpz_t(), shifted.get_mpz_t());
-                }
-                add_integer(six_i, q, static_cast<int>(e));
-            }
-            const double bound = std::ldexp(static_cast<double>(pieces.fractions.size()), static_cast<int>(e));
-            decided = results_from(six_i, bound, out);
-            r.refinements = round;
-            if (e == -1074) break;
-            e = std::max<long>(-1074, e - 200);
-        }
-    }
-    if (!decided) {
-        // Exact rationals: the value is a double or a tie that no interval decides.
-        r.refinements = -1;
-        mpq_class sum = 0;
-        for (const auto& [n, d] : pieces.fractions) sum += mpq_class(n, d);
-        sum.canonicalize();
-        const mpq_class six_i = mpq_class(exact::Rational(known).get()) + sum * power_of_two(3 * e0);
-        const mpq_class sa(exact::Rational(six_a).get()), sb(exact::Rational(six_b).get());
-        const mpq_class values[4] = {six_i, sa + sb - six_i, sa - six_i, sb - six_i};
-        for (int i = 0; i < 4; ++i) {
-            const mpq_class v = values[i] / 6;
-            out[i] = exact::round_to_double(v.get_mpq_t());
-        }
-    }
+    // 6 |A ∩ B| is the pieces' sum; the other results are exact combinations.
+    exact::ExactSum both = six_a;
+    both.merge(six_b);
+    const Combination combos[4] = {{nullptr, +1}, {&both, -1}, {&six_a, -1}, {&six_b, -1}};
+    const std::vector<double> out = round_combinations(pieces, e0, combos, r.refinements);
     r.volume_a = six_a.round_div(6);
     r.volume_b = six_b.round_div(6);
     r.intersection = out[0];

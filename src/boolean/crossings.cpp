@@ -25,8 +25,9 @@
 
 namespace polyvol::boolean {
 
-Operand make_operand(const MeshView& view) {
+Operand make_operand(const MeshView& view, int32_t shift) {
     Operand op;
+    op.body_shift = {shift};
     op.mesh = welded(view);
     const MeshView m = op.mesh.view();
     op.tri.reserve(3 * m.triangle_count());
@@ -72,19 +73,20 @@ bool line_through(const double* p, const double* q, const double* const s[3], in
     return perturbed_orient_edges(p, q, s[2], s[0], shift) == o0;
 }
 
-// All crossings between triangle ta of A and triangle tb of B.
-void cross_pair(const Operand& A, uint32_t ta, const Operand& B, uint32_t tb, Crossings& out) {
+// All crossings between triangle ta of A and triangle tb of B (B's body
+// moved by `shift` δ relative to A's: only its sign matters).
+void cross_pair(const Operand& A, uint32_t ta, const Operand& B, uint32_t tb, int shift, Crossings& out) {
     const double* const T[3] = {A.corner(ta, 0), A.corner(ta, 1), A.corner(ta, 2)};
     const double* const S[3] = {B.corner(tb, 0), B.corner(tb, 1), B.corner(tb, 2)};
     const bool t_flat = A.degenerate[ta] != 0, s_flat = B.degenerate[tb] != 0;
     if (t_flat && s_flat) return;
     int side_t[3] = {0, 0, 0}, side_s[3] = {0, 0, 0};  // of t's corners w.r.t. s, of s's w.r.t. t
     if (!s_flat) {
-        for (int i = 0; i < 3; ++i) side_t[i] = perturbed_side(S[0], S[1], S[2], T[i], -1);
+        for (int i = 0; i < 3; ++i) side_t[i] = perturbed_side(S[0], S[1], S[2], T[i], -shift);
         if (side_t[0] == side_t[1] && side_t[1] == side_t[2]) return;
     }
     if (!t_flat) {
-        for (int j = 0; j < 3; ++j) side_s[j] = perturbed_side(T[0], T[1], T[2], S[j], +1);
+        for (int j = 0; j < 3; ++j) side_s[j] = perturbed_side(T[0], T[1], T[2], S[j], shift);
         if (side_s[0] == side_s[1] && side_s[1] == side_s[2]) return;
     }
     CutEnd ends[6];
@@ -93,7 +95,7 @@ void cross_pair(const Operand& A, uint32_t ta, const Operand& B, uint32_t tb, Cr
     if (!s_flat) {
         for (int i = 0; i < 3; ++i) {
             const int i1 = (i + 1) % 3;
-            if (side_t[i] == side_t[i1] || !line_through(T[i], T[i1], S, +1)) continue;
+            if (side_t[i] == side_t[i1] || !line_through(T[i], T[i1], S, shift)) continue;
             out.a_hits.push_back({ta, tb, static_cast<uint8_t>(i), static_cast<int8_t>(side_t[i])});
             ends[n] = {0, static_cast<uint8_t>(i)};
             starts[n++] = side_t[i] < 0;
@@ -102,7 +104,7 @@ void cross_pair(const Operand& A, uint32_t ta, const Operand& B, uint32_t tb, Cr
     if (!t_flat) {
         for (int j = 0; j < 3; ++j) {
             const int j1 = (j + 1) % 3;
-            if (side_s[j] == side_s[j1] || !line_through(S[j], S[j1], T, -1)) continue;
+            if (side_s[j] == side_s[j1] || !line_through(S[j], S[j1], T, -shift)) continue;
             out.b_hits.push_back({tb, ta, static_cast<uint8_t>(j), static_cast<int8_t>(side_s[j])});
             ends[n] = {1, static_cast<uint8_t>(j)};
             starts[n++] = side_s[j] > 0;
@@ -157,6 +159,7 @@ struct CellGrid {
 
 Crossings find_crossings(const Operand& A, const Operand& B) {
     Crossings result;
+    const bool same = &A == &B;
     std::array<double, 6> common{};
     for (int k = 0; k < 3; ++k) {
         common[k] = std::max(A.bounds[k], B.bounds[k]);
@@ -198,9 +201,11 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
             std::sort(local.candidates.begin(), local.candidates.end());
             local.candidates.erase(std::unique(local.candidates.begin(), local.candidates.end()), local.candidates.end());
             for (uint32_t tb : local.candidates) {
+                if (same && (tb <= ta || A.body(ta) == B.body(tb))) continue;
                 if (!boxes_meet(box, &B.box[6 * tb])) continue;
                 ++local.found.candidate_pairs;
-                cross_pair(A, ta, B, tb, local.found);
+                const int shift = B.shift(tb) > A.shift(ta) ? 1 : -1;
+                cross_pair(A, ta, B, tb, shift, local.found);
             }
         }
     });

@@ -13,19 +13,28 @@ namespace polyvol::boolean {
 // One operand: its welded vertices and fan triangles (v0, vi, vi+1).
 //   corner(t, i) = positions of vertex tri[3 t + i]
 //   edge e of triangle t runs from corner e to corner (e + 1) % 3
+// An operand holds one or more bodies (the shells of one file): body(t) of
+// each triangle, and each body translated by shift(body) δ for the symbolic
+// perturbation (predicates.hpp). Bodies share no vertex.
 struct Operand {
     Mesh mesh;                       // welded(input): one vertex per position
     std::vector<uint32_t> tri;       // 3 per fan triangle
     std::vector<uint8_t> degenerate; // 1 where (b - a) × (c - a) == 0 exactly
     std::vector<double> box;         // 6 per triangle: xmin ymin zmin xmax ymax zmax
     std::array<double, 6> bounds{};  // of the used vertices (empty operand: inverted)
+    std::vector<uint32_t> body_of_triangle;  // empty: every triangle in body 0
+    std::vector<int32_t> body_shift{0};      // per body: the multiple of δ it is moved by
+
+    uint32_t body(std::size_t t) const { return body_of_triangle.empty() ? 0 : body_of_triangle[t]; }
+    int32_t shift(std::size_t t) const { return body_shift[body(t)]; }
 
     std::size_t triangles() const { return tri.size() / 3; }
     const double* point(uint32_t v) const { return mesh.positions.data() + 3 * std::size_t{v}; }
     const double* corner(std::size_t t, int i) const { return point(tri[3 * t + i]); }
 };
 
-Operand make_operand(const MeshView& view);
+// welded(view) and its fan triangles, one body moved by `shift` δ.
+Operand make_operand(const MeshView& view, int32_t shift = 0);
 
 // Edge `edge` of triangle `tri` of one operand crosses triangle `other` of
 // the other operand (under the perturbation, at an interior point of both).
@@ -60,16 +69,18 @@ struct Crossings {
     std::size_t candidate_pairs = 0;  // triangle pairs whose boxes meet
 };
 
-// Every crossing between A and B (B translated by the perturbation δ):
-// a uniform grid over the common box, each of A's triangles tested against
-// B's triangles in its cells (in parallel).
+// Every crossing between A and B (each body moved by its shift δ): a
+// uniform grid over the common box, each of A's triangles tested against B's
+// triangles in its cells (in parallel). With &a == &b, the crossings between
+// different bodies of one operand, each pair once (t < s; a_hits and b_hits
+// then both index that operand).
 Crossings find_crossings(const Operand& a, const Operand& b);
 
-// Winding number of the other operand (translated by the perturbation) at
-// every vertex of `self` (`self_is_b`: self is B); vertices no face uses get 0.
-// hits: self's edges through other's triangles. Throws std::logic_error when
-// the crossings contradict each other (an operand that is not a closed 2-cycle).
-std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, bool self_is_b,
-                                     const std::vector<EdgeHit>& hits);
+// Winding number at every vertex of `self` of the other operand's bodies
+// other than the vertex's own (with &self == &other: of the other bodies of
+// the same operand); vertices no face uses get 0. hits: every crossing of
+// self's edges with those bodies' triangles. Throws std::logic_error when the
+// crossings contradict each other (a body that is not a closed 2-cycle).
+std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, const std::vector<EdgeHit>& hits);
 
 }  // namespace polyvol::boolean

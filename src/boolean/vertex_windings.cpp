@@ -73,18 +73,19 @@ bool strictly_outside(const double* p, const std::array<double, 6>& box) {
     return false;
 }
 
-// The other operand's winding number at p (a vertex of self): minus the
-// signed crossings of the segment from p to a point beyond the other's box.
-int64_t ray_winding(const double* p, const Operand& other, bool self_is_b) {
+// The winding number at p (a vertex of self's body `body`, moved by
+// `shift` δ) of the other operand's bodies but that one: minus the signed
+// crossings of the segment from p to a point beyond the other's box.
+int64_t ray_winding(const double* p, uint32_t body, int32_t shift, const Operand& other, bool same) {
     const double reach = other.bounds[3] + (other.bounds[3] - other.bounds[0]) + 1.0;
     const double far[3] = {reach, p[1], p[2]};
-    const int point_shift = self_is_b ? +1 : -1;  // self's points relative to other's triangles
     int64_t crossings = 0;
     for (std::size_t s = 0; s < other.triangles(); ++s) {
         const double* box = &other.box[6 * s];
-        if (other.degenerate[s] || box[3] < p[0] || box[1] > p[1] || box[4] < p[1] || box[2] > p[2] ||
-            box[5] < p[2])
+        if (other.degenerate[s] || (same && other.body(s) == body) || box[3] < p[0] || box[1] > p[1] ||
+            box[4] < p[1] || box[2] > p[2] || box[5] < p[2])
             continue;
+        const int point_shift = shift > other.shift(s) ? 1 : -1;  // p relative to the triangle
         const double* const S[3] = {other.corner(s, 0), other.corner(s, 1), other.corner(s, 2)};
         const int from = perturbed_side(S[0], S[1], S[2], p, point_shift);
         const int to = perturbed_side(S[0], S[1], S[2], far, point_shift);
@@ -100,17 +101,19 @@ int64_t ray_winding(const double* p, const Operand& other, bool self_is_b) {
 
 }  // namespace
 
-std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, bool self_is_b,
-                                     const std::vector<EdgeHit>& hits) {
+std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, const std::vector<EdgeHit>& hits) {
     const std::size_t nv = self.mesh.vertex_count();
+    const bool same = &self == &other;
     std::vector<int64_t> k(self.tri.size(), 0);  // per triangle edge: signed crossings
     for (const EdgeHit& h : hits) k[3 * std::size_t{h.tri} + h.edge] += h.sign;
     OffsetForest forest(nv);
     std::vector<uint8_t> used(nv, 0);
+    std::vector<uint32_t> triangle_of(nv, 0);  // one triangle using the vertex (its body)
     for (std::size_t t = 0; t < self.triangles(); ++t) {
         for (int e = 0; e < 3; ++e) {
             const uint32_t x = self.tri[3 * t + e], y = self.tri[3 * t + (e + 1) % 3];
             used[x] = 1;
+            triangle_of[x] = static_cast<uint32_t>(t);
             if (!forest.relate(x, y, k[3 * t + e]))
                 throw std::logic_error("boolean: winding numbers along edges disagree (an operand is not closed)");
         }
@@ -122,7 +125,7 @@ std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, 
         if (!used[v]) continue;
         int64_t off;
         const uint32_t r = forest.find(v, off);
-        if (root_value[r] == kUnknown && (!far_away_exists || strictly_outside(self.point(v), other.bounds)))
+        if (root_value[r] == kUnknown && (!far_away_exists || (!same && strictly_outside(self.point(v), other.bounds))))
             root_value[r] = -off;  // w(v) = 0
     }
     std::vector<int32_t> w(nv, 0);
@@ -130,7 +133,10 @@ std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, 
         if (!used[v]) continue;
         int64_t off;
         const uint32_t r = forest.find(v, off);
-        if (root_value[r] == kUnknown) root_value[r] = ray_winding(self.point(v), other, self_is_b) - off;
+        if (root_value[r] == kUnknown) {
+            const uint32_t t = triangle_of[v];
+            root_value[r] = ray_winding(self.point(v), self.body(t), self.shift(t), other, same) - off;
+        }
         w[v] = static_cast<int32_t>(root_value[r] + off);
     }
     return w;

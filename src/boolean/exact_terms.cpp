@@ -1,0 +1,136 @@
+#include "boolean/exact_terms.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <limits>
+#include <optional>
+
+#include "exact/rational.hpp"
+
+namespace polyvol::boolean {
+
+static_assert(sizeof(mp_limb_t) == sizeof(uint64_t), "GMP limbs of 64 bits");
+
+int lowest_bit_exponent(double x) {
+    int e;
+    const double f = std::frexp(std::fabs(x), &e);  // x = f 2^e, f in [0.5, 1)
+    const auto m = static_cast<uint64_t>(std::ldexp(f, 53));
+    return e - 53 + std::countr_zero(m);
+}
+
+mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c) {
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+           a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x) {
+    const IntPoint u = {s1[0] - s0[0], s1[1] - s0[1], s1[2] - s0[2]};
+    const IntPoint v = {s2[0] - s0[0], s2[1] - s0[1], s2[2] - s0[2]};
+    const IntPoint w = {x[0] - s0[0], x[1] - s0[1], x[2] - s0[2]};
+    return det3(u, v, w);
+}
+
+void PieceSum::add_fraction(mpz_class n, mpz_class d) {
+    if (n == 0) return;
+    if (d < 0) {
+        n = -n;
+        d = -d;
+    }
+    fractions.emplace_back(std::move(n), std::move(d));
+}
+
+void PieceSum::merge(PieceSum&& other) {
+    whole.merge(other.whole);
+    integer += other.integer;
+    fractions.insert(fractions.end(), std::make_move_iterator(other.fractions.begin()),
+                     std::make_move_iterator(other.fractions.end()));
+}
+
+void add_integer(exact::ExactSum& sum, const mpz_class& z, int exponent) {
+    const mpz_srcptr p = z.get_mpz_t();
+    const int n = static_cast<int>(mpz_size(p));
+    std::vector<uint64_t> limbs(n);
+    for (int i = 0; i < n; ++i) limbs[i] = mpz_getlimbn(p, i);
+    sum.add_wide(limbs.data(), n, mpz_sgn(p) < 0, exponent);
+}
+
+namespace {
+
+mpq_class power_of_two(int e) {
+    mpz_class p = 1;
+    mpz_mul_2exp(p.get_mpz_t(), p.get_mpz_t(), static_cast<unsigned long>(std::abs(e)));
+    return e >= 0 ? mpq_class(p) : mpq_class(mpz_class(1), p);
+}
+
+// Every combination decided from the pieces' approximation `six` (true value
+// within `bound` of it), or nothing.
+bool decide(const exact::ExactSum& six, double bound, std::span<const Combination> results, std::vector<double>& out) {
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        exact::ExactSum v;
+        if (results[i].base) v = *results[i].base;
+        if (results[i].sign > 0) {
+            v.merge(six);
+        } else {
+            v.subtract(six);
+        }
+        const auto d = exact::decided_round_div(v, bound, 6);
+        if (!d) return false;
+        out[i] = *d;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::vector<double> round_combinations(const PieceSum& pieces, int e0, std::span<const Combination> results,
+                                       int& refinements) {
+    std::vector<double> out(results.size());
+    exact::ExactSum known = pieces.whole;
+    add_integer(known, pieces.integer, 3 * e0);
+    refinements = 0;
+    if (pieces.fractions.empty()) {
+        if (decide(known, 0, results, out)) return out;
+    } else {
+        // The largest fraction is below 2^top (units included).
+        long top = std::numeric_limits<long>::min();
+        for (const auto& [n, d] : pieces.fractions)
+            top = std::max<long>(top, static_cast<long>(mpz_sizeinbase(n.get_mpz_t(), 2)) -
+                                          static_cast<long>(mpz_sizeinbase(d.get_mpz_t(), 2)) + 1 + 3 * e0);
+        const int count_bits = static_cast<int>(std::bit_width(pieces.fractions.size()));
+        long e = std::max<long>(-1074, top - 110 - count_bits);
+        for (int round = 0; round < 3; ++round) {
+            exact::ExactSum six = known;
+            mpz_class q, shifted;
+            const long k = 3 * e0 - e;  // q = floor(N 2^k / D)
+            for (const auto& [n, d] : pieces.fractions) {
+                if (k >= 0) {
+                    mpz_mul_2exp(shifted.get_mpz_t(), n.get_mpz_t(), static_cast<unsigned long>(k));
+                    mpz_fdiv_q(q.get_mpz_t(), shifted.get_mpz_t(), d.get_mpz_t());
+                } else {
+                    mpz_mul_2exp(shifted.get_mpz_t(), d.get_mpz_t(), static_cast<unsigned long>(-k));
+                    mpz_fdiv_q(q.get_mpz_t(), n.get_mpz_t(), shifted.get_mpz_t());
+                }
+                add_integer(six, q, static_cast<int>(e));
+            }
+            const double bound = std::ldexp(static_cast<double>(pieces.fractions.size()), static_cast<int>(e));
+            refinements = round;
+            if (decide(six, bound, results, out)) return out;
+            if (e == -1074) break;
+            e = std::max<long>(-1074, e - 200);
+        }
+    }
+    // Exact rationals: a value that is a double or a tie, which no interval decides.
+    refinements = -1;
+    mpq_class sum = 0;
+    for (const auto& [n, d] : pieces.fractions) sum += mpq_class(n, d);
+    sum.canonicalize();
+    const mpq_class six = mpq_class(exact::Rational(known).get()) + sum * power_of_two(3 * e0);
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        const mpq_class base = results[i].base ? mpq_class(exact::Rational(*results[i].base).get()) : mpq_class(0);
+        const mpq_class v = (base + results[i].sign * six) / 6;
+        out[i] = exact::round_to_double(v.get_mpq_t());
+    }
+    return out;
+}
+
+}  // namespace polyvol::boolean

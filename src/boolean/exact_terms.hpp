@@ -1,0 +1,69 @@
+// boolean/exact_terms.hpp — private: the pieces' volume as exact parts, and
+// its correct rounding without one giant rational.
+//
+// Coordinates are x = X 2^e0 with integers X (e0: the lowest set bit over
+// every coordinate used). Crossing points and their contributions are then
+// exact integer ratios. 6 × a volume of pieces is held as
+//   whole      exact double expansions (ExactSum, real units)
+//   integer    an integer in units of 2^(3 e0)
+//   fractions  N / D, D > 0, in units of 2^(3 e0)
+// and rounded by intervals: each fraction as floor(N 2^k / D) 2^-k, so the
+// truth lies within n 2^-k above the sum; k grows until the rounding is
+// decided, and exact rationals settle what no interval can (a result that is
+// exactly a double or a tie).
+#pragma once
+
+#include <gmpxx.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "exact/exact_sum.hpp"
+
+namespace polyvol::boolean {
+
+using IntPoint = std::array<mpz_class, 3>;
+
+struct Scale {
+    int e0 = 0;
+    mpz_class of(double x) const { return mpz_class(std::ldexp(x, -e0)); }
+    IntPoint of(const double* p) const { return {of(p[0]), of(p[1]), of(p[2])}; }
+};
+
+// The exponent of the lowest set bit of x != 0.
+int lowest_bit_exponent(double x);
+
+// a · (b × c)
+mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c);
+// orient(s0, s1, s2, x) = det(s1 - s0, s2 - s0, x - s0)
+mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x);
+
+// 6 × the volume of some pieces, in three exact parts (see the top).
+struct PieceSum {
+    exact::ExactSum whole;
+    mpz_class integer;
+    std::vector<std::pair<mpz_class, mpz_class>> fractions;
+
+    void add_fraction(mpz_class n, mpz_class d);  // any signs; d != 0
+    void merge(PieceSum&& other);
+};
+
+// Adds the integer z 2^exponent to sum exactly (2^exponent >= 2^-1074).
+void add_integer(exact::ExactSum& sum, const mpz_class& z, int exponent);
+
+// One result to round: (base + sign × pieces) / 6.
+struct Combination {
+    const exact::ExactSum* base;  // nullptr: 0
+    int sign;                     // +1 or -1
+};
+
+// Each combination's exact value, rounded once to the nearest double.
+// refinements: the interval rounds it took (-1: exact rationals).
+std::vector<double> round_combinations(const PieceSum& pieces, int e0, std::span<const Combination> results,
+                                       int& refinements);
+
+}  // namespace polyvol::boolean
