@@ -60,4 +60,26 @@ BooleanVolumes boolean_volumes(const MeshView& a, const MeshView& b);
 
 const char* boolean_status_message(BooleanStatus status);
 
+// The solid a mesh whose shells may overlap bounds: the region where the
+// winding number of all its shells is >= 1 (what a slicer prints; cavities,
+// inward shells inside outward ones, subtract). The shells are the
+// edge-connected components; each must be a closed 2-cycle that does not
+// cross itself (crossings between different shells are the point).
+struct SolidVolume {
+    BooleanStatus status = BooleanStatus::ok;  // a_not_closed (the mesh) or invalid_coordinates
+    double volume = 0;          // |{winding >= 1}|, correctly rounded
+    double winding_volume = 0;  // Σ of the shells' signed volumes = ∫ winding number (the cone rule's sum), correctly rounded
+    std::size_t shells = 0;
+    std::size_t overlapping_shells = 0;  // crossing another shell, or outward and inside another solid shell
+    std::size_t crossing_pairs = 0;      // triangle pairs of different shells that cross
+    std::size_t shells_checked = 0;      // shells whose box meets another's (the rest cost nothing)
+    int refinements = 0;                 // as in BooleanVolumes
+};
+
+// Touching and coincident shells are resolved by moving shell k of each
+// group by k (ε, ε², ε³) (docs/boolean.md). Throws std::invalid_argument for
+// inconsistent mesh arrays, std::logic_error when a shell crosses itself in
+// a way the windings reveal.
+SolidVolume solid_volume(const MeshView& mesh);
+
 }  // namespace polyvol

@@ -1,0 +1,531 @@
+// boolean/solid_volume.cpp — the volume of the solid a file's shells bound
+// together: the region where their winding number W is >= 1.
+//
+// A point x of triangle t of shell i lies on the boundary of {W >= 1} iff W
+// on t's front side is 0 there: W_others(x) = c_i, c_i = 0 for an outward
+// shell, 1 for an inward one (a cavity: its own winding is -1 in front).
+// So the boundary is, per triangle, the region R_t = {x in t : W_others = c_i},
+// and 6 |{W >= 1}| = Σ_t 6 cone(R_t), each fanned from t's first corner a
+// (boolean_volumes.cpp):
+//   * edge b -> c: W_others changes by σ at each crossing λ (sorted along
+//     the edge); the intervals where W_others = c_i give (λ' - λ) det(a, b, c);
+//   * a cut t ∩ s (s in shell j), run P -> Q along N_t × N_s with the back of
+//     s on its left: R_t lies on its left where W_r = c_i - 1 and on its
+//     right where W_r = c_i, W_r being W_others on the front of s:
+//     W_r = W_{not i, j} + f_j (f = 0 outward, -1 inward). Where a third shell
+//     r crosses the cut, W_{not i, j} changes: the cut is split there (the
+//     triple points t ∩ s ∩ r). With s's share (run Q -> P), each portion
+//     [μ, μ'] gives (μ' - μ) det(κ_t a_t - κ_s a_s, P, Q),
+//     κ = [W_r = c - 1] - [W_r = c].
+// Shells whose boxes overlap no other shell's are their own solid (or
+// nothing, inward) and cost nothing more. Each shell must not cross itself.
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+
+#include "boolean/exact_terms.hpp"
+#include "boolean/operand.hpp"
+#include "boolean/predicates.hpp"
+#include "boolean/symbolic.hpp"
+#include "exact/eft.hpp"
+#include "exact/expansion.hpp"
+#include "polyvol/boolean.hpp"
+#include "polyvol/topology.hpp"
+#include "topology/edges.hpp"
+#include "topology/shells.hpp"
+#include "topology/union_find.hpp"
+#include "topology/welded.hpp"
+
+namespace polyvol {
+namespace boolean {
+namespace {
+
+// Where edge `edge` of triangle `owner` crosses the plane of triangle `plane`
+// (both of one operand, bodies moved by their shifts).
+struct CrossingRef {
+    uint32_t owner;
+    uint8_t edge;
+    uint32_t plane;
+};
+
+// The crossing point P = (D_p q - D_q p) / (D_p - D_q), D = orient(plane, ·),
+// at ε = 0 (exact integers), with den > 0; exactly p or q when D_p or D_q is 0.
+struct Point0 {
+    IntPoint num;
+    mpz_class den;
+};
+
+class SolidPieces {
+public:
+    SolidPieces(const Operand& g, const Crossings& cross, const std::vector<int32_t>& winding,
+                const std::vector<int>& body_sign, const Scale& scale)
+        : g_(g), cross_(cross), w_(winding), sign_(body_sign), scale_(scale) {
+        hits_ = cross.a_hits;
+        hits_.insert(hits_.end(), cross.b_hits.begin(), cross.b_hits.end());
+        std::sort(hits_.begin(), hits_.end(), [](const EdgeHit& x, const EdgeHit& y) {
+            return std::tie(x.tri, x.edge) < std::tie(y.tri, y.edge);
+        });
+        cuts_of_.resize(g.triangles());
+        for (std::size_t c = 0; c < cross.cuts.size(); ++c) {
+            cuts_of_[cross.cuts[c].a].push_back(static_cast<uint32_t>(c));
+            cuts_of_[cross.cuts[c].b].push_back(static_cast<uint32_t>(c));
+        }
+    }
+
+    void sum(PieceSum& out) {
+        for (std::size_t t = 0; t < g_.triangles(); ++t) edge_pieces(static_cast<uint32_t>(t), out);
+        for (const Cut& cut : cross_.cuts) cut_pieces(cut, out);
+    }
+
+private:
+    struct WalkEntry {
+        uint32_t other;
+        int sign;
+        mpz_class num, den;  // λ = num / den, den > 0
+        int64_t w_before;    // W_others just before this crossing
+    };
+
+    int c_of(uint32_t body) const { return sign_[body] > 0 ? 0 : 1; }
+    int front_of(uint32_t body) const { return sign_[body] > 0 ? 0 : -1; }
+    const double* corner(uint32_t t, int i) const { return g_.corner(t, i % 3); }
+
+    // D_p, D_q of a crossing as exact integers or as polynomials in ε.
+    template <class N, class Convert>
+    void plane_values(const CrossingRef& x, Convert to, N& dp, N& dq, std::array<N, 3>& p, std::array<N, 3>& q) const {
+        const int32_t ko = g_.shift(x.owner), kp = g_.shift(x.plane);
+        p = to(corner(x.owner, x.edge), ko);
+        q = to(corner(x.owner, x.edge + 1), ko);
+        const auto s0 = to(corner(x.plane, 0), kp), s1 = to(corner(x.plane, 1), kp), s2 = to(corner(x.plane, 2), kp);
+        dp = orient_of<N>(s0, s1, s2, p);
+        dq = orient_of<N>(s0, s1, s2, q);
+    }
+    std::array<mpz_class, 3> int_point(const double* v, int32_t) const { return scale_.of(v); }
+    EpsPoint eps_point(const double* v, int32_t k) const { return moved_point(scale_.of(v), k); }
+
+    Point0 point0(const CrossingRef& x) const {
+        mpz_class dp, dq;
+        IntPoint p, q;
+        plane_values<mpz_class>(x, [&](const double* v, int32_t k) { return int_point(v, k); }, dp, dq, p, q);
+        Point0 r;
+        if (dp == 0 || dq == 0) {
+            r.num = dp == 0 ? p : q;
+            r.den = 1;
+            return r;
+        }
+        r.den = dp - dq;
+        for (int k = 0; k < 3; ++k) r.num[k] = dp * q[k] - dq * p[k];
+        if (r.den < 0) {
+            r.den = -r.den;
+            for (auto& c : r.num) c = -c;
+        }
+        return r;
+    }
+
+    // sign of orient(r, P) for the crossing point P of x (exactly, perturbed).
+    int side(const CrossingRef& x, const Point0& P, uint32_t r) const {
+        const IntPoint r0 = scale_.of(corner(r, 0)), r1 = scale_.of(corner(r, 1)), r2 = scale_.of(corner(r, 2));
+        const IntPoint pr = {P.num[0] - r0[0] * P.den, P.num[1] - r0[1] * P.den, P.num[2] - r0[2] * P.den};
+        const IntPoint u = {r1[0] - r0[0], r1[1] - r0[1], r1[2] - r0[2]};
+        const IntPoint v = {r2[0] - r0[0], r2[1] - r0[1], r2[2] - r0[2]};
+        const mpz_class s = det3(u, v, pr);  // den > 0
+        if (s != 0) return sgn(s);
+        EpsPoly dp, dq;
+        EpsPoint p, q;
+        plane_values<EpsPoly>(x, [&](const double* w, int32_t k) { return eps_point(w, k); }, dp, dq, p, q);
+        const EpsPoly den = dp - dq;
+        const EpsPoint num = {dp * q[0] - dq * p[0], dp * q[1] - dq * p[1], dp * q[2] - dq * p[2]};
+        const int32_t kr = g_.shift(r);
+        const EpsPoint e0 = eps_point(corner(r, 0), kr), e1 = eps_point(corner(r, 1), kr), e2 = eps_point(corner(r, 2), kr);
+        const EpsPoint a = {e1[0] - e0[0], e1[1] - e0[1], e1[2] - e0[2]};
+        const EpsPoint b = {e2[0] - e0[0], e2[1] - e0[1], e2[2] - e0[2]};
+        const EpsPoint d = {num[0] - e0[0] * den, num[1] - e0[1] * den, num[2] - e0[2] * den};
+        return det3_of<EpsPoly>(a, b, d).sign() * den.sign();
+    }
+
+    // The crossings along edge e of triangle t, in order, with W_others before each.
+    const std::vector<WalkEntry>& walk(uint32_t t, int e) {
+        const uint64_t key = 3 * uint64_t{t} + e;
+        auto found = walks_.find(key);
+        if (found != walks_.end()) return found->second;
+        std::vector<WalkEntry> entries;
+        struct Lambda {
+            CrossingRef ref;
+            int sign;
+            mpz_class num, den;
+        };
+        std::vector<Lambda> ls;
+        const EdgeHit probe{t, 0, static_cast<uint8_t>(e), 0};
+        auto it = std::lower_bound(hits_.begin(), hits_.end(), probe, [](const EdgeHit& x, const EdgeHit& y) {
+            return std::tie(x.tri, x.edge) < std::tie(y.tri, y.edge);
+        });
+        for (; it != hits_.end() && it->tri == t && it->edge == e; ++it) {
+            Lambda l{{t, static_cast<uint8_t>(e), it->other}, it->sign, 0, 0};
+            mpz_class dq;
+            IntPoint p, q;
+            plane_values<mpz_class>(l.ref, [&](const double* v, int32_t k) { return int_point(v, k); }, l.num, dq, p, q);
+            l.den = l.num - dq;
+            if (l.den < 0) {
+                l.den = -l.den;
+                l.num = -l.num;
+            }
+            ls.push_back(std::move(l));
+        }
+        std::sort(ls.begin(), ls.end(), [&](const Lambda& x, const Lambda& y) {
+            const int c = sgn(mpz_class(x.num * y.den - y.num * x.den));
+            if (c != 0) return c < 0;
+            return perturbed_less(x.ref, y.ref);
+        });
+        int64_t w = w_[g_.tri[3 * t + e]];
+        for (Lambda& l : ls) {
+            entries.push_back({l.ref.plane, l.sign, std::move(l.num), std::move(l.den), w});
+            w += l.sign;
+        }
+        if (w != w_[g_.tri[3 * t + (e + 1) % 3]])
+            throw std::logic_error("boolean: windings along an edge disagree with its end (a shell crosses itself?)");
+        return walks_.emplace(key, std::move(entries)).first->second;
+    }
+
+    // λ(x) < λ(y) for two crossings of one edge that coincide at ε = 0.
+    bool perturbed_less(const CrossingRef& x, const CrossingRef& y) const {
+        auto to = [&](const double* v, int32_t k) { return eps_point(v, k); };
+        EpsPoly dpx, dqx, dpy, dqy;
+        EpsPoint p, q;
+        plane_values<EpsPoly>(x, to, dpx, dqx, p, q);
+        plane_values<EpsPoly>(y, to, dpy, dqy, p, q);
+        const EpsPoly dx = dpx - dqx, dy = dpy - dqy;
+        // λx - λy = (dpx dy - dpy dx) / (dx dy)
+        const int s = (dpx * dy - dpy * dx).sign() * dx.sign() * dy.sign();
+        if (s != 0) return s < 0;
+        return x.plane < y.plane;  // the same point for every ε: any order
+    }
+
+    // Adds sign × λ × d to out (λ = num / den, den > 0, 0 <= λ <= 1).
+    static void add_scaled(PieceSum& out, int sign, const mpz_class& num, const mpz_class& den, const mpz_class& d) {
+        if (num == 0 || d == 0) return;
+        if (num == den) {
+            out.integer += sign * d;
+        } else {
+            out.add_fraction(sign * num * d, den);
+        }
+    }
+
+    // Edge b -> c of triangle t: the intervals where W_others = c.
+    void edge_pieces(uint32_t t, PieceSum& out) {
+        const int c = c_of(g_.body(t));
+        const auto& entries = walk(t, 1);
+        if (entries.empty()) {
+            if (w_[g_.tri[3 * t + 1]] != c) return;
+            double e[exact::kDetTerms];
+            const int n = exact::det3_exact<false>(corner(t, 0), corner(t, 1), corner(t, 2), e);
+            for (int i = 0; i < n; ++i) out.whole.add(e[i]);
+            return;
+        }
+        const mpz_class d = det3(scale_.of(corner(t, 0)), scale_.of(corner(t, 1)), scale_.of(corner(t, 2)));
+        const mpz_class one = 1, zero = 0;
+        const mpz_class* pos_num = &zero;
+        const mpz_class* pos_den = &one;
+        int64_t w = w_[g_.tri[3 * t + 1]];
+        for (const WalkEntry& x : entries) {
+            if (w == c) {
+                add_scaled(out, +1, x.num, x.den, d);
+                add_scaled(out, -1, *pos_num, *pos_den, d);
+            }
+            w += x.sign;
+            pos_num = &x.num;
+            pos_den = &x.den;
+        }
+        if (w == c) {
+            out.integer += d;
+            add_scaled(out, -1, *pos_num, *pos_den, d);
+        }
+    }
+
+    // W of the bodies but t's and s's at the cut end x (x's edge crosses x.plane).
+    int64_t windings_at_end(const CrossingRef& x) {
+        for (const WalkEntry& e : walk(x.owner, x.edge)) {
+            if (e.other != x.plane) continue;
+            // Just before, the edge is in front of x.plane iff it enters there.
+            return e.w_before - (front_of(g_.body(x.plane)) + (e.sign > 0 ? 0 : 1));
+        }
+        throw std::logic_error("boolean: a cut's end is not among its edge's crossings");
+    }
+
+    void cut_pieces(const Cut& cut, PieceSum& out) {
+        const uint32_t t = cut.a, s = cut.b;
+        const uint32_t bi = g_.body(t), bj = g_.body(s);
+        auto ref = [&](const CutEnd& e) {
+            return e.of_b ? CrossingRef{s, e.edge, t} : CrossingRef{t, e.edge, s};
+        };
+        const CrossingRef xs = ref(cut.start), xe = ref(cut.end);
+        const Point0 P = point0(xs), Q = point0(xe);
+
+        // Triple points: third-body triangles r crossing t along a cut that meets s.
+        struct Triple {
+            mpz_class num, den;  // μ along P -> Q
+            int sign;
+        };
+        std::vector<Triple> triples;
+        for (uint32_t ci : cuts_of_[t]) {
+            const Cut& other = cross_.cuts[ci];
+            const uint32_t r = other.a == t ? other.b : other.a;
+            const uint32_t br = g_.body(r);
+            if (br == bi || br == bj) continue;
+            const int sp = side(xs, P, r), sq = side(xe, Q, r);
+            if (sp == sq) continue;
+            // The cut t ∩ r must meet the plane of s between its ends.
+            auto ref2 = [&](const CutEnd& e) {
+                const uint32_t oa = other.a, ob = other.b;
+                return e.of_b ? CrossingRef{ob, e.edge, oa} : CrossingRef{oa, e.edge, ob};
+            };
+            const CrossingRef ys = ref2(other.start), ye = ref2(other.end);
+            if (side(ys, point0(ys), s) == side(ye, point0(ye), s)) continue;
+            // μ = side(P) / (side(P) - side(Q)) at ε = 0, sides as N_r·(X - r0).
+            auto value = [&](const Point0& X) {
+                const IntPoint r0 = scale_.of(corner(r, 0)), r1 = scale_.of(corner(r, 1)), r2 = scale_.of(corner(r, 2));
+                const IntPoint u = {r1[0] - r0[0], r1[1] - r0[1], r1[2] - r0[2]};
+                const IntPoint v = {r2[0] - r0[0], r2[1] - r0[1], r2[2] - r0[2]};
+                const IntPoint d = {X.num[0] - r0[0] * X.den, X.num[1] - r0[1] * X.den, X.num[2] - r0[2] * X.den};
+                return mpz_class(det3(u, v, d));  // side × den
+            };
+            const mpz_class vp = value(P), vq = value(Q);
+            Triple tr{vp * Q.den, vp * Q.den - vq * P.den, sp > 0 ? +1 : -1};
+            if (tr.den < 0) {
+                tr.den = -tr.den;
+                tr.num = -tr.num;
+            }
+            triples.push_back(std::move(tr));
+        }
+        std::sort(triples.begin(), triples.end(), [](const Triple& x, const Triple& y) {
+            return sgn(mpz_class(x.num * y.den - y.num * x.den)) < 0;  // ties: zero-length portions
+        });
+
+        const IntPoint at = scale_.of(corner(t, 0)), as = scale_.of(corner(s, 0));
+        const mpz_class pq_den = P.den * Q.den;
+        const int ci = c_of(bi), cj = c_of(bj), fi = front_of(bi), fj = front_of(bj);
+        int64_t w = windings_at_end(xs);
+        const mpz_class one = 1, zero = 0;
+        const mpz_class* pos_num = &zero;
+        const mpz_class* pos_den = &one;
+        auto portion = [&](const mpz_class& num, const mpz_class& den) {
+            const int64_t wt = w + fj, ws = w + fi;  // W on the front of s (for t), of t (for s)
+            const int kt = (wt == ci - 1) - (wt == ci), ks = (ws == cj - 1) - (ws == cj);
+            if (kt == 0 && ks == 0) return;
+            const IntPoint v = {kt * at[0] - ks * as[0], kt * at[1] - ks * as[1], kt * at[2] - ks * as[2]};
+            const mpz_class dv = det3(v, P.num, Q.num);  // over pq_den
+            for (int part = 0; part < 2; ++part) {
+                const mpz_class& n = part == 0 ? num : *pos_num;
+                const mpz_class& d = part == 0 ? den : *pos_den;
+                const int sg = part == 0 ? +1 : -1;
+                if (n == 0 || dv == 0) continue;
+                if (n == d && pq_den == 1) {
+                    out.integer += sg * dv;
+                } else {
+                    out.add_fraction(sg * n * dv, d * pq_den);
+                }
+            }
+        };
+        for (const Triple& tr : triples) {
+            portion(tr.num, tr.den);
+            w += tr.sign;
+            pos_num = &tr.num;
+            pos_den = &tr.den;
+        }
+        portion(one, one);
+        if (w != windings_at_end(xe))
+            throw std::logic_error("boolean: windings along a cut disagree with its end");
+    }
+
+    const Operand& g_;
+    const Crossings& cross_;
+    const std::vector<int32_t>& w_;
+    const std::vector<int>& sign_;
+    Scale scale_;
+    std::vector<EdgeHit> hits_;
+    std::vector<std::vector<uint32_t>> cuts_of_;
+    std::map<uint64_t, std::vector<WalkEntry>> walks_;
+};
+
+// Components of the polygons joined through shared vertex indices (as the
+// file gives them), if every one is balanced on welded positions; else the
+// shells joined through welded positions.
+topology::ShellLabels bodies_of(const MeshView& mesh, const topology::WeldedMesh& wm) {
+    struct Use {
+        uint64_t key;  // (min, max) vertex index
+        uint32_t poly;
+    };
+    std::vector<Use> uses;
+    wm.for_each_polygon([&](uint32_t poly, std::span<const uint32_t> c) {
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            const uint32_t u = c[i], v = c[(i + 1) % c.size()];
+            uses.push_back({(uint64_t{std::min(u, v)} << 32) | std::max(u, v), poly});
+        }
+    });
+    std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.key < y.key; });
+    topology::UnionFind parts(wm.polygons);
+    for (std::size_t i = 1; i < uses.size(); ++i)
+        if (uses[i].key == uses[i - 1].key) parts.unite(uses[i].poly, uses[i - 1].poly);
+    topology::ShellLabels labels = topology::label_shells(parts);
+    // Balanced per part: every welded edge used as often in each direction.
+    struct Directed {
+        uint32_t part, lo, hi;
+        int dir;
+    };
+    std::vector<Directed> edges;
+    wm.for_each_polygon([&](uint32_t poly, std::span<const uint32_t> c) {
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            const uint32_t u = wm.id[c[i]], v = wm.id[c[(i + 1) % c.size()]];
+            if (u != v) edges.push_back({labels.of_polygon[poly], std::min(u, v), std::max(u, v), u < v ? 1 : -1});
+        }
+    });
+    std::sort(edges.begin(), edges.end(), [](const Directed& x, const Directed& y) {
+        return std::tie(x.part, x.lo, x.hi) < std::tie(y.part, y.lo, y.hi);
+    });
+    for (std::size_t i = 0; i < edges.size();) {
+        std::size_t j = i;
+        int balance = 0;
+        for (; j < edges.size() && edges[j].part == edges[i].part && edges[j].lo == edges[i].lo &&
+               edges[j].hi == edges[i].hi;
+             ++j)
+            balance += edges[j].dir;
+        if (balance != 0) {
+            topology::UnionFind shells(wm.polygons);
+            topology::build_edge_table(wm, &shells);
+            return topology::label_shells(shells);
+        }
+        i = j;
+    }
+    (void)mesh;
+    return labels;
+}
+
+}  // namespace
+}  // namespace boolean
+
+SolidVolume solid_volume(const MeshView& mesh) {
+    using namespace boolean;
+    SolidVolume r;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    auto fail = [&](BooleanStatus s) {
+        r.status = s;
+        r.volume = r.winding_volume = nan;
+        return r;
+    };
+    TopologyOptions edges_only;
+    edges_only.shells = false;
+    if (!analyze_topology(mesh, edges_only).closed_2_cycle) return fail(BooleanStatus::a_not_closed);
+
+    // The bodies: the parts as the file joins them by vertex indices, when
+    // each of them is a closed 2-cycle (parts that touch or coincide stay
+    // apart); otherwise the shells, joined by welded positions (topology.hpp).
+    const topology::WeldedMesh wm = topology::weld_polygons(mesh);
+    const topology::ShellLabels labels = bodies_of(mesh, wm);
+    r.shells = labels.count;
+    std::vector<std::vector<std::array<uint32_t, 3>>> shell_tris(labels.count);
+    wm.for_each_polygon([&](uint32_t poly, std::span<const uint32_t> c) {
+        for (std::size_t i = 1; i + 1 < c.size(); ++i)
+            shell_tris[labels.of_polygon[poly]].push_back({wm.id[c[0]], wm.id[c[i]], wm.id[c[i + 1]]});
+    });
+    int e0 = std::numeric_limits<int>::max();
+    for (std::size_t d = 0; d < wm.referenced(); ++d)
+        for (int k = 0; k < 3; ++k) {
+            const double x = wm.position(static_cast<uint32_t>(d))[k];
+            if (!exact::in_safe_range(x) || std::fabs(x) > 0x1p180) return fail(BooleanStatus::invalid_coordinates);
+            if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
+        }
+    if (e0 == std::numeric_limits<int>::max()) e0 = 0;
+
+    // Each shell's exact volume and box.
+    std::vector<exact::ExactSum> six(labels.count);
+    std::vector<std::array<double, 6>> box(labels.count, {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY});
+    exact::ExactSum six_winding;
+    for (std::size_t sh = 0; sh < labels.count; ++sh) {
+        for (const auto& tr : shell_tris[sh]) {
+            double e[exact::kDetTerms];
+            const int n = exact::det3_exact<false>(wm.position(tr[0]), wm.position(tr[1]), wm.position(tr[2]), e);
+            for (int i = 0; i < n; ++i) six[sh].add(e[i]);
+            for (uint32_t v : tr)
+                for (int k = 0; k < 3; ++k) {
+                    box[sh][k] = std::min(box[sh][k], wm.position(v)[k]);
+                    box[sh][3 + k] = std::max(box[sh][3 + k], wm.position(v)[k]);
+                }
+        }
+        six_winding.merge(six[sh]);
+    }
+    r.winding_volume = six_winding.round_div(6);
+
+    // Groups of shells whose boxes overlap (closed boxes: touching counts).
+    std::vector<uint32_t> order(labels.count);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return box[x][0] < box[y][0]; });
+    topology::UnionFind groups(labels.count);
+    for (std::size_t i = 0; i < order.size(); ++i)
+        for (std::size_t j = i + 1; j < order.size() && box[order[j]][0] <= box[order[i]][3]; ++j) {
+            const auto &p = box[order[i]], &q = box[order[j]];
+            if (p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] && q[2] <= p[5]) groups.unite(order[i], order[j]);
+        }
+    std::map<uint32_t, std::vector<uint32_t>> members;
+    for (uint32_t sh = 0; sh < labels.count; ++sh) members[groups.find(sh)].push_back(sh);
+
+    PieceSum pieces;
+    const Scale scale{e0};
+    for (const auto& [root, shells] : members) {
+        if (shells.size() == 1) {
+            if (six[shells[0]].sign() >= 0) pieces.whole.merge(six[shells[0]]);  // inward alone: no solid
+            continue;
+        }
+        r.shells_checked += shells.size();
+        Operand g;
+        g.body_shift.clear();
+        std::vector<int> body_sign;
+        std::vector<uint32_t> new_id(wm.referenced(), UINT32_MAX);
+        for (uint32_t b = 0; b < shells.size(); ++b) {
+            const uint32_t sh = shells[b];
+            g.body_shift.push_back(static_cast<int32_t>(b + 1));
+            body_sign.push_back(six[sh].sign() >= 0 ? +1 : -1);
+            const uint32_t first_vertex = static_cast<uint32_t>(g.mesh.vertex_count());
+            for (const auto& tr : shell_tris[sh]) {
+                for (uint32_t v : tr) {
+                    if (new_id[v] == UINT32_MAX || new_id[v] < first_vertex) {  // each body its own vertices
+                        const double* p = wm.position(v);
+                        new_id[v] = g.mesh.add_vertex(p[0], p[1], p[2]);
+                    }
+                    g.tri.push_back(new_id[v]);
+                }
+                g.body_of_triangle.push_back(b);
+            }
+        }
+        const std::size_t n = g.triangles();
+        g.degenerate.resize(n);
+        g.box.resize(6 * n);
+        g.bounds = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+        for (std::size_t t = 0; t < n; ++t) {
+            const double* c[3] = {g.corner(t, 0), g.corner(t, 1), g.corner(t, 2)};
+            g.degenerate[t] = first_cross_sign(c[0], c[1], c[0], c[2]) == 0;
+            for (int k = 0; k < 3; ++k) {
+                g.box[6 * t + k] = std::min({c[0][k], c[1][k], c[2][k]});
+                g.box[6 * t + 3 + k] = std::max({c[0][k], c[1][k], c[2][k]});
+                g.bounds[k] = std::min(g.bounds[k], g.box[6 * t + k]);
+                g.bounds[3 + k] = std::max(g.bounds[3 + k], g.box[6 * t + 3 + k]);
+            }
+        }
+        const Crossings cross = find_crossings(g, g);
+        r.crossing_pairs += cross.cuts.size();
+        std::vector<EdgeHit> hits = cross.a_hits;
+        hits.insert(hits.end(), cross.b_hits.begin(), cross.b_hits.end());
+        const std::vector<int32_t> w = vertex_windings(g, g, hits);
+        // Overlapping: crossing another shell, or an outward shell inside another solid.
+        std::vector<uint8_t> overlapping(shells.size(), 0);
+        for (const Cut& c : cross.cuts) overlapping[g.body(c.a)] = overlapping[g.body(c.b)] = 1;
+        for (std::size_t t = 0; t < n; ++t)
+            if (body_sign[g.body(t)] > 0 && w[g.tri[3 * t]] >= 1) overlapping[g.body(t)] = 1;
+        r.overlapping_shells += static_cast<std::size_t>(std::count(overlapping.begin(), overlapping.end(), 1));
+        SolidPieces(g, cross, w, body_sign, scale).sum(pieces);
+    }
+    const Combination volume[1] = {{nullptr, +1}};
+    r.volume = round_combinations(pieces, e0, volume, r.refinements)[0];
+    return r;
+}
+
+}  // namespace polyvol
