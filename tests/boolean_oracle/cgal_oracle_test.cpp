@@ -303,6 +303,36 @@ TEST(BooleanCgalOracle, SphereAgainstRotatedCopy) {
     expect_matches_cgal(sphere(), transformed(sphere(), {0.42, 0.77, -0.31}, 0.37, {0, 0, 0}));
 }
 
+// solid_volume of one mesh holding several overlapping parts (three spheres
+// meeting in a common region, and a torus through them) against CGAL's union
+// of the parts, built one after another.
+TEST(BooleanCgalOracle, OverlappingPartsOfOneFileAreTheirUnion) {
+    const std::vector<Mesh> parts = {sphere(), translated(sphere(), {0.5, 0.3, 0.2}),
+                                     translated(sphere(), {-0.2, 0.6, -0.35}), tilted_torus()};
+    Mesh all;
+    for (const Mesh& p : parts) all.append(p);
+    std::string why;
+    auto u = to_cgal(parts[0], why);
+    ASSERT_TRUE(u) << why;
+    mpq_class winding = exact_volume(*u);
+    for (std::size_t i = 1; i < parts.size(); ++i) {
+        auto next = to_cgal(parts[i], why);
+        ASSERT_TRUE(next) << why;
+        winding += exact_volume(*next);
+        CgalMesh out;
+        ASSERT_TRUE(PMP::corefine_and_compute_union(*u, *next, out));
+        *u = out;
+    }
+    const SolidVolume r = solid_volume(all.view());
+    ASSERT_EQ(r.status, BooleanStatus::ok) << boolean_status_message(r.status);
+    EXPECT_EQ(r.shells, 4u);
+    EXPECT_EQ(r.overlapping_shells, 4u);
+    expect_rounded("|A ∪ B ∪ C ∪ D|", r.volume, exact_volume(*u));
+    expect_rounded("winding integral", r.winding_volume, winding);
+    std::printf("    solid %s, winding %s, crossing pairs %zu\n", g17(r.volume).c_str(), g17(r.winding_volume).c_str(),
+                r.crossing_pairs);
+}
+
 // Corpus meshes (closed 2-cycles in the manifest, one edge-connected
 // component, a few thousand triangles) against a copy translated by
 // (0.31, 0.17, 0.23) times their bounding box's size.
