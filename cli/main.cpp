@@ -41,6 +41,7 @@ struct Common {
     double density = 1.0;
     bool stream = false;  // volume --stream: JSON from the streaming path too
     bool volume_only = false;  // volume --volume-only
+    bool solid = false;        // volume --solid
 };
 
 void add_measure_options(CLI::App* cmd, Common& c) {
@@ -82,7 +83,7 @@ int run(Command command, const Common& c) {
     // Binary STL through the streaming path: the table always, JSON only with
     // --stream (the streaming path has no second moments, inertia, edge
     // length or components: README).
-    request.stream = command == Command::volume && (!c.json || c.stream);
+    request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid;
     request.volume_only = command == Command::volume && c.volume_only;
     request.table_only = command == Command::volume && (!c.json || request.volume_only);
     request.closedness_by_fingerprint = command == Command::volume && !c.json;
@@ -137,6 +138,9 @@ int main(int argc, char** argv) {
     volume->add_flag("--volume-only", volume_opts.volume_only,
                      "Only the volume with its guarantee (and the closedness check), in the table and the JSON: "
                      "the fastest path, e.g. a third less work per triangle for a streamed binary STL");
+    volume->add_flag("--solid", volume_opts.solid,
+                     "Check a binary STL's shells for overlap too (loads it instead of streaming it). Other files "
+                     "are always checked: where shells overlap, the volume is the solid's (winding number >= 1)");
     auto* measure = app.add_subcommand("measure", "All mass properties (volume, area, edge length, centroid, "
                                                   "second moments, inertia) with their guarantees");
     add_measure_options(measure, measure_opts);

@@ -115,6 +115,34 @@ std::optional<FileResult> stream_binary_stl(const std::string& path, bool volume
     return r;
 }
 
+// Whether the mesh's faces form more than one part through shared vertex
+// indices (a union–find over the indices: one pass, no sorting).
+bool has_several_parts(const MeshView& view) {
+    std::vector<uint32_t> parent(view.vertex_count());
+    for (uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
+    auto find = [&](uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (std::size_t f = 0; f < view.face_count(); ++f) {
+        const auto c = view.face(f);
+        if (c.size() < 3) continue;
+        for (std::size_t i = 1; i < c.size(); ++i) {
+            const uint32_t a = find(c[0]), b = find(c[i]);
+            if (a != b) parent[b] = a;
+        }
+    }
+    std::optional<uint32_t> root;
+    for (std::size_t f = 0; f < view.face_count(); ++f) {
+        const auto c = view.face(f);
+        if (c.size() < 3) continue;
+        const uint32_t r = find(c[0]);
+        if (root && *root != r) return true;
+        root = r;
+    }
+    return false;
+}
+
 FileResult process_file(const std::string& path, const Request& request) {
     if (request.stream && request.need_mass && request.measure.method == Method::cone)
         if (auto s = stream_binary_stl(path, request.volume_only)) return std::move(*s);
@@ -153,8 +181,36 @@ FileResult process_file(const std::string& path, const Request& request) {
             r.mass = request.volume_only ? volume_only_properties(view, request.measure)
                                          : mass_properties(view, request.measure);
     }
+    const bool closed = r.closed_by_fingerprint || r.topology->closed_2_cycle;
+    if (request.check_overlap && closed) {
+        r.overlap_checked = true;
+        if (has_several_parts(view)) {
+            r.solid = solid_volume(view);
+            if (r.solid->status != BooleanStatus::ok) {
+                r.warning += (r.warning.empty() ? "" : "; ") + path +
+                             ": shells not checked for overlap: " + boolean_status_message(r.solid->status) +
+                             "; the volume is the sum of the shells' volumes";
+                r.overlap_checked = false;
+                r.solid.reset();
+            }
+        }
+    }
     r.seconds_measure = seconds_since(t0);
     return r;
+}
+
+double printed_volume(const FileResult& r) {
+    if (r.solid && r.solid->overlapping_shells > 0) return r.solid->volume;
+    return r.mass ? r.mass->volume : std::numeric_limits<double>::quiet_NaN();
+}
+
+// The sentence for a file whose shells overlap, or "".
+std::string overlap_sentence(const FileResult& r) {
+    if (!r.solid || r.solid->overlapping_shells == 0) return "";
+    const SolidVolume& s = *r.solid;
+    return std::to_string(s.overlapping_shells) + " of " + std::to_string(s.shells) + " shells overlap (" +
+           std::to_string(s.crossing_pairs) + " crossing triangle pairs): the volume is the solid's (winding number >= 1, "
+           "correctly rounded); the shells' volumes add up to " + shortest(s.winding_volume);
 }
 
 std::string volume_guarantee(const MassProperties& m) {
@@ -227,7 +283,10 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
                               {"unbalanced_edges", s.unbalanced_edges},
                               {"euler_characteristic", s.euler_characteristic},
                               {"winding_of_others", s.winding_of_others},
-                              {"role", std::string(role_name(s.role))}};
+                              {"role", r.solid && s.first_face < r.solid->face_crosses.size() &&
+                                               r.solid->face_crosses[s.first_face]
+                                           ? std::string("crossing")
+                                           : std::string(role_name(s.role))}};
             sj["genus"] = s.genus ? nlohmann::json(*s.genus) : nlohmann::json(nullptr);
             shells.push_back(std::move(sj));
         }
@@ -243,6 +302,21 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["accuracy"] = m.volume_correctly_rounded ? "correctly-rounded" : "error-bound";
         j["volume"] = number(m.volume);
         j["volume_error_bound"] = m.volume_error_bound;
+        j["overlap_checked"] = r.overlap_checked;
+        if (r.solid && r.solid->overlapping_shells > 0) {
+            j["volume"] = number(r.solid->volume);
+            j["accuracy"] = "correctly-rounded";
+            j["volume_error_bound"] = 0;
+        }
+        if (r.solid) {
+            j["winding_volume"] = number(r.solid->winding_volume);
+            j["overlapping_shells"] = r.solid->overlapping_shells;
+            j["crossing_pairs"] = r.solid->crossing_pairs;
+        } else if (r.overlap_checked) {
+            j["winding_volume"] = number(m.volume);
+            j["overlapping_shells"] = 0;
+            j["crossing_pairs"] = 0;
+        }
     }
     if (r.mass && !request.volume_only) {
         const auto& m = *r.mass;
@@ -280,8 +354,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         out << pad("volume", 24) << "  " << pad("area", 24) << "  centroid\n";
     else
         out << "volume\n";
-    bool any_rounded = false, any_bound = false, any_fingerprint = false;
-    std::string streamed_notes, loaded_notes;
+    bool any_rounded = false, any_bound = false, any_fingerprint = false, any_checked = false;
+    std::string streamed_notes, loaded_notes, overlap_notes;
     for (const auto& r : results) {
         any_fingerprint = any_fingerprint || r.streamed || r.closed_by_fingerprint;
         if (r.streamed) {
@@ -306,9 +380,14 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
             continue;
         }
         const auto& m = *r.mass;
-        (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
-        const std::string vol =
-            shortest(m.volume) + (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
+        const bool overlap = r.solid && r.solid->overlapping_shells > 0;
+        any_checked = any_checked || r.overlap_checked;
+        (m.volume_correctly_rounded || overlap ? any_rounded : any_bound) = true;
+        const std::string vol = overlap ? shortest(r.solid->volume)
+                                        : shortest(m.volume) +
+                                              (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
+        if (overlap)
+            overlap_notes += "  " + r.file + ": " + overlap_sentence(r) + (all ? "; its area and centroid are the shells' sums" : "") + "\n";
         if (!all) {
             out << vol << "\n";
             continue;
@@ -332,7 +411,12 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
                "< 2^-113); a file it finds open, or cannot decide (e.g. a NaN or infinite coordinate), is analysed in full "
                "and its unbalanced edges reported.\n";
     if (!streamed_notes.empty())
-        out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded):\n" << streamed_notes;
+        out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded; shells not checked "
+               "for overlap: --solid checks):\n"
+            << streamed_notes;
+    if (any_checked)
+        out << "Shells checked for overlap with one another (a shell crossing itself is not checked).\n";
+    out << overlap_notes;
     return out.str();
 }
 
@@ -344,7 +428,17 @@ std::string measure_report(const FileResult& r, const Request& request) {
         << "; " << l.vertices_in_file << " vertices, " << l.mesh.face_count() << " faces, "
         << l.mesh.view().triangle_count() << " triangles)\n";
     out << "  method          " << method_name(request.measure.method) << ", density " << shortest(request.measure.density) << "\n";
-    out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m) << "]\n";
+    const bool overlap = r.solid && r.solid->overlapping_shells > 0;
+    if (overlap) {
+        out << "  volume          " << shortest(r.solid->volume)
+            << "   [correctly rounded: the solid where the winding number is >= 1]\n";
+        out << "  shells          " << overlap_sentence(r) << "\n";
+        out << "  note            mass, area, centroid, moments and inertia below are the shells' sums (an overlap "
+               "counts once per shell covering it); the solid's are not computed yet\n";
+    } else {
+        out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m) << "]\n";
+    }
+    if (r.overlap_checked) out << "  overlap         shells checked against one another (a shell crossing itself is not)\n";
     out << "  mass            " << shortest(m.mass) << "\n";
     out << "  surface area    " << shortest(m.area) << "   [relative error <= " << shortest(m.area_relative_error) << "]\n";
     out << "  edge length     " << shortest(m.edge_length) << "   [relative error <= " << shortest(m.edge_length_relative_error) << "]\n";
@@ -400,11 +494,21 @@ std::string check_report(const FileResult& r) {
             out << "  ... " << (t.shells.size() - 20) << " more shells\n";
             break;
         }
-        out << "  shell " << shown << ": " << role_name(s.role) << ", volume " << shortest(s.signed_volume) << ", "
+        const bool crossing = r.solid && s.first_face < r.solid->face_crosses.size() && r.solid->face_crosses[s.first_face];
+        out << "  shell " << shown << ": " << (crossing ? std::string_view("crossing another shell") : role_name(s.role))
+            << ", volume " << shortest(s.signed_volume) << ", "
             << s.faces << " faces, χ = " << s.euler_characteristic;
         if (s.genus) out << ", genus " << *s.genus;
         if (s.boundary_edges) out << ", " << s.boundary_edges << " boundary edges";
         out << "\n";
+    }
+    if (r.solid && (r.solid->crossing_pairs > 0 || r.solid->overlapping_shells > 0)) {
+        out << "  overlap         " << r.solid->overlapping_shells << " overlapping shells, " << r.solid->crossing_pairs
+            << " crossing triangle pairs";
+        if (r.solid->crossing_example)
+            out << " (e.g. faces " << (*r.solid->crossing_example)[0] << " and " << (*r.solid->crossing_example)[1] << ")";
+        out << "; the solid (winding number >= 1) has volume " << shortest(r.solid->volume) << ", the shells add up to "
+            << shortest(r.solid->winding_volume) << "\n";
     }
     if (t.cavities || t.inside_out_shells || t.nested_shells)
         out << "  nesting         " << t.cavities << " cavities, " << t.inside_out_shells << " inside-out shells, "

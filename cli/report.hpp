@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "polyvol/boolean.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/soup.hpp"
@@ -34,6 +35,12 @@ struct FileResult {
     // Set instead of loaded/topology/mass when a binary STL went through the
     // streaming path (Request::stream): nothing was loaded or welded.
     std::optional<SoupResult> streamed;
+    // The solid of overlapping shells (polyvol/boolean.hpp's solid_volume),
+    // computed when the loaded mesh has more than one part.
+    std::optional<SolidVolume> solid;
+    // A loaded mesh whose shells were checked for overlap (also when it has one
+    // part, which cannot overlap another); false when streamed.
+    bool overlap_checked = false;
 };
 
 struct Request {
@@ -60,6 +67,9 @@ struct Request {
     // full path calls signed_volume when the volume is correctly rounded
     // (cone, prism, pyramid).
     bool volume_only = false;
+    // Shells that overlap: the volume is the solid's (winding number >= 1).
+    // `volume --solid` loads a binary STL instead of streaming it, to check it too.
+    bool check_overlap = true;
 };
 
 // Reads, analyses and measures one file; never throws.
@@ -75,6 +85,9 @@ nlohmann::json to_json(const FileResult& r, const Request& request);
 std::string volume_table(const std::vector<FileResult>& results, const Request& request);
 std::string measure_report(const FileResult& r, const Request& request);
 std::string check_report(const FileResult& r);
+
+// The volume to print: the solid's when shells overlap, else the mass properties'.
+double printed_volume(const FileResult& r);
 
 // A sentence stating the guarantee of the printed volume.
 std::string volume_guarantee(const MassProperties& m);

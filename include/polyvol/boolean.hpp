@@ -21,7 +21,11 @@
 //     computed in double with one absolute bound for all of them.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
 
 #include "polyvol/mesh.hpp"
 
@@ -36,6 +40,7 @@ enum class BooleanStatus {
     a_overlaps_itself,   // A's winding number is not 0 or 1 at a vertex of B (overlapping shells)
     b_overlaps_itself,
     invalid_coordinates, // a coordinate is not finite, or outside 0 ∪ [2^-160, 2^180] in magnitude
+    shell_crosses_itself,// solid_volume: the windings along an edge or a cut disagree, as when a shell crosses itself
 };
 
 struct BooleanVolumes {
@@ -66,7 +71,7 @@ const char* boolean_status_message(BooleanStatus status);
 // edge-connected components; each must be a closed 2-cycle that does not
 // cross itself (crossings between different shells are the point).
 struct SolidVolume {
-    BooleanStatus status = BooleanStatus::ok;  // a_not_closed (the mesh) or invalid_coordinates
+    BooleanStatus status = BooleanStatus::ok;  // a_not_closed (the mesh), invalid_coordinates, shell_crosses_itself
     double volume = 0;          // |{winding >= 1}|, correctly rounded
     double winding_volume = 0;  // Σ of the shells' signed volumes = ∫ winding number (the cone rule's sum), correctly rounded
     std::size_t shells = 0;
@@ -74,12 +79,18 @@ struct SolidVolume {
     std::size_t crossing_pairs = 0;      // triangle pairs of different shells that cross
     std::size_t shells_checked = 0;      // shells whose box meets another's (the rest cost nothing)
     int refinements = 0;                 // as in BooleanVolumes
+    // One crossing pair, as the faces (file order) whose fan triangles cross.
+    std::optional<std::array<std::size_t, 2>> crossing_example;
+    // Per face (file order), 1 when its shell crosses another shell; empty
+    // when no shells cross.
+    std::vector<uint8_t> face_crosses;
 };
 
 // Touching and coincident shells are resolved by moving shell k of each
 // group by k (ε, ε², ε³) (docs/boolean.md). Throws std::invalid_argument for
-// inconsistent mesh arrays, std::logic_error when a shell crosses itself in
-// a way the windings reveal.
+// inconsistent mesh arrays. A shell that crosses itself is not looked for;
+// where its windings disagree the status says so (shell_crosses_itself);
+// where they happen to agree the volume counts its self-overlap as winding.
 SolidVolume solid_volume(const MeshView& mesh);
 
 }  // namespace polyvol

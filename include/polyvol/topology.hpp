@@ -70,6 +70,7 @@ struct Shell {
     std::optional<int64_t> genus;    // (2 - χ)/2 for a closed, edge-manifold, consistently oriented
                                      // shell whose χ is even and <= 2 (pinched vertices can break that)
     double winding_of_others = 0;    // winding number of all other shells at a point of this one (see top)
+    std::size_t first_face = 0;      // index (file order) of its first face
     ShellRole role = ShellRole::open;
 };
 

@@ -247,6 +247,8 @@ const char* boolean_status_message(BooleanStatus status) {
         case BooleanStatus::b_inside_out: return "B is inside out (negative volume)";
         case BooleanStatus::a_overlaps_itself: return "A's shells overlap (its winding number exceeds 1 somewhere)";
         case BooleanStatus::b_overlaps_itself: return "B's shells overlap (its winding number exceeds 1 somewhere)";
+        case BooleanStatus::shell_crosses_itself:
+            return "a shell crosses itself (the winding numbers along its edges or cuts disagree)";
         case BooleanStatus::invalid_coordinates:
             return "a coordinate is not finite or outside 0 and 2^-160 .. 2^180 in magnitude";
     }

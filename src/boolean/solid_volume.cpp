@@ -347,6 +347,35 @@ private:
     std::map<uint64_t, std::vector<WalkEntry>> walks_;
 };
 
+// One group of shells whose boxes overlap: its crossings, windings and
+// pieces (added to `pieces`), and what the report says of it.
+void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const std::vector<uint32_t>& shells,
+                 const std::vector<int>& body_sign, const Scale& scale, std::size_t faces, PieceSum& pieces,
+                 SolidVolume& r) {
+    const std::size_t n = g.triangles();
+    const Crossings cross = find_crossings(g, g);
+
+        r.crossing_pairs += cross.cuts.size();
+        std::vector<EdgeHit> hits = cross.a_hits;
+        hits.insert(hits.end(), cross.b_hits.begin(), cross.b_hits.end());
+        const std::vector<int32_t> w = vertex_windings(g, g, hits);
+        // Overlapping: crossing another shell, or an outward shell inside another solid.
+        std::vector<uint8_t> overlapping(shells.size(), 0);
+        for (const Cut& c : cross.cuts) overlapping[g.body(c.a)] = overlapping[g.body(c.b)] = 1;
+        for (std::size_t t = 0; t < n; ++t)
+            if (body_sign[g.body(t)] > 0 && w[g.tri[3 * t]] >= 1) overlapping[g.body(t)] = 1;
+        r.overlapping_shells += static_cast<std::size_t>(std::count(overlapping.begin(), overlapping.end(), 1));
+        if (!cross.cuts.empty()) {
+            if (!r.crossing_example) r.crossing_example = {g_face[cross.cuts[0].a], g_face[cross.cuts[0].b]};
+            if (r.face_crosses.empty()) r.face_crosses.assign(faces, 0);
+            std::vector<uint8_t> crosses(shells.size(), 0);
+            for (const Cut& c : cross.cuts) crosses[g.body(c.a)] = crosses[g.body(c.b)] = 1;
+            for (std::size_t t = 0; t < n; ++t)
+                if (crosses[g.body(t)]) r.face_crosses[g_face[t]] = 1;
+        }
+    SolidPieces(g, cross, w, body_sign, scale).sum(pieces);
+}
+
 // Components of the polygons joined through shared vertex indices (as the
 // file gives them), if every one is balanced on welded positions; else the
 // shells joined through welded positions.
@@ -423,10 +452,16 @@ SolidVolume solid_volume(const MeshView& mesh) {
     const topology::ShellLabels labels = bodies_of(mesh, wm);
     r.shells = labels.count;
     std::vector<std::vector<std::array<uint32_t, 3>>> shell_tris(labels.count);
-    wm.for_each_polygon([&](uint32_t poly, std::span<const uint32_t> c) {
-        for (std::size_t i = 1; i + 1 < c.size(); ++i)
-            shell_tris[labels.of_polygon[poly]].push_back({wm.id[c[0]], wm.id[c[i]], wm.id[c[i + 1]]});
-    });
+    std::vector<std::vector<uint32_t>> shell_faces(labels.count);  // the face of each fan triangle
+    for (uint32_t f = 0, poly = 0; f < mesh.face_count(); ++f) {
+        const auto c = mesh.face(f);
+        if (c.size() < 3) continue;
+        const uint32_t sh = labels.of_polygon[poly++];
+        for (std::size_t i = 1; i + 1 < c.size(); ++i) {
+            shell_tris[sh].push_back({wm.id[c[0]], wm.id[c[i]], wm.id[c[i + 1]]});
+            shell_faces[sh].push_back(f);
+        }
+    }
     int e0 = std::numeric_limits<int>::max();
     for (std::size_t d = 0; d < wm.referenced(); ++d)
         for (int k = 0; k < 3; ++k) {
@@ -477,6 +512,7 @@ SolidVolume solid_volume(const MeshView& mesh) {
         }
         r.shells_checked += shells.size();
         Operand g;
+        std::vector<uint32_t> g_face;
         g.body_shift.clear();
         std::vector<int> body_sign;
         std::vector<uint32_t> new_id(wm.referenced(), UINT32_MAX);
@@ -485,6 +521,7 @@ SolidVolume solid_volume(const MeshView& mesh) {
             g.body_shift.push_back(static_cast<int32_t>(b + 1));
             body_sign.push_back(six[sh].sign() >= 0 ? +1 : -1);
             const uint32_t first_vertex = static_cast<uint32_t>(g.mesh.vertex_count());
+            g_face.insert(g_face.end(), shell_faces[sh].begin(), shell_faces[sh].end());
             for (const auto& tr : shell_tris[sh]) {
                 for (uint32_t v : tr) {
                     if (new_id[v] == UINT32_MAX || new_id[v] < first_vertex) {  // each body its own vertices
@@ -510,18 +547,11 @@ SolidVolume solid_volume(const MeshView& mesh) {
                 g.bounds[3 + k] = std::max(g.bounds[3 + k], g.box[6 * t + 3 + k]);
             }
         }
-        const Crossings cross = find_crossings(g, g);
-        r.crossing_pairs += cross.cuts.size();
-        std::vector<EdgeHit> hits = cross.a_hits;
-        hits.insert(hits.end(), cross.b_hits.begin(), cross.b_hits.end());
-        const std::vector<int32_t> w = vertex_windings(g, g, hits);
-        // Overlapping: crossing another shell, or an outward shell inside another solid.
-        std::vector<uint8_t> overlapping(shells.size(), 0);
-        for (const Cut& c : cross.cuts) overlapping[g.body(c.a)] = overlapping[g.body(c.b)] = 1;
-        for (std::size_t t = 0; t < n; ++t)
-            if (body_sign[g.body(t)] > 0 && w[g.tri[3 * t]] >= 1) overlapping[g.body(t)] = 1;
-        r.overlapping_shells += static_cast<std::size_t>(std::count(overlapping.begin(), overlapping.end(), 1));
-        SolidPieces(g, cross, w, body_sign, scale).sum(pieces);
+        try {
+            solid_group(g, g_face, shells, body_sign, scale, mesh.face_count(), pieces, r);
+        } catch (const std::logic_error&) {
+            return fail(BooleanStatus::shell_crosses_itself);
+        }
     }
     const Combination volume[1] = {{nullptr, +1}};
     r.volume = round_combinations(pieces, e0, volume, r.refinements)[0];

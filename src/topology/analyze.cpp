@@ -107,6 +107,16 @@ TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& opt
 
     const topology::ShellTriangles triangles = topology::gather_shell_triangles(m, labels);
     std::vector<ShellGeometry> geometry = topology::measure_shells(m, labels, edges, triangles);
+    // Each shell's first face in file order (shells are numbered by their first polygon).
+    std::vector<uint8_t> seen(labels.count, 0);
+    for (std::size_t f = 0, poly = 0; f < mesh.face_count(); ++f) {
+        if (mesh.face_size(f) < 3) continue;
+        const uint32_t sh = labels.of_polygon[poly++];
+        if (!seen[sh]) {
+            seen[sh] = 1;
+            geometry[sh].report.first_face = f;
+        }
+    }
     const std::vector<double> winding = topology::winding_of_other_shells(m, triangles, geometry);
     r.shells = order_shells(std::move(geometry), winding);
     for (const Shell& s : r.shells) {

@@ -90,4 +90,40 @@ TEST(OverlapCli, InvalidOperandsExitWithTheirReason) {
     EXPECT_NE(missing.err.find("none.obj"), std::string::npos) << missing.err;
 }
 
+// One file with two overlapping cubes: `volume` and `measure` give the
+// solid's 15 (not the shells' 16), `check` names the crossing shells.
+TEST(OverlapCli, OverlappingShellsOfOneFile) {
+    const fs::path two = write_boxes("two.obj", {{0, 0, 0, 2, 2, 2}, {1, 1, 1, 3, 3, 3}});
+    const auto json_run = cli_test::run_polyvol("volume --json '" + two.string() + "'");
+    ASSERT_EQ(json_run.code, 0) << json_run.err;
+    const auto j = nlohmann::json::parse(json_run.out)[0];
+    EXPECT_EQ(j["volume"], 15.0);
+    EXPECT_EQ(j["winding_volume"], 16.0);
+    EXPECT_EQ(j["overlapping_shells"], 2);
+    EXPECT_EQ(j["overlap_checked"], true);
+    EXPECT_GT(j["crossing_pairs"].get<int>(), 0);
+    EXPECT_EQ(j["shells"][0]["role"], "crossing");
+
+    const auto table = cli_test::run_polyvol("volume '" + two.string() + "'");
+    ASSERT_EQ(table.code, 0) << table.err;
+    EXPECT_NE(table.out.find("  15 "), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("2 of 2 shells overlap"), std::string::npos) << table.out;
+
+    const auto measure = cli_test::run_polyvol("measure '" + two.string() + "'");
+    ASSERT_EQ(measure.code, 0) << measure.err;
+    EXPECT_NE(measure.out.find("volume          15 "), std::string::npos) << measure.out;
+
+    const auto check = cli_test::run_polyvol("check '" + two.string() + "'");
+    ASSERT_EQ(check.code, 0) << check.err;
+    EXPECT_NE(check.out.find("crossing another shell"), std::string::npos) << check.out;
+    EXPECT_NE(check.out.find("2 overlapping shells"), std::string::npos) << check.out;
+    EXPECT_EQ(check.out.find("nested"), std::string::npos) << check.out;
+
+    // Apart, nothing changes: the volume is the shells' sum.
+    const fs::path apart = write_boxes("apart.obj", {{0, 0, 0, 1, 1, 1}, {2, 2, 2, 3, 3, 3}});
+    const auto a = nlohmann::json::parse(cli_test::run_polyvol("volume --json '" + apart.string() + "'").out)[0];
+    EXPECT_EQ(a["volume"], 2.0);
+    EXPECT_EQ(a["overlapping_shells"], 0);
+}
+
 }  // namespace

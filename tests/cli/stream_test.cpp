@@ -127,12 +127,19 @@ TEST(CliStream, VolumeOnlyGivesTheManifestVolumeOnEveryPath) {
         // each transformed coordinate to a double (tests/corpus/corpus_test.cpp);
         // the full path's volume of those doubles is the reference then.
         const auto& quirks = e["quirks"];
+        // Where shells overlap the volume is the solid's; the manifest's figure
+        // is the shells' sum, `winding_volume` (unless streamed: not checked).
+        auto winding = [](const json& x) { return (x.contains("winding_volume") ? x["winding_volume"] : x["volume"]).get<double>(); };
         if (std::find(quirks.begin(), quirks.end(), "3mf-transform") == quirks.end() && e.value("exact", false)) {
-            EXPECT_EQ(j["volume"].get<double>(), volume);
+            EXPECT_EQ(winding(j), volume);
         }
         const CliRun full = polyvol("volume --json " + quoted(kCorpus / rel));
         ASSERT_EQ(full.code, 0) << full.err;
-        EXPECT_EQ(j["volume"].get<double>(), json::parse(full.out)[0]["volume"].get<double>());
+        const json f = json::parse(full.out)[0];
+        EXPECT_EQ(winding(j), winding(f));
+        if (j.contains("winding_volume")) {
+            EXPECT_EQ(j["volume"].get<double>(), f["volume"].get<double>());
+        }
         EXPECT_EQ(j["accuracy"], "correctly-rounded");
         EXPECT_EQ(j["volume_error_bound"].get<double>(), 0.0);
         EXPECT_EQ(j["closed_2_cycle"], true);
