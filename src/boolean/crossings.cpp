@@ -167,10 +167,26 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
         if (!(common[k] <= common[3 + k])) return result;  // boxes apart (or an empty operand)
     }
     std::vector<uint32_t> a_near, b_near;
+    // One operand of a few bodies: only triangles whose box meets another body's box.
+    std::vector<std::array<double, 6>> body_box;
+    if (same && A.body_shift.size() <= 64) {
+        body_box.assign(A.body_shift.size(), {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY});
+        for (uint32_t t = 0; t < A.triangles(); ++t)
+            for (int k = 0; k < 3; ++k) {
+                body_box[A.body(t)][k] = std::min(body_box[A.body(t)][k], A.box[6 * t + k]);
+                body_box[A.body(t)][3 + k] = std::max(body_box[A.body(t)][3 + k], A.box[6 * t + 3 + k]);
+            }
+    }
+    auto near_another_body = [&](uint32_t t) {
+        if (body_box.empty()) return true;
+        for (uint32_t b = 0; b < body_box.size(); ++b)
+            if (b != A.body(t) && boxes_meet(&A.box[6 * t], body_box[b].data())) return true;
+        return false;
+    };
     for (uint32_t t = 0; t < A.triangles(); ++t)
-        if (boxes_meet(&A.box[6 * t], common.data())) a_near.push_back(t);
+        if (boxes_meet(&A.box[6 * t], common.data()) && near_another_body(t)) a_near.push_back(t);
     for (uint32_t t = 0; t < B.triangles(); ++t)
-        if (boxes_meet(&B.box[6 * t], common.data())) b_near.push_back(t);
+        if (boxes_meet(&B.box[6 * t], common.data()) && (!same || near_another_body(t))) b_near.push_back(t);
     if (a_near.empty() || b_near.empty()) return result;
 
     // B's triangles binned into cells (compressed rows).
@@ -196,12 +212,16 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
             const double* box = &A.box[6 * ta];
             local.candidates.clear();
             grid.for_cells(box, [&](std::size_t c) {
-                local.candidates.insert(local.candidates.end(), binned.begin() + start[c], binned.begin() + start[c + 1]);
+                if (!same) {
+                    local.candidates.insert(local.candidates.end(), binned.begin() + start[c], binned.begin() + start[c + 1]);
+                    return;
+                }
+                for (uint32_t i = start[c]; i < start[c + 1]; ++i)  // one operand: other bodies, each pair once
+                    if (binned[i] > ta && B.body(binned[i]) != A.body(ta)) local.candidates.push_back(binned[i]);
             });
             std::sort(local.candidates.begin(), local.candidates.end());
             local.candidates.erase(std::unique(local.candidates.begin(), local.candidates.end()), local.candidates.end());
             for (uint32_t tb : local.candidates) {
-                if (same && (tb <= ta || A.body(ta) == B.body(tb))) continue;
                 if (!boxes_meet(box, &B.box[6 * tb])) continue;
                 ++local.found.candidate_pairs;
                 const int shift = B.shift(tb) > A.shift(ta) ? 1 : -1;
