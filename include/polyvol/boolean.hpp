@@ -84,6 +84,14 @@ struct SolidVolume {
     // Per face (file order), 1 when its shell crosses another shell; empty
     // when no shells cross.
     std::vector<uint8_t> face_crosses;
+    // With moments (solid_volume's second argument), of the solid, density 1
+    // (measure.hpp's conventions: {xx, yy, zz, xy, yz, zx}):
+    bool moments = false;
+    std::array<double, 3> first_moments{};   // ∫x_i, correctly rounded
+    std::array<double, 6> second_moments{};  // ∫x_i x_j about the origin, correctly rounded
+    std::array<double, 3> centroid{};        // first_moments / volume in double: relative error < 2^-51 (NaN when V = 0)
+    std::array<double, 6> inertia_centroid{};// about the centroid, in double
+    double inertia_relative_error = 0;       // bound, relative to its largest magnitude
 };
 
 // Touching and coincident shells are resolved by moving shell k of each
@@ -91,6 +99,6 @@ struct SolidVolume {
 // inconsistent mesh arrays. A shell that crosses itself is not looked for;
 // where its windings disagree the status says so (shell_crosses_itself);
 // where they happen to agree the volume counts its self-overlap as winding.
-SolidVolume solid_volume(const MeshView& mesh);
+SolidVolume solid_volume(const MeshView& mesh, bool moments = false);
 
 }  // namespace polyvol

@@ -64,7 +64,8 @@ mpq_class power_of_two(int e) {
 
 // Every combination decided from the pieces' approximation `six` (true value
 // within `bound` of it), or nothing.
-bool decide(const exact::ExactSum& six, double bound, std::span<const Combination> results, std::vector<double>& out) {
+bool decide(const exact::ExactSum& six, double bound, std::span<const Combination> results, uint32_t divisor,
+            std::vector<double>& out) {
     for (std::size_t i = 0; i < results.size(); ++i) {
         exact::ExactSum v;
         if (results[i].base) v = *results[i].base;
@@ -73,7 +74,7 @@ bool decide(const exact::ExactSum& six, double bound, std::span<const Combinatio
         } else {
             v.subtract(six);
         }
-        const auto d = exact::decided_round_div(v, bound, 6);
+        const auto d = exact::decided_round_div(v, bound, divisor);
         if (!d) return false;
         out[i] = *d;
     }
@@ -83,25 +84,25 @@ bool decide(const exact::ExactSum& six, double bound, std::span<const Combinatio
 }  // namespace
 
 std::vector<double> round_combinations(const PieceSum& pieces, int e0, std::span<const Combination> results,
-                                       int& refinements) {
+                                       int& refinements, int degree, uint32_t divisor) {
     std::vector<double> out(results.size());
     exact::ExactSum known = pieces.whole;
-    add_integer(known, pieces.integer, 3 * e0);
+    add_integer(known, pieces.integer, degree * e0);
     refinements = 0;
     if (pieces.fractions.empty()) {
-        if (decide(known, 0, results, out)) return out;
+        if (decide(known, 0, results, divisor, out)) return out;
     } else {
         // The largest fraction is below 2^top (units included).
         long top = std::numeric_limits<long>::min();
         for (const auto& [n, d] : pieces.fractions)
             top = std::max<long>(top, static_cast<long>(mpz_sizeinbase(n.get_mpz_t(), 2)) -
-                                          static_cast<long>(mpz_sizeinbase(d.get_mpz_t(), 2)) + 1 + 3 * e0);
+                                          static_cast<long>(mpz_sizeinbase(d.get_mpz_t(), 2)) + 1 + degree * e0);
         const int count_bits = static_cast<int>(std::bit_width(pieces.fractions.size()));
         long e = std::max<long>(-1074, top - 110 - count_bits);
         for (int round = 0; round < 3; ++round) {
             exact::ExactSum six = known;
             mpz_class q, shifted;
-            const long k = 3 * e0 - e;  // q = floor(N 2^k / D)
+            const long k = degree * e0 - e;  // q = floor(N 2^k / D)
             for (const auto& [n, d] : pieces.fractions) {
                 if (k >= 0) {
                     mpz_mul_2exp(shifted.get_mpz_t(), n.get_mpz_t(), static_cast<unsigned long>(k));
@@ -114,7 +115,7 @@ std::vector<double> round_combinations(const PieceSum& pieces, int e0, std::span
             }
             const double bound = std::ldexp(static_cast<double>(pieces.fractions.size()), static_cast<int>(e));
             refinements = round;
-            if (decide(six, bound, results, out)) return out;
+            if (decide(six, bound, results, divisor, out)) return out;
             if (e == -1074) break;
             e = std::max<long>(-1074, e - 200);
         }
@@ -124,10 +125,10 @@ std::vector<double> round_combinations(const PieceSum& pieces, int e0, std::span
     mpq_class sum = 0;
     for (const auto& [n, d] : pieces.fractions) sum += mpq_class(n, d);
     sum.canonicalize();
-    const mpq_class six = mpq_class(exact::Rational(known).get()) + sum * power_of_two(3 * e0);
+    const mpq_class six = mpq_class(exact::Rational(known).get()) + sum * power_of_two(degree * e0);
     for (std::size_t i = 0; i < results.size(); ++i) {
         const mpq_class base = results[i].base ? mpq_class(exact::Rational(*results[i].base).get()) : mpq_class(0);
-        const mpq_class v = (base + results[i].sign * six) / 6;
+        const mpq_class v = (base + results[i].sign * six) / divisor;
         out[i] = exact::round_to_double(v.get_mpq_t());
     }
     return out;

@@ -55,15 +55,17 @@ struct PieceSum {
 // Adds the integer z 2^exponent to sum exactly (2^exponent >= 2^-1074).
 void add_integer(exact::ExactSum& sum, const mpz_class& z, int exponent);
 
-// One result to round: (base + sign × pieces) / 6.
+// One result to round: (base + sign × pieces) / divisor.
 struct Combination {
     const exact::ExactSum* base;  // nullptr: 0
     int sign;                     // +1 or -1
 };
 
-// Each combination's exact value, rounded once to the nearest double.
+// Each combination's exact value over `divisor`, rounded once to the
+// nearest double; the pieces' integers and fractions are in units of
+// 2^(degree e0) (3 for volumes, 4 for first moments, 5 for second).
 // refinements: the interval rounds it took (-1: exact rationals).
 std::vector<double> round_combinations(const PieceSum& pieces, int e0, std::span<const Combination> results,
-                                       int& refinements);
+                                       int& refinements, int degree = 3, uint32_t divisor = 6);
 
 }  // namespace polyvol::boolean

@@ -4,13 +4,17 @@
 // (−1 for a box turned inside out) that contain it.
 #include <gtest/gtest.h>
 
+#include <gmpxx.h>
+
 #include <array>
 #include <random>
 #include <vector>
 
 #include "../../bench/generate.hpp"
 #include "common/shapes.hpp"
+#include "exact/rational.hpp"
 #include "polyvol/boolean.hpp"
+#include "polyvol/measure.hpp"
 
 namespace polyvol {
 namespace {
@@ -100,6 +104,74 @@ TEST(SolidVolume, RandomLatticeBoxes) {
         SCOPED_TRACE(::testing::Message() << "trial " << trial);
         expect_counted(boxes, 5, 1);
     }
+}
+
+// The first and second moments of the cells with winding >= 1, exactly:
+// per unit cell [x0, x0 + 1] (in lattice units), ∫x = x0 + 1/2,
+// ∫x² = x0² + x0 + 1/3, ∫xy = (x0 + 1/2)(y0 + 1/2); then scaled by the unit.
+void expect_counted_moments(const std::vector<LatticeBox>& boxes, int n, double unit) {
+    std::array<mpq_class, 3> f;
+    std::array<mpq_class, 6> s;
+    for (int x = 0; x < n; ++x)
+        for (int y = 0; y < n; ++y)
+            for (int z = 0; z < n; ++z) {
+                int w = 0;
+                for (const LatticeBox& b : boxes)
+                    if (b.c[0] <= x && x < b.c[3] && b.c[1] <= y && y < b.c[4] && b.c[2] <= z && z < b.c[5])
+                        w += b.inward ? -1 : 1;
+                if (w < 1) continue;
+                const mpq_class half(1, 2), third(1, 3);
+                const mpq_class m[3] = {x + half, y + half, z + half};
+                const mpq_class sq[3] = {x * x + x + third, y * y + y + third, z * z + z + third};
+                for (int i = 0; i < 3; ++i) f[i] += m[i];
+                s[0] += sq[0], s[1] += sq[1], s[2] += sq[2];
+                s[3] += m[0] * m[1], s[4] += m[1] * m[2], s[5] += m[2] * m[0];
+            }
+    const mpq_class u4 = mpq_class(unit) * unit * unit * unit, u5 = u4 * unit;
+    const SolidVolume r = solid_volume(mesh_of(boxes, unit).view(), true);
+    ASSERT_EQ(r.status, BooleanStatus::ok);
+    ASSERT_TRUE(r.moments);
+    for (int i = 0; i < 3; ++i) {
+        const mpq_class v = f[i] * u4;
+        EXPECT_EQ(r.first_moments[i], exact::round_to_double(v.get_mpq_t())) << i;
+    }
+    for (int k = 0; k < 6; ++k) {
+        const mpq_class v = s[k] * u5;
+        EXPECT_EQ(r.second_moments[k], exact::round_to_double(v.get_mpq_t())) << k;
+    }
+}
+
+TEST(SolidVolume, MomentsOfLatticeBoxes) {
+    expect_counted_moments({{{0, 0, 0, 2, 2, 2}}, {{1, 1, 1, 3, 3, 3}}}, 3, 1);
+    expect_counted_moments({{{0, 0, 0, 8, 8, 8}}, {{2, 2, 2, 6, 6, 6}, true}, {{1, 3, 3, 10, 5, 5}}}, 10, 0.5);
+    std::mt19937 rng(2611);
+    std::uniform_int_distribution<int> coord(0, 4), count(2, 4), inward(0, 5);
+    for (int trial = 0; trial < 40; ++trial) {
+        std::vector<LatticeBox> boxes(count(rng));
+        for (LatticeBox& b : boxes) {
+            for (int k = 0; k < 3; ++k) {
+                int lo = coord(rng), hi = coord(rng);
+                if (lo == hi) ++hi;
+                b.c[k] = std::min(lo, hi);
+                b.c[3 + k] = std::max(lo, hi);
+            }
+            b.inward = inward(rng) == 0;
+        }
+        SCOPED_TRACE(::testing::Message() << "trial " << trial);
+        expect_counted_moments(boxes, 5, 1);
+    }
+}
+
+TEST(SolidVolume, MomentsOfApartShellsAreTheMeshMoments) {
+    Mesh m = bench::uv_sphere(12, 24, 1.0);
+    m.append(bench::uv_sphere(10, 20, 0.5, 3, 0.25, -1));
+    const SolidVolume r = solid_volume(m.view(), true);
+    const MassProperties p = mass_properties(m.view());
+    ASSERT_EQ(r.status, BooleanStatus::ok);
+    EXPECT_EQ(r.volume, p.volume);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(r.first_moments[i], p.first_moments[i]);
+    for (int k = 0; k < 6; ++k) EXPECT_EQ(r.second_moments[k], p.second_moments[k]);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.centroid[i], p.centroid[i], 0x1p-50 * std::fabs(p.centroid[i]));
 }
 
 TEST(SolidVolume, TwoSpheresInOneFileAreTheirUnion) {
