@@ -115,6 +115,31 @@ std::optional<FileResult> stream_binary_stl(const std::string& path, bool volume
     return r;
 }
 
+// Where shells overlap, the mass properties become the solid's (winding
+// number >= 1): volume and moments from solid_volume, scaled by the density
+// (one more rounding unless it is 1); area and edge length stay the
+// shells' sums (the reports say so).
+void use_solid_properties(const SolidVolume& s, double density, MassProperties& m) {
+    m.volume = s.volume;
+    m.volume_correctly_rounded = true;
+    m.volume_error_bound = 0;
+    m.mass = density * s.volume;
+    if (!s.moments) return;
+    for (int i = 0; i < 3; ++i) {
+        m.first_moments[i] = density * s.first_moments[i];
+        m.centroid[i] = s.centroid[i];
+    }
+    for (int k = 0; k < 6; ++k) {
+        m.second_moments[k] = density * s.second_moments[k];
+        m.inertia_centroid[k] = density * s.inertia_centroid[k];
+    }
+    m.inertia_origin = inertia_from_second_moments(m.second_moments);
+    // The centroid is within 2^-51 relative, the second moments correctly
+    // rounded (before the density), the central inertia within its bound.
+    m.moments_correctly_rounded = false;
+    m.moments_relative_error = std::max(0x1p-51, s.inertia_relative_error) + (density != 1 ? 0x1p-52 : 0.0);
+}
+
 // Whether the mesh's faces form more than one part through shared vertex
 // indices (a union–find over the indices: one pass, no sorting).
 bool has_several_parts(const MeshView& view) {
@@ -185,7 +210,10 @@ FileResult process_file(const std::string& path, const Request& request) {
     if (request.check_overlap && closed) {
         r.overlap_checked = true;
         if (has_several_parts(view)) {
-            r.solid = solid_volume(view);
+            const bool moments = request.need_mass && !request.volume_only;
+            r.solid = solid_volume(view, moments);
+            if (r.solid->status == BooleanStatus::ok && r.solid->overlapping_shells > 0 && r.mass)
+                use_solid_properties(*r.solid, request.measure.density, *r.mass);
             if (r.solid->status != BooleanStatus::ok) {
                 r.warning += (r.warning.empty() ? "" : "; ") + path +
                              ": shells not checked for overlap: " + boolean_status_message(r.solid->status) +
@@ -387,7 +415,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
                                         : shortest(m.volume) +
                                               (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
         if (overlap)
-            overlap_notes += "  " + r.file + ": " + overlap_sentence(r) + (all ? "; its area and centroid are the shells' sums" : "") + "\n";
+            overlap_notes += "  " + r.file + ": " + overlap_sentence(r) + (all ? "; its centroid is the solid's, its area the shells' sum" : "") + "\n";
         if (!all) {
             out << vol << "\n";
             continue;
@@ -433,8 +461,8 @@ std::string measure_report(const FileResult& r, const Request& request) {
         out << "  volume          " << shortest(r.solid->volume)
             << "   [correctly rounded: the solid where the winding number is >= 1]\n";
         out << "  shells          " << overlap_sentence(r) << "\n";
-        out << "  note            mass, area, centroid, moments and inertia below are the shells' sums (an overlap "
-               "counts once per shell covering it); the solid's are not computed yet\n";
+        out << "  note            mass, centroid, moments and inertia are the solid's; surface area and edge length "
+               "are the shells' sums (an overlap counts once per shell covering it)\n";
     } else {
         out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m) << "]\n";
     }

@@ -103,6 +103,15 @@ TEST(OverlapCli, OverlappingShellsOfOneFile) {
     EXPECT_EQ(j["overlap_checked"], true);
     EXPECT_GT(j["crossing_pairs"].get<int>(), 0);
     EXPECT_EQ(j["shells"][0]["role"], "crossing");
+    // The solid's centroid and inertia (the union of two cubes is symmetric about (1.5, 1.5, 1.5)).
+    EXPECT_EQ(j["centroid"][0], 1.5);
+    EXPECT_EQ(j["mass"], 15.0);
+    const double ixx = j["inertia"][0][0].get<double>(), ixy = j["inertia"][0][1].get<double>();
+    // About c = (1.5, 1.5, 1.5), by inclusion-exclusion over A, B and A ∩ B = [1, 2]^3:
+    // ∫(x - 1.5)^2 = 2 (8 * 4/12 + 8 * 0.25) - 1/12 = 111/12, so Ixx = 2 * 111/12 = 18.5;
+    // ∫(x - 1.5)(y - 1.5) = 2 (8 * 0.25) - 0 = 4, so Ixy = -4.
+    EXPECT_NEAR(ixx, 18.5, 1e-12);
+    EXPECT_NEAR(ixy, -4.0, 1e-12);
 
     const auto table = cli_test::run_polyvol("volume '" + two.string() + "'");
     ASSERT_EQ(table.code, 0) << table.err;
