@@ -205,6 +205,9 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
     cmd->add_option("--centroids", a.centroids, "Also write each cell's centroid of the solid: FILE.npy, shape (..., 3)");
     cmd->add_option("--union", a.union_out,
                     "Also write the union's occupancy: FILE.npy, shape (3, nx, ny, nz): estimate, lower, upper");
+    cmd->add_option("--surface", a.surface,
+                    "Also write each cell's wetted area and area-weighted outward normal per body: FILE.npy, shape "
+                    "(..., 4): area, nx, ny, nz (and, with a .vti/.vtr output, the arrays wetted_area and surface_normal)");
     cmd->add_option("--png", a.png, "Picture of one slice of the volume fractions (viridis)");
     cmd->add_option("--slice", a.slice, "The slice for --png: x=VALUE, y=VALUE or z=VALUE (default: middle z)");
     return cmd;
@@ -218,6 +221,7 @@ int run_grid_command(const GridArgs& a) {
         return usage_error("-o needs a .npy, .vti, .vtr or .json file, not '" + a.out + "'");
     if (!a.centroids.empty() && extension(a.centroids) != ".npy") return usage_error("--centroids needs a .npy file");
     if (!a.union_out.empty() && extension(a.union_out) != ".npy") return usage_error("--union needs a .npy file");
+    if (!a.surface.empty() && extension(a.surface) != ".npy") return usage_error("--surface needs a .npy file");
     const std::optional<Slice> slice = parse_slice(a.slice);
     if (!slice) return usage_error("--slice takes x=VALUE, y=VALUE or z=VALUE, not '" + a.slice + "'");
     if (!a.slice.empty() && a.png.empty()) return usage_error("--slice goes with --png");
@@ -300,6 +304,13 @@ int run_grid_command(const GridArgs& a) {
         moments.resize(3 * nb * cells);
         out.first_moments = moments;
     }
+    std::vector<double> wetted, normals;
+    if (!a.surface.empty()) {
+        wetted.resize(nb * cells);
+        normals.resize(3 * nb * cells);
+        out.wetted_area = wetted;
+        out.surface_normal = normals;
+    }
     const bool want_union = nb > 1 && (!a.union_out.empty() || !a.png.empty() || out_ext == ".vti" || out_ext == ".vtr");
     if (want_union || !a.union_out.empty()) {
         lower.resize(cells);
@@ -366,6 +377,17 @@ int run_grid_command(const GridArgs& a) {
             shape.insert(shape.end(), {g.nx(), g.ny(), g.nz(), 3});
             write_npy(a.centroids, c, shape);
         }
+        if (!a.surface.empty()) {
+            std::vector<double> four(4 * nb * cells);
+            for (std::size_t n = 0; n < nb * cells; ++n) {
+                four[4 * n] = wetted[n];
+                for (int k = 0; k < 3; ++k) four[4 * n + 1 + k] = normals[3 * n + k];
+            }
+            std::vector<std::size_t> shape;
+            if (nb > 1) shape.push_back(nb);
+            shape.insert(shape.end(), {g.nx(), g.ny(), g.nz(), 4});
+            write_npy(a.surface, four, shape);
+        }
         std::vector<double> union3;
         if (!a.union_out.empty() || (want_union && (out_ext == ".vti" || out_ext == ".vtr"))) {
             union3.resize(3 * cells);
@@ -402,6 +424,14 @@ int run_grid_command(const GridArgs& a) {
                 for (std::size_t c = 0; c < cells; ++c) contact[c] = static_cast<double>(cls[c]);
                 arrays.push_back({"cell_class", contact, 1});  // 0 empty, 1 full, 2 cut, 3 contact
             }
+            if (!a.surface.empty())
+                for (std::size_t b = 0; b < nb; ++b) {
+                    const std::string suffix =
+                        nb > 1 ? "_" + std::to_string(b) + "_" + std::filesystem::path(a.files[b]).stem().string() : "";
+                    arrays.push_back({"wetted_area" + suffix, std::span<const double>(wetted).subspan(b * cells, cells), 1});
+                    arrays.push_back({"surface_normal" + suffix,
+                                      std::span<const double>(normals).subspan(3 * b * cells, 3 * cells), 3});
+                }
             if (out_ext == ".vti")
                 write_vti(a.out, g.x, g.y, g.z, arrays);
             else

@@ -21,6 +21,7 @@ struct GridArgs {
     bool fractions = false;
     std::string centroids;
     std::string union_out;
+    std::string surface;  // --surface FILE.npy: wetted area and area-weighted normal per cell
     std::string png;
     std::string slice;
 };

@@ -162,6 +162,17 @@ struct GridOutput {
     std::span<double> union_lower{};
     std::span<double> union_upper{};
     std::span<CellClass> cell_class{};  // cells, or empty
+    // What the clipping learns on the way (cut-cell and VOF codes need it):
+    // bodies * cells or empty: the area of each body's surface inside each
+    // cell (its wetted area), at wetted_area[b * cells + cell(i,j,k)];
+    std::span<double> wetted_area{};
+    // bodies * cells * 3 or empty: ∫ n dA of that surface (n the outward unit
+    // normal: the area-weighted normal, its length <= the wetted area), at
+    // surface_normal[(b * cells + cell(i,j,k)) * 3 + a].
+    // Each surface piece counts in one cell: a piece lying in a plane between
+    // two cells goes to the one the clipping gives it (the cells still add up
+    // to the surface's area). Sums in double, in triangle order.
+    std::span<double> surface_normal{};
 };
 
 struct GridOptions {

@@ -234,7 +234,7 @@ struct Job {
     const Axis &ax, &ay, &az;
     const std::vector<Triangles>& tris;
     const std::vector<Bins>& bins;
-    bool moments, want_union;
+    bool moments, want_union, surface;
 };
 
 // Clips one body's triangles listed for a tile and scatters their pieces.
@@ -258,6 +258,15 @@ std::size_t scatter_tile(const Job& job, std::size_t b, std::size_t tile, int ix
                                 ws.sums.scatter(i - ix0, j - iy0, k,
                                                 grid::piece_integrals<kMoments>(piece, corner, far));
                                 ++pieces;
+                                if (job.surface && k < nz) {  // tiles own their cells: no race
+                                    double a[3];
+                                    grid::piece_vector_area(piece, corner, a);
+                                    const std::size_t cell = b * job.g.cell_count() + job.g.cell(i, j, k);
+                                    if (!job.out.wetted_area.empty())
+                                        job.out.wetted_area[cell] += std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+                                    if (!job.out.surface_normal.empty())
+                                        for (int c = 0; c < 3; ++c) job.out.surface_normal[3 * cell + c] += a[c];
+                                }
                             });
     }
     return pieces;
@@ -374,6 +383,15 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
     for (const std::size_t size : {out.union_estimate.size(), out.union_lower.size(), out.union_upper.size(),
                                    out.cell_class.size()})
         if (size != 0 && size != cells) throw std::invalid_argument("grid: union outputs must hold one value per cell");
+    if (!out.wetted_area.empty() && out.wetted_area.size() != nb * cells)
+        throw std::invalid_argument("grid: wetted_area must hold bodies * cells values");
+    if (!out.surface_normal.empty() && out.surface_normal.size() != 3 * nb * cells)
+        throw std::invalid_argument("grid: surface_normal must hold 3 * bodies * cells values");
+    const bool surface = !out.wetted_area.empty() || !out.surface_normal.empty();
+    for (const auto span : {out.wetted_area, out.surface_normal})
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, span.size(), 1 << 16), [&](const auto& r) {
+            std::fill(span.begin() + static_cast<std::ptrdiff_t>(r.begin()), span.begin() + static_cast<std::ptrdiff_t>(r.end()), 0.0);
+        });
     const bool union_outputs = !out.union_estimate.empty() || !out.union_lower.empty() ||
                                !out.union_upper.empty() || !out.cell_class.empty();
 
@@ -389,7 +407,7 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
         bins.push_back(bin_triangles(m, tris.back(), ax, ay, az, layout));
     }
 
-    const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, nb > 1 || union_outputs};
+    const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, nb > 1 || union_outputs, surface};
     tbb::enumerable_thread_specific<Workspace> workspaces;
     tbb::enumerable_thread_specific<Partial> partials([nb] { return Partial(nb); });
     std::atomic<std::size_t> done{0};

@@ -80,4 +80,20 @@ inline PieceIntegrals piece_integrals(const Polygon& poly, const double corner[3
     return r;
 }
 
+// The vector area ∫ n dA = ½ Σ (p_t - p_0) × (p_t+1 - p_0) of a plane
+// piece (its fan), from coordinates relative to `corner` (the cell's).
+inline void piece_vector_area(const Polygon& poly, const double corner[3], double out[3]) {
+    out[0] = out[1] = out[2] = 0;
+    double q[kMaxVertices][3];
+    for (int v = 0; v < poly.n; ++v)
+        for (int a = 0; a < 3; ++a) q[v][a] = poly.p[v].v[a] - corner[a];
+    for (int t = 1; t + 1 < poly.n; ++t) {
+        const double u[3] = {q[t][0] - q[0][0], q[t][1] - q[0][1], q[t][2] - q[0][2]};
+        const double w[3] = {q[t + 1][0] - q[0][0], q[t + 1][1] - q[0][1], q[t + 1][2] - q[0][2]};
+        out[0] += 0.5 * (u[1] * w[2] - u[2] * w[1]);
+        out[1] += 0.5 * (u[2] * w[0] - u[0] * w[2]);
+        out[2] += 0.5 * (u[0] * w[1] - u[1] * w[0]);
+    }
+}
+
 }  // namespace polyvol::grid

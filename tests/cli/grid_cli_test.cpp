@@ -100,6 +100,32 @@ TEST(GridCli, NpyHasTheHeaderShapeAndValues) {
     EXPECT_EQ(n.data[0], 0.0);
 }
 
+TEST(GridCli, SurfaceHasAreaAndNormalPerCell) {
+    // The unit cube padded by one cell of 1/8: each of its 6 faces is cut
+    // into 8 x 8 cells; every cell's area is 1/64 or 0, the total 6.
+    const fs::path out = scratch("surface.npy");
+    const fs::path vti = scratch("surface.vti");
+    const CliRun r = polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " --cells 10 -o '" + vti.string() +
+                             "' --surface '" + out.string() + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Npy n = read_npy(out);
+    EXPECT_NE(n.header.find("'shape': (10, 10, 10, 4)"), std::string::npos) << n.header;
+    ASSERT_EQ(n.data.size(), 4000u);
+    double area = 0, nx = 0;
+    for (std::size_t c = 0; c < 1000; ++c) {
+        area += n.data[4 * c];
+        nx += n.data[4 * c + 1];
+    }
+    EXPECT_NEAR(area, 6.0, 1e-14);
+    EXPECT_NEAR(nx, 0.0, 1e-14);
+    // Cell (0, 1, 1) holds nothing; cell (1, 1, 1) a corner of three faces, each 1/64.
+    EXPECT_EQ(n.data[4 * ((0 * 10 + 1) * 10 + 1)], 0.0);
+    EXPECT_NEAR(n.data[4 * ((1 * 10 + 1) * 10 + 1)], 3.0 / 64, 1e-16);
+    const std::string xml = slurp(vti);
+    EXPECT_NE(xml.find("Name=\"wetted_area\""), std::string::npos);
+    EXPECT_NE(xml.find("Name=\"surface_normal\" NumberOfComponents=\"3\""), std::string::npos) << xml.substr(0, 2000);
+}
+
 TEST(GridCli, SeveralBodiesPutTheBodyAxisFirstAndFractions) {
     const fs::path out = scratch("two.npy");
     const fs::path uni = scratch("union.npy");
