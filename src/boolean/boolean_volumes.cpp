@@ -36,6 +36,7 @@
 
 #include "boolean/exact_terms.hpp"
 #include "boolean/operand.hpp"
+#include "measure/cone.hpp"
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "exact/expansion.hpp"
@@ -197,42 +198,57 @@ void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSu
     }
 }
 
-// One operand's whole triangles, in parallel: Σ det (6 × its volume) and
-// Σ |N| (2 × its area) over all of them, and over those whose edge b -> c
-// starts inside the other solid (w = 1 at corner b: the whole triangle is
-// inside when nothing crosses it).
+// 6 × the volume of an operand's triangles (all, or those listed in
+// `subset`): measure's double-double sum with its bound, or exact.
+struct VolumeSum {
+    exact::ExactSum sum;
+    double bound = 0;
+};
+VolumeSum cone_volume_sum(const Operand& op, const std::vector<uint32_t>* subset, bool exactly) {
+    const MeshView view{op.mesh.positions, {}, subset ? std::span<const uint32_t>(*subset) : std::span<const uint32_t>(op.tri)};
+    measure::cone::ConeSums sums = measure::cone::filtered_sums(view, 1, measure::cone::Precision::double_double);
+    if (exactly) measure::cone::exact_sums(view, 1, sums);
+    return {sums.sum[0], sums.bound[0]};
+}
+
+// An operand's whole triangles: their volume sums (all, and those whose
+// edge b -> c starts inside the other solid, w = 1 at corner b: the whole
+// triangle is inside when nothing crosses it) and Σ |N| (2 × the area) of both.
 struct WholeSums {
-    exact::ExactSum volume, volume_inside;
+    VolumeSum volume, volume_inside;
     AreaSum area, area_inside;
+    std::vector<uint32_t> inside;  // the inside triangles' corners
 };
 WholeSums whole_triangles(const Operand& op, const std::vector<int32_t>& other_winding) {
-    return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, op.triangles(), 4096), WholeSums{},
-        [&](const tbb::blocked_range<std::size_t>& range, WholeSums sums) {
+    WholeSums w;
+    for (std::size_t t = 0; t < op.triangles(); ++t)
+        if (other_winding[op.tri[3 * t + 1]] != 0) w.inside.insert(w.inside.end(), &op.tri[3 * t], &op.tri[3 * t] + 3);
+    struct Areas {
+        AreaSum all, inside;
+    };
+    const Areas areas = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, op.triangles(), 4096), Areas{},
+        [&](const tbb::blocked_range<std::size_t>& range, Areas sums) {
             for (std::size_t t = range.begin(); t != range.end(); ++t) {
-                const double *a = op.corner(t, 0), *b = op.corner(t, 1), *c = op.corner(t, 2);
-                double e[exact::kDetTerms];
-                const int n = exact::det3_exact<false>(a, b, c, e);
-                const Geometry g = triangle_geometry(a, b, c);
+                const Geometry g = triangle_geometry(op.corner(t, 0), op.corner(t, 1), op.corner(t, 2));
                 const double error = g.normal_error + kU * g.normal_length;
-                const bool inside = other_winding[op.tri[3 * t + 1]] != 0;
-                for (int i = 0; i < n; ++i) sums.volume.add(e[i]);
-                sums.area.add(g.normal_length, error);
-                if (!inside) continue;
-                for (int i = 0; i < n; ++i) sums.volume_inside.add(e[i]);
-                sums.area_inside.add(g.normal_length, error);
+                sums.all.add(g.normal_length, error);
+                if (other_winding[op.tri[3 * t + 1]] != 0) sums.inside.add(g.normal_length, error);
             }
             return sums;
         },
-        [](WholeSums x, const WholeSums& y) {
-            x.volume.merge(y.volume);
-            x.volume_inside.merge(y.volume_inside);
-            x.area.sum.merge(y.area.sum);
-            x.area.bound += y.area.bound;
-            x.area_inside.sum.merge(y.area_inside.sum);
-            x.area_inside.bound += y.area_inside.bound;
+        [](Areas x, const Areas& y) {
+            for (auto [to, from] : {std::pair{&x.all, &y.all}, std::pair{&x.inside, &y.inside}}) {
+                to->sum.merge(from->sum);
+                to->bound += from->bound;
+            }
             return x;
         });
+    w.area = areas.all;
+    w.area_inside = areas.inside;
+    w.volume = cone_volume_sum(op, nullptr, false);
+    w.volume_inside = cone_volume_sum(op, &w.inside, false);
+    return w;
 }
 
 }  // namespace
@@ -298,32 +314,54 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
     const std::vector<int32_t> wb = vertex_windings(A, B, cross.a_hits);
     const std::vector<int32_t> wa = vertex_windings(B, A, cross.b_hits);
 
-    const WholeSums whole_a = whole_triangles(A, wb), whole_b = whole_triangles(B, wa);
-    const exact::ExactSum& six_a = whole_a.volume;
-    const exact::ExactSum& six_b = whole_b.volume;
+    WholeSums whole_a = whole_triangles(A, wb), whole_b = whole_triangles(B, wa);
     const AreaSum& area_a = whole_a.area;
     const AreaSum& area_b = whole_b.area;
-    if (six_a.sign() < 0) return fail(BooleanStatus::a_inside_out);
-    if (six_b.sign() < 0) return fail(BooleanStatus::b_inside_out);
+    auto volume_of = [](VolumeSum& v, const Operand& op) {
+        if (auto d = exact::decided_round_div(v.sum, v.bound, 6)) return *d;
+        v = cone_volume_sum(op, nullptr, true);
+        return v.sum.round_div(6);
+    };
+    r.volume_a = volume_of(whole_a.volume, A);
+    r.volume_b = volume_of(whole_b.volume, B);
+    if (r.volume_a < 0) return fail(BooleanStatus::a_inside_out);
+    if (r.volume_b < 0) return fail(BooleanStatus::b_inside_out);
     if (std::any_of(wb.begin(), wb.end(), [](int32_t w) { return w != 0 && w != 1; }))
         return fail(BooleanStatus::b_overlaps_itself);
     if (std::any_of(wa.begin(), wa.end(), [](int32_t w) { return w != 0 && w != 1; }))
         return fail(BooleanStatus::a_overlaps_itself);
     PieceSum pieces;
-    pieces.whole = whole_a.volume_inside;
-    pieces.whole.merge(whole_b.volume_inside);
     AreaSum a_in_b = whole_a.area_inside, b_in_a = whole_b.area_inside;
     const Inputs in{A, B, cross, wa, wb, Scale{e0}, max_coordinate};
     sum_pieces(in, pieces, a_in_b, b_in_a);
     r.rational_terms = pieces.fractions.size();
 
     // 6 |A ∩ B| is the pieces' sum; the other results are exact combinations.
-    exact::ExactSum both = six_a;
-    both.merge(six_b);
-    const Combination combos[4] = {{nullptr, +1}, {&both, -1}, {&six_a, -1}, {&six_b, -1}};
-    const std::vector<double> out = round_combinations(pieces, e0, combos, r.refinements);
-    r.volume_a = six_a.round_div(6);
-    r.volume_b = six_b.round_div(6);
+    // The whole triangles' sums come with bounds; exact sums when those
+    // leave a rounding undecided.
+    std::vector<double> out;
+    for (bool exactly : {false, true}) {
+        if (exactly) {
+            whole_a.volume = cone_volume_sum(A, nullptr, true);
+            whole_b.volume = cone_volume_sum(B, nullptr, true);
+            whole_a.volume_inside = cone_volume_sum(A, &whole_a.inside, true);
+            whole_b.volume_inside = cone_volume_sum(B, &whole_b.inside, true);
+        }
+        PieceSum both_pieces;
+        both_pieces.whole = whole_a.volume_inside.sum;
+        both_pieces.whole.merge(whole_b.volume_inside.sum);
+        both_pieces.whole_bound = whole_a.volume_inside.bound + whole_b.volume_inside.bound;
+        both_pieces.integer = pieces.integer;
+        both_pieces.fractions = pieces.fractions;
+        both_pieces.whole.merge(pieces.whole);
+        exact::ExactSum both = whole_a.volume.sum;
+        both.merge(whole_b.volume.sum);
+        const double ba = whole_a.volume.bound, bb = whole_b.volume.bound;
+        const Combination combos[4] = {
+            {nullptr, +1}, {&both, -1, ba + bb}, {&whole_a.volume.sum, -1, ba}, {&whole_b.volume.sum, -1, bb}};
+        out = round_combinations(both_pieces, e0, combos, r.refinements);
+        if (!out.empty()) break;
+    }
     r.intersection = out[0];
     r.union_volume = out[1];
     r.a_minus_b = out[2];

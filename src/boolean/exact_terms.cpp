@@ -12,10 +12,12 @@ namespace polyvol::boolean {
 static_assert(sizeof(mp_limb_t) == sizeof(uint64_t), "GMP limbs of 64 bits");
 
 int lowest_bit_exponent(double x) {
-    int e;
-    const double f = std::frexp(std::fabs(x), &e);  // x = f 2^e, f in [0.5, 1)
-    const auto m = static_cast<uint64_t>(std::ldexp(f, 53));
-    return e - 53 + std::countr_zero(m);
+    // x = m 2^e with the IEEE fields: e = max(field, 1) - 1075, m with its implicit bit.
+    const auto bits = std::bit_cast<uint64_t>(x);
+    const int field = static_cast<int>((bits >> 52) & 0x7FF);
+    uint64_t m = bits & ((uint64_t{1} << 52) - 1);
+    if (field != 0) m |= uint64_t{1} << 52;
+    return std::max(field, 1) - 1075 + std::countr_zero(m);
 }
 
 mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c) {
@@ -74,7 +76,7 @@ bool decide(const exact::ExactSum& six, double bound, std::span<const Combinatio
         } else {
             v.subtract(six);
         }
-        const auto d = exact::decided_round_div(v, bound, divisor);
+        const auto d = exact::decided_round_div(v, bound + results[i].base_bound, divisor);
         if (!d) return false;
         out[i] = *d;
     }
@@ -89,8 +91,10 @@ std::vector<double> round_combinations(const PieceSum& pieces, int e0, std::span
     exact::ExactSum known = pieces.whole;
     add_integer(known, pieces.integer, degree * e0);
     refinements = 0;
+    bool inexact = pieces.whole_bound > 0;
+    for (const Combination& c : results) inexact = inexact || c.base_bound > 0;
     if (pieces.fractions.empty()) {
-        if (decide(known, 0, results, divisor, out)) return out;
+        if (decide(known, pieces.whole_bound, results, divisor, out)) return out;
     } else {
         // The largest fraction is below 2^top (units included).
         long top = std::numeric_limits<long>::min();
@@ -113,13 +117,15 @@ std::vector<double> round_combinations(const PieceSum& pieces, int e0, std::span
                 }
                 add_integer(six, q, static_cast<int>(e));
             }
-            const double bound = std::ldexp(static_cast<double>(pieces.fractions.size()), static_cast<int>(e));
+            const double bound =
+                std::ldexp(static_cast<double>(pieces.fractions.size()), static_cast<int>(e)) + pieces.whole_bound;
             refinements = round;
             if (decide(six, bound, results, divisor, out)) return out;
             if (e == -1074) break;
             e = std::max<long>(-1074, e - 200);
         }
     }
+    if (inexact) return {};
     // Exact rationals: a value that is a double or a tie, which no interval decides.
     refinements = -1;
     mpq_class sum = 0;

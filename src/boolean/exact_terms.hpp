@@ -45,6 +45,7 @@ mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, con
 // 6 × the volume of some pieces, in three exact parts (see the top).
 struct PieceSum {
     exact::ExactSum whole;
+    double whole_bound = 0;  // |whole - its exact value| <= whole_bound (0: exact)
     mpz_class integer;
     std::vector<std::pair<mpz_class, mpz_class>> fractions;
 
@@ -59,12 +60,15 @@ void add_integer(exact::ExactSum& sum, const mpz_class& z, int exponent);
 struct Combination {
     const exact::ExactSum* base;  // nullptr: 0
     int sign;                     // +1 or -1
+    double base_bound = 0;        // |base - its exact value| <= base_bound
 };
 
 // Each combination's exact value over `divisor`, rounded once to the
 // nearest double; the pieces' integers and fractions are in units of
 // 2^(degree e0) (3 for volumes, 4 for first moments, 5 for second).
-// refinements: the interval rounds it took (-1: exact rationals).
+// refinements: the interval rounds it took (-1: exact rationals). Empty
+// when a bound on the whole part or a base is not 0 and the intervals leave
+// the rounding undecided: the caller then computes those exactly and asks again.
 std::vector<double> round_combinations(const PieceSum& pieces, int e0, std::span<const Combination> results,
                                        int& refinements, int degree = 3, uint32_t divisor = 6);
 
