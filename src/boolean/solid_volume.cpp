@@ -551,24 +551,40 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
         }
     if (e0 == std::numeric_limits<int>::max()) e0 = 0;
 
-    // Each shell's exact volume and box.
-    std::vector<exact::ExactSum> six(labels.count);
+    // Each shell's volume sign and box, and the shells' sum (the winding
+    // integral): measure's double-double sums, exact where they cannot decide.
+    std::vector<uint32_t> flat;  // every shell's triangles, shell after shell
+    std::vector<std::size_t> first(labels.count + 1, 0);
     std::vector<std::array<double, 6>> box(labels.count, {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY});
-    exact::ExactSum six_winding;
     for (std::size_t sh = 0; sh < labels.count; ++sh) {
         for (const auto& tr : shell_tris[sh]) {
-            double e[exact::kDetTerms];
-            const int n = exact::det3_exact<false>(wm.position(tr[0]), wm.position(tr[1]), wm.position(tr[2]), e);
-            for (int i = 0; i < n; ++i) six[sh].add(e[i]);
+            flat.insert(flat.end(), tr.begin(), tr.end());
             for (uint32_t v : tr)
                 for (int k = 0; k < 3; ++k) {
                     box[sh][k] = std::min(box[sh][k], wm.position(v)[k]);
                     box[sh][3 + k] = std::max(box[sh][3 + k], wm.position(v)[k]);
                 }
         }
-        six_winding.merge(six[sh]);
+        first[sh + 1] = flat.size();
     }
-    r.winding_volume = six_winding.round_div(6);
+    auto volume_sum = [&](std::span<const uint32_t> tris, bool exactly) {
+        const MeshView view{wm.xyz, {}, tris};
+        measure::cone::ConeSums sums = measure::cone::filtered_sums(view, 1, measure::cone::Precision::double_double);
+        if (exactly) measure::cone::exact_sums(view, 1, sums);
+        return sums;
+    };
+    std::vector<int> shell_sign(labels.count, 1);
+    for (std::size_t sh = 0; sh < labels.count; ++sh) {
+        const std::span<const uint32_t> tris(flat.data() + first[sh], first[sh + 1] - first[sh]);
+        measure::cone::ConeSums v = volume_sum(tris, false);
+        if (!(std::fabs(v.sum[0].round()) > 2 * v.bound[0])) v = volume_sum(tris, true);
+        shell_sign[sh] = v.sum[0].sign() >= 0 ? +1 : -1;
+    }
+    {
+        measure::cone::ConeSums all = volume_sum(flat, false);
+        const auto decided = exact::decided_round_div(all.sum[0], all.bound[0], 6);
+        r.winding_volume = decided ? *decided : volume_sum(flat, true).sum[0].round_div(6);
+    }
 
     // Groups of shells whose boxes overlap (closed boxes: touching counts).
     std::vector<uint32_t> order(labels.count);
@@ -588,7 +604,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
     const Scale scale{e0};
     for (const auto& [root, shells] : members) {
         if (shells.size() == 1) {
-            if (six[shells[0]].sign() < 0) continue;  // inward alone: no solid
+            if (shell_sign[shells[0]] < 0) continue;  // inward alone: no solid
             const auto base = static_cast<uint32_t>(whole.vertex_count());
             std::map<uint32_t, uint32_t> local;
             for (const auto& tr : shell_tris[shells[0]]) {
@@ -614,7 +630,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
         for (uint32_t b = 0; b < shells.size(); ++b) {
             const uint32_t sh = shells[b];
             g.body_shift.push_back(static_cast<int32_t>(b + 1));
-            body_sign.push_back(six[sh].sign() >= 0 ? +1 : -1);
+            body_sign.push_back(shell_sign[sh]);
             const uint32_t first_vertex = static_cast<uint32_t>(g.mesh.vertex_count());
             g_face.insert(g_face.end(), shell_faces[sh].begin(), shell_faces[sh].end());
             for (const auto& tr : shell_tris[sh]) {
@@ -648,18 +664,28 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
             return fail(BooleanStatus::shell_crosses_itself);
         }
     }
-    // The whole triangles by measure's exact kernels (parallel), then each sum rounded once.
-    measure::cone::ConeSums whole_sums;
-    measure::cone::exact_sums(whole.view(), moments ? (1u << kSums) - 1 : 1u, whole_sums);
-    for (std::size_t k = 0; k < pieces.size(); ++k) pieces[k].whole.merge(whole_sums.sum[k]);
+    // The whole triangles' sums by measure's kernels (parallel): the volume
+    // filtered first (an interval), exact when that leaves the rounding open.
     const Combination one[1] = {{nullptr, +1}};
-    r.volume = round_combinations(pieces[0], e0, one, r.refinements)[0];
+    const uint32_t mask = moments ? (1u << kSums) - 1 : 1u;
+    measure::cone::ConeSums whole_sums = measure::cone::filtered_sums(whole.view(), 1, measure::cone::Precision::double_double);
+    PieceSum volume_pieces = pieces[0];
+    volume_pieces.whole.merge(whole_sums.sum[0]);
+    volume_pieces.whole_bound = whole_sums.bound[0];
+    std::vector<double> v = round_combinations(volume_pieces, e0, one, r.refinements);
+    if (v.empty() || moments) {
+        measure::cone::ConeSums exact_whole;  // all sums (count = kSumCount)
+        measure::cone::exact_sums(whole.view(), mask, exact_whole);
+        for (std::size_t k = 0; k < pieces.size(); ++k) pieces[k].whole.merge(exact_whole.sum[k]);
+        if (v.empty()) v = round_combinations(pieces[0], e0, one, r.refinements);
+    }
+    r.volume = v[0];
     if (!moments) return r;
     int refinements = 0;
     for (int k = 1; k < kSums; ++k) {
         const int degree = k <= measure::cone::kMz ? 4 : 5;
-        const double v = round_combinations(pieces[k], e0, one, refinements, degree, measure::cone::divisor(k))[0];
-        (k <= measure::cone::kMz ? r.first_moments[k - 1] : r.second_moments[k - 4]) = v;
+        const double m = round_combinations(pieces[k], e0, one, refinements, degree, measure::cone::divisor(k))[0];
+        (k <= measure::cone::kMz ? r.first_moments[k - 1] : r.second_moments[k - 4]) = m;
     }
     r.moments = true;
     // Centroid F / V in double: F and V each within half an ulp, so within
