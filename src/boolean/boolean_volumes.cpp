@@ -70,19 +70,12 @@ struct CrossPoint {
 CrossPoint crossing_point(const IntPoint& p, const IntPoint& q, const IntPoint* s, const double* pd,
                           const double* qd, const Scale& scale) {
     const mpz_class dp = orient(s[0], s[1], s[2], p), dq = orient(s[0], s[1], s[2], q);
-    CrossPoint x;
+    ExactPoint e = plane_crossing(p, q, dp, dq);
+    CrossPoint x{std::move(e.num), std::move(e.den), {}};
     if (dp == 0 || dq == 0) {
-        x.num = dp == 0 ? p : q;
-        x.den = 1;
         const double* v = dp == 0 ? pd : qd;
         x.xyz = {v[0], v[1], v[2]};
         return x;
-    }
-    x.den = dp - dq;
-    for (int k = 0; k < 3; ++k) x.num[k] = dp * q[k] - dq * p[k];
-    if (x.den < 0) {
-        x.den = -x.den;
-        for (auto& c : x.num) c = -c;
     }
     for (int k = 0; k < 3; ++k) x.xyz[k] = approx_ratio(x.num[k], x.den, scale.e0);
     return x;

@@ -25,20 +25,7 @@
 
 namespace polyvol::boolean {
 
-Operand make_operand(const MeshView& view, int32_t shift) {
-    Operand op;
-    op.body_shift = {shift};
-    op.mesh = welded(view);
-    const MeshView m = op.mesh.view();
-    op.tri.reserve(3 * m.triangle_count());
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-        const auto face = m.face(f);
-        for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-            op.tri.push_back(face[0]);
-            op.tri.push_back(face[i]);
-            op.tri.push_back(face[i + 1]);
-        }
-    }
+void finish_operand(Operand& op) {
     const std::size_t n = op.triangles();
     op.degenerate.resize(n);
     op.box.resize(6 * n);
@@ -55,6 +42,23 @@ Operand make_operand(const MeshView& view, int32_t shift) {
             op.bounds[3 + k] = std::max(op.bounds[3 + k], hi);
         }
     }
+}
+
+Operand make_operand(const MeshView& view, int32_t shift) {
+    Operand op;
+    op.body_shift = {shift};
+    op.mesh = welded(view);
+    const MeshView m = op.mesh.view();
+    op.tri.reserve(3 * m.triangle_count());
+    for (std::size_t f = 0; f < m.face_count(); ++f) {
+        const auto face = m.face(f);
+        for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+            op.tri.push_back(face[0]);
+            op.tri.push_back(face[i]);
+            op.tri.push_back(face[i + 1]);
+        }
+    }
+    finish_operand(op);
     return op;
 }
 

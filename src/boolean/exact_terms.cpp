@@ -32,6 +32,22 @@ mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, con
     return det3(u, v, w);
 }
 
+ExactPoint plane_crossing(const IntPoint& p, const IntPoint& q, const mpz_class& dp, const mpz_class& dq) {
+    ExactPoint x;
+    if (dp == 0 || dq == 0) {
+        x.num = dp == 0 ? p : q;
+        x.den = 1;
+        return x;
+    }
+    x.den = dp - dq;
+    for (int k = 0; k < 3; ++k) x.num[k] = dp * q[k] - dq * p[k];
+    if (x.den < 0) {
+        x.den = -x.den;
+        for (auto& c : x.num) c = -c;
+    }
+    return x;
+}
+
 void PieceSum::add_fraction(mpz_class n, mpz_class d) {
     if (n == 0) return;
     if (d < 0) {

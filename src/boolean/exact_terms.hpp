@@ -42,6 +42,15 @@ mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c);
 // orient(s0, s1, s2, x) = det(s1 - s0, s2 - s0, x - s0)
 mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x);
 
+// Where segment p -> q crosses the plane with orient values D_p, D_q
+// (opposite signs, or one zero): num / den = (D_p q - D_q p) / (D_p - D_q)
+// with den > 0; exactly p (or q), den = 1, when D_p (or D_q) is 0.
+struct ExactPoint {
+    IntPoint num;
+    mpz_class den;
+};
+ExactPoint plane_crossing(const IntPoint& p, const IntPoint& q, const mpz_class& dp, const mpz_class& dq);
+
 // 6 × the volume of some pieces, in three exact parts (see the top).
 struct PieceSum {
     exact::ExactSum whole;

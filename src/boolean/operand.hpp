@@ -33,6 +33,9 @@ struct Operand {
     const double* corner(std::size_t t, int i) const { return point(tri[3 * t + i]); }
 };
 
+// Fills degenerate, box and bounds from mesh and tri.
+void finish_operand(Operand& op);
+
 // welded(view) and its fan triangles, one body moved by `shift` δ.
 Operand make_operand(const MeshView& view, int32_t shift = 0);
 

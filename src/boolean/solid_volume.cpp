@@ -55,12 +55,8 @@ struct CrossingRef {
     uint32_t plane;
 };
 
-// The crossing point P = (D_p q - D_q p) / (D_p - D_q), D = orient(plane, ·),
-// at ε = 0 (exact integers), with den > 0; exactly p or q when D_p or D_q is 0.
-struct Point0 {
-    IntPoint num;
-    mpz_class den;
-};
+// The crossing point at ε = 0 (exact_terms.hpp's plane_crossing).
+using Point0 = ExactPoint;
 
 class SolidPieces {
 public:
@@ -117,19 +113,7 @@ private:
         mpz_class dp, dq;
         IntPoint p, q;
         plane_values<mpz_class>(x, [&](const double* v, int32_t k) { return int_point(v, k); }, dp, dq, p, q);
-        Point0 r;
-        if (dp == 0 || dq == 0) {
-            r.num = dp == 0 ? p : q;
-            r.den = 1;
-            return r;
-        }
-        r.den = dp - dq;
-        for (int k = 0; k < 3; ++k) r.num[k] = dp * q[k] - dq * p[k];
-        if (r.den < 0) {
-            r.den = -r.den;
-            for (auto& c : r.num) c = -c;
-        }
-        return r;
+        return plane_crossing(p, q, dp, dq);
     }
 
     // sign of orient(r, P) for the crossing point P of x (exactly, perturbed).
@@ -644,20 +628,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
                 g.body_of_triangle.push_back(b);
             }
         }
-        const std::size_t n = g.triangles();
-        g.degenerate.resize(n);
-        g.box.resize(6 * n);
-        g.bounds = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
-        for (std::size_t t = 0; t < n; ++t) {
-            const double* c[3] = {g.corner(t, 0), g.corner(t, 1), g.corner(t, 2)};
-            g.degenerate[t] = first_cross_sign(c[0], c[1], c[0], c[2]) == 0;
-            for (int k = 0; k < 3; ++k) {
-                g.box[6 * t + k] = std::min({c[0][k], c[1][k], c[2][k]});
-                g.box[6 * t + 3 + k] = std::max({c[0][k], c[1][k], c[2][k]});
-                g.bounds[k] = std::min(g.bounds[k], g.box[6 * t + k]);
-                g.bounds[3 + k] = std::max(g.bounds[3 + k], g.box[6 * t + 3 + k]);
-            }
-        }
+        finish_operand(g);
         try {
             solid_group(g, g_face, shells, body_sign, scale, mesh.face_count(), pieces, whole, r);
         } catch (const std::logic_error&) {

@@ -34,16 +34,22 @@ Mesh mesh_of(const std::vector<LatticeBox>& boxes, double unit) {
     return m;
 }
 
+// The winding number at the centre of lattice cell (x, y, z): ±1 per box
+// (−1 inward) containing it.
+int winding_at(const std::vector<LatticeBox>& boxes, int x, int y, int z) {
+    int w = 0;
+    for (const LatticeBox& b : boxes)
+        if (b.c[0] <= x && x < b.c[3] && b.c[1] <= y && y < b.c[4] && b.c[2] <= z && z < b.c[5]) w += b.inward ? -1 : 1;
+    return w;
+}
+
 // Counts the lattice cells whose winding number is >= 1 (and the winding integral).
 void count_cells(const std::vector<LatticeBox>& boxes, int n, double unit, double& solid, double& winding) {
     long cells = 0, total = 0;
     for (int x = 0; x < n; ++x)
         for (int y = 0; y < n; ++y)
             for (int z = 0; z < n; ++z) {
-                int w = 0;
-                for (const LatticeBox& b : boxes)
-                    if (b.c[0] <= x && x < b.c[3] && b.c[1] <= y && y < b.c[4] && b.c[2] <= z && z < b.c[5])
-                        w += b.inward ? -1 : 1;
+                const int w = winding_at(boxes, x, y, z);
                 cells += w >= 1;
                 total += w;
             }
@@ -60,6 +66,24 @@ void expect_counted(const std::vector<LatticeBox>& boxes, int n, double unit) {
     EXPECT_EQ(r.volume, solid);
     EXPECT_EQ(r.winding_volume, winding);
     EXPECT_EQ(r.shells, boxes.size());
+}
+
+// A set of `count(rng)` random boxes with corners in [0, 4]^3 on the
+// lattice, one in six inward.
+template <class Count>
+std::vector<LatticeBox> random_boxes(std::mt19937& rng, Count& count) {
+    std::uniform_int_distribution<int> coord(0, 4), inward(0, 5);
+    std::vector<LatticeBox> boxes(count(rng));
+    for (LatticeBox& b : boxes) {
+        for (int k = 0; k < 3; ++k) {
+            int lo = coord(rng), hi = coord(rng);
+            if (lo == hi) ++hi;
+            b.c[k] = std::min(lo, hi);
+            b.c[3 + k] = std::max(lo, hi);
+        }
+        b.inward = inward(rng) == 0;
+    }
+    return boxes;
 }
 
 TEST(SolidVolume, TwoOverlappingCubesAreFifteenNotSixteen) {
@@ -89,18 +113,9 @@ TEST(SolidVolume, DisjointAndNestedShells) {
 
 TEST(SolidVolume, RandomLatticeBoxes) {
     std::mt19937 rng(1126);
-    std::uniform_int_distribution<int> coord(0, 4), count(2, 5), inward(0, 5);
+    std::uniform_int_distribution<int> count(2, 5);
     for (int trial = 0; trial < 150; ++trial) {
-        std::vector<LatticeBox> boxes(count(rng));
-        for (LatticeBox& b : boxes) {
-            for (int k = 0; k < 3; ++k) {
-                int lo = coord(rng), hi = coord(rng);
-                if (lo == hi) ++hi;
-                b.c[k] = std::min(lo, hi);
-                b.c[3 + k] = std::max(lo, hi);
-            }
-            b.inward = inward(rng) == 0;
-        }
+        const std::vector<LatticeBox> boxes = random_boxes(rng, count);
         SCOPED_TRACE(::testing::Message() << "trial " << trial);
         expect_counted(boxes, 5, 1);
     }
@@ -115,11 +130,7 @@ void expect_counted_moments(const std::vector<LatticeBox>& boxes, int n, double 
     for (int x = 0; x < n; ++x)
         for (int y = 0; y < n; ++y)
             for (int z = 0; z < n; ++z) {
-                int w = 0;
-                for (const LatticeBox& b : boxes)
-                    if (b.c[0] <= x && x < b.c[3] && b.c[1] <= y && y < b.c[4] && b.c[2] <= z && z < b.c[5])
-                        w += b.inward ? -1 : 1;
-                if (w < 1) continue;
+                if (winding_at(boxes, x, y, z) < 1) continue;
                 const mpq_class half(1, 2), third(1, 3);
                 const mpq_class m[3] = {x + half, y + half, z + half};
                 const mpq_class sq[3] = {x * x + x + third, y * y + y + third, z * z + z + third};
@@ -145,18 +156,9 @@ TEST(SolidVolume, MomentsOfLatticeBoxes) {
     expect_counted_moments({{{0, 0, 0, 2, 2, 2}}, {{1, 1, 1, 3, 3, 3}}}, 3, 1);
     expect_counted_moments({{{0, 0, 0, 8, 8, 8}}, {{2, 2, 2, 6, 6, 6}, true}, {{1, 3, 3, 10, 5, 5}}}, 10, 0.5);
     std::mt19937 rng(2611);
-    std::uniform_int_distribution<int> coord(0, 4), count(2, 4), inward(0, 5);
+    std::uniform_int_distribution<int> count(2, 4);
     for (int trial = 0; trial < 40; ++trial) {
-        std::vector<LatticeBox> boxes(count(rng));
-        for (LatticeBox& b : boxes) {
-            for (int k = 0; k < 3; ++k) {
-                int lo = coord(rng), hi = coord(rng);
-                if (lo == hi) ++hi;
-                b.c[k] = std::min(lo, hi);
-                b.c[3 + k] = std::max(lo, hi);
-            }
-            b.inward = inward(rng) == 0;
-        }
+        const std::vector<LatticeBox> boxes = random_boxes(rng, count);
         SCOPED_TRACE(::testing::Message() << "trial " << trial);
         expect_counted_moments(boxes, 5, 1);
     }
