@@ -233,9 +233,6 @@ private:
         }
     }
 
-    using RationalPoint = std::array<mpq_class, 3>;
-    static RationalPoint rational(const IntPoint& p) { return {mpq_class(p[0]), mpq_class(p[1]), mpq_class(p[2])}; }
-
     // The moments of the cone over the portion [x, y] of the segment
     // P + λ D, fanned from a (the pieces' first and second moment sums,
     // measure/cone.hpp's kMx..kSzx), times sign: H(y) - H(x) with
@@ -243,49 +240,62 @@ private:
     //   H_i(λ)  = Δ (λ c_i + λ² D_i)
     //   H_ij(λ) = Δ (λ (a_i a_j + 2 P_i P_j + c_i c_j)
     //              + λ² (P_i D_j + D_i P_j + c_i D_j + D_i c_j) + 2 λ³ D_i D_j)
-    // (the fan triangles (a, p, q) of the portion's ends, summed in closed form).
-    void segment_moments(const RationalPoint& a, const RationalPoint& P, const RationalPoint& D, const mpq_class& x,
-                         const mpq_class& y, int sign) {
-        if (x == y) return;
-        const mpq_class delta = a[0] * (P[1] * D[2] - P[2] * D[1]) + a[1] * (P[2] * D[0] - P[0] * D[2]) +
-                                a[2] * (P[0] * D[1] - P[1] * D[0]);
+    // (the fan triangles (a, p, q) of the portion's ends, summed in closed
+    // form). In integers, without reducing fractions: P = Pn / Pd and
+    // Q = Qn / Qd over L = Pd Qd are P' / L, D' / L with P' = Pn Qd,
+    // D' = Qn Pd - Pn Qd, a' = a L, c' = a' + 2 P', Δ' = det(a', P', D');
+    // for λ = n / d, H_i = Δ' (n d c'_i + n² D'_i) / (L⁴ d²) and
+    // H_ij = Δ' (n d² K0' + n² d K1' + 2 n³ D'_i D'_j) / (L⁵ d³).
+    void segment_moments(const IntPoint& a, const ExactPoint& P, const ExactPoint& Q, const mpz_class& xn,
+                         const mpz_class& xd, const mpz_class& yn, const mpz_class& yd, int sign) {
+        if (xn * yd == yn * xd) return;
+        const mpz_class L = P.den * Q.den;
+        IntPoint p, d, aa, c;
+        for (int k = 0; k < 3; ++k) {
+            p[k] = P.num[k] * Q.den;
+            d[k] = Q.num[k] * P.den - p[k];
+            aa[k] = a[k] * L;
+            c[k] = aa[k] + 2 * p[k];
+        }
+        const mpz_class delta = det3(aa, p, d);
         if (delta == 0) return;
-        const RationalPoint c = {a[0] + 2 * P[0], a[1] + 2 * P[1], a[2] + 2 * P[2]};
-        const mpq_class l1 = y - x, l2 = y * y - x * x, l3 = y * y * y - x * x * x;
-        std::array<mpq_class, kSums> v;
-        for (int i = 0; i < 3; ++i) v[1 + i] = delta * (l1 * c[i] + l2 * D[i]);
+        const mpz_class L2 = L * L, L4 = L2 * L2, L5 = L4 * L;
         static constexpr int kPairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
+        mpz_class k0[6], k1[6], dd[6];
         for (int k = 0; k < 6; ++k) {
             const int i = kPairs[k][0], j = kPairs[k][1];
-            const mpq_class k0 = a[i] * a[j] + 2 * P[i] * P[j] + c[i] * c[j];
-            const mpq_class k1 = P[i] * D[j] + D[i] * P[j] + c[i] * D[j] + D[i] * c[j];
-            v[4 + k] = delta * (l1 * k0 + l2 * k1 + 2 * l3 * D[i] * D[j]);
+            k0[k] = aa[i] * aa[j] + 2 * p[i] * p[j] + c[i] * c[j];
+            k1[k] = p[i] * d[j] + d[i] * p[j] + c[i] * d[j] + d[i] * c[j];
+            dd[k] = 2 * d[i] * d[j];
         }
-        for (int k = 1; k < kSums; ++k) {
-            v[k].canonicalize();
-            if (v[k] == 0) continue;
-            if (v[k].get_den() == 1) {
-                moments_[k].integer += sign * v[k].get_num();
-            } else {
-                moments_[k].add_fraction(sign * v[k].get_num(), v[k].get_den());
-            }
+        for (int end = 0; end < 2; ++end) {
+            const mpz_class& n = end == 0 ? yn : xn;
+            const mpz_class& dn = end == 0 ? yd : xd;
+            if (n == 0) continue;
+            const int sg = end == 0 ? sign : -sign;
+            const mpz_class den1 = L4 * dn * dn, den2 = L5 * dn * dn * dn;
+            for (int i = 0; i < 3; ++i) moments_[1 + i].add_fraction(sg * delta * (n * dn * c[i] + n * n * d[i]), den1);
+            for (int k = 0; k < 6; ++k)
+                moments_[4 + k].add_fraction(sg * delta * (n * dn * dn * k0[k] + n * n * dn * k1[k] + n * n * n * dd[k]),
+                                             den2);
         }
     }
 
     // Edge b -> c of triangle t: the moments of the intervals where W_others = c.
     void edge_moments(uint32_t t, const std::vector<WalkEntry>& entries, int c) {
-        const RationalPoint a = rational(scale_.of(corner(t, 0))), b = rational(scale_.of(corner(t, 1)));
-        const RationalPoint cc = rational(scale_.of(corner(t, 2)));
-        const RationalPoint d = {cc[0] - b[0], cc[1] - b[1], cc[2] - b[2]};
-        mpq_class pos = 0;
+        const IntPoint a = scale_.of(corner(t, 0));
+        const ExactPoint b{scale_.of(corner(t, 1)), 1}, cc{scale_.of(corner(t, 2)), 1};
+        const mpz_class zero = 0, one = 1;
+        const mpz_class* pos_num = &zero;
+        const mpz_class* pos_den = &one;
         int64_t w = w_[g_.tri[3 * t + 1]];
         for (const WalkEntry& x : entries) {
-            const mpq_class lambda(x.num, x.den);
-            if (w == c) segment_moments(a, b, d, pos, lambda, +1);
+            if (w == c) segment_moments(a, b, cc, *pos_num, *pos_den, x.num, x.den, +1);
             w += x.sign;
-            pos = lambda;
+            pos_num = &x.num;
+            pos_den = &x.den;
         }
-        if (w == c) segment_moments(a, b, d, pos, mpq_class(1), +1);
+        if (w == c) segment_moments(a, b, cc, *pos_num, *pos_den, one, one, +1);
     }
 
     // W of the bodies but t's and s's at the cut end x (x's edge crosses x.plane).
@@ -349,14 +359,6 @@ private:
 
         const IntPoint at = scale_.of(corner(t, 0)), as = scale_.of(corner(s, 0));
         const mpz_class pq_den = P.den * Q.den;
-        RationalPoint p_start, direction;  // P and Q - P, for the moments
-        if (!moments_.empty())
-            for (int k = 0; k < 3; ++k) {
-                p_start[k] = mpq_class(P.num[k], P.den);
-                direction[k] = mpq_class(Q.num[k], Q.den) - p_start[k];
-                p_start[k].canonicalize();
-                direction[k].canonicalize();
-            }
         const int ci = c_of(bi), cj = c_of(bj), fi = front_of(bi), fj = front_of(bj);
         int64_t w = windings_at_end(xs);
         const mpz_class one = 1, zero = 0;
@@ -367,9 +369,8 @@ private:
             const int kt = (wt == ci - 1) - (wt == ci), ks = (ws == cj - 1) - (ws == cj);
             if (kt == 0 && ks == 0) return;
             if (!moments_.empty()) {
-                const mpq_class x(*pos_num, *pos_den), y(num, den);
-                if (kt != 0) segment_moments(rational(at), p_start, direction, x, y, kt);
-                if (ks != 0) segment_moments(rational(as), p_start, direction, x, y, -ks);
+                if (kt != 0) segment_moments(at, P, Q, *pos_num, *pos_den, num, den, kt);
+                if (ks != 0) segment_moments(as, P, Q, *pos_num, *pos_den, num, den, -ks);
             }
             const IntPoint v = {kt * at[0] - ks * as[0], kt * at[1] - ks * as[1], kt * at[2] - ks * as[2]};
             const mpz_class dv = det3(v, P.num, Q.num);  // over pq_den
