@@ -18,11 +18,12 @@
 // p -> q with the plane of s is P = (D_p q - D_q p) / (D_p - D_q),
 // D = orient(s, ·), an exact integer ratio; so is 1 - λ = D_q / (D_q - D_p).
 // Terms whose points are input vertices (D = 0 at an end) are integers; the
-// rest are fractions N / D. The sum is decided as an interval: whole
-// triangles and integers exactly (ExactSum), each fraction as
-// floor(N 2^k / D) 2^-k, so the truth lies within n 2^-k above; k grows
-// until the rounding of every result is decided, and exact rationals settle
-// what no interval can (an exact double or a tie, e.g. touching boxes).
+// rest are fractions N / D. The sum is decided as an interval
+// (exact_terms.hpp): whole triangles by measure's double-double sums with
+// their bounds (exact sums if those leave a rounding open), integers
+// exactly, each fraction as floor(N 2^k / D) 2^-k; k grows until the
+// rounding of every result is decided, and exact rationals settle what no
+// interval can (an exact double or a tie, e.g. touching boxes).
 #include <gmpxx.h>
 
 #include <algorithm>
