@@ -1,18 +1,19 @@
 #!/usr/bin/env bash
-# The boolean benchmark (issue #20): the intersection volume of two spheres of
-# N triangles each, the second moved by half a radius, with polyvol
+# The boolean benchmark (issue #20): the intersection volume of two spheres
+# (or tori) of N triangles each, the second moved by (0.29, 0.29, 0.29)
+# (half the sphere's radius), with polyvol
 # (`polyvol overlap`, exact), Manifold (npm manifold-3d in Node, float32) and
 # CGAL (exact corefinement + volume). Each tool reads the same binary STL
 # files (float32 coordinates). Per size, ROUNDS rounds in rotating order; each
 # round runs every tool once as a whole process and records its in-process
 # call (meshes loaded) as the tool reports it. Prints per-round figures, the
 # medians and the ratios of medians.
-#   bench/boolean_compare.sh            SIZES="20000 100000 500000" ROUNDS=5
+#   bench/boolean_compare.sh            CASES="sphere:20000 sphere:100000 sphere:500000 torus:100000" ROUNDS=5
 # Needs: build-bench (cmake -DPOLYVOL_CGAL_PEER=ON, done here unless SKIP_BUILD=1), node + npm (manifold-3d is
 # installed into build-bench/node on first use).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SIZES=${SIZES:-"20000 100000 500000"}
+CASES=${CASES:-"sphere:20000 sphere:100000 sphere:500000 torus:100000"}
 ROUNDS=${ROUNDS:-5}
 BUILD=${BUILD:-build-bench}
 WORK=${WORK:-/tmp/polyvol-boolean-bench}
@@ -28,12 +29,13 @@ fi
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(grep -o -m1 'avx512f' /proc/cpuinfo || echo 'no avx512'), load $(cut -d' ' -f1-3 /proc/loadavg)"
 now() { date +%s.%N; }
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
-for n in $SIZES; do
-  a="$WORK/sphere_${n}_a.stl" b="$WORK/sphere_${n}_b.stl"
-  [ -f "$a" ] || "$BUILD/bench/make_mesh" "$n" 0 "$a"
-  [ -f "$b" ] || "$BUILD/bench/make_mesh" "$n" 0.28867513459481287 "$b"  # centres 0.5 apart
+for case in $CASES; do
+  shape=${case%%:*} n=${case##*:}
+  a="$WORK/${shape}_${n}_a.stl" b="$WORK/${shape}_${n}_b.stl"
+  [ -f "$a" ] || "$BUILD/bench/make_mesh" "$n" 0 "$a" "$shape"
+  [ -f "$b" ] || "$BUILD/bench/make_mesh" "$n" 0.28867513459481287 "$b" "$shape"  # moved 0.5
   : > "$WORK/p.call"; : > "$WORK/m.call"; : > "$WORK/c.call"; : > "$WORK/p.proc"; : > "$WORK/m.proc"; : > "$WORK/c.proc"
-  echo "== 2 x $n triangles"
+  echo "== 2 x $n triangles ($shape)"
   for r in $(seq 1 "$ROUNDS"); do
     for tool in $(case $((r % 3)) in 0) echo p m c;; 1) echo m c p;; *) echo c p m;; esac); do
       t0=$(now)

@@ -1,6 +1,7 @@
 // Writes a generated closed mesh (a UV sphere of about N triangles, centred at
-// (offset, offset, offset)) for the benchmarks:
-//   make_mesh N OFFSET OUT.{stl,ascii.stl,ply,obj,off}
+// (offset, offset, offset), or with `torus` a torus of about N triangles about
+// the z axis, moved by that offset) for the benchmarks:
+//   make_mesh N OFFSET OUT.{stl,ascii.stl,ply,obj,off} [sphere|torus]
 // .stl is binary STL (float32), .ascii.stl ASCII STL, .ply binary little-endian PLY.
 #include <algorithm>
 #include <cstdint>
@@ -22,14 +23,17 @@ bool ends_with(const std::string& s, const char* suffix) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 4) {
-        std::fprintf(stderr, "usage: make_mesh TRIANGLES OFFSET OUT\n");
+    if (argc != 4 && argc != 5) {
+        std::fprintf(stderr, "usage: make_mesh TRIANGLES OFFSET OUT [sphere|torus]\n");
         return 1;
     }
     const auto n = std::strtoull(argv[1], nullptr, 10);
     const double offset = std::strtod(argv[2], nullptr);
     const std::string out = argv[3];
-    const polyvol::Mesh m = polyvol::bench::sphere_with_triangles(n, offset);
+    const bool torus = argc == 5 && std::strcmp(argv[4], "torus") == 0;
+    polyvol::Mesh m = torus ? polyvol::bench::torus_with_triangles(n) : polyvol::bench::sphere_with_triangles(n, offset);
+    if (torus)
+        for (double& x : m.positions) x += offset;
     const auto& p = m.positions;
     const auto& idx = m.indices;
     const std::size_t tris = idx.size() / 3;
