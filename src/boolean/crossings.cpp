@@ -206,7 +206,6 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
 
     struct Local {
         Crossings found;
-        std::vector<uint32_t> candidates;
     };
     tbb::enumerable_thread_specific<Local> locals;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a_near.size(), 256), [&](const auto& range) {
@@ -214,23 +213,21 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
         for (std::size_t r = range.begin(); r != range.end(); ++r) {
             const uint32_t ta = a_near[r];
             const double* box = &A.box[6 * ta];
-            local.candidates.clear();
+            // Each pair once, in the cell holding the low corner of the two boxes' overlap.
             grid.for_cells(box, [&](std::size_t c) {
-                if (!same) {
-                    local.candidates.insert(local.candidates.end(), binned.begin() + start[c], binned.begin() + start[c + 1]);
-                    return;
+                for (uint32_t i = start[c]; i < start[c + 1]; ++i) {
+                    const uint32_t tb = binned[i];
+                    if (same && (tb <= ta || B.body(tb) == A.body(ta))) continue;  // one operand: other bodies
+                    const double* other = &B.box[6 * tb];
+                    if (!boxes_meet(box, other)) continue;
+                    if (grid.cell(grid.index(0, std::max(box[0], other[0])), grid.index(1, std::max(box[1], other[1])),
+                                  grid.index(2, std::max(box[2], other[2]))) != c)
+                        continue;
+                    ++local.found.candidate_pairs;
+                    const int shift = B.shift(tb) > A.shift(ta) ? 1 : -1;
+                    cross_pair(A, ta, B, tb, shift, local.found);
                 }
-                for (uint32_t i = start[c]; i < start[c + 1]; ++i)  // one operand: other bodies, each pair once
-                    if (binned[i] > ta && B.body(binned[i]) != A.body(ta)) local.candidates.push_back(binned[i]);
             });
-            std::sort(local.candidates.begin(), local.candidates.end());
-            local.candidates.erase(std::unique(local.candidates.begin(), local.candidates.end()), local.candidates.end());
-            for (uint32_t tb : local.candidates) {
-                if (!boxes_meet(box, &B.box[6 * tb])) continue;
-                ++local.found.candidate_pairs;
-                const int shift = B.shift(tb) > A.shift(ta) ? 1 : -1;
-                cross_pair(A, ta, B, tb, shift, local.found);
-            }
         }
     });
     for (Local& local : locals) {
