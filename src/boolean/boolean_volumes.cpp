@@ -121,7 +121,8 @@ struct Inputs {
     double max_coordinate;
 };
 
-// The pieces' volume and the areas of each operand's surface inside the other.
+// The pieces' volume (integers and fractions; the whole triangles are the
+// caller's) and the areas of each operand's surface inside the other.
 void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSum& area_b_in_a) {
     const Scale& scale = in.scale;
     // Crossings of edge b -> c: σ (1 - λ) det(a, b, c), 1 - λ = D_c / (D_c - D_b).
@@ -152,7 +153,7 @@ void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSu
     // Cut segments: det(a_t - a_s, P, Q); areas ±|(P - a) × (Q - a)| per side.
     const double M = in.max_coordinate;
     auto cut_area = [&](const double* a, const std::array<double, 3>& p, const std::array<double, 3>& q,
-                        const Geometry& g, int sign, AreaSum& area) {
+                        const Geometry& g, AreaSum& area) {
         const double u[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
         const double v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
         const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
@@ -160,7 +161,7 @@ void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSu
         const double along = c[0] * g.n[0] + c[1] * g.n[1] + c[2] * g.n[2];
         double error = 6 * 16 * kU * (M * (lu + lv) + lu * lv + 4 * kU * M * M);
         if (!(g.normal_length > 4 * g.normal_error)) error += 2 * len;  // the side may be misjudged
-        area.add(along >= 0 ? sign * len : -sign * len, error);
+        area.add(along >= 0 ? len : -len, error);
     };
     for (const Cut& cut : in.cross.cuts) {
         const IntPoint at = scale.of(in.A.corner(cut.a, 0)), as = scale.of(in.B.corner(cut.b, 0));
@@ -185,24 +186,15 @@ void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSu
         }
         const double* a = in.A.corner(cut.a, 0);
         const double* b = in.B.corner(cut.b, 0);
-        cut_area(a, P.xyz, Q.xyz, triangle_geometry(a, in.A.corner(cut.a, 1), in.A.corner(cut.a, 2)), +1,
-                 area_a_in_b);
-        cut_area(b, Q.xyz, P.xyz, triangle_geometry(b, in.B.corner(cut.b, 1), in.B.corner(cut.b, 2)), +1,
-                 area_b_in_a);
+        cut_area(a, P.xyz, Q.xyz, triangle_geometry(a, in.A.corner(cut.a, 1), in.A.corner(cut.a, 2)), area_a_in_b);
+        cut_area(b, Q.xyz, P.xyz, triangle_geometry(b, in.B.corner(cut.b, 1), in.B.corner(cut.b, 2)), area_b_in_a);
     }
 }
 
-// 6 × the volume of an operand's triangles (all, or those listed in
-// `subset`): measure's double-double sum with its bound, or exact.
-struct VolumeSum {
-    exact::ExactSum sum;
-    double bound = 0;
-};
-VolumeSum cone_volume_sum(const Operand& op, const std::vector<uint32_t>* subset, bool exactly) {
-    const MeshView view{op.mesh.positions, {}, subset ? std::span<const uint32_t>(*subset) : std::span<const uint32_t>(op.tri)};
-    measure::cone::ConeSums sums = measure::cone::filtered_sums(view, 1, measure::cone::Precision::double_double);
-    if (exactly) measure::cone::exact_sums(view, 1, sums);
-    return {sums.sum[0], sums.bound[0]};
+// 6 × the volume of an operand's triangles (all, or those listed in `subset`).
+VolumeSum operand_volume_sum(const Operand& op, const std::vector<uint32_t>* subset, bool exactly) {
+    return cone_volume_sum({op.mesh.positions, {}, subset ? std::span<const uint32_t>(*subset) : std::span<const uint32_t>(op.tri)},
+                           exactly);
 }
 
 // An operand's whole triangles: their volume sums (all, and those whose
@@ -240,8 +232,8 @@ WholeSums whole_triangles(const Operand& op, const std::vector<int32_t>& other_w
         });
     w.area = areas.all;
     w.area_inside = areas.inside;
-    w.volume = cone_volume_sum(op, nullptr, false);
-    w.volume_inside = cone_volume_sum(op, &w.inside, false);
+    w.volume = operand_volume_sum(op, nullptr, false);
+    w.volume_inside = operand_volume_sum(op, &w.inside, false);
     return w;
 }
 
@@ -313,7 +305,7 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
     const AreaSum& area_b = whole_b.area;
     auto volume_of = [](VolumeSum& v, const Operand& op) {
         if (auto d = exact::decided_round_div(v.sum, v.bound, 6)) return *d;
-        v = cone_volume_sum(op, nullptr, true);
+        v = operand_volume_sum(op, nullptr, true);
         return v.sum.round_div(6);
     };
     r.volume_a = volume_of(whole_a.volume, A);
@@ -336,24 +328,20 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
     std::vector<double> out;
     for (bool exactly : {false, true}) {
         if (exactly) {
-            whole_a.volume = cone_volume_sum(A, nullptr, true);
-            whole_b.volume = cone_volume_sum(B, nullptr, true);
-            whole_a.volume_inside = cone_volume_sum(A, &whole_a.inside, true);
-            whole_b.volume_inside = cone_volume_sum(B, &whole_b.inside, true);
+            whole_a.volume = operand_volume_sum(A, nullptr, true);
+            whole_b.volume = operand_volume_sum(B, nullptr, true);
+            whole_a.volume_inside = operand_volume_sum(A, &whole_a.inside, true);
+            whole_b.volume_inside = operand_volume_sum(B, &whole_b.inside, true);
         }
-        PieceSum both_pieces;
-        both_pieces.whole = whole_a.volume_inside.sum;
-        both_pieces.whole.merge(whole_b.volume_inside.sum);
-        both_pieces.whole_bound = whole_a.volume_inside.bound + whole_b.volume_inside.bound;
-        both_pieces.integer = pieces.integer;
-        both_pieces.fractions = pieces.fractions;
-        both_pieces.whole.merge(pieces.whole);
+        pieces.whole = whole_a.volume_inside.sum;  // sum_pieces leaves the whole part to these
+        pieces.whole.merge(whole_b.volume_inside.sum);
+        pieces.whole_bound = whole_a.volume_inside.bound + whole_b.volume_inside.bound;
         exact::ExactSum both = whole_a.volume.sum;
         both.merge(whole_b.volume.sum);
         const double ba = whole_a.volume.bound, bb = whole_b.volume.bound;
         const Combination combos[4] = {
             {nullptr, +1}, {&both, -1, ba + bb}, {&whole_a.volume.sum, -1, ba}, {&whole_b.volume.sum, -1, bb}};
-        out = round_combinations(both_pieces, e0, combos, r.refinements);
+        out = round_combinations(pieces, e0, combos, r.refinements);
         if (!out.empty()) break;
     }
     r.intersection = out[0];

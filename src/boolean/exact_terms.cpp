@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "exact/rational.hpp"
+#include "measure/cone.hpp"
 
 namespace polyvol::boolean {
 
@@ -57,11 +58,10 @@ void PieceSum::add_fraction(mpz_class n, mpz_class d) {
     fractions.emplace_back(std::move(n), std::move(d));
 }
 
-void PieceSum::merge(PieceSum&& other) {
-    whole.merge(other.whole);
-    integer += other.integer;
-    fractions.insert(fractions.end(), std::make_move_iterator(other.fractions.begin()),
-                     std::make_move_iterator(other.fractions.end()));
+VolumeSum cone_volume_sum(const MeshView& triangles, bool exactly) {
+    measure::cone::ConeSums sums = measure::cone::filtered_sums(triangles, 1, measure::cone::Precision::double_double);
+    if (exactly) measure::cone::exact_sums(triangles, 1, sums);
+    return {sums.sum[0], sums.bound[0]};
 }
 
 void add_integer(exact::ExactSum& sum, const mpz_class& z, int exponent) {

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "exact/exact_sum.hpp"
+#include "polyvol/mesh.hpp"
 
 namespace polyvol::boolean {
 
@@ -59,8 +60,16 @@ struct PieceSum {
     std::vector<std::pair<mpz_class, mpz_class>> fractions;
 
     void add_fraction(mpz_class n, mpz_class d);  // any signs; d != 0
-    void merge(PieceSum&& other);
 };
+
+// 6 × the volume of a triangle mesh's cone sum: measure's double-double sum
+// with its bound, or (exactly) the exact sum with bound 0. Coordinates in
+// the exact kernels' safe range.
+struct VolumeSum {
+    exact::ExactSum sum;
+    double bound = 0;
+};
+VolumeSum cone_volume_sum(const MeshView& triangles, bool exactly);
 
 // Adds the integer z 2^exponent to sum exactly (2^exponent >= 2^-1074).
 void add_integer(exact::ExactSum& sum, const mpz_class& z, int exponent);

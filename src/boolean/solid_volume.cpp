@@ -444,7 +444,7 @@ void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const st
 // Components of the polygons joined through shared vertex indices (as the
 // file gives them), if every one is balanced on welded positions; else the
 // shells joined through welded positions.
-topology::ShellLabels bodies_of(const MeshView& mesh, const topology::WeldedMesh& wm) {
+topology::ShellLabels bodies_of(const topology::WeldedMesh& wm) {
     struct Use {
         uint64_t key;  // (min, max) vertex index
         uint32_t poly;
@@ -490,7 +490,6 @@ topology::ShellLabels bodies_of(const MeshView& mesh, const topology::WeldedMesh
         }
         i = j;
     }
-    (void)mesh;
     return labels;
 }
 
@@ -514,7 +513,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
     // each of them is a closed 2-cycle (parts that touch or coincide stay
     // apart); otherwise the shells, joined by welded positions (topology.hpp).
     const topology::WeldedMesh wm = topology::weld_polygons(mesh);
-    const topology::ShellLabels labels = bodies_of(mesh, wm);
+    const topology::ShellLabels labels = bodies_of(wm);
     r.shells = labels.count;
     std::vector<std::vector<std::array<uint32_t, 3>>> shell_tris(labels.count);
     std::vector<std::vector<uint32_t>> shell_faces(labels.count);  // the face of each fan triangle
@@ -553,22 +552,19 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
         first[sh + 1] = flat.size();
     }
     auto volume_sum = [&](std::span<const uint32_t> tris, bool exactly) {
-        const MeshView view{wm.xyz, {}, tris};
-        measure::cone::ConeSums sums = measure::cone::filtered_sums(view, 1, measure::cone::Precision::double_double);
-        if (exactly) measure::cone::exact_sums(view, 1, sums);
-        return sums;
+        return cone_volume_sum({wm.xyz, {}, tris}, exactly);
     };
     std::vector<int> shell_sign(labels.count, 1);
     for (std::size_t sh = 0; sh < labels.count; ++sh) {
         const std::span<const uint32_t> tris(flat.data() + first[sh], first[sh + 1] - first[sh]);
-        measure::cone::ConeSums v = volume_sum(tris, false);
-        if (!(std::fabs(v.sum[0].round()) > 2 * v.bound[0])) v = volume_sum(tris, true);
-        shell_sign[sh] = v.sum[0].sign() >= 0 ? +1 : -1;
+        VolumeSum v = volume_sum(tris, false);
+        if (!(std::fabs(v.sum.round()) > 2 * v.bound)) v = volume_sum(tris, true);
+        shell_sign[sh] = v.sum.sign() >= 0 ? +1 : -1;
     }
     {
-        measure::cone::ConeSums all = volume_sum(flat, false);
-        const auto decided = exact::decided_round_div(all.sum[0], all.bound[0], 6);
-        r.winding_volume = decided ? *decided : volume_sum(flat, true).sum[0].round_div(6);
+        const VolumeSum all = volume_sum(flat, false);
+        const auto decided = exact::decided_round_div(all.sum, all.bound, 6);
+        r.winding_volume = decided ? *decided : volume_sum(flat, true).sum.round_div(6);
     }
 
     // Groups of shells whose boxes overlap (closed boxes: touching counts).
@@ -640,15 +636,18 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
     // filtered first (an interval), exact when that leaves the rounding open.
     const Combination one[1] = {{nullptr, +1}};
     const uint32_t mask = moments ? (1u << kSums) - 1 : 1u;
-    measure::cone::ConeSums whole_sums = measure::cone::filtered_sums(whole.view(), 1, measure::cone::Precision::double_double);
-    PieceSum volume_pieces = pieces[0];
-    volume_pieces.whole.merge(whole_sums.sum[0]);
-    volume_pieces.whole_bound = whole_sums.bound[0];
-    std::vector<double> v = round_combinations(volume_pieces, e0, one, r.refinements);
+    // (SolidPieces leaves every sum's whole part to these.)
+    const VolumeSum whole_volume = cone_volume_sum(whole.view(), false);
+    pieces[0].whole = whole_volume.sum;
+    pieces[0].whole_bound = whole_volume.bound;
+    std::vector<double> v = round_combinations(pieces[0], e0, one, r.refinements);
     if (v.empty() || moments) {
         measure::cone::ConeSums exact_whole;  // all sums (count = kSumCount)
         measure::cone::exact_sums(whole.view(), mask, exact_whole);
-        for (std::size_t k = 0; k < pieces.size(); ++k) pieces[k].whole.merge(exact_whole.sum[k]);
+        for (std::size_t k = 0; k < pieces.size(); ++k) {
+            pieces[k].whole = exact_whole.sum[k];
+            pieces[k].whole_bound = 0;
+        }
         if (v.empty()) v = round_combinations(pieces[0], e0, one, r.refinements);
     }
     r.volume = v[0];
