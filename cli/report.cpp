@@ -227,11 +227,6 @@ FileResult process_file(const std::string& path, const Request& request) {
     return r;
 }
 
-double printed_volume(const FileResult& r) {
-    if (r.solid && r.solid->overlapping_shells > 0) return r.solid->volume;
-    return r.mass ? r.mass->volume : std::numeric_limits<double>::quiet_NaN();
-}
-
 // The sentence for a file whose shells overlap, or "".
 std::string overlap_sentence(const FileResult& r) {
     if (!r.solid || r.solid->overlapping_shells == 0) return "";
@@ -330,12 +325,7 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["accuracy"] = m.volume_correctly_rounded ? "correctly-rounded" : "error-bound";
         j["volume"] = number(m.volume);
         j["volume_error_bound"] = m.volume_error_bound;
-        j["overlap_checked"] = r.overlap_checked;
-        if (r.solid && r.solid->overlapping_shells > 0) {
-            j["volume"] = number(r.solid->volume);
-            j["accuracy"] = "correctly-rounded";
-            j["volume_error_bound"] = 0;
-        }
+        j["overlap_checked"] = r.overlap_checked;  // the volume above is already the solid's (use_solid_properties)
         if (r.solid) {
             j["winding_volume"] = number(r.solid->winding_volume);
             j["overlapping_shells"] = r.solid->overlapping_shells;
@@ -410,10 +400,9 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         const auto& m = *r.mass;
         const bool overlap = r.solid && r.solid->overlapping_shells > 0;
         any_checked = any_checked || r.overlap_checked;
-        (m.volume_correctly_rounded || overlap ? any_rounded : any_bound) = true;
-        const std::string vol = overlap ? shortest(r.solid->volume)
-                                        : shortest(m.volume) +
-                                              (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
+        (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
+        const std::string vol =
+            shortest(m.volume) + (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
         if (overlap)
             overlap_notes += "  " + r.file + ": " + overlap_sentence(r) + (all ? "; its centroid is the solid's, its area the shells' sum" : "") + "\n";
         if (!all) {
@@ -458,7 +447,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     out << "  method          " << method_name(request.measure.method) << ", density " << shortest(request.measure.density) << "\n";
     const bool overlap = r.solid && r.solid->overlapping_shells > 0;
     if (overlap) {
-        out << "  volume          " << shortest(r.solid->volume)
+        out << "  volume          " << shortest(m.volume)
             << "   [correctly rounded: the solid where the winding number is >= 1]\n";
         out << "  shells          " << overlap_sentence(r) << "\n";
         out << "  note            mass, centroid, moments and inertia are the solid's; surface area and edge length "

@@ -86,9 +86,6 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
 std::string measure_report(const FileResult& r, const Request& request);
 std::string check_report(const FileResult& r);
 
-// The volume to print: the solid's when shells overlap, else the mass properties'.
-double printed_volume(const FileResult& r);
-
 // A sentence stating the guarantee of the printed volume.
 std::string volume_guarantee(const MassProperties& m);
 
