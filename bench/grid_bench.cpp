@@ -4,6 +4,9 @@
 //       --benchmark_report_aggregates_only=true   (one line)
 // GridR3dCase is the work r3d's published voxelization timing was measured
 // on: a 100k-triangle torus on a 128 x 129 x 38 grid over its bounding box.
+// GridTwoSpheres: two spheres offset by half a radius on one grid, with the
+// union exact in every cell (union:1, one call), against the same two bodies
+// each on its own (union:0, two calls: the per-body work without the union).
 // Time is wall-clock; CPU is the process's, all threads (with threads:1 it is
 // the one core's time, little affected by other load on the machine).
 #include <benchmark/benchmark.h>
@@ -68,8 +71,47 @@ void GridR3dCase(benchmark::State& state) {
     run(state, m, g);
 }
 
+// range(0): triangles per sphere, range(1): cells along the longest side, range(2): union
+void GridTwoSpheres(benchmark::State& state) {
+    const auto n = static_cast<std::size_t>(state.range(0));
+    const Mesh& a = mesh(kSphere, n);
+    static std::map<std::size_t, Mesh> moved;
+    auto it = moved.find(n);
+    if (it == moved.end()) {
+        Mesh b = a;
+        for (std::size_t v = 0; v < b.vertex_count(); ++v) {
+            b.positions[3 * v] += 0.5;
+            b.positions[3 * v + 1] += 0.0625;
+            b.positions[3 * v + 2] += 0.03125;
+        }
+        it = moved.emplace(n, std::move(b)).first;
+    }
+    const MeshView views[2] = {a.view(), it->second.view()};
+    const GridAxes g = make_grid(views, {.cells = static_cast<uint32_t>(state.range(1))});
+    std::vector<double> volumes(2 * g.cell_count()), union_volumes(g.cell_count());
+    const std::span<double> all(volumes);
+    GridSummary s;
+    for (auto _ : state) {
+        if (state.range(2) != 0) {
+            s = grid_volumes(views, g, {.volumes = all, .union_volumes = union_volumes});
+        } else {
+            for (std::size_t b = 0; b < 2; ++b)
+                s = grid_volumes(std::span<const MeshView>(views).subspan(b, 1), g,
+                                 {.volumes = all.subspan(b * g.cell_count(), g.cell_count())});
+        }
+        benchmark::DoNotOptimize(s.union_volume);
+    }
+    state.counters["contact_cells"] = static_cast<double>(s.contact_cells);
+    state.counters["crossing_pairs"] = static_cast<double>(s.crossing_pairs);
+}
+
 }  // namespace
 
+BENCHMARK(GridTwoSpheres)
+    ->ArgsProduct({{100'000, 1'000'000}, {128, 256}, {0, 1}})
+    ->ArgNames({"tris", "cells", "union"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(Grid<kSphere>)
     ->ArgsProduct({{100'000, 1'000'000}, {128, 256}, {0}})
     ->ArgNames({"tris", "cells", "threads"})

@@ -8,6 +8,8 @@
 //             [i][j][k] is the cell whose lower corner is (x_i, y_j, z_k)
 //   OUT.vti   VTK ImageData with a cell array per body (+ the union's with
 //             several bodies); OUT.vtr the same as RectilinearGrid (any planes)
+//   --union / --intersection FILE.npy   (nx, ny, nz): the union's, the
+//             intersection's volume per cell (exact in every cell)
 //   OUT.json  the summary only (as --json prints it)
 // Progress goes to stderr when the computation takes more than a second.
 #include "grid_command.hpp"
@@ -131,8 +133,8 @@ nlohmann::json summary_json(const std::vector<std::string>& files, const std::ve
     j["bodies"] = bodies;
     j["body_volumes"] = volumes;
     j["union_volume"] = s.union_volume;
-    j["union_lower"] = s.union_lower;
-    j["union_upper"] = s.union_upper;
+    if (!std::isnan(s.intersection_volume)) j["intersection_volume"] = s.intersection_volume;
+    j["crossing_pairs"] = s.crossing_pairs;
     j["full_cells"] = s.full_cells;
     j["empty_cells"] = s.empty_cells;
     j["cut_cells"] = s.cut_cells;
@@ -161,12 +163,9 @@ std::string summary_text(const std::vector<std::string>& files, const std::vecto
     }
     if (s.bodies.size() > 1) {
         out << "union: " << shortest(s.union_volume);
-        if (s.contact_cells > 0)
-            out << ", between " << shortest(s.union_lower) << " and " << shortest(s.union_upper) << " ("
-                << s.contact_cells << " contact cells, where surfaces of two or more bodies meet)";
-        else
-            out << " (exact: no cell holds the surfaces of two bodies)";
-        out << "\n";
+        if (!std::isnan(s.intersection_volume)) out << "; intersection: " << shortest(s.intersection_volume);
+        out << " (exact in every cell; " << s.crossing_pairs << " crossing triangle pairs, " << s.contact_cells
+            << " contact cells, where surfaces of two or more bodies meet)\n";
     }
     out << "cells: " << s.full_cells << " full, " << s.cut_cells << " cut, " << s.contact_cells << " contact, "
         << s.empty_cells << " empty\n";
@@ -203,11 +202,13 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
     cmd->add_flag("--json", a.json, "Print the summary as JSON on stdout");
     cmd->add_flag("--fractions", a.fractions, "Write volume fractions (volume / cell volume) instead of volumes");
     cmd->add_option("--centroids", a.centroids, "Also write each cell's centroid of the solid: FILE.npy, shape (..., 3)");
-    cmd->add_option("--union", a.union_out,
-                    "Also write the union's occupancy: FILE.npy, shape (3, nx, ny, nz): estimate, lower, upper");
+    cmd->add_option("--union", a.union_out, "Also write the union's volume per cell: FILE.npy, shape (nx, ny, nz)");
+    cmd->add_option("--intersection", a.intersection_out,
+                    "Also write the volume per cell of the part inside every body: FILE.npy, shape (nx, ny, nz)");
     cmd->add_option("--surface", a.surface,
-                    "Also write each cell's wetted area and area-weighted outward normal per body: FILE.npy, shape "
-                    "(..., 4): area, nx, ny, nz (and, with a .vti/.vtr output, the arrays wetted_area and surface_normal)");
+                    "Also write each cell's wetted area and area-weighted outward normal per body, the union's last "
+                    "with several: FILE.npy, shape (..., 4): area, nx, ny, nz (and, with a .vti/.vtr output, the "
+                    "arrays wetted_area and surface_normal)");
     cmd->add_option("--png", a.png, "Picture of one slice of the volume fractions (viridis)");
     cmd->add_option("--slice", a.slice, "The slice for --png: x=VALUE, y=VALUE or z=VALUE (default: middle z)");
     return cmd;
@@ -221,6 +222,8 @@ int run_grid_command(const GridArgs& a) {
         return usage_error("-o needs a .npy, .vti, .vtr or .json file, not '" + a.out + "'");
     if (!a.centroids.empty() && extension(a.centroids) != ".npy") return usage_error("--centroids needs a .npy file");
     if (!a.union_out.empty() && extension(a.union_out) != ".npy") return usage_error("--union needs a .npy file");
+    if (!a.intersection_out.empty() && extension(a.intersection_out) != ".npy")
+        return usage_error("--intersection needs a .npy file");
     if (!a.surface.empty() && extension(a.surface) != ".npy") return usage_error("--surface needs a .npy file");
     const std::optional<Slice> slice = parse_slice(a.slice);
     if (!slice) return usage_error("--slice takes x=VALUE, y=VALUE or z=VALUE, not '" + a.slice + "'");
@@ -297,30 +300,36 @@ int run_grid_command(const GridArgs& a) {
     if (cells > (std::size_t{1} << 34)) return usage_error("too many cells (" + std::to_string(cells) + ")");
 
     // Compute.
-    std::vector<double> volumes(nb * cells), moments, lower, upper, estimate;
+    std::vector<double> volumes(nb * cells), moments, union_volumes, intersection_volumes;
     std::vector<CellClass> cls;
     GridOutput out{.volumes = volumes};
     if (!a.centroids.empty()) {
         moments.resize(3 * nb * cells);
         out.first_moments = moments;
     }
+    // --surface: the bodies' arrays, then (several bodies) the union's.
+    const std::size_t surfaces = nb > 1 ? nb + 1 : 1;
     std::vector<double> wetted, normals;
     if (!a.surface.empty()) {
-        wetted.resize(nb * cells);
-        normals.resize(3 * nb * cells);
-        out.wetted_area = wetted;
-        out.surface_normal = normals;
+        wetted.resize(surfaces * cells);
+        normals.resize(3 * surfaces * cells);
+        out.wetted_area = std::span<double>(wetted).first(nb * cells);
+        out.surface_normal = std::span<double>(normals).first(3 * nb * cells);
+        if (nb > 1) {
+            out.union_wetted_area = std::span<double>(wetted).subspan(nb * cells);
+            out.union_surface_normal = std::span<double>(normals).subspan(3 * nb * cells);
+        }
     }
     const bool want_union = nb > 1 && (!a.union_out.empty() || !a.png.empty() || out_ext == ".vti" || out_ext == ".vtr");
     if (want_union || !a.union_out.empty()) {
-        lower.resize(cells);
-        upper.resize(cells);
-        estimate.resize(cells);
+        union_volumes.resize(cells);
         cls.resize(cells);
-        out.union_lower = lower;
-        out.union_upper = upper;
-        out.union_estimate = estimate;
+        out.union_volumes = union_volumes;
         out.cell_class = cls;
+    }
+    if (!a.intersection_out.empty()) {
+        intersection_volumes.resize(cells);
+        out.intersection_volumes = intersection_volumes;
     }
     const auto t_grid = Clock::now();
     auto last_print = t_grid;
@@ -358,11 +367,11 @@ int run_grid_command(const GridArgs& a) {
     };
     const nlohmann::json summary_j = summary_json(a.files, mesh_volumes, g, summary, seconds);
     if (seconds_since(t_start) > 1.0 && (!a.out.empty() || !a.png.empty() || !a.centroids.empty() ||
-                                          !a.union_out.empty()))
+                                          !a.union_out.empty() || !a.intersection_out.empty()))
         std::cerr << "polyvol grid: writing " << cells << " cells\n";
     try {
         if (!a.png.empty()) {
-            std::span<const double> occupancy = nb > 1 ? std::span<const double>(estimate)
+            std::span<const double> occupancy = nb > 1 ? std::span<const double>(union_volumes)
                                                        : std::span<const double>(volumes);
             write_slice_png(a.png, g, occupancy, *slice);
         }
@@ -378,27 +387,24 @@ int run_grid_command(const GridArgs& a) {
             write_npy(a.centroids, c, shape);
         }
         if (!a.surface.empty()) {
-            std::vector<double> four(4 * nb * cells);
-            for (std::size_t n = 0; n < nb * cells; ++n) {
+            std::vector<double> four(4 * surfaces * cells);
+            for (std::size_t n = 0; n < surfaces * cells; ++n) {
                 four[4 * n] = wetted[n];
                 for (int k = 0; k < 3; ++k) four[4 * n + 1 + k] = normals[3 * n + k];
             }
             std::vector<std::size_t> shape;
-            if (nb > 1) shape.push_back(nb);
+            if (nb > 1) shape.push_back(surfaces);
             shape.insert(shape.end(), {g.nx(), g.ny(), g.nz(), 4});
             write_npy(a.surface, four, shape);
         }
-        std::vector<double> union3;
-        if (!a.union_out.empty() || (want_union && (out_ext == ".vti" || out_ext == ".vtr"))) {
-            union3.resize(3 * cells);
-            std::copy(estimate.begin(), estimate.end(), union3.begin());
-            std::copy(lower.begin(), lower.end(), union3.begin() + static_cast<std::ptrdiff_t>(cells));
-            std::copy(upper.begin(), upper.end(), union3.begin() + static_cast<std::ptrdiff_t>(2 * cells));
-            per_cell(union3, 3);
-            if (!a.union_out.empty()) {
-                const std::size_t shape[4] = {3, g.nx(), g.ny(), g.nz()};
-                write_npy(a.union_out, union3, shape);
-            }
+        const std::size_t shape3[3] = {g.nx(), g.ny(), g.nz()};
+        if (!union_volumes.empty()) {
+            per_cell(union_volumes, 1);
+            if (!a.union_out.empty()) write_npy(a.union_out, union_volumes, shape3);
+        }
+        if (!intersection_volumes.empty()) {
+            per_cell(intersection_volumes, 1);
+            write_npy(a.intersection_out, intersection_volumes, shape3);
         }
         per_cell(volumes, nb);
         if (out_ext == ".npy") {
@@ -417,17 +423,18 @@ int run_grid_command(const GridArgs& a) {
             }
             std::vector<double> contact;
             if (want_union) {
-                arrays.push_back({"union_" + what, std::span<const double>(union3).first(cells), 1});
-                arrays.push_back({"union_lower", std::span<const double>(union3).subspan(cells, cells), 1});
-                arrays.push_back({"union_upper", std::span<const double>(union3).subspan(2 * cells, cells), 1});
+                arrays.push_back({"union_" + what, union_volumes, 1});
+                if (!intersection_volumes.empty()) arrays.push_back({"intersection_" + what, intersection_volumes, 1});
                 contact.resize(cells);
                 for (std::size_t c = 0; c < cells; ++c) contact[c] = static_cast<double>(cls[c]);
                 arrays.push_back({"cell_class", contact, 1});  // 0 empty, 1 full, 2 cut, 3 contact
             }
             if (!a.surface.empty())
-                for (std::size_t b = 0; b < nb; ++b) {
+                for (std::size_t b = 0; b < surfaces; ++b) {
                     const std::string suffix =
-                        nb > 1 ? "_" + std::to_string(b) + "_" + std::filesystem::path(a.files[b]).stem().string() : "";
+                        nb == 1    ? ""
+                        : b == nb ? "_union"
+                                  : "_" + std::to_string(b) + "_" + std::filesystem::path(a.files[b]).stem().string();
                     arrays.push_back({"wetted_area" + suffix, std::span<const double>(wetted).subspan(b * cells, cells), 1});
                     arrays.push_back({"surface_normal" + suffix,
                                       std::span<const double>(normals).subspan(3 * b * cells, 3 * cells), 3});

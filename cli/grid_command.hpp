@@ -20,7 +20,8 @@ struct GridArgs {
     bool json = false;
     bool fractions = false;
     std::string centroids;
-    std::string union_out;
+    std::string union_out;         // --union FILE.npy: the union's volume per cell
+    std::string intersection_out;  // --intersection FILE.npy: the part inside every body
     std::string surface;  // --surface FILE.npy: wetted area and area-weighted normal per cell
     std::string png;
     std::string slice;

@@ -57,19 +57,18 @@
 // (measured on the corpus: <= 1.4e-15 relative, and <= 9.5e-16 × cell volume).
 //
 // Several bodies (overlapping solids, each a closed mesh with outward
-// normals): each body's volume per cell as above, and the occupancy of their
-// union per cell. The union is exact (to the same rounding) in every cell
-// that at most one body's surface enters, or that some body fills
-// completely. In a "contact" cell, entered by the surfaces of two or more
-// bodies, it is only bounded:
-//     lower = max_b V_b,   upper = min(cell volume, Σ_b V_b),
-// and estimated as cell volume × (1 - Π_b (1 - V_b / cell volume)) (the
-// bodies' parts taken as independent), which lies between the bounds.
-// Contact cells lie along the curves where surfaces of different bodies
-// cross, so their number grows like 1/h and the width of the union's bound
-// shrinks like h^2 × (curve length) with the cell size h (like h × area
-// where surfaces of two bodies coincide over an area inside cells).
-//
+// normals): each body's volume per cell as above, and the union's (and on
+// request the intersection's) volume per cell, exact in the same sense in
+// every cell. Where at most one body's surface enters a cell, or some body
+// fills it (an empty one, for the intersection), the bodies' own values
+// decide it. In a "contact" cell, entered by the surfaces of two or more
+// bodies, it is the column scan again, over the boundary of the union
+// (intersection) itself: the parts of the bodies' triangles outside (inside)
+// every other body, cut along the curves where the surfaces cross
+// (polyvol/boolean.hpp's method: exact predicates, one symbolic
+// perturbation for touching and coincident surfaces, crossing points
+// rounded once to doubles that every triangle sharing them shares). The
+// bodies must not cross themselves.
 // Input meshes must be closed 2-cycles (polyvol::analyze_topology's
 // closed_2_cycle); for open surfaces the numbers are meaningless. A body
 // turned inside out gives negative values. Fan triangles of polygon faces
@@ -141,8 +140,8 @@ GridAxes make_grid(std::span<const MeshView> bodies, const GridSpec& spec);
 enum class CellClass : uint8_t {
     empty = 0,    // no surface enters the cell and no body fills it
     full = 1,     // some body fills the cell (the union is the cell)
-    cut = 2,      // exactly one body's surface enters the cell; union exact
-    contact = 3,  // two or more bodies' surfaces enter it; union only bounded
+    cut = 2,      // exactly one body's surface enters the cell (the union is that body's part)
+    contact = 3,  // two or more bodies' surfaces enter it (the union's own pieces decide it)
 };
 
 // Caller-sized outputs (habit: callers own bulk arrays). Empty spans are not
@@ -155,12 +154,11 @@ struct GridOutput {
     // first_moments[(b * cells + cell(i,j,k)) * 3 + a]; the centroid of a cell's
     // part is first_moments / volumes (undefined where the volume is 0).
     std::span<double> first_moments{};
-    // cells each, or empty: the union's occupancy. union_estimate is exact
-    // except in contact cells (see the top of this file), where
-    // union_lower <= union <= union_upper.
-    std::span<double> union_estimate{};
-    std::span<double> union_lower{};
-    std::span<double> union_upper{};
+    // cells each, or empty: the union's volume in each cell, and the
+    // intersection's (the part inside every body; computed only when asked
+    // for). One body: both are its volumes.
+    std::span<double> union_volumes{};
+    std::span<double> intersection_volumes{};
     std::span<CellClass> cell_class{};  // cells, or empty
     // What the clipping learns on the way (cut-cell and VOF codes need it):
     // bodies * cells or empty: the area of each body's surface inside each
@@ -173,6 +171,12 @@ struct GridOutput {
     // two cells goes to the one the clipping gives it (the cells still add up
     // to the surface's area). Sums in double, in triangle order.
     std::span<double> surface_normal{};
+    // cells or empty, 3 * cells or empty: the same of the union's surface
+    // (the parts of the bodies' surfaces outside every other body; where
+    // surfaces cross, each piece's area counts with the sign of the side it
+    // faces, so the cut triangles' parts add up to their area).
+    std::span<double> union_wetted_area{};
+    std::span<double> union_surface_normal{};
 };
 
 struct GridOptions {
@@ -192,20 +196,23 @@ struct GridBodySummary {
 
 struct GridSummary {
     std::vector<GridBodySummary> bodies;
-    // The union: union_lower <= exact union volume (within the grid) <= union_upper;
-    // union_volume is the sum of the per-cell estimates (== both bounds when
-    // there is no contact cell, and the body volume for one body).
+    // The union's volume within the grid (the sum of its cells, rounded once;
+    // the body's volume for one body), and the intersection's when its cells
+    // were asked for (else NaN).
     double union_volume = 0;
-    double union_lower = 0;
-    double union_upper = 0;
+    double intersection_volume = 0;
+    std::size_t crossing_pairs = 0;  // triangle pairs of different bodies that cross
     // Cells by CellClass of the union (they add up to cells).
     std::size_t full_cells = 0, empty_cells = 0, cut_cells = 0, contact_cells = 0;
 };
 
-// The volume of each body in every cell of the grid (and its first moments
-// and the union's occupancy when asked for). Throws std::invalid_argument
-// for an invalid grid, wrongly sized outputs, a face index out of range, or
-// a non-finite coordinate on a used vertex.
+// The volume of each body in every cell of the grid (and what else `out`
+// asks for). Throws std::invalid_argument for an invalid grid, wrongly sized
+// outputs, a face index out of range, or a non-finite coordinate on a used
+// vertex; with several bodies also for coordinates beyond 2^180, and when
+// the crossings between the bodies contradict each other (a body whose
+// surface crosses itself, or that is not closed: bodies must be closed
+// 2-cycles, which is not checked in full here; polyvol grid checks it).
 GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& grid, const GridOutput& out,
                          const GridOptions& options = {});
 

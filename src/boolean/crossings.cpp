@@ -13,6 +13,7 @@
 //   * the crossing of edge u -> v of s starts it iff u is in front of t and
 //     v behind: (N_t × N_s)·(N_s × (v - u)) = -|N_s|² N_t·(v - u).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -29,19 +30,22 @@ void finish_operand(Operand& op) {
     const std::size_t n = op.triangles();
     op.degenerate.resize(n);
     op.box.resize(6 * n);
-    op.bounds = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    for (std::size_t t = 0; t < n; ++t) {
-        const double* c[3] = {op.corner(t, 0), op.corner(t, 1), op.corner(t, 2)};
-        op.degenerate[t] = first_cross_sign(c[0], c[1], c[0], c[2]) == 0;
-        for (int k = 0; k < 3; ++k) {
-            const double lo = std::min({c[0][k], c[1][k], c[2][k]});
-            const double hi = std::max({c[0][k], c[1][k], c[2][k]});
-            op.box[6 * t + k] = lo;
-            op.box[6 * t + 3 + k] = hi;
-            op.bounds[k] = std::min(op.bounds[k], lo);
-            op.bounds[3 + k] = std::max(op.bounds[3 + k], hi);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
+        for (std::size_t t = range.begin(); t != range.end(); ++t) {
+            const double* c[3] = {op.corner(t, 0), op.corner(t, 1), op.corner(t, 2)};
+            op.degenerate[t] = first_cross_sign(c[0], c[1], c[0], c[2]) == 0;
+            for (int k = 0; k < 3; ++k) {
+                op.box[6 * t + k] = std::min({c[0][k], c[1][k], c[2][k]});
+                op.box[6 * t + 3 + k] = std::max({c[0][k], c[1][k], c[2][k]});
+            }
         }
-    }
+    });
+    op.bounds = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t t = 0; t < n; ++t)
+        for (int k = 0; k < 3; ++k) {
+            op.bounds[k] = std::min(op.bounds[k], op.box[6 * t + k]);
+            op.bounds[3 + k] = std::max(op.bounds[3 + k], op.box[6 * t + 3 + k]);
+        }
 }
 
 Operand make_operand(const MeshView& view, int32_t shift) {
@@ -170,31 +174,53 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
         common[3 + k] = std::min(A.bounds[3 + k], B.bounds[3 + k]);
         if (!(common[k] <= common[3 + k])) return result;  // boxes apart (or an empty operand)
     }
-    std::vector<uint32_t> a_near, b_near;
-    // One operand of a few bodies: only triangles whose box meets another body's box.
-    std::vector<std::array<double, 6>> body_box;
-    if (same && A.body_shift.size() <= 64) {
-        body_box.assign(A.body_shift.size(), {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY});
-        for (uint32_t t = 0; t < A.triangles(); ++t)
-            for (int k = 0; k < 3; ++k) {
-                body_box[A.body(t)][k] = std::min(body_box[A.body(t)][k], A.box[6 * t + k]);
-                body_box[A.body(t)][3 + k] = std::max(body_box[A.body(t)][3 + k], A.box[6 * t + 3 + k]);
-            }
-    }
-    auto near_another_body = [&](uint32_t t) {
-        if (body_box.empty()) return true;
-        for (uint32_t b = 0; b < body_box.size(); ++b)
-            if (b != A.body(t) && boxes_meet(&A.box[6 * t], body_box[b].data())) return true;
-        return false;
+    // Which sides have triangles in each cell of a uniform grid over the
+    // common box (bit 0: A, bit 1: B; one operand of up to 64 bodies: bit b
+    // for body b). Only a triangle in a cell holding some other side's
+    // triangles can cross one: near the curves where the surfaces meet.
+    const CellGrid grid(common, (A.triangles() + (same ? 0 : B.triangles())) / 2);
+    const bool by_body = same && A.body_shift.size() <= 64;
+    auto label_a = [&](uint32_t t) { return by_body ? uint64_t{1} << A.body(t) : uint64_t{1}; };
+    auto label_b = [&](uint32_t t) { return same ? label_a(t) : uint64_t{2}; };
+    std::vector<uint64_t> present(grid.cells(), 0);
+    auto mark = [&](const Operand& op, auto label) {
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(op.triangles()), 4096),
+                          [&](const auto& range) {
+                              for (uint32_t t = range.begin(); t != range.end(); ++t) {
+                                  if (!boxes_meet(&op.box[6 * t], common.data())) continue;
+                                  const uint64_t bit = label(t);
+                                  grid.for_cells(&op.box[6 * t], [&](std::size_t c) {
+                                      std::atomic_ref<uint64_t> cell(present[c]);
+                                      if (!(cell.load(std::memory_order_relaxed) & bit))
+                                          cell.fetch_or(bit, std::memory_order_relaxed);
+                                  });
+                              }
+                          });
     };
-    for (uint32_t t = 0; t < A.triangles(); ++t)
-        if (boxes_meet(&A.box[6 * t], common.data()) && near_another_body(t)) a_near.push_back(t);
-    for (uint32_t t = 0; t < B.triangles(); ++t)
-        if (boxes_meet(&B.box[6 * t], common.data()) && (!same || near_another_body(t))) b_near.push_back(t);
+    mark(A, label_a);
+    if (!same) mark(B, label_b);
+    auto near = [&](const Operand& op, auto label) {
+        std::vector<uint8_t> flag(op.triangles(), 0);
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(op.triangles()), 4096),
+                          [&](const auto& range) {
+                              for (uint32_t t = range.begin(); t != range.end(); ++t) {
+                                  if (!boxes_meet(&op.box[6 * t], common.data())) continue;
+                                  const uint64_t others = same && !by_body ? ~uint64_t{0} : ~label(t);
+                                  bool hit = false;
+                                  grid.for_cells(&op.box[6 * t], [&](std::size_t c) { hit = hit || (present[c] & others); });
+                                  flag[t] = hit;
+                              }
+                          });
+        std::vector<uint32_t> list;
+        for (uint32_t t = 0; t < op.triangles(); ++t)
+            if (flag[t]) list.push_back(t);
+        return list;
+    };
+    const std::vector<uint32_t> a_near = near(A, label_a);
+    const std::vector<uint32_t> b_near = same ? a_near : near(B, label_b);
     if (a_near.empty() || b_near.empty()) return result;
 
-    // B's triangles binned into cells (compressed rows).
-    const CellGrid grid(common, (a_near.size() + b_near.size()) / 2);
+    // B's triangles near A binned into the same cells (compressed rows).
     std::vector<uint32_t> start(grid.cells() + 1, 0);
     for (uint32_t t : b_near) grid.for_cells(&B.box[6 * t], [&](std::size_t c) { ++start[c + 1]; });
     for (std::size_t c = 0; c < grid.cells(); ++c) start[c + 1] += start[c];
@@ -202,6 +228,15 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
     {
         std::vector<uint32_t> fill(start.begin(), start.end() - 1);
         for (uint32_t t : b_near) grid.for_cells(&B.box[6 * t], [&](std::size_t c) { binned[fill[c]++] = t; });
+    }
+    // One operand: only cells holding triangles of two or more bodies can
+    // hold a pair (most cells hold one body's surface only).
+    std::vector<uint8_t> mixed;
+    if (same) {
+        mixed.assign(grid.cells(), 0);
+        for (std::size_t c = 0; c < grid.cells(); ++c)
+            for (uint32_t i = start[c] + 1; i < start[c + 1] && !mixed[c]; ++i)
+                mixed[c] = B.body(binned[i]) != B.body(binned[start[c]]);
     }
 
     struct Local {
@@ -215,6 +250,7 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
             const double* box = &A.box[6 * ta];
             // Each pair once, in the cell holding the low corner of the two boxes' overlap.
             grid.for_cells(box, [&](std::size_t c) {
+                if (same && !mixed[c]) return;
                 for (uint32_t i = start[c]; i < start[c + 1]; ++i) {
                     const uint32_t tb = binned[i];
                     if (same && (tb <= ta || B.body(tb) == A.body(ta))) continue;  // one operand: other bodies

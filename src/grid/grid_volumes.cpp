@@ -10,7 +10,11 @@
 //      into tile-local double-double sums (tile_sums.hpp);
 //   2. scans each of its columns from the top down (column_scan.cpp),
 //      writing the cells straight into the caller's arrays;
-//   3. with several bodies, combines them per cell (union_bounds.cpp).
+//   3. with several bodies, scatters the union's (and the intersection's)
+//      own pieces too — the bodies' whole triangles that lie on its boundary,
+//      scattered with the pieces above, and the crossed triangles' parts
+//      (boolean/level_pieces.hpp) — scans them, and takes each cell from the
+//      bodies' values where those decide it, else from that scan.
 // Tiles own disjoint cells, so there are no atomics and no second copy of the
 // grid; every cell's sums run in triangle order, so the results do not depend
 // on the number of threads. Memory: the caller's outputs, the triangle lists
@@ -18,6 +22,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -34,7 +40,7 @@
 #include "grid/column_scan.hpp"
 #include "grid/piece.hpp"
 #include "grid/tile_sums.hpp"
-#include "grid/union_bounds.hpp"
+#include "boolean/level_pieces.hpp"
 #include "polyvol/grid.hpp"
 
 namespace polyvol {
@@ -205,14 +211,16 @@ struct Workspace {
     grid::ClipBuffers clip;
     grid::Polygon tri;
     grid::TileSums sums;
-    std::vector<uint8_t> state;  // bodies × tile cells: BodyCell
-    std::vector<double> vols;    // one cell's volumes, bodies
+    std::vector<grid::TileSums> level_sums;  // the union's (and the intersection's) pieces
+    std::vector<uint8_t> state;              // bodies × tile cells: BodyCell
+    std::vector<double> level_column;        // levels × nz: their scans of one column
+    std::vector<uint8_t> level_state;        // nz
 };
 
 struct Partial {
     std::vector<exact::ExactSum> body_volume;
     std::vector<std::size_t> pieces, full, empty, cut;
-    exact::ExactSum u_est, u_lo, u_hi;
+    exact::ExactSum union_volume, intersection_volume;
     std::size_t u_full = 0, u_empty = 0, u_cut = 0, u_contact = 0;
     explicit Partial(std::size_t bodies)
         : body_volume(bodies), pieces(bodies, 0), full(bodies, 0), empty(bodies, 0), cut(bodies, 0) {}
@@ -226,6 +234,17 @@ grid::Polygon& load_triangle(grid::Polygon& poly, const MeshView& m, const uint3
     return poly;
 }
 
+// A level's pieces on the crossed triangles: their fan triangles as a mesh
+// of unshared vertices, with the unit normal of the triangle each lies in.
+struct FanMesh {
+    std::vector<double> positions;
+    std::vector<uint32_t> index;
+    std::vector<std::array<double, 3>> normal;
+    Triangles tris;
+    Bins bins;
+    MeshView view() const { return {positions, {}, index}; }
+};
+
 struct Job {
     std::span<const MeshView> bodies;
     const GridAxes& g;
@@ -235,7 +254,16 @@ struct Job {
     const std::vector<Triangles>& tris;
     const std::vector<Bins>& bins;
     bool moments, want_union, surface;
+    // Several bodies: level 0 the union, level 1 (if asked for) the intersection.
+    const boolean::LevelPieces* levels;
+    const std::vector<FanMesh>& fans;
 };
+
+void add_surface(std::span<double> area, std::span<double> normal, std::size_t cell, double a, const double v[3]) {
+    if (!area.empty()) area[cell] += a;
+    if (!normal.empty())
+        for (int c = 0; c < 3; ++c) normal[3 * cell + c] += v[c];
+}
 
 // Clips one body's triangles listed for a tile and scatters their pieces.
 template <bool kMoments>
@@ -247,29 +275,68 @@ std::size_t scatter_tile(const Job& job, std::size_t b, std::size_t tile, int ix
     const double* ys = job.g.y.data();
     const double* zs = job.g.z.data();
     const int nz = job.l.nz;
+    const uint8_t* on_level = job.levels ? job.levels->whole[b].data() : nullptr;
     std::size_t pieces = 0;
     for (std::size_t e = bins.offsets[tile]; e < bins.offsets[tile + 1]; ++e) {
-        const uint32_t* v = &job.tris[b].index[3 * std::size_t{bins.entries[e]}];
+        const uint32_t t = bins.entries[e];
+        const uint8_t levels = on_level ? on_level[t] : 1;  // one body: its surface is the union's
+        const uint32_t* v = &job.tris[b].index[3 * std::size_t{t}];
         grid::clip_to_cells(load_triangle(ws.tri, m, v), job.ax, job.ay, job.az, ix0, ix1, iy0, iy1, ws.clip,
                             [&](const grid::Polygon& piece, int i, int j, int k) {
                                 const int kt = std::min(k + 1, nz);
                                 const double corner[3] = {xs[i], ys[j], zs[k]};
                                 const double far[3] = {xs[i + 1], ys[j + 1], zs[kt]};
-                                ws.sums.scatter(i - ix0, j - iy0, k,
-                                                grid::piece_integrals<kMoments>(piece, corner, far));
+                                const grid::PieceIntegrals r = grid::piece_integrals<kMoments>(piece, corner, far);
+                                ws.sums.scatter(i - ix0, j - iy0, k, r);
+                                for (std::size_t l = 0; l < ws.level_sums.size(); ++l)
+                                    if (levels & (1u << l)) ws.level_sums[l].scatter(i - ix0, j - iy0, k, r);
                                 ++pieces;
                                 if (job.surface && k < nz) {  // tiles own their cells: no race
                                     double a[3];
                                     grid::piece_vector_area(piece, corner, a);
-                                    const std::size_t cell = b * job.g.cell_count() + job.g.cell(i, j, k);
-                                    if (!job.out.wetted_area.empty())
-                                        job.out.wetted_area[cell] += std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-                                    if (!job.out.surface_normal.empty())
-                                        for (int c = 0; c < 3; ++c) job.out.surface_normal[3 * cell + c] += a[c];
+                                    const double area = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+                                    const std::size_t cell = job.g.cell(i, j, k);
+                                    add_surface(job.out.wetted_area, job.out.surface_normal,
+                                                b * job.g.cell_count() + cell, area, a);
+                                    if (levels & 1u)
+                                        add_surface(job.out.union_wetted_area, job.out.union_surface_normal, cell,
+                                                    area, a);
                                 }
                             });
     }
     return pieces;
+}
+
+// Clips a level's fan triangles listed for a tile into its sums; the
+// union's surface gets each piece's area signed by the side it faces
+// (a · n of the triangle it lies in), so the fans' overlaps cancel.
+void scatter_fans(const Job& job, std::size_t level, std::size_t tile, int ix0, int ix1, int iy0, int iy1,
+                  Workspace& ws) {
+    const FanMesh& f = job.fans[level];
+    const MeshView m = f.view();
+    const double* xs = job.g.x.data();
+    const double* ys = job.g.y.data();
+    const double* zs = job.g.z.data();
+    const int nz = job.l.nz;
+    const bool surface = level == 0 && (!job.out.union_wetted_area.empty() || !job.out.union_surface_normal.empty());
+    for (std::size_t e = f.bins.offsets[tile]; e < f.bins.offsets[tile + 1]; ++e) {
+        const uint32_t t = f.bins.entries[e];
+        grid::clip_to_cells(load_triangle(ws.tri, m, &f.index[3 * std::size_t{t}]), job.ax, job.ay, job.az, ix0, ix1,
+                            iy0, iy1, ws.clip, [&](const grid::Polygon& piece, int i, int j, int k) {
+                                const int kt = std::min(k + 1, nz);
+                                const double corner[3] = {xs[i], ys[j], zs[k]};
+                                const double far[3] = {xs[i + 1], ys[j + 1], zs[kt]};
+                                ws.level_sums[level].scatter(i - ix0, j - iy0, k,
+                                                             grid::piece_integrals<false>(piece, corner, far));
+                                if (surface && k < nz) {
+                                    double a[3];
+                                    grid::piece_vector_area(piece, corner, a);
+                                    const auto& n = f.normal[t];
+                                    add_surface(job.out.union_wetted_area, job.out.union_surface_normal,
+                                                job.g.cell(i, j, k), a[0] * n[0] + a[1] * n[1] + a[2] * n[2], a);
+                                }
+                            });
+    }
 }
 
 // Adds the n values of a column to an exact sum. A run of m equal values
@@ -304,7 +371,9 @@ void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
     const std::size_t tile_cells = static_cast<std::size_t>(tw) * th * l.nz;
     const std::size_t cells = job.g.cell_count();
     ws.state.resize(nb * tile_cells);
-    ws.vols.resize(nb);
+    const std::size_t nlevels = job.fans.size();
+    ws.level_sums.resize(nlevels);
+    for (grid::TileSums& sums : ws.level_sums) sums.reset(l.tile, l.nz + 1, false);
     for (std::size_t b = 0; b < nb; ++b) {
         ws.sums.reset(l.tile, l.nz + 1, job.moments);
         part.pieces[b] += job.moments ? scatter_tile<true>(job, b, tile, ix0, ix1, iy0, iy1, ws)
@@ -327,38 +396,55 @@ void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
         }
     }
     if (!job.want_union) return;
-    uint8_t states[256];
-    std::vector<uint8_t> state_heap;
-    uint8_t* st = states;
-    if (nb > sizeof states) {
-        state_heap.resize(nb);
-        st = state_heap.data();
-    }
+    for (std::size_t level = 0; level < nlevels; ++level) scatter_fans(job, level, tile, ix0, ix1, iy0, iy1, ws);
+    ws.level_column.resize(nlevels * l.nz);
+    ws.level_state.resize(l.nz);
+    const bool want_intersection = !job.out.intersection_volumes.empty();
     for (int ci = 0; ci < tw; ++ci) {
         for (int cj = 0; cj < th; ++cj) {
             const int i = ix0 + ci, j = iy0 + cj;
             const std::size_t cell0 = job.g.cell(i, j, 0);
             const std::size_t local0 = (static_cast<std::size_t>(ci) * th + cj) * l.nz;
+            const grid::ColumnGeometry geom{job.g.x[i], job.g.x[i + 1], job.g.y[j], job.g.y[j + 1], job.g.z.data(), l.nz};
+            for (std::size_t level = 0; level < nlevels; ++level)
+                grid::scan_column(ws.level_sums[level], ci, cj, geom, &ws.level_column[level * l.nz], nullptr,
+                                  ws.level_state.data());
             for (int k = 0; k < l.nz; ++k) {
+                // The bodies' own values decide the cell unless two or more surfaces enter it.
+                std::size_t full = 0, cut = 0, cut_body = 0;
                 for (std::size_t b = 0; b < nb; ++b) {
-                    ws.vols[b] = job.out.volumes[b * cells + cell0 + k];
-                    st[b] = ws.state[b * tile_cells + local0 + k];
+                    const uint8_t st = ws.state[b * tile_cells + local0 + k];
+                    if (st == grid::kFull) ++full;
+                    if (st == grid::kCut) {
+                        ++cut;
+                        cut_body = b;
+                    }
                 }
-                const grid::UnionCell u = grid::union_cell(ws.vols, {st, nb}, job.g.cell_volume(i, j, k));
+                const double cell_volume = job.g.cell_volume(i, j, k);
+                const double one_cut = cut == 1 ? job.out.volumes[cut_body * cells + cell0 + k] : 0;
+                const double u = full > 0 ? cell_volume : cut <= 1 ? one_cut : ws.level_column[k];
                 const std::size_t c = cell0 + k;
-                if (!job.out.union_estimate.empty()) job.out.union_estimate[c] = u.estimate;
-                if (!job.out.union_lower.empty()) job.out.union_lower[c] = u.lower;
-                if (!job.out.union_upper.empty()) job.out.union_upper[c] = u.upper;
-                if (!job.out.cell_class.empty()) job.out.cell_class[c] = u.cls;
-                if (u.estimate != 0) part.u_est.add(u.estimate);
-                if (u.lower != 0) part.u_lo.add(u.lower);
-                if (u.upper != 0) part.u_hi.add(u.upper);
-                switch (u.cls) {
+                if (!job.out.union_volumes.empty()) job.out.union_volumes[c] = u;
+                if (u != 0) part.union_volume.add(u);
+                const CellClass cls = full > 0  ? CellClass::full
+                                      : cut == 0 ? CellClass::empty
+                                      : cut == 1 ? CellClass::cut
+                                                 : CellClass::contact;
+                if (!job.out.cell_class.empty()) job.out.cell_class[c] = cls;
+                switch (cls) {
                     case CellClass::empty: ++part.u_empty; break;
                     case CellClass::full: ++part.u_full; break;
                     case CellClass::cut: ++part.u_cut; break;
                     case CellClass::contact: ++part.u_contact; break;
                 }
+                if (!want_intersection) continue;
+                // The intersection: 0 if some body is empty, else as above.
+                const double x = full + cut < nb ? 0
+                                 : full == nb   ? cell_volume
+                                 : cut == 1     ? one_cut
+                                                : ws.level_column[l.nz + k];
+                job.out.intersection_volumes[c] = x;
+                if (x != 0) part.intersection_volume.add(x);
             }
         }
     }
@@ -380,20 +466,25 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
     const bool moments = !out.first_moments.empty();
     if (moments && out.first_moments.size() != 3 * nb * cells)
         throw std::invalid_argument("grid: first_moments must hold 3 * bodies * cells values");
-    for (const std::size_t size : {out.union_estimate.size(), out.union_lower.size(), out.union_upper.size(),
-                                   out.cell_class.size()})
-        if (size != 0 && size != cells) throw std::invalid_argument("grid: union outputs must hold one value per cell");
+    for (const std::size_t size : {out.union_volumes.size(), out.intersection_volumes.size(), out.cell_class.size(),
+                                   out.union_wetted_area.size()})
+        if (size != 0 && size != cells)
+            throw std::invalid_argument("grid: union and intersection outputs must hold one value per cell");
+    if (!out.union_surface_normal.empty() && out.union_surface_normal.size() != 3 * cells)
+        throw std::invalid_argument("grid: union_surface_normal must hold 3 * cells values");
     if (!out.wetted_area.empty() && out.wetted_area.size() != nb * cells)
         throw std::invalid_argument("grid: wetted_area must hold bodies * cells values");
     if (!out.surface_normal.empty() && out.surface_normal.size() != 3 * nb * cells)
         throw std::invalid_argument("grid: surface_normal must hold 3 * bodies * cells values");
-    const bool surface = !out.wetted_area.empty() || !out.surface_normal.empty();
-    for (const auto span : {out.wetted_area, out.surface_normal})
+    const bool surface = !out.wetted_area.empty() || !out.surface_normal.empty() || !out.union_wetted_area.empty() ||
+                         !out.union_surface_normal.empty();
+    for (const auto span : {out.wetted_area, out.surface_normal, out.union_wetted_area, out.union_surface_normal})
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, span.size(), 1 << 16), [&](const auto& r) {
             std::fill(span.begin() + static_cast<std::ptrdiff_t>(r.begin()), span.begin() + static_cast<std::ptrdiff_t>(r.end()), 0.0);
         });
-    const bool union_outputs = !out.union_estimate.empty() || !out.union_lower.empty() ||
-                               !out.union_upper.empty() || !out.cell_class.empty();
+    const bool union_outputs = !out.union_volumes.empty() || !out.intersection_volumes.empty() ||
+                               !out.cell_class.empty() || !out.union_wetted_area.empty() ||
+                               !out.union_surface_normal.empty();
 
     const Axis ax(g.x), ay(g.y), az(g.z);
     const Layout layout = choose_layout(static_cast<int>(g.nx()), static_cast<int>(g.ny()),
@@ -407,7 +498,34 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
         bins.push_back(bin_triangles(m, tris.back(), ax, ay, az, layout));
     }
 
-    const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, nb > 1 || union_outputs, surface};
+    // Several bodies: the union's (and the intersection's) boundary pieces.
+    std::optional<boolean::LevelPieces> levels;
+    std::vector<FanMesh> fans;
+    if (nb > 1) {
+        std::vector<int> level_values{1};
+        if (!out.intersection_volumes.empty()) level_values.push_back(static_cast<int>(nb));
+        try {
+            levels = boolean::level_pieces(bodies, level_values);
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(std::string("grid: the union is undefined: ") + e.what());
+        }
+        fans.resize(level_values.size());
+        for (std::size_t k = 0; k < fans.size(); ++k) {
+            FanMesh& f = fans[k];
+            for (const boolean::FanTriangle& t : levels->fans[k]) {
+                for (int c = 0; c < 3; ++c) f.index.push_back(static_cast<uint32_t>(f.positions.size() / 3 + c));
+                f.positions.insert(f.positions.end(), t.p.begin(), t.p.end());
+                f.normal.push_back(t.normal);
+            }
+            if (f.normal.size() >= (std::size_t{1} << 32) / 3)
+                throw std::invalid_argument("grid: too many crossing pieces");
+            f.tris.index = f.index;
+            f.bins = bin_triangles(f.view(), f.tris, ax, ay, az, layout);
+        }
+    }
+
+    const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, nb > 1 || union_outputs, surface,
+                  levels ? &*levels : nullptr, fans};
     tbb::enumerable_thread_specific<Workspace> workspaces;
     tbb::enumerable_thread_specific<Partial> partials([nb] { return Partial(nb); });
     std::atomic<std::size_t> done{0};
@@ -433,7 +551,7 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
     GridSummary s;
     s.bodies.resize(nb);
     std::vector<exact::ExactSum> body_volume(nb);
-    exact::ExactSum u_est, u_lo, u_hi;
+    exact::ExactSum union_volume, intersection_volume;
     for (const Partial& p : partials) {
         for (std::size_t b = 0; b < nb; ++b) {
             body_volume[b].merge(p.body_volume[b]);
@@ -442,9 +560,8 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
             s.bodies[b].empty_cells += p.empty[b];
             s.bodies[b].cut_cells += p.cut[b];
         }
-        u_est.merge(p.u_est);
-        u_lo.merge(p.u_lo);
-        u_hi.merge(p.u_hi);
+        union_volume.merge(p.union_volume);
+        intersection_volume.merge(p.intersection_volume);
         s.full_cells += p.u_full;
         s.empty_cells += p.u_empty;
         s.cut_cells += p.u_cut;
@@ -454,12 +571,13 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
         s.bodies[b].volume = body_volume[b].round();
         s.bodies[b].triangles = tris[b].count();
     }
+    s.intersection_volume = std::numeric_limits<double>::quiet_NaN();
+    if (levels) s.crossing_pairs = levels->crossing_pairs;
     if (job.want_union) {
-        s.union_volume = u_est.round();
-        s.union_lower = u_lo.round();
-        s.union_upper = u_hi.round();
+        s.union_volume = union_volume.round();
+        if (!out.intersection_volumes.empty()) s.intersection_volume = intersection_volume.round();
     } else {
-        s.union_volume = s.union_lower = s.union_upper = s.bodies[0].volume;
+        s.union_volume = s.bodies[0].volume;
         s.full_cells = s.bodies[0].full_cells;
         s.empty_cells = s.bodies[0].empty_cells;
         s.cut_cells = s.bodies[0].cut_cells;

@@ -128,29 +128,70 @@ TEST(GridCli, SurfaceHasAreaAndNormalPerCell) {
 
 TEST(GridCli, SeveralBodiesPutTheBodyAxisFirstAndFractions) {
     const fs::path out = scratch("two.npy");
-    const fs::path uni = scratch("union.npy");
+    const fs::path uni = scratch("union.npy"), inter = scratch("intersection.npy");
     const CliRun r = polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " " +
                           corpus("stl-models/tetrahedron.min.ascii.stl") + " --dims 4 5 6 --bounds 0 0 0 1 1 1" +
-                          " --fractions -o '" + out.string() + "' --union '" + uni.string() + "' --json");
+                          " --fractions -o '" + out.string() + "' --union '" + uni.string() + "' --intersection '" +
+                          inter.string() + "' --json");
     ASSERT_EQ(r.code, 0) << r.err;
     const Npy n = read_npy(out);
     EXPECT_NE(n.header.find("'shape': (2, 4, 5, 6)"), std::string::npos) << n.header;
     ASSERT_EQ(n.data.size(), 240u);
     for (std::size_t c = 0; c < 120; ++c) EXPECT_EQ(n.data[c], 1.0);  // the cube fills the grid
-    const Npy u = read_npy(uni);
-    EXPECT_NE(u.header.find("'shape': (3, 4, 5, 6)"), std::string::npos) << u.header;
+    const Npy u = read_npy(uni), x = read_npy(inter);
+    EXPECT_NE(u.header.find("'shape': (4, 5, 6)"), std::string::npos) << u.header;
+    EXPECT_NE(x.header.find("'shape': (4, 5, 6)"), std::string::npos) << x.header;
+    ASSERT_EQ(u.data.size(), 120u);
+    ASSERT_EQ(x.data.size(), 120u);
+    for (std::size_t c = 0; c < 120; ++c) {
+        EXPECT_EQ(u.data[c], 1.0);              // the union: the cube
+        EXPECT_EQ(x.data[c], n.data[120 + c]);  // the intersection: the tetrahedron inside it
+    }
     const json j = json::parse(r.out);
     EXPECT_EQ(j["body_volumes"].size(), 2u);
     EXPECT_NEAR(j["body_volumes"][1].get<double>(), 1.0 / 6, 1e-16);
     EXPECT_NEAR(j["union_volume"].get<double>(), 1.0, 1e-15);
+    EXPECT_EQ(j["intersection_volume"], j["body_volumes"][1]);
+}
+
+// Two cubes of side 2 overlapping in a unit cube, with cell faces off
+// theirs: the union (15) and the intersection (1) exact in every cell,
+// contact cells included, and the union's surface (area 42).
+TEST(GridCli, OverlappingBodiesUnionAndIntersectionPerCell) {
+    const fs::path a = scratch("a.obj"), b = scratch("b.obj");
+    cli_test::write_boxes_obj(a, {{0, 0, 0, 2, 2, 2}});
+    cli_test::write_boxes_obj(b, {{1, 1, 1, 3, 3, 3}});
+    const fs::path uni = scratch("u.npy"), inter = scratch("i.npy"), surf = scratch("s.npy"), vti = scratch("ab.vti");
+    const CliRun r = polyvol("grid '" + a.string() + "' '" + b.string() + "' --dims 4 4 4 --bounds -0.25 -0.25 -0.25 3.25 3.25 3.25 --union '" +
+                             uni.string() + "' --intersection '" + inter.string() + "' --surface '" + surf.string() +
+                             "' -o '" + vti.string() + "' --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["union_volume"], 15.0);
+    EXPECT_EQ(j["intersection_volume"], 1.0);
+    EXPECT_GT(j["contact_cells"].get<int>(), 0);
+    EXPECT_GT(j["crossing_pairs"].get<int>(), 0);
+    // Cells of 0.875: cell (2, 1, 1) = [1.5, 2.375] x [0.625, 1.5]^2 holds A's face x = 2 and
+    // B's faces y = 1, z = 1: A has 0.5 x 0.875^2 of it, B 0.875 x 0.5^2, both 0.5^3.
+    const Npy u = read_npy(uni), x = read_npy(inter), s = read_npy(surf);
+    const std::size_t contact = (2 * 4 + 1) * 4 + 1;
+    EXPECT_NEAR(u.data[contact], 0.5 * 0.875 * 0.875 + 0.875 * 0.25 - 0.125, 1e-15);
+    EXPECT_NEAR(x.data[contact], 0.125, 1e-15);
+    EXPECT_NE(s.header.find("'shape': (3, 4, 4, 4, 4)"), std::string::npos) << s.header;
+    double area = 0;
+    for (std::size_t cell = 0; cell < 64; ++cell) area += s.data[4 * (2 * 64 + cell)];
+    EXPECT_NEAR(area, 42.0, 1e-13);  // 2 x 24, less the 1 x 1 squares of three faces of each inside the other
+    const std::string xml = slurp(vti);
+    for (const char* name : {"union_volume", "intersection_volume", "cell_class", "wetted_area_union"})
+        EXPECT_NE(xml.find(std::string("Name=\"") + name + "\""), std::string::npos) << name;
 }
 
 TEST(GridCli, JsonSummaryHasEveryKey) {
     const CliRun r = polyvol("grid " + corpus("libcgal-demo/sphere.off") + " --cells 16 --json");
     ASSERT_EQ(r.code, 0) << r.err;
     const json j = json::parse(r.out);
-    for (const char* key : {"grid", "bodies", "body_volumes", "union_volume", "union_lower", "union_upper",
-                            "full_cells", "empty_cells", "cut_cells", "contact_cells"})
+    for (const char* key : {"grid", "bodies", "body_volumes", "union_volume", "crossing_pairs", "full_cells",
+                            "empty_cells", "cut_cells", "contact_cells"})
         EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_EQ(j["grid"]["dims"], json::array({16, 16, 16}));
     EXPECT_EQ(j["grid"]["bounds"].size(), 6u);

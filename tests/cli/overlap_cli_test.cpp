@@ -24,26 +24,10 @@ fs::path scratch(const std::string& name) {
     return dir / name;
 }
 
-// An OBJ of axis-aligned boxes {lo, hi}, quads outward; `drop_last` leaves
-// the last face out (an open surface).
 fs::path write_boxes(const std::string& name, std::initializer_list<std::array<double, 6>> boxes,
                      bool drop_last = false) {
     const fs::path p = scratch(name);
-    std::ofstream out(p);
-    int base = 1;
-    std::string faces;
-    for (const auto& b : boxes) {
-        for (int i = 0; i < 8; ++i)
-            out << "v " << (i & 1 ? b[3] : b[0]) << " " << (i >> 1 & 1 ? b[4] : b[1]) << " "
-                << (i >> 2 & 1 ? b[5] : b[2]) << "\n";
-        const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-        for (const auto& f : q)
-            faces += "f " + std::to_string(base + f[0]) + " " + std::to_string(base + f[1]) + " " +
-                     std::to_string(base + f[2]) + " " + std::to_string(base + f[3]) + "\n";
-        base += 8;
-    }
-    if (drop_last) faces.erase(faces.rfind("f "));
-    out << faces;
+    cli_test::write_boxes_obj(p, boxes, drop_last);
     return p;
 }
 

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 
 namespace cli_test {
@@ -39,6 +40,27 @@ inline CliRun run_polyvol(const std::string& args) {
     std::error_code ec;
     std::filesystem::remove(err, ec);
     return r;
+}
+
+// Writes an OBJ of axis-aligned boxes {xlo, ylo, zlo, xhi, yhi, zhi}, quads
+// outward; `drop_last` leaves the last face out (an open surface).
+inline void write_boxes_obj(const std::filesystem::path& p, std::initializer_list<std::array<double, 6>> boxes,
+                            bool drop_last = false) {
+    std::ofstream out(p);
+    int base = 1;
+    std::string faces;
+    for (const auto& b : boxes) {
+        for (int i = 0; i < 8; ++i)
+            out << "v " << (i & 1 ? b[3] : b[0]) << " " << (i >> 1 & 1 ? b[4] : b[1]) << " "
+                << (i >> 2 & 1 ? b[5] : b[2]) << "\n";
+        const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+        for (const auto& f : q)
+            faces += "f " + std::to_string(base + f[0]) + " " + std::to_string(base + f[1]) + " " +
+                     std::to_string(base + f[2]) + " " + std::to_string(base + f[3]) + "\n";
+        base += 8;
+    }
+    if (drop_last) faces.erase(faces.rfind("f "));
+    out << faces;
 }
 
 }  // namespace cli_test

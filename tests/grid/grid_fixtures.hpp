@@ -21,7 +21,7 @@ inline double box_overlap(const std::array<double, 3>& lo, const std::array<doub
 }
 
 struct GridRun {
-    std::vector<double> volumes, moments, lower, upper, estimate;
+    std::vector<double> volumes, moments, union_volumes, intersection, union_area, union_normal;
     std::vector<CellClass> cls;
     GridSummary summary;
 };
@@ -38,14 +38,16 @@ inline GridRun run_grid(const std::vector<const Mesh*>& meshes, const GridAxes& 
         r.moments.assign(3 * views.size() * cells, -1);
         out.first_moments = r.moments;
     }
-    if (with_union) {
-        r.lower.assign(cells, -1);
-        r.upper.assign(cells, -1);
-        r.estimate.assign(cells, -1);
+    if (with_union) {  // also the intersection and the union's surface
+        r.union_volumes.assign(cells, -1);
+        r.intersection.assign(cells, -1);
+        r.union_area.assign(cells, -1);
+        r.union_normal.assign(3 * cells, -1);
         r.cls.assign(cells, CellClass::empty);
-        out.union_lower = r.lower;
-        out.union_upper = r.upper;
-        out.union_estimate = r.estimate;
+        out.union_volumes = r.union_volumes;
+        out.intersection_volumes = r.intersection;
+        out.union_wetted_area = r.union_area;
+        out.union_surface_normal = r.union_normal;
         out.cell_class = r.cls;
     }
     r.summary = grid_volumes(views, g, out);
