@@ -3,6 +3,8 @@
 // SolidTenSpheres: one mesh of ten spheres of n triangles in a row, each
 // overlapping its neighbours: solid_volume (solid:1) against what `polyvol
 // measure` computes without it, analyze_topology + mass_properties (solid:0).
+// SelfCrossings: self_crossings of one sphere or torus of n triangles, the
+// cost of looking for a surface crossing itself.
 #include <benchmark/benchmark.h>
 
 #include "generate.hpp"
@@ -54,6 +56,24 @@ void SolidTenSpheres(benchmark::State& state) {
 BENCHMARK(SolidTenSpheres)
     ->ArgsProduct({{100'000}, {0, 1}})
     ->ArgNames({"tris", "solid"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// range(0): triangles, range(1): 0 sphere, 1 torus
+void SelfCrossings(benchmark::State& state) {
+    const auto n = static_cast<std::size_t>(state.range(0));
+    const polyvol::Mesh m = state.range(1) == 0 ? polyvol::bench::sphere_with_triangles(n)
+                                                : polyvol::bench::torus_with_triangles(n);
+    std::size_t pairs = 0;
+    for (auto _ : state) {
+        pairs = polyvol::self_crossings(m.view()).candidate_pairs;
+        benchmark::DoNotOptimize(pairs);
+    }
+    state.counters["candidate_pairs"] = static_cast<double>(pairs);
+}
+BENCHMARK(SelfCrossings)
+    ->ArgsProduct({{100'000, 1'000'000}, {0, 1}})
+    ->ArgNames({"tris", "torus"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -41,7 +41,7 @@ struct Common {
     double density = 1.0;
     bool stream = false;  // volume --stream: JSON from the streaming path too
     bool volume_only = false;  // volume --volume-only
-    bool solid = false;        // volume --solid
+    bool solid = false;        // volume/measure --solid: the full overlap and self-crossing check
 };
 
 void add_measure_options(CLI::App* cmd, Common& c) {
@@ -84,6 +84,7 @@ int run(Command command, const Common& c) {
     // --stream (the streaming path has no second moments, inertia, edge
     // length or components: README).
     request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid;
+    request.self_check_always = command == Command::check || c.solid;
     request.volume_only = command == Command::volume && c.volume_only;
     request.table_only = command == Command::volume && (!c.json || request.volume_only);
     request.closedness_by_fingerprint = command == Command::volume && !c.json;
@@ -138,12 +139,15 @@ int main(int argc, char** argv) {
     volume->add_flag("--volume-only", volume_opts.volume_only,
                      "Only the volume with its guarantee (and the closedness check), in the table and the JSON: "
                      "the fastest path, e.g. a third less work per triangle for a streamed binary STL");
-    volume->add_flag("--solid", volume_opts.solid,
-                     "Check a binary STL's shells for overlap too (loads it instead of streaming it). Other files "
-                     "are always checked: where shells overlap, the volume is the solid's (winding number >= 1)");
+    const char* solid_help =
+        "The full check: shells overlapping one another (where they do, the volume is the solid's: winding number "
+        ">= 1) in a binary STL too (loaded instead of streamed), and a surface crossing itself within a shell in "
+        "files of any size (by default up to 250000 triangles; it is reported, not resolved)";
+    volume->add_flag("--solid", volume_opts.solid, solid_help);
     auto* measure = app.add_subcommand("measure", "All mass properties (volume, area, edge length, centroid, "
                                                   "second moments, inertia) with their guarantees");
     add_measure_options(measure, measure_opts);
+    measure->add_flag("--solid", measure_opts.solid, solid_help);
     auto* check = app.add_subcommand("check", "Topology report: boundary, non-manifold, misoriented and "
                                               "unbalanced edges, shells and how they nest");
     check->add_option("files", check_opts.files, "Mesh files; - reads stdin")->required();

@@ -168,6 +168,13 @@ bool has_several_parts(const MeshView& view) {
     return false;
 }
 
+std::string self_crossing_sentence(const SelfCrossings& s) {
+    std::string text = "its surface crosses itself within a shell (" + std::to_string(s.pairs) + " crossing triangle pair" +
+                       (s.pairs == 1 ? "" : "s");
+    if (s.example) text += ", e.g. faces " + std::to_string((*s.example)[0]) + " and " + std::to_string((*s.example)[1]);
+    return text + ")";
+}
+
 FileResult process_file(const std::string& path, const Request& request) {
     if (request.stream && request.need_mass && request.measure.method == Method::cone)
         if (auto s = stream_binary_stl(path, request.volume_only)) return std::move(*s);
@@ -221,6 +228,17 @@ FileResult process_file(const std::string& path, const Request& request) {
                 r.overlap_checked = false;
                 r.solid.reset();
             }
+        }
+    }
+    if (closed && (request.self_check_always || view.triangle_count() <= kSelfCheckTriangles)) {
+        r.self = self_crossings(view);
+        if (r.self->status != BooleanStatus::ok) {
+            r.warning += (r.warning.empty() ? "" : "; ") + path + ": not checked for a surface crossing itself: " +
+                         boolean_status_message(r.self->status);
+            r.self.reset();
+        } else if (r.self->pairs > 0 && request.need_mass) {
+            r.warning += (r.warning.empty() ? "" : "; ") + path + ": " + self_crossing_sentence(*r.self) +
+                         ": the volume counts the region it wraps twice (the winding number there), not the solid";
         }
     }
     r.seconds_measure = seconds_since(t0);
@@ -314,6 +332,13 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
             shells.push_back(std::move(sj));
         }
         j["shells"] = std::move(shells);
+    }
+    if (r.loaded) {  // a surface crossing itself within a shell: looked for, and found
+        j["self_crossing_checked"] = r.self.has_value();
+        if (r.self) {
+            j["self_crossing_pairs"] = r.self->pairs;
+            if (r.self->example) j["self_crossing_example"] = {(*r.self->example)[0], (*r.self->example)[1]};
+        }
     }
     if (request.need_mass) {
         j["method"] = std::string(method_name(request.measure.method));
@@ -432,7 +457,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
                "for overlap: --solid checks):\n"
             << streamed_notes;
     if (any_checked)
-        out << "Shells checked for overlap with one another (a shell crossing itself is not checked).\n";
+        out << "Shells checked for overlap with one another; a shell crossing itself looked for in files up to "
+            << kSelfCheckTriangles << " triangles (--solid: in every file).\n";
     out << overlap_notes;
     return out.str();
 }
@@ -455,7 +481,12 @@ std::string measure_report(const FileResult& r, const Request& request) {
     } else {
         out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m) << "]\n";
     }
-    if (r.overlap_checked) out << "  overlap         shells checked against one another (a shell crossing itself is not)\n";
+    if (r.overlap_checked) out << "  overlap         shells checked against one another\n";
+    out << "  self-crossing   "
+        << (!r.self            ? "not looked for (more than " + std::to_string(kSelfCheckTriangles) + " triangles: --solid looks)"
+            : r.self->pairs == 0 ? std::string("none within a shell")
+                                 : self_crossing_sentence(*r.self))
+        << "\n";
     out << "  mass            " << shortest(m.mass) << "\n";
     out << "  surface area    " << shortest(m.area) << "   [relative error <= " << shortest(m.area_relative_error) << "]\n";
     out << "  edge length     " << shortest(m.edge_length) << "   [relative error <= " << shortest(m.edge_length_relative_error) << "]\n";
@@ -527,6 +558,9 @@ std::string check_report(const FileResult& r) {
         out << "; the solid (winding number >= 1) has volume " << shortest(r.solid->volume) << ", the shells add up to "
             << shortest(r.solid->winding_volume) << "\n";
     }
+    if (r.self)
+        out << "  self-crossing   " << (r.self->pairs == 0 ? std::string("none within a shell") : self_crossing_sentence(*r.self))
+            << "\n";
     if (t.cavities || t.inside_out_shells || t.nested_shells)
         out << "  nesting         " << t.cavities << " cavities, " << t.inside_out_shells << " inside-out shells, "
             << t.nested_shells << " shells inside other solids\n";

@@ -41,7 +41,15 @@ struct FileResult {
     // A loaded mesh whose shells were checked for overlap (also when it has one
     // part, which cannot overlap another); false when streamed.
     bool overlap_checked = false;
+    // Where the surface crosses itself within one shell (self_crossings), when
+    // looked for (Request::self_check).
+    std::optional<SelfCrossings> self;
 };
+
+// Files up to this many fan triangles are checked for a surface crossing
+// itself by default: about 0.1 s (docs/benchmarks.md, "SelfCrossings":
+// 0.5 s per million triangles on 2 cores, 3.5x what `measure` costs).
+inline constexpr std::size_t kSelfCheckTriangles = 250'000;
 
 struct Request {
     MeasureOptions measure;
@@ -70,6 +78,9 @@ struct Request {
     // Shells that overlap: the volume is the solid's (winding number >= 1).
     // `volume --solid` loads a binary STL instead of streaming it, to check it too.
     bool check_overlap = true;
+    // A surface crossing itself within one shell: looked for in closed files
+    // up to kSelfCheckTriangles, or in every closed file (`check`, `--solid`).
+    bool self_check_always = false;
 };
 
 // Reads, analyses and measures one file; never throws.

@@ -101,4 +101,23 @@ struct SolidVolume {
 // where they happen to agree the volume counts its self-overlap as winding.
 SolidVolume solid_volume(const MeshView& mesh, bool moments = false);
 
+// Where a mesh's surface crosses itself within one of solid_volume's bodies
+// (the parts the file joins through shared edges when each is closed, else
+// the shells): the pairs of its fan triangles that share no vertex (after
+// welding) and cross along a segment, decided by exact predicates (touching
+// is resolved by moving each pair's later triangle by (ε, ε², ε³): a vertex
+// merely lying on another triangle does not count). Triangles that share a
+// vertex are not examined, so a surface that folds through one of its own
+// vertices is not found. solid_volume does not resolve these crossings:
+// where they exist its volume counts the body's self-overlap as winding.
+struct SelfCrossings {
+    BooleanStatus status = BooleanStatus::ok;  // or invalid_coordinates (nothing examined)
+    std::size_t pairs = 0;            // crossing triangle pairs
+    std::size_t candidate_pairs = 0;  // pairs whose boxes meet and share no vertex
+    // The first crossing pair (lowest fan triangles), as faces in file order.
+    std::optional<std::array<std::size_t, 2>> example;
+};
+// Throws std::invalid_argument for a face index out of range.
+SelfCrossings self_crossings(const MeshView& mesh);
+
 }  // namespace polyvol

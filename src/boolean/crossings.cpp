@@ -124,6 +124,13 @@ void cross_pair(const Operand& A, uint32_t ta, const Operand& B, uint32_t tb, in
     out.cuts.push_back({ta, tb, starts[0] ? ends[0] : ends[1], starts[0] ? ends[1] : ends[0]});
 }
 
+bool shares_vertex(const Operand& op, uint32_t t, uint32_t s) {
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (op.tri[3 * t + i] == op.tri[3 * s + j]) return true;
+    return false;
+}
+
 // A uniform grid over a box: about `target` cells, cubic where the box allows.
 struct CellGrid {
     std::array<double, 6> box{};
@@ -165,9 +172,10 @@ struct CellGrid {
 
 }  // namespace
 
-Crossings find_crossings(const Operand& A, const Operand& B) {
+Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
     Crossings result;
     const bool same = &A == &B;
+    const bool within = same && pairs == Pairs::same_body_apart;
     std::array<double, 6> common{};
     for (int k = 0; k < 3; ++k) {
         common[k] = std::max(A.bounds[k], B.bounds[k]);
@@ -179,7 +187,7 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
     // for body b). Only a triangle in a cell holding some other side's
     // triangles can cross one: near the curves where the surfaces meet.
     const CellGrid grid(common, (A.triangles() + (same ? 0 : B.triangles())) / 2);
-    const bool by_body = same && A.body_shift.size() <= 64;
+    const bool by_body = same && !within && A.body_shift.size() <= 64;
     auto label_a = [&](uint32_t t) { return by_body ? uint64_t{1} << A.body(t) : uint64_t{1}; };
     auto label_b = [&](uint32_t t) { return same ? label_a(t) : uint64_t{2}; };
     std::vector<uint64_t> present(grid.cells(), 0);
@@ -205,7 +213,7 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
                           [&](const auto& range) {
                               for (uint32_t t = range.begin(); t != range.end(); ++t) {
                                   if (!boxes_meet(&op.box[6 * t], common.data())) continue;
-                                  const uint64_t others = same && !by_body ? ~uint64_t{0} : ~label(t);
+                                  const uint64_t others = same && !by_body ? ~uint64_t{0} : ~label(t);  // all: any cell
                                   bool hit = false;
                                   grid.for_cells(&op.box[6 * t], [&](std::size_t c) { hit = hit || (present[c] & others); });
                                   flag[t] = hit;
@@ -232,7 +240,7 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
     // One operand: only cells holding triangles of two or more bodies can
     // hold a pair (most cells hold one body's surface only).
     std::vector<uint8_t> mixed;
-    if (same) {
+    if (same && !within) {
         mixed.assign(grid.cells(), 0);
         for (std::size_t c = 0; c < grid.cells(); ++c)
             for (uint32_t i = start[c] + 1; i < start[c + 1] && !mixed[c]; ++i)
@@ -250,17 +258,19 @@ Crossings find_crossings(const Operand& A, const Operand& B) {
             const double* box = &A.box[6 * ta];
             // Each pair once, in the cell holding the low corner of the two boxes' overlap.
             grid.for_cells(box, [&](std::size_t c) {
-                if (same && !mixed[c]) return;
+                if (same && !within && !mixed[c]) return;
                 for (uint32_t i = start[c]; i < start[c + 1]; ++i) {
                     const uint32_t tb = binned[i];
-                    if (same && (tb <= ta || B.body(tb) == A.body(ta))) continue;  // one operand: other bodies
+                    if (same && tb <= ta) continue;
+                    if (same && (B.body(tb) == A.body(ta)) != within) continue;
+                    if (within && shares_vertex(A, ta, tb)) continue;
                     const double* other = &B.box[6 * tb];
                     if (!boxes_meet(box, other)) continue;
                     if (grid.cell(grid.index(0, std::max(box[0], other[0])), grid.index(1, std::max(box[1], other[1])),
                                   grid.index(2, std::max(box[2], other[2]))) != c)
                         continue;
                     ++local.found.candidate_pairs;
-                    const int shift = B.shift(tb) > A.shift(ta) ? 1 : -1;
+                    const int shift = within || B.shift(tb) > A.shift(ta) ? 1 : -1;
                     cross_pair(A, ta, B, tb, shift, local.found);
                 }
             });

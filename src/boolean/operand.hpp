@@ -72,12 +72,18 @@ struct Crossings {
     std::size_t candidate_pairs = 0;  // triangle pairs whose boxes meet
 };
 
+// Which pairs of one operand's triangles find_crossings looks at.
+enum class Pairs {
+    other_bodies,     // triangles of different bodies
+    same_body_apart,  // triangles of one body sharing no vertex (the later one moved by δ)
+};
+
 // Every crossing between A and B (each body moved by its shift δ): a
 // uniform grid over the common box, each of A's triangles tested against B's
 // triangles in its cells (in parallel). With &a == &b, the crossings between
-// different bodies of one operand, each pair once (t < s; a_hits and b_hits
-// then both index that operand).
-Crossings find_crossings(const Operand& a, const Operand& b);
+// the triangles of one operand that `pairs` names, each pair once (t < s;
+// a_hits and b_hits then both index that operand).
+Crossings find_crossings(const Operand& a, const Operand& b, Pairs pairs = Pairs::other_bodies);
 
 // Winding number at every vertex of `self` of the other operand's bodies
 // other than the vertex's own (with &self == &other: of the other bodies of

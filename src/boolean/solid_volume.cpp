@@ -13,6 +13,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "boolean/bodies.hpp"
 #include "boolean/exact_terms.hpp"
 #include "boolean/operand.hpp"
 #include "boolean/predicates.hpp"
@@ -63,58 +64,6 @@ void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const st
     const auto base = static_cast<uint32_t>(whole.vertex_count());
     whole.positions.insert(whole.positions.end(), g.mesh.positions.begin(), g.mesh.positions.end());
     for (uint32_t t : whole_triangles) whole.add_triangle(base + g.tri[3 * t], base + g.tri[3 * t + 1], base + g.tri[3 * t + 2]);
-}
-
-// Components of the polygons joined through shared vertex indices (as the
-// file gives them), if every one is balanced on welded positions; else the
-// shells joined through welded positions.
-topology::ShellLabels bodies_of(const topology::WeldedMesh& wm) {
-    struct Use {
-        uint64_t key;  // (min, max) vertex index
-        uint32_t poly;
-    };
-    std::vector<Use> uses;
-    wm.for_each_polygon([&](uint32_t poly, std::span<const uint32_t> c) {
-        for (std::size_t i = 0; i < c.size(); ++i) {
-            const uint32_t u = c[i], v = c[(i + 1) % c.size()];
-            uses.push_back({(uint64_t{std::min(u, v)} << 32) | std::max(u, v), poly});
-        }
-    });
-    std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.key < y.key; });
-    topology::UnionFind parts(wm.polygons);
-    for (std::size_t i = 1; i < uses.size(); ++i)
-        if (uses[i].key == uses[i - 1].key) parts.unite(uses[i].poly, uses[i - 1].poly);
-    topology::ShellLabels labels = topology::label_shells(parts);
-    // Balanced per part: every welded edge used as often in each direction.
-    struct Directed {
-        uint32_t part, lo, hi;
-        int dir;
-    };
-    std::vector<Directed> edges;
-    wm.for_each_polygon([&](uint32_t poly, std::span<const uint32_t> c) {
-        for (std::size_t i = 0; i < c.size(); ++i) {
-            const uint32_t u = wm.id[c[i]], v = wm.id[c[(i + 1) % c.size()]];
-            if (u != v) edges.push_back({labels.of_polygon[poly], std::min(u, v), std::max(u, v), u < v ? 1 : -1});
-        }
-    });
-    std::sort(edges.begin(), edges.end(), [](const Directed& x, const Directed& y) {
-        return std::tie(x.part, x.lo, x.hi) < std::tie(y.part, y.lo, y.hi);
-    });
-    for (std::size_t i = 0; i < edges.size();) {
-        std::size_t j = i;
-        int balance = 0;
-        for (; j < edges.size() && edges[j].part == edges[i].part && edges[j].lo == edges[i].lo &&
-               edges[j].hi == edges[i].hi;
-             ++j)
-            balance += edges[j].dir;
-        if (balance != 0) {
-            topology::UnionFind shells(wm.polygons);
-            topology::build_edge_table(wm, &shells);
-            return topology::label_shells(shells);
-        }
-        i = j;
-    }
-    return labels;
 }
 
 }  // namespace
