@@ -270,8 +270,9 @@ LoadedChain read_qhull(Lines& in) {
 }  // namespace
 
 LoadedChain read_chain_memory(std::span<const std::byte> data, const std::string& name) {
-    if (is_gzip(data)) {
-        const std::vector<std::byte> plain = io::gunzip(data, name);
+    if (is_gzip(data)) {  // one level, as for meshes' limit
+        const std::vector<std::byte> plain = io::gunzip(data, name, io::decompression_limit(data.size()));
+        if (is_gzip(plain)) throw ReadError::whole_file(name, "gzip nested in gzip: not read");
         LoadedChain r = read_chain_memory(plain, name);
         r.notes.push_back("gzip-compressed");
         return r;
@@ -293,7 +294,8 @@ LoadedChain read_chain_file(const std::string& path) {
 
 Polygons read_polygons_memory(std::span<const std::byte> data, const std::string& name) {
     if (is_gzip(data)) {
-        const std::vector<std::byte> plain = io::gunzip(data, name);
+        const std::vector<std::byte> plain = io::gunzip(data, name, io::decompression_limit(data.size()));
+        if (is_gzip(plain)) throw ReadError::whole_file(name, "gzip nested in gzip: not read");
         return read_polygons_memory(plain, name);
     }
     Lines in(io::text::as_text(data), name);

@@ -201,7 +201,9 @@ LoadedMesh with_note_first(LoadedMesh m, std::string note) {
     return m;
 }
 
-LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth) {
+// limit: what gzip may still expand to, from the size of the file as read
+// (nested gzip shares it).
+LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth, uint64_t limit) {
     if (data.empty()) {
         if (hint == Format::obj) {
             LoadedMesh m;
@@ -213,8 +215,8 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth) {
     }
     if (io::is_gzip(data)) {
         if (depth >= 3) throw ReadError::whole_file(name, "gzip nested too deeply");
-        const std::vector<std::byte> inner = io::gunzip(data, name);
-        LoadedMesh m = detect(inner, name, hint, depth + 1);
+        const std::vector<std::byte> inner = io::gunzip(data, name, limit);
+        LoadedMesh m = detect(inner, name, hint, depth + 1, limit - std::min<uint64_t>(limit, inner.size()));
         m.gzip = true;
         return with_note_first(std::move(m), "gzip-compressed");
     }
@@ -228,10 +230,10 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth) {
         if (starts_with(data, "\xfe\xff") || starts_with(data, "\xff\xfe")) {
             const bool be = starts_with(data, "\xfe\xff");
             const std::vector<std::byte> utf8 = utf16_to_utf8(data, be);
-            return with_note_first(detect(utf8, name, hint, depth + 1), be ? "utf16-be-bom" : "utf16-le-bom");
+            return with_note_first(detect(utf8, name, hint, depth + 1, limit), be ? "utf16-be-bom" : "utf16-le-bom");
         }
         if (starts_with(data, "\xef\xbb\xbf"))
-            return with_note_first(detect(data.subspan(3), name, hint, depth + 1), "utf8-bom");
+            return with_note_first(detect(data.subspan(3), name, hint, depth + 1, limit), "utf8-bom");
     }
     const std::string_view s = text::as_text(data);
     if (io::is_ply(data)) return io::read_ply(data, name);
@@ -266,7 +268,7 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth) {
 
 LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& name, Format hint) {
     if (hint == Format::unknown) hint = format_from_extension(name);
-    LoadedMesh m = detect(data, name, hint, 0);
+    LoadedMesh m = detect(data, name, hint, 0, io::decompression_limit(data.size()));
     if (m.format != Format::stl) m.vertices_in_file = m.mesh.vertex_count();  // the STL reader counts its own
     return m;
 }

@@ -3,7 +3,8 @@
 // The output grows with the data actually produced (never from the size a
 // gzip trailer claims). Concatenated gzip members are read one after the
 // other, as gunzip does; bytes after the last member that are not another
-// member are ignored.
+// member are ignored. The output stops at a limit (a gzip bomb: a few KB
+// that expand to gigabytes) with a ReadError, never at the end of memory.
 #include <zlib.h>
 
 #include <algorithm>
@@ -30,7 +31,15 @@ struct Inflater {
 
 }  // namespace
 
-std::vector<std::byte> gunzip(Bytes data, const std::string& name) {
+uint64_t decompression_limit(std::size_t compressed_bytes) {
+    constexpr uint64_t floor = uint64_t{16} << 20;
+    constexpr uint64_t ceiling = uint64_t{4} << 30;
+    const uint64_t n = compressed_bytes;
+    const uint64_t scaled = n > ceiling / 64 ? ceiling : 64 * n;
+    return std::min(ceiling, std::max(scaled, floor));
+}
+
+std::vector<std::byte> gunzip(Bytes data, const std::string& name, uint64_t max_bytes) {
     Inflater inf;
     if (!inf.ok) throw ReadError::whole_file(name, "cannot initialise zlib");
     z_stream& zs = inf.zs;
@@ -48,7 +57,15 @@ std::vector<std::byte> gunzip(Bytes data, const std::string& name) {
             zs.avail_in = static_cast<uInt>(n);
             in_pos += n;
         }
-        if (out.size() - produced < chunk) out.resize(std::max(out.size() * 2, produced + chunk));
+        if (out.size() - produced < chunk) {
+            if (produced >= max_bytes)
+                throw ReadError::at_byte(name, in_pos - zs.avail_in,
+                                         "gzip data expands beyond the decompression limit of " +
+                                             std::to_string(max_bytes) + " bytes (" + std::to_string(data.size()) +
+                                             " compressed): refusing to decompress it (a gzip bomb?)");
+            const uint64_t room = std::max<uint64_t>(max_bytes - produced, 1);
+            out.resize(produced + std::min<uint64_t>(std::max(out.size(), chunk), room));
+        }
         zs.next_out = reinterpret_cast<Bytef*>(out.data() + produced);
         zs.avail_out = static_cast<uInt>(std::min<std::size_t>(out.size() - produced, UINT_MAX));
         const uInt before = zs.avail_out;

@@ -512,22 +512,25 @@ private:
         if (!chunks::use_parallel(options_, size - pos) || e.count < 2) return false;
         const bool be = encoding_ == Encoding::binary_be;
         const std::byte* base = data_.data();
-        // The layout of row 0, checked as the serial loop checks it.
+        // The layout of row 0, checked as the serial loop checks it; row_bytes
+        // never exceeds the bytes left, so no difference below wraps around.
+        const std::size_t left = size - pos;
         std::vector<std::size_t> lens;  // per list property
         std::size_t row_bytes = 0;
         std::size_t face_size = 0;
         for (const Property& p : e.props) {
             if (!p.is_list) {
                 row_bytes += type_size(p.type);
+                if (row_bytes > left) return false;
                 continue;
             }
             const std::size_t cn = type_size(p.count_type), n = type_size(p.type);
-            if (size - pos - row_bytes < cn) return false;
+            if (left - row_bytes < cn) return false;
             const double cd = load(base + pos + row_bytes, p.count_type, be);
             if (!(cd >= 0) || cd != std::floor(cd) || cd > 4294967295.0) return false;
             const auto k = static_cast<std::size_t>(cd);
             row_bytes += cn;
-            if (k > (size - pos - row_bytes) / n) return false;
+            if (k > (left - row_bytes) / n) return false;
             row_bytes += k * n;
             lens.push_back(k);
             if (p.role == Role::indices) face_size = k;

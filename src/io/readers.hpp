@@ -38,7 +38,14 @@ bool is_ply(Bytes head);
 // (head.size() >= 84).
 uint64_t stl_triangle_count(Bytes head);
 
-// zlib: the decompressed bytes of a gzip stream (throws ReadError on corrupt data).
-std::vector<std::byte> gunzip(Bytes data, const std::string& name);
+// How many bytes a compressed input of `compressed_bytes` may expand to, in
+// all (gzip members, nested gzip, zip entries): min(4 GiB, max(64 ×
+// compressed_bytes, 16 MiB)). Meshes compress 2–20×; a bomb expands 1000×
+// per level.
+uint64_t decompression_limit(std::size_t compressed_bytes);
+
+// zlib: the decompressed bytes of a gzip stream (every member). Throws
+// ReadError on corrupt data, and before producing more than max_bytes.
+std::vector<std::byte> gunzip(Bytes data, const std::string& name, uint64_t max_bytes);
 
 }  // namespace polyvol::io

@@ -260,13 +260,7 @@ struct ZipArchive::Impl {
     }
 };
 
-uint64_t ZipArchive::default_limit(std::size_t archive_bytes) {
-    constexpr uint64_t floor = uint64_t{16} << 20;
-    constexpr uint64_t ceiling = uint64_t{4} << 30;
-    const uint64_t n = archive_bytes;
-    const uint64_t scaled = n > ceiling / 64 ? ceiling : 64 * n;
-    return std::min(ceiling, std::max(scaled, floor));
-}
+uint64_t ZipArchive::default_limit(std::size_t archive_bytes) { return decompression_limit(archive_bytes); }
 
 ZipArchive::ZipArchive(Bytes data, std::string name, uint64_t max_total_bytes)
     : impl_(std::make_unique<Impl>()),

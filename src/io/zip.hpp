@@ -33,7 +33,7 @@ public:
     ZipArchive(const ZipArchive&) = delete;
     ZipArchive& operator=(const ZipArchive&) = delete;
 
-    // min(4 GiB, max(64 * archive_bytes, 16 MiB)).
+    // decompression_limit(archive_bytes) (readers.hpp).
     static uint64_t default_limit(std::size_t archive_bytes);
     uint64_t max_total_bytes() const { return limit_; }
 

@@ -5,6 +5,9 @@
 #include <chrono>
 #include <string>
 
+#include <zlib.h>
+
+#include "io/readers.hpp"
 #include "io_helpers.hpp"
 
 namespace {
@@ -307,6 +310,39 @@ TEST(Gzip, CorruptAndTruncatedStreams) {
     bad_block[10] = '\x07';  // reserved block type
     e = read_error(bad_block, "blk.obj.gz");
     expect_what(e, "blk.obj.gz: byte ", "corrupt gzip data");
+}
+
+// gzip with zlib's deflate (level 9): zeros compress about 1000 to 1.
+std::string gzip_deflated(const std::string& data) {
+    z_stream zs{};
+    EXPECT_EQ(deflateInit2(&zs, 9, Z_DEFLATED, 15 + 16, 9, Z_DEFAULT_STRATEGY), Z_OK);
+    std::string out(deflateBound(&zs, data.size()), '\0');
+    zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+    zs.avail_in = static_cast<uInt>(data.size());
+    zs.next_out = reinterpret_cast<Bytef*>(out.data());
+    zs.avail_out = static_cast<uInt>(out.size());
+    EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
+    out.resize(zs.total_out);
+    deflateEnd(&zs);
+    return out;
+}
+
+// A gzip bomb: 64 MiB of zeros after an OBJ line is about 64 KB of gzip,
+// above the limit of 16 MiB for small files (readers.hpp); gzip in gzip
+// shares the one limit. Both refused before the memory is spent.
+TEST(Gzip, ExpansionBeyondTheLimitIsRefused) {
+    const std::string bomb = gzip_deflated("v 0 0 0\n" + std::string(std::size_t{64} << 20, ' '));
+    ASSERT_LT(bomb.size(), std::size_t{1} << 20);
+    ReadError e = read_error(bomb, "bomb.obj.gz");
+    expect_what(e, "bomb.obj.gz: byte ", "gzip data expands beyond the decompression limit of 16777216 bytes");
+    const std::string nested = gzip_deflated(bomb);
+    e = read_error(nested, "nested.obj.gz");
+    expect_what(e, "nested.obj.gz: byte ", "beyond the decompression limit");
+    // A file of ordinary ratio reads.
+    const std::string obj = write_obj(octahedron());
+    EXPECT_EQ(read(gzip_deflated(obj), "o.obj.gz").mesh.face_count(), 8u);
+    EXPECT_EQ(polyvol::io::decompression_limit(1000), std::uint64_t{16} << 20);
+    EXPECT_EQ(polyvol::io::decompression_limit(std::size_t{1} << 30), std::uint64_t{4} << 30);
 }
 
 TEST(ReadFile, MissingFileAndDirectory) {

@@ -746,6 +746,32 @@ TEST(ParallelBinaryPly, SameAsSerial) {
     }
 }
 
+// A first row whose list uses up every byte left, then a plain property and
+// another list: the layout check of row 0 once subtracted past zero there and
+// read the second list's count beyond the end of the buffer (issue #23).
+// Parallel and serial now give the same error, at the same byte.
+TEST(ParallelBinaryPly, ARowLongerThanTheFileIsTruncation) {
+    for (bool be : {false, true}) {
+        std::string s = "ply\nformat ";
+        s += be ? "binary_big_endian" : "binary_little_endian";
+        s += " 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 2\nproperty list uchar int vertex_indices\nproperty double w\n"
+             "property list uchar int extra\nend_header\n";
+        for (int v = 0; v < 9; ++v) put_f32(s, static_cast<float>(v), be);
+        s += static_cast<char>(60);  // 60 indices: 240 bytes, all that follows
+        for (uint32_t j = 0; j < 60; ++j) put_u32(s, j % 3, be);
+        s = std::string(s.begin(), s.end());  // no spare capacity: a read past the end is one for ASan
+        const Outcome serial = read_with(s, "long.ply", kSerial);
+        ASSERT_FALSE(serial.ok);
+        EXPECT_NE(serial.what.find("truncated PLY body"), std::string::npos) << serial.what;
+        for (std::size_t size : {std::size_t{16}, std::size_t{4096}}) {
+            const Outcome par = read_with(s, "long.ply", chunked(size));
+            EXPECT_FALSE(par.ok);
+            EXPECT_EQ(par.what, serial.what);
+        }
+    }
+}
+
 TEST(ParallelBinaryPly, ErrorsAtTheSameByte) {
     const std::string s = big_binary_ply(100000, 3, false);
     const std::size_t body = s.find("end_header\n") + 11;
