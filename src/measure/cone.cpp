@@ -312,6 +312,15 @@ POLYVOL_INLINE void block_terms(const Block& b, Terms<N>& t) {
 // baseline (two_prod by Dekker's splitting, SSE2).
 #if defined(__x86_64__) && defined(__GNUC__)
 #define POLYVOL_HAVE_FMA_CLONE 1
+// AVX-512 functions: GCC widens their loops to 512 bits only when asked
+// (prefer-vector-width=512); clang has no such target feature, and its
+// min_vector_width(512) attribute says the same.
+#if defined(__clang__)
+#define POLYVOL_AVX512_FEATURES(extra) __attribute__((target("avx512f,avx512vl,avx512dq,avx2" extra), min_vector_width(512)))
+#else
+#define POLYVOL_AVX512_FEATURES(extra) \
+    __attribute__((target("avx512f,avx512vl,avx512dq,avx2" extra ",prefer-vector-width=512")))
+#endif
 __attribute__((target("avx2,fma"))) void block_dd10_fma(const Block& b, Terms<kSumCount>& t) {
     block_terms<true, true, kSumCount>(b, t);
 }
@@ -324,7 +333,7 @@ __attribute__((target("avx2,fma"))) void block_fast10_fma(const Block& b, Terms<
 // The double-double kernels once more for AVX-512 (8 triangles per
 // instruction). Every operation is elementwise and rounded on its own
 // (-ffp-contract=off), so the terms are the same bits on every target.
-#define POLYVOL_AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512")))
+#define POLYVOL_AVX512 POLYVOL_AVX512_FEATURES(",fma")
 POLYVOL_AVX512 void block_dd4_avx512(const Block& b, Terms<kSxx>& t) { block_terms<true, true, kSxx>(b, t); }
 POLYVOL_AVX512 void block_dd10_avx512(const Block& b, Terms<kSumCount>& t) { block_terms<true, true, kSumCount>(b, t); }
 #undef POLYVOL_AVX512
@@ -794,7 +803,7 @@ double origin_magnitude(double M, std::size_t n) { return (M * M) * (M * (6.0 * 
 // range check's slices below); on a soup, where each position is read once
 // and memory bounds the pass, about the same time.
 #define POLYVOL_AVX512_INLINE \
-    __attribute__((always_inline, target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) inline
+    __attribute__((always_inline)) POLYVOL_AVX512_FEATURES(",fma") inline
 
 // The permutations below are the _mm512_mask_ forms with every lane
 // selected: the same instructions, without the plain forms' undefined
@@ -883,7 +892,7 @@ POLYVOL_AVX512_INLINE void volume_terms8(const V8 (&a)[3], const V8 (&bb)[3], co
 // references, each step was a load and a store (a 1M-triangle soup, every
 // corner its own vertex: 3.1 ms against the Block's 2.6; copied: 2.4).
 template <bool kTranslate, bool kCheck>
-__attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) inline void
+POLYVOL_AVX512_FEATURES(",fma") inline void
 volume_block_in_registers(const double* pos, const uint32_t* t, VolumeSums& out, U8& hi_out, U8& lo_out) {
     V8 H[kVolPerLane], L[kVolPerLane], P[kVolPerLane] = {};
     U8 hi = hi_out, lo = lo_out;
@@ -1023,7 +1032,7 @@ POLYVOL_INLINE void volume_faces(const MeshView& mesh, std::size_t f0, std::size
 }
 
 #if POLYVOL_HAVE_FMA_CLONE
-#define POLYVOL_AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512")))
+#define POLYVOL_AVX512 POLYVOL_AVX512_FEATURES(",fma")
 template <bool kTranslate, RangeCheck kCheck>
 POLYVOL_AVX512 void volume_faces_avx512(const MeshView& mesh, std::size_t f0, std::size_t f1, VolumeAccumulator& acc) {
     volume_faces<true, 2, kTranslate, kCheck>(mesh, f0, f1, acc);
@@ -1108,7 +1117,7 @@ ConeSums volume_sums(const VolumeAccumulator& acc, VolumeForm form, double M) {
 }
 
 #if POLYVOL_HAVE_FMA_CLONE
-__attribute__((target("avx512f,avx512vl,avx512dq,avx2,prefer-vector-width=512"))) void extremes_avx512(
+POLYVOL_AVX512_FEATURES("") void extremes_avx512(
     const double* x, std::size_t n, Extremes& e) {
     extremes_of(x, n, e);
 }

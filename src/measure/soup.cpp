@@ -82,6 +82,7 @@
 #include "measure/soup_testing.hpp"
 
 #if defined(__x86_64__) && defined(__GNUC__)
+#include <cpuid.h>
 #include <immintrin.h>
 #define POLYVOL_SOUP_X86 1
 #else
@@ -345,9 +346,13 @@ int isa_level() {
         __builtin_cpu_init();
         if (!(__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("aes")))
             return 0;
+        // IFMA and VAES from CPUID leaf 7 (EBX bit 21, ECX bit 9): clang's
+        // __builtin_cpu_supports does not know "vaes".
+        unsigned a = 0, b = 0, c = 0, d = 0;
+        const bool leaf7 = __get_cpuid_count(7, 0, &a, &b, &c, &d) != 0;
+        const bool ifma = leaf7 && (b >> 21 & 1) != 0, vaes = leaf7 && (c >> 9 & 1) != 0;
         if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
-            __builtin_cpu_supports("avx512ifma") && __builtin_cpu_supports("vaes"))
+            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") && ifma && vaes)
             return 2;
         return 1;
     }();
@@ -498,7 +503,9 @@ __attribute__((target("avx2,aes"))) void fingerprint_aesni(const std::byte* base
 // GCC 12's AVX-512 intrinsics pass an undefined vector as the unused
 // merge operand, which -Wmaybe-uninitialized reports falsely.
 #pragma GCC diagnostic push
+#if !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #pragma GCC diagnostic ignored "-Wuninitialized"
 
 // ---- AVX-512 + IFMA + VAES: the whole of pass 1 for a group in one kernel ----
