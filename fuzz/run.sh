@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Runs every fuzz target for SECONDS each (default 60), two at a time, from
+# its seeds (fuzz/seeds/<target>) and the regressions (tests/data/regressions),
+# with its dictionary; new inputs go to BUILD/fuzz-corpus/<target>. A crash,
+# leak, hang (-timeout=1 s) or allocation over 2 GB stops that target and
+# fails the run; its input is left in BUILD/fuzz-artifacts/. Prints one line
+# per target: executions, coverage, seconds. With RUNS set, a target also
+# stops after that many executions.
+#   [RUNS=N] fuzz/run.sh [BUILD=build-fuzz] [SECONDS=60] [TARGET...]
+set -uo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build-fuzz}
+seconds=${2:-60}
+shift $(( $# > 2 ? 2 : $# ))
+targets=("$@")
+RUNS=${RUNS:-}
+[ ${#targets[@]} -eq 0 ] && targets=(stl obj off ply 3mf amf gzip chain qhull polygons pipeline grid)
+mkdir -p "$build/fuzz-artifacts" "$build/fuzz-logs"
+
+dict_of() {
+  case $1 in
+    stl) echo fuzz/dict/stl.dict ;; obj) echo fuzz/dict/obj.dict ;; off) echo fuzz/dict/off.dict ;;
+    ply) echo fuzz/dict/ply.dict ;; 3mf|amf) echo fuzz/dict/xml.dict ;; chain|qhull|polygons) echo fuzz/dict/chain.dict ;;
+    *) echo "" ;;
+  esac
+}
+
+run_one() {
+  local t=$1 dict
+  dict=$(dict_of "$t")
+  mkdir -p "$build/fuzz-corpus/$t"
+  local start=$SECONDS
+  "$build/fuzz/fuzz_$t" -max_total_time="$seconds" ${RUNS:+-runs=$RUNS} -timeout=1 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
+    -print_final_stats=1 -artifact_prefix="$build/fuzz-artifacts/$t-" ${dict:+-dict=$dict} \
+    "$build/fuzz-corpus/$t" "fuzz/seeds/$t" tests/data/regressions >"$build/fuzz-logs/$t.log" 2>&1
+  local rc=$?
+  local runs cov
+  runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$build/fuzz-logs/$t.log" | grep -o '[0-9]*$')
+  cov=$(grep -o 'cov: [0-9]*' "$build/fuzz-logs/$t.log" | tail -1 | grep -o '[0-9]*$')
+  printf '%-9s %s  executions %10s  coverage %6s  %ss\n' "$t" "$([ $rc = 0 ] && echo ok || echo FAILED)" \
+    "${runs:-?}" "${cov:-?}" "$((SECONDS - start))"
+  return $rc
+}
+export -f run_one dict_of
+export build seconds RUNS
+printf '%s\n' "${targets[@]}" | xargs -P 2 -I{} bash -c 'run_one {}'
+status=$?
+if [ $status -ne 0 ]; then
+  echo "fuzz: a target failed; its log is in $build/fuzz-logs, its input in $build/fuzz-artifacts"
+  exit 1
+fi
