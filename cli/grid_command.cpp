@@ -30,6 +30,7 @@
 #include "polyvol/grid.hpp"
 #include "polyvol/grid_io.hpp"
 #include "polyvol/io.hpp"
+#include "memory.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/topology.hpp"
 #include "read_input.hpp"
@@ -210,6 +211,9 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
                     "with several: FILE.npy, shape (..., 4): area, nx, ny, nz (and, with a .vti/.vtr output, the "
                     "arrays wetted_area and surface_normal)");
     cmd->add_option("--png", a.png, "Picture of one slice of the volume fractions (viridis)");
+    cmd->add_option("--max-memory", a.max_memory,
+                    "Refuse a grid whose arrays would need more than SIZE (e.g. 8G, 512M; default: three quarters "
+                    "of physical memory)");
     cmd->add_option("--slice", a.slice, "The slice for --png: x=VALUE, y=VALUE or z=VALUE (default: middle z)");
     return cmd;
 }
@@ -298,6 +302,27 @@ int run_grid_command(const GridArgs& a) {
     const std::size_t cells = g.cell_count();
     const std::size_t nb = views.size();
     if (cells > (std::size_t{1} << 34)) return usage_error("too many cells (" + std::to_string(cells) + ")");
+    {
+        // The arrays below, per cell: the bodies' volumes, centroids (moments
+        // and the written copy), surfaces (the sums and the written copy), the
+        // union, its class and the .vti copy of it, the intersection.
+        const std::optional<uint64_t> limit =
+            a.max_memory.empty() ? std::optional<uint64_t>(default_memory_limit()) : parse_bytes(a.max_memory);
+        if (!limit) return usage_error("--max-memory takes a size such as 8G or 512M, not '" + a.max_memory + "'");
+        const double surfaces = static_cast<double>(nb > 1 ? nb + 1 : 1);
+        double per_cell = 8.0 * static_cast<double>(nb);
+        if (!a.centroids.empty()) per_cell += 48.0 * static_cast<double>(nb);
+        if (!a.surface.empty()) per_cell += 64.0 * surfaces;
+        if (nb > 1) per_cell += 8 + 1 + 8 + (a.intersection_out.empty() ? 0 : 8);
+        const double need = per_cell * static_cast<double>(cells);
+        if (need > static_cast<double>(*limit))
+            return usage_error("the grid of " + std::to_string(cells) + " cells needs about " + bytes_text(need) +
+                               " for its arrays, more than " +
+                               (a.max_memory.empty() ? "three quarters of this machine's memory (" +
+                                                           bytes_text(static_cast<double>(*limit)) + ")"
+                                                     : "--max-memory " + bytes_text(static_cast<double>(*limit))) +
+                               ": use fewer cells, or raise --max-memory");
+    }
 
     // Compute.
     std::vector<double> volumes(nb * cells), moments, union_volumes, intersection_volumes;

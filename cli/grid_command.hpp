@@ -25,13 +25,15 @@ struct GridArgs {
     std::string surface;  // --surface FILE.npy: wetted area and area-weighted normal per cell
     std::string png;
     std::string slice;
+    std::string max_memory;  // --max-memory SIZE (default: three quarters of physical memory)
 };
 
 // Registers the subcommand on app; its options fill args.
 CLI::App* add_grid_command(CLI::App& app, GridArgs& args);
 
-// Runs it; returns the exit code (0 ok, 1 usage, 2 unreadable mesh, 3 open
-// mesh or nothing to grid).
+// Runs it; returns the exit code (0 ok, 1 usage — a grid larger than
+// --max-memory included —, 2 unreadable mesh, 3 open mesh, bodies whose
+// union is undefined, or nothing to grid).
 int run_grid_command(const GridArgs& args);
 
 }  // namespace polyvol::cli

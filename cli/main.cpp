@@ -178,8 +178,12 @@ int main(int argc, char** argv) {
         if (*volume) return run(Command::volume, volume_opts);
         if (*measure) return run(Command::measure, measure_opts);
         return run(Command::check, check_opts);
+    } catch (const std::bad_alloc&) {
+        std::cerr << "polyvol: out of memory: the input or the request needs more memory than this machine "
+                     "gives (a smaller grid, fewer files at once?)\n";
+        return 4;
     } catch (const std::exception& e) {
-        std::cerr << "polyvol: internal error: " << e.what() << "\n";
+        std::cerr << "polyvol: internal error (a bug: please report it): " << e.what() << "\n";
         return 4;
     }
 }

@@ -291,4 +291,27 @@ TEST(GridCli, CentroidsOfACube) {
     EXPECT_EQ(n.data[23], 0.75);
 }
 
+// A grid whose arrays exceed the memory limit is refused before anything is
+// allocated, with the estimate (issue #21: it ended in std::bad_alloc, exit 4).
+TEST(GridCli, TooLargeForMemoryIsRefusedWithTheEstimate) {
+    const std::string cube = corpus("stl-models/unitCube.ascii.stl");
+    // 8e9 cells: 59.6 GiB, beyond the default limit on machines of up to 79 GiB.
+    const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+    if (memory > 0 && memory < 0x1p36) {
+        const CliRun huge = polyvol("grid " + cube + " --dims 2000 2000 2000");
+        EXPECT_EQ(huge.code, 1) << huge.err;
+        EXPECT_NE(huge.err.find("needs about 59.6 GiB for its arrays, more than three quarters of this machine"),
+                  std::string::npos)
+            << huge.err;
+    }
+    const CliRun capped = polyvol("grid " + cube + " --dims 64 64 64 --max-memory 1M");  // 2 MiB
+    EXPECT_EQ(capped.code, 1) << capped.err;
+    EXPECT_NE(capped.err.find("needs about 2 MiB for its arrays, more than --max-memory 1 MiB"), std::string::npos)
+        << capped.err;
+    EXPECT_EQ(polyvol("grid " + cube + " --dims 64 64 64 --max-memory 3M").code, 0);
+    const CliRun bad = polyvol("grid " + cube + " --max-memory lots");
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.err.find("--max-memory takes a size such as 8G or 512M, not 'lots'"), std::string::npos) << bad.err;
+}
+
 }  // namespace
