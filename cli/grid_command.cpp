@@ -24,6 +24,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -109,7 +110,7 @@ void write_slice_png(const std::string& path, const GridAxes& g, std::span<const
 }
 
 nlohmann::json summary_json(const std::vector<std::string>& files, const std::vector<double>& mesh_volumes,
-                            const GridAxes& g, const GridSummary& s, double seconds) {
+                            const GridAxes& g, const GridSummary& s, double seconds, const std::string& union_problem) {
     nlohmann::json j;
     nlohmann::json grid{{"dims", {g.nx(), g.ny(), g.nz()}}, {"bounds", g.bounds()}, {"cells", g.cell_count()},
                         {"uniform", g.uniform()}};
@@ -133,7 +134,8 @@ nlohmann::json summary_json(const std::vector<std::string>& files, const std::ve
     }
     j["bodies"] = bodies;
     j["body_volumes"] = volumes;
-    j["union_volume"] = s.union_volume;
+    j["union_volume"] = std::isnan(s.union_volume) ? nlohmann::json(nullptr) : nlohmann::json(s.union_volume);
+    if (!union_problem.empty()) j["union_error"] = union_problem;
     if (!std::isnan(s.intersection_volume)) j["intersection_volume"] = s.intersection_volume;
     j["crossing_pairs"] = s.crossing_pairs;
     j["full_cells"] = s.full_cells;
@@ -145,7 +147,7 @@ nlohmann::json summary_json(const std::vector<std::string>& files, const std::ve
 }
 
 std::string summary_text(const std::vector<std::string>& files, const std::vector<double>& mesh_volumes,
-                         const GridAxes& g, const GridSummary& s) {
+                         const GridAxes& g, const GridSummary& s, const std::string& union_problem) {
     std::ostringstream out;
     const auto bb = g.bounds();
     out << "grid " << g.nx() << " x " << g.ny() << " x " << g.nz() << " cells over [" << shortest(bb[0]) << ", "
@@ -162,7 +164,9 @@ std::string summary_text(const std::vector<std::string>& files, const std::vecto
             << shortest(body.volume) << " (mesh " << shortest(mesh_volumes[b]) << "); cells: " << body.full_cells
             << " full, " << body.cut_cells << " cut, " << body.empty_cells << " empty\n";
     }
-    if (s.bodies.size() > 1) {
+    if (s.bodies.size() > 1 && !union_problem.empty()) {
+        out << "union: not computed (" << union_problem << ")\n";
+    } else if (s.bodies.size() > 1) {
         out << "union: " << shortest(s.union_volume);
         if (!std::isnan(s.intersection_volume)) out << "; intersection: " << shortest(s.intersection_volume);
         out << " (exact in every cell; " << s.crossing_pairs << " crossing triangle pairs, " << s.contact_cells
@@ -345,8 +349,11 @@ int run_grid_command(const GridArgs& a) {
             out.union_surface_normal = std::span<double>(normals).subspan(3 * nb * cells);
         }
     }
-    const bool want_union = nb > 1 && (!a.union_out.empty() || !a.png.empty() || out_ext == ".vti" || out_ext == ".vtr");
-    if (want_union || !a.union_out.empty()) {
+    // Several bodies: the union always (the summary gives it); an output
+    // that needs it fails without it, the summary alone does not.
+    const bool union_needed = nb > 1 && (!a.union_out.empty() || !a.intersection_out.empty() || !a.png.empty() ||
+                                         out_ext == ".vti" || out_ext == ".vtr" || !a.surface.empty());
+    if (nb > 1 || !a.union_out.empty()) {
         union_volumes.resize(cells);
         cls.resize(cells);
         out.union_volumes = union_volumes;
@@ -370,14 +377,28 @@ int run_grid_command(const GridArgs& a) {
         std::fflush(stderr);
     };
     GridSummary summary;
+    std::string union_problem;  // why the union was not computed
     try {
-        summary = grid_volumes(views, g, out, options);
+        try {
+            summary = grid_volumes(views, g, out, options);
+        } catch (const std::invalid_argument& e) {
+            if (union_needed || std::string_view(e.what()).find("the union is undefined") == std::string_view::npos)
+                throw;
+            union_problem = e.what();
+            out.union_volumes = {};
+            out.cell_class = {};
+            union_volumes.clear();
+            cls.clear();
+            summary = grid_volumes(views, g, out, options);
+        }
     } catch (const std::invalid_argument& e) {
         if (printed) std::cerr << "\n";
         std::cerr << "polyvol: " << e.what() << "\n";
         return Exit::invalid;
     }
     if (printed) std::cerr << "\n";
+    if (!union_problem.empty()) std::cerr << "polyvol: warning: " << union_problem << "; the bodies' cells are given\n";
+    const bool want_union = nb > 1 && !union_volumes.empty();
     const double seconds = seconds_since(t_start);
 
     // Write.
@@ -390,7 +411,7 @@ int run_grid_command(const GridArgs& a) {
                     for (std::size_t b = 0; b < arrays; ++b) v[b * cells + g.cell(i, j, k)] /= cv;
                 }
     };
-    const nlohmann::json summary_j = summary_json(a.files, mesh_volumes, g, summary, seconds);
+    const nlohmann::json summary_j = summary_json(a.files, mesh_volumes, g, summary, seconds, union_problem);
     if (seconds_since(t_start) > 1.0 && (!a.out.empty() || !a.png.empty() || !a.centroids.empty() ||
                                           !a.union_out.empty() || !a.intersection_out.empty()))
         std::cerr << "polyvol grid: writing " << cells << " cells\n";
@@ -480,7 +501,7 @@ int run_grid_command(const GridArgs& a) {
     if (a.json)
         std::cout << summary_j.dump(2) << "\n";
     else
-        std::cout << summary_text(a.files, mesh_volumes, g, summary);
+        std::cout << summary_text(a.files, mesh_volumes, g, summary, union_problem);
     return Exit::ok;
 }
 

@@ -230,15 +230,20 @@ FileResult process_file(const std::string& path, const Request& request) {
             }
         }
     }
-    if (closed && (request.self_check_always || view.triangle_count() <= kSelfCheckTriangles)) {
+    if (!closed) {
+        r.self_not_checked = "not a closed surface";
+    } else if (!request.self_check_always && view.triangle_count() > kSelfCheckTriangles) {
+        r.self_not_checked = "not looked for: more than " + std::to_string(kSelfCheckTriangles) + " triangles (--solid looks)";
+    } else {
         r.self = self_crossings(view);
         if (r.self->status != BooleanStatus::ok) {
+            r.self_not_checked = std::string("not looked for: ") + boolean_status_message(r.self->status);
             r.warning += (r.warning.empty() ? "" : "; ") + path + ": not checked for a surface crossing itself: " +
                          boolean_status_message(r.self->status);
             r.self.reset();
         } else if (r.self->pairs > 0 && request.need_mass) {
             r.warning += (r.warning.empty() ? "" : "; ") + path + ": " + self_crossing_sentence(*r.self) +
-                         ": the volume counts the region it wraps twice (the winding number there), not the solid";
+                         ": the volume counts the region it wraps by its winding number there, not as the solid";
         }
     }
     r.seconds_measure = seconds_since(t0);
@@ -483,7 +488,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     }
     if (r.overlap_checked) out << "  overlap         shells checked against one another\n";
     out << "  self-crossing   "
-        << (!r.self            ? "not looked for (more than " + std::to_string(kSelfCheckTriangles) + " triangles: --solid looks)"
+        << (!r.self              ? r.self_not_checked
             : r.self->pairs == 0 ? std::string("none within a shell")
                                  : self_crossing_sentence(*r.self))
         << "\n";

@@ -42,8 +42,9 @@ struct FileResult {
     // part, which cannot overlap another); false when streamed.
     bool overlap_checked = false;
     // Where the surface crosses itself within one shell (self_crossings), when
-    // looked for (Request::self_check).
+    // looked for (Request::self_check_always); else why not.
     std::optional<SelfCrossings> self;
+    std::string self_not_checked;
 };
 
 // Files up to this many fan triangles are checked for a surface crossing

@@ -67,8 +67,11 @@
 // every other body, cut along the curves where the surfaces cross
 // (polyvol/boolean.hpp's method: exact predicates, one symbolic
 // perturbation for touching and coincident surfaces, crossing points
-// rounded once to doubles that every triangle sharing them shares). The
-// bodies must not cross themselves.
+// rounded once to doubles that every triangle sharing them shares). Only
+// asked-for union outputs start this. The bodies must be outward and must not
+// cross themselves: an inside-out body is an error, a body crossing itself
+// is found only where it disturbs the others' windings, else its self-overlap
+// counts by its winding number.
 // Input meshes must be closed 2-cycles (polyvol::analyze_topology's
 // closed_2_cycle); for open surfaces the numbers are meaningless. A body
 // turned inside out gives negative values. Fan triangles of polygon faces
@@ -197,8 +200,10 @@ struct GridBodySummary {
 struct GridSummary {
     std::vector<GridBodySummary> bodies;
     // The union's volume within the grid (the sum of its cells, rounded once;
-    // the body's volume for one body), and the intersection's when its cells
-    // were asked for (else NaN).
+    // the body's volume for one body; with several bodies computed only when
+    // some union output — union_volumes, intersection_volumes, cell_class or
+    // the union's surface — was asked for, else NaN, the counts below 0), and
+    // the intersection's when its cells were asked for (else NaN).
     double union_volume = 0;
     double intersection_volume = 0;
     std::size_t crossing_pairs = 0;  // triangle pairs of different bodies that cross
@@ -209,10 +214,11 @@ struct GridSummary {
 // The volume of each body in every cell of the grid (and what else `out`
 // asks for). Throws std::invalid_argument for an invalid grid, wrongly sized
 // outputs, a face index out of range, or a non-finite coordinate on a used
-// vertex; with several bodies also for coordinates beyond 2^180, and when
-// the crossings between the bodies contradict each other (a body whose
-// surface crosses itself, or that is not closed: bodies must be closed
-// 2-cycles, which is not checked in full here; polyvol grid checks it).
+// vertex; with several bodies and union outputs asked for, also for
+// coordinates beyond 2^180, a body inside out, and when the crossings
+// between the bodies contradict each other (a body whose surface crosses
+// itself or is not closed: bodies must be closed 2-cycles, which is not
+// checked in full here; polyvol grid checks it).
 GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& grid, const GridOutput& out,
                          const GridOptions& options = {});
 

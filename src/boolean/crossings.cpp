@@ -16,6 +16,7 @@
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -124,10 +125,21 @@ void cross_pair(const Operand& A, uint32_t ta, const Operand& B, uint32_t tb, in
     out.cuts.push_back({ta, tb, starts[0] ? ends[0] : ends[1], starts[0] ? ends[1] : ends[0]});
 }
 
+void append(Crossings& to, const Crossings& from) {
+    to.a_hits.insert(to.a_hits.end(), from.a_hits.begin(), from.a_hits.end());
+    to.b_hits.insert(to.b_hits.end(), from.b_hits.begin(), from.b_hits.end());
+    to.cuts.insert(to.cuts.end(), from.cuts.begin(), from.cuts.end());
+    to.candidate_pairs += from.candidate_pairs;
+}
+
+bool hit_order(const EdgeHit& x, const EdgeHit& y) {
+    return std::tie(x.tri, x.edge, x.other) < std::tie(y.tri, y.edge, y.other);
+}
+
 bool shares_vertex(const Operand& op, uint32_t t, uint32_t s) {
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-            if (op.tri[3 * t + i] == op.tri[3 * s + j]) return true;
+            if (op.tri[3 * std::size_t{t} + i] == op.tri[3 * std::size_t{s} + j]) return true;
     return false;
 }
 
@@ -190,17 +202,16 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
     const bool by_body = same && !within && A.body_shift.size() <= 64;
     auto label_a = [&](uint32_t t) { return by_body ? uint64_t{1} << A.body(t) : uint64_t{1}; };
     auto label_b = [&](uint32_t t) { return same ? label_a(t) : uint64_t{2}; };
-    std::vector<uint64_t> present(grid.cells(), 0);
+    std::vector<std::atomic<uint64_t>> present(grid.cells());
     auto mark = [&](const Operand& op, auto label) {
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(op.triangles()), 4096),
                           [&](const auto& range) {
                               for (uint32_t t = range.begin(); t != range.end(); ++t) {
-                                  if (!boxes_meet(&op.box[6 * t], common.data())) continue;
+                                  if (!boxes_meet(&op.box[6 * std::size_t{t}], common.data())) continue;
                                   const uint64_t bit = label(t);
-                                  grid.for_cells(&op.box[6 * t], [&](std::size_t c) {
-                                      std::atomic_ref<uint64_t> cell(present[c]);
-                                      if (!(cell.load(std::memory_order_relaxed) & bit))
-                                          cell.fetch_or(bit, std::memory_order_relaxed);
+                                  grid.for_cells(&op.box[6 * std::size_t{t}], [&](std::size_t c) {
+                                      if (!(present[c].load(std::memory_order_relaxed) & bit))
+                                          present[c].fetch_or(bit, std::memory_order_relaxed);
                                   });
                               }
                           });
@@ -212,10 +223,10 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(op.triangles()), 4096),
                           [&](const auto& range) {
                               for (uint32_t t = range.begin(); t != range.end(); ++t) {
-                                  if (!boxes_meet(&op.box[6 * t], common.data())) continue;
+                                  if (!boxes_meet(&op.box[6 * std::size_t{t}], common.data())) continue;
                                   const uint64_t others = same && !by_body ? ~uint64_t{0} : ~label(t);  // all: any cell
                                   bool hit = false;
-                                  grid.for_cells(&op.box[6 * t], [&](std::size_t c) { hit = hit || (present[c] & others); });
+                                  grid.for_cells(&op.box[6 * std::size_t{t}], [&](std::size_t c) { hit = hit || (present[c].load(std::memory_order_relaxed) & others); });
                                   flag[t] = hit;
                               }
                           });
@@ -229,13 +240,13 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
     if (a_near.empty() || b_near.empty()) return result;
 
     // B's triangles near A binned into the same cells (compressed rows).
-    std::vector<uint32_t> start(grid.cells() + 1, 0);
-    for (uint32_t t : b_near) grid.for_cells(&B.box[6 * t], [&](std::size_t c) { ++start[c + 1]; });
+    std::vector<std::size_t> start(grid.cells() + 1, 0);
+    for (uint32_t t : b_near) grid.for_cells(&B.box[6 * std::size_t{t}], [&](std::size_t c) { ++start[c + 1]; });
     for (std::size_t c = 0; c < grid.cells(); ++c) start[c + 1] += start[c];
     std::vector<uint32_t> binned(start.back());
     {
-        std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-        for (uint32_t t : b_near) grid.for_cells(&B.box[6 * t], [&](std::size_t c) { binned[fill[c]++] = t; });
+        std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+        for (uint32_t t : b_near) grid.for_cells(&B.box[6 * std::size_t{t}], [&](std::size_t c) { binned[fill[c]++] = t; });
     }
     // One operand: only cells holding triangles of two or more bodies can
     // hold a pair (most cells hold one body's surface only).
@@ -243,7 +254,7 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
     if (same && !within) {
         mixed.assign(grid.cells(), 0);
         for (std::size_t c = 0; c < grid.cells(); ++c)
-            for (uint32_t i = start[c] + 1; i < start[c + 1] && !mixed[c]; ++i)
+            for (std::size_t i = start[c] + 1; i < start[c + 1] && !mixed[c]; ++i)
                 mixed[c] = B.body(binned[i]) != B.body(binned[start[c]]);
     }
 
@@ -255,34 +266,44 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
         Local& local = locals.local();
         for (std::size_t r = range.begin(); r != range.end(); ++r) {
             const uint32_t ta = a_near[r];
-            const double* box = &A.box[6 * ta];
+            const double* box = &A.box[6 * std::size_t{ta}];
             // Each pair once, in the cell holding the low corner of the two boxes' overlap.
             grid.for_cells(box, [&](std::size_t c) {
                 if (same && !within && !mixed[c]) return;
-                for (uint32_t i = start[c]; i < start[c + 1]; ++i) {
+                for (std::size_t i = start[c]; i < start[c + 1]; ++i) {
                     const uint32_t tb = binned[i];
                     if (same && tb <= ta) continue;
                     if (same && (B.body(tb) == A.body(ta)) != within) continue;
                     if (within && shares_vertex(A, ta, tb)) continue;
-                    const double* other = &B.box[6 * tb];
+                    const double* other = &B.box[6 * std::size_t{tb}];
                     if (!boxes_meet(box, other)) continue;
                     if (grid.cell(grid.index(0, std::max(box[0], other[0])), grid.index(1, std::max(box[1], other[1])),
                                   grid.index(2, std::max(box[2], other[2]))) != c)
                         continue;
                     ++local.found.candidate_pairs;
-                    const int shift = within || B.shift(tb) > A.shift(ta) ? 1 : -1;
-                    cross_pair(A, ta, B, tb, shift, local.found);
+                    if (within) {
+                        // One body: a pair crosses only if it does whichever way the
+                        // later triangle is moved (touching crosses one way only).
+                        Crossings plus, minus;
+                        cross_pair(A, ta, B, tb, +1, plus);
+                        if (plus.cuts.empty()) continue;
+                        cross_pair(A, ta, B, tb, -1, minus);
+                        if (minus.cuts.empty()) continue;
+                        append(local.found, plus);
+                        continue;
+                    }
+                    cross_pair(A, ta, B, tb, B.shift(tb) > A.shift(ta) ? 1 : -1, local.found);
                 }
             });
         }
     });
-    for (Local& local : locals) {
-        auto& f = local.found;
-        result.a_hits.insert(result.a_hits.end(), f.a_hits.begin(), f.a_hits.end());
-        result.b_hits.insert(result.b_hits.end(), f.b_hits.begin(), f.b_hits.end());
-        result.cuts.insert(result.cuts.end(), f.cuts.begin(), f.cuts.end());
-        result.candidate_pairs += f.candidate_pairs;
-    }
+    for (Local& local : locals) append(result, local.found);
+    // In triangle order, whatever the threads did: what is built from these
+    // (the grid's pieces) is then the same bits on every run.
+    std::sort(result.a_hits.begin(), result.a_hits.end(), hit_order);
+    std::sort(result.b_hits.begin(), result.b_hits.end(), hit_order);
+    std::sort(result.cuts.begin(), result.cuts.end(),
+              [](const Cut& x, const Cut& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
     return result;
 }
 

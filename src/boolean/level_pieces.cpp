@@ -92,21 +92,22 @@ LevelPieces level_pieces(std::span<const MeshView> bodies, std::span<const int> 
     finish_operand(g);
     const Scale scale{e0};
 
-    // Each body's orientation: the sign of its volume (exactly when close to 0).
-    std::vector<int> sign(bodies.size(), +1);
+    // Each body outward: a positive volume (decided exactly when close to 0).
+    const std::vector<int> sign(bodies.size(), +1);
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const std::span<const uint32_t> tris(g.tri.data() + 3 * first[b], 3 * (first[b + 1] - first[b]));
         const MeshView view{g.mesh.positions, {}, tris};
         VolumeSum v = cone_volume_sum(view, false);
         if (!(std::fabs(v.sum.round()) > 2 * v.bound)) v = cone_volume_sum(view, true);
-        sign[b] = v.sum.sign() >= 0 ? +1 : -1;
+        if (v.sum.sign() < 0)
+            throw std::invalid_argument("body " + std::to_string(b + 1) + " is inside out (its volume is negative)");
     }
 
-    const Crossings cross = find_crossings(g, g);
-    r.crossing_pairs = cross.cuts.size();
-    std::vector<EdgeHit> hits = cross.a_hits;
-    hits.insert(hits.end(), cross.b_hits.begin(), cross.b_hits.end());
     try {
+        const Crossings cross = find_crossings(g, g);
+        r.crossing_pairs = cross.cuts.size();
+        std::vector<EdgeHit> hits = cross.a_hits;
+        hits.insert(hits.end(), cross.b_hits.begin(), cross.b_hits.end());
         const std::vector<int32_t> w = vertex_windings(g, g, hits);
         auto unit_normal = [&](uint32_t t) {
             const double *a = g.corner(t, 0), *b = g.corner(t, 1), *c = g.corner(t, 2);
@@ -125,7 +126,7 @@ LevelPieces level_pieces(std::span<const MeshView> bodies, std::span<const int> 
                     continue;
                 }
                 const uint32_t b = g.body(t);
-                const int c = levels[k] - 1 + (sign[b] > 0 ? 0 : 1);  // W_others on the boundary
+                const int c = levels[k] - 1;  // W_others on the boundary (outward bodies)
                 if (w[g.tri[3 * t]] == c) r.whole[b][t - first[b]] |= static_cast<uint8_t>(1u << k);
             }
             pieces.boundary_segments([&](uint32_t t, const ExactPoint& X, const ExactPoint& Y, int mult) {
@@ -138,7 +139,13 @@ LevelPieces level_pieces(std::span<const MeshView> bodies, std::span<const int> 
                 }
             });
         }
-    } catch (const std::logic_error&) {
+    } catch (const std::invalid_argument&) {
+        throw;
+    } catch (const std::length_error&) {
+        throw;
+    } catch (const std::out_of_range&) {
+        throw;
+    } catch (const std::logic_error&) {  // the engine's own: its windings or crossings contradict each other
         throw std::invalid_argument("a body's surface crosses itself or is not closed (windings disagree along an edge)");
     }
     return r;

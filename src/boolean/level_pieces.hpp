@@ -40,11 +40,13 @@ struct LevelPieces {
     std::size_t crossing_pairs = 0;  // triangle pairs of different bodies that cross
 };
 
-// levels: up to 8 values m >= 1. The bodies must be closed 2-cycles (not
-// checked here: polyvol/grid.hpp's contract). Throws std::invalid_argument
-// when the crossings contradict each other (a body's surface crosses
-// itself, or is not closed after all), or for coordinates beyond 2^180 (the
-// exact predicates' range).
+// levels: up to 8 values m >= 1. The bodies must be closed 2-cycles, outward,
+// not crossing themselves (polyvol/grid.hpp's contract; only partly checked
+// here). Throws std::invalid_argument for a body inside out (negative
+// volume), when the crossings contradict each other (a body's surface
+// crosses itself, or is not closed after all: found only where it disturbs
+// the other bodies' windings), or for coordinates beyond 2^180 (the exact
+// predicates' range).
 LevelPieces level_pieces(std::span<const MeshView> bodies, std::span<const int> levels);
 
 }  // namespace polyvol::boolean

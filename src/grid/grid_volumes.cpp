@@ -501,7 +501,7 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
     // Several bodies: the union's (and the intersection's) boundary pieces.
     std::optional<boolean::LevelPieces> levels;
     std::vector<FanMesh> fans;
-    if (nb > 1) {
+    if (nb > 1 && union_outputs) {
         std::vector<int> level_values{1};
         if (!out.intersection_volumes.empty()) level_values.push_back(static_cast<int>(nb));
         try {
@@ -524,7 +524,7 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
         }
     }
 
-    const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, nb > 1 || union_outputs, surface,
+    const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, union_outputs, surface,
                   levels ? &*levels : nullptr, fans};
     tbb::enumerable_thread_specific<Workspace> workspaces;
     tbb::enumerable_thread_specific<Partial> partials([nb] { return Partial(nb); });
@@ -576,11 +576,13 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
     if (job.want_union) {
         s.union_volume = union_volume.round();
         if (!out.intersection_volumes.empty()) s.intersection_volume = intersection_volume.round();
-    } else {
+    } else if (nb == 1) {
         s.union_volume = s.bodies[0].volume;
         s.full_cells = s.bodies[0].full_cells;
         s.empty_cells = s.bodies[0].empty_cells;
         s.cut_cells = s.bodies[0].cut_cells;
+    } else {
+        s.union_volume = std::numeric_limits<double>::quiet_NaN();  // not asked for
     }
     return s;
 }

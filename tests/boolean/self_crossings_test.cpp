@@ -57,6 +57,24 @@ TEST(SelfCrossings, TetrahedronThroughTheBoxItSharesAnEdgeWith) {
     EXPECT_EQ(v.volume, v.winding_volume);
 }
 
+// A vertex of the tetrahedron lying on the box's top face, inside it: the two
+// surfaces touch there and cross nowhere. Moving one triangle of a pair by δ
+// pushes that vertex through the face one way and not the other, so a pair
+// counts only when it crosses both ways: none here.
+TEST(SelfCrossings, TouchingIsNotCrossing) {
+    Mesh m = test::box({0, 0, 0}, {2, 2, 2});
+    const uint32_t o = 0, p = 1;
+    const uint32_t q = m.add_vertex(1.2, 0.5, 2), r = m.add_vertex(1, 1.5, 1);
+    m.add_triangle(p, r, q);  // (o, p, r, q) positively oriented: outward faces
+    m.add_triangle(o, q, r);
+    m.add_triangle(o, p, q);
+    m.add_triangle(o, r, p);
+    const SelfCrossings s = self_crossings(m.view());
+    ASSERT_EQ(s.status, BooleanStatus::ok);
+    EXPECT_EQ(s.pairs, 0u);
+    EXPECT_GT(s.candidate_pairs, 0u);
+}
+
 // Sharing only a vertex, the box and a tetrahedron are two parts (joined
 // through no edge): solid_volume's bodies, which it resolves, so no
 // self-crossing.

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -312,6 +313,40 @@ TEST(GridCli, TooLargeForMemoryIsRefusedWithTheEstimate) {
     const CliRun bad = polyvol("grid " + cube + " --max-memory lots");
     EXPECT_EQ(bad.code, 1);
     EXPECT_NE(bad.err.find("--max-memory takes a size such as 8G or 512M, not 'lots'"), std::string::npos) << bad.err;
+}
+
+// A body inside out has no union with the others: the bodies' cells are still
+// given, with a warning, unless an output needs the union (exit 3).
+TEST(GridCli, NoUnionWithABodyInsideOut) {
+    const fs::path a = scratch("outward.obj"), b = scratch("inward.obj");
+    cli_test::write_boxes_obj(a, {{0, 0, 0, 2, 2, 2}});
+    cli_test::write_boxes_obj(b, {{1, 1, 1, 3, 3, 3}});
+    {  // reverse every face of b
+        std::string text = slurp(b), flipped;
+        std::istringstream lines(text);
+        for (std::string line; std::getline(lines, line);) {
+            if (line.rfind("f ", 0) == 0) {
+                std::istringstream f(line.substr(2));
+                std::vector<std::string> v{std::istream_iterator<std::string>(f), std::istream_iterator<std::string>()};
+                line = "f";
+                for (auto it = v.rbegin(); it != v.rend(); ++it) line += " " + *it;
+            }
+            flipped += line + "\n";
+        }
+        std::ofstream(b) << flipped;
+    }
+    const std::string files = "'" + a.string() + "' '" + b.string() + "' --dims 4 4 4";
+    const CliRun r = polyvol("grid " + files + " --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: grid: the union is undefined: body 2 is inside out"), std::string::npos) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_TRUE(j["union_volume"].is_null());
+    EXPECT_NE(j["union_error"].get<std::string>().find("inside out"), std::string::npos);
+    EXPECT_EQ(j["body_volumes"][0], 8.0);
+    EXPECT_EQ(j["body_volumes"][1], -8.0);
+    const CliRun needs = polyvol("grid " + files + " --union '" + scratch("u2.npy").string() + "'");
+    EXPECT_EQ(needs.code, 3);
+    EXPECT_NE(needs.err.find("inside out"), std::string::npos) << needs.err;
 }
 
 }  // namespace
