@@ -1,0 +1,79 @@
+// The library called from many threads at once, as a server calls it
+// (issue #23): 8 threads, each reading a different corpus file and running
+// analyze_topology, mass_properties and grid_volumes on it, several rounds;
+// every result must be the bits the same calls give on one thread alone.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/manifest.hpp"
+#include "polyvol/grid.hpp"
+#include "polyvol/io.hpp"
+#include "polyvol/measure.hpp"
+#include "polyvol/topology.hpp"
+
+namespace {
+
+using namespace polyvol;
+
+struct Result {
+    std::vector<double> positions;
+    std::size_t edges = 0, shells = 0;
+    bool closed = false;
+    std::array<double, 10> mass{};  // volume, area, centroid, second moments
+    std::vector<double> grid;
+};
+
+Result compute(const std::string& path) {
+    Result r;
+    const LoadedMesh m = read_mesh_file(test::corpus_file(path));
+    r.positions = m.mesh.positions;
+    const MeshView v = m.mesh.view();
+    const TopologyReport t = analyze_topology(v);
+    r.edges = t.edges;
+    r.shells = t.shells.size();
+    r.closed = t.closed_2_cycle;
+    const MassProperties p = mass_properties(v);
+    r.mass = {p.volume, p.area, p.centroid[0], p.centroid[1], p.centroid[2], p.second_moments[0],
+              p.second_moments[1], p.second_moments[2], p.second_moments[3], p.second_moments[4]};
+    const MeshView bodies[1] = {v};
+    const GridAxes g = make_grid(bodies, {.cells = 12});
+    r.grid.assign(g.cell_count(), 0);
+    (void)grid_volumes(bodies, g, {.volumes = r.grid});
+    return r;
+}
+
+bool same(const Result& a, const Result& b) {
+    auto bits = [](const auto& x, const auto& y) {
+        return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0;
+    };
+    return bits(a.positions, b.positions) && a.edges == b.edges && a.shells == b.shells && a.closed == b.closed &&
+           bits(a.mass, b.mass) && bits(a.grid, b.grid);
+}
+
+TEST(Threads, EightCallersGetTheBitsOfOne) {
+    const std::vector<std::string> files = {
+        "meshes/cura/weedo_x40.3mf",          "meshes/libcgal-demo/armadillo.off",
+        "meshes/cura/diy220_platform.obj",    "meshes/prusa-slicer/aq_bed.stl",
+        "meshes/openscad-testing-data/multi-volume-binary.amf", "meshes/libcgal-demo/sphere.ply",
+        "meshes/libcgal-demo/mpi.off",        "meshes/minetest-data/boats_boat.obj"};
+    std::vector<Result> alone;
+    for (const std::string& f : files) alone.push_back(compute(f));
+    std::atomic<int> mismatches{0};
+    std::vector<std::thread> threads;
+    for (std::size_t i = 0; i < files.size(); ++i)
+        threads.emplace_back([&, i] {
+            for (int round = 0; round < 3; ++round) {
+                const std::size_t f = (i + round) % files.size();  // each file met by several threads
+                if (!same(compute(files[f]), alone[f])) ++mismatches;
+            }
+        });
+    for (std::thread& t : threads) t.join();
+    EXPECT_EQ(mismatches.load(), 0);
+}
+
+}  // namespace
