@@ -207,11 +207,17 @@ private:
             }
             ls.push_back(std::move(l));
         }
+        // By λ at ε = 0, then each run of equal λ by the perturbed λ (its
+        // polynomials computed once per crossing, not once per comparison).
         std::sort(ls.begin(), ls.end(), [&](const Lambda& x, const Lambda& y) {
-            const int c = sgn(mpz_class(x.num * y.den - y.num * x.den));
-            if (c != 0) return c < 0;
-            return perturbed_less(x.ref, y.ref);
+            return sgn(mpz_class(x.num * y.den - y.num * x.den)) < 0;
         });
+        for (std::size_t i = 0; i < ls.size();) {
+            std::size_t j = i + 1;
+            while (j < ls.size() && ls[j].num * ls[i].den == ls[i].num * ls[j].den) ++j;
+            if (j - i > 1) perturbed_sort(std::span<Lambda>(ls).subspan(i, j - i));
+            i = j;
+        }
         int64_t w = w_[g_.tri[3 * t + e]];
         for (Lambda& l : ls) {
             entries.push_back({l.ref.plane, l.sign, std::move(l.num), std::move(l.den), w});
@@ -222,18 +228,37 @@ private:
         return walks_.emplace(key, std::move(entries)).first->second;
     }
 
-    // λ(x) < λ(y) for two crossings of one edge that coincide at ε = 0.
-    bool perturbed_less(const CrossingRef& x, const CrossingRef& y) const {
+    // Orders crossings of one edge that coincide at ε = 0 by their perturbed
+    // λ = D_p / (D_p - D_q): λx - λy = (D_px dy - D_py dx) / (dx dy).
+    template <class L>
+    void perturbed_sort(std::span<L> run) const {
+        struct Key {
+            EpsPoly dp, d;
+            int d_sign;
+        };
+        std::vector<Key> keys;
+        keys.reserve(run.size());
         auto to = [&](const double* v, int32_t k) { return eps_point(v, k); };
-        EpsPoly dpx, dqx, dpy, dqy;
-        EpsPoint p, q;
-        plane_values<EpsPoly>(x, to, dpx, dqx, p, q);
-        plane_values<EpsPoly>(y, to, dpy, dqy, p, q);
-        const EpsPoly dx = dpx - dqx, dy = dpy - dqy;
-        // λx - λy = (dpx dy - dpy dx) / (dx dy)
-        const int s = (dpx * dy - dpy * dx).sign() * dx.sign() * dy.sign();
-        if (s != 0) return s < 0;
-        return x.plane < y.plane;  // the same point for every ε: any order
+        for (const L& l : run) {
+            EpsPoly dp, dq;
+            EpsPoint p, q;
+            plane_values<EpsPoly>(l.ref, to, dp, dq, p, q);
+            EpsPoly d = dp - dq;
+            const int ds = d.sign();
+            keys.push_back({std::move(dp), std::move(d), ds});
+        }
+        std::vector<std::size_t> order(run.size());
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+            const Key &x = keys[a], &y = keys[b];
+            const int s = (x.dp * y.d - y.dp * x.d).sign() * x.d_sign * y.d_sign;
+            if (s != 0) return s < 0;
+            return run[a].ref.plane < run[b].ref.plane;  // the same point for every ε: any order
+        });
+        std::vector<L> sorted;
+        sorted.reserve(run.size());
+        for (std::size_t i : order) sorted.push_back(std::move(run[i]));
+        std::move(sorted.begin(), sorted.end(), run.begin());
     }
 
     // Adds sign × λ × d to out (λ = num / den, den > 0, 0 <= λ <= 1).
