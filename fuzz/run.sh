@@ -42,7 +42,7 @@ run_one() {
     "$build/fuzz-corpus/$t" "fuzz/seeds/$t" tests/data/regressions >"$build/fuzz-logs/$t.log" 2>&1
   local rc=$?
   local runs cov
-  runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$build/fuzz-logs/$t.log" | grep -o '[0-9]*$')
+  runs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$build/fuzz-logs/$t.log" | tail -1 | grep -o '[0-9]*$')
   cov=$(grep -o 'cov: [0-9]*' "$build/fuzz-logs/$t.log" | tail -1 | grep -o '[0-9]*$')
   printf '%-9s %s  executions %10s  coverage %6s  %ss\n' "$t" "$([ $rc = 0 ] && echo ok || echo FAILED)" \
     "${runs:-?}" "${cov:-?}" "$((SECONDS - start))"
