@@ -285,7 +285,7 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
         for (uint32_t v : op->tri) {
             for (int k = 0; k < 3; ++k) {
                 const double x = op->point(v)[k];
-                if (!exact::in_safe_range(x) || std::fabs(x) > 0x1p180) return fail(BooleanStatus::invalid_coordinates);
+                if (!in_predicate_range(x)) return fail(BooleanStatus::invalid_coordinates);
                 if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
                 max_coordinate = std::max(max_coordinate, std::fabs(x));
             }

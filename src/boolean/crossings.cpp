@@ -121,7 +121,7 @@ void cross_pair(const Operand& A, uint32_t ta, const Operand& B, uint32_t tb, in
     }
     if (t_flat || s_flat || n == 0) return;
     if (n != 2 || starts[0] == starts[1])
-        throw std::logic_error("boolean: a triangle pair crosses in other than one segment");
+        throw Contradiction("boolean: a triangle pair crosses in other than one segment");
     out.cuts.push_back({ta, tb, starts[0] ? ends[0] : ends[1], starts[0] ? ends[1] : ends[0]});
 }
 

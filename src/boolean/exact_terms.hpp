@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "polyvol/mesh.hpp"
 
@@ -37,6 +38,10 @@ struct Scale {
 
 // The exponent of the lowest set bit of x != 0.
 int lowest_bit_exponent(double x);
+
+// A coordinate the exact predicates and the integer scaling take: the
+// expansions' safe range (exact/eft.hpp) and at most 2^180 in magnitude.
+inline bool in_predicate_range(double x) { return exact::in_safe_range(x) && std::fabs(x) <= 0x1p180; }
 
 // a · (b × c)
 mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c);

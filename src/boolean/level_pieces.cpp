@@ -11,7 +11,6 @@
 #include "boolean/exact_terms.hpp"
 #include "boolean/operand.hpp"
 #include "boolean/solid_pieces.hpp"
-#include "exact/eft.hpp"
 #include "topology/welded.hpp"
 
 namespace polyvol::boolean {
@@ -71,7 +70,7 @@ LevelPieces level_pieces(std::span<const MeshView> bodies, std::span<const int> 
         for (std::size_t d = 0; d < wm.referenced(); ++d) {
             const double* p = wm.position(static_cast<uint32_t>(d));
             for (int k = 0; k < 3; ++k) {
-                if (!exact::in_safe_range(p[k]) || std::fabs(p[k]) > 0x1p180)
+                if (!in_predicate_range(p[k]))
                     throw std::invalid_argument("body " + std::to_string(b + 1) +
                                                 " has a coordinate beyond the exact predicates' range (2^180)");
                 if (p[k] != 0) e0 = std::min(e0, lowest_bit_exponent(p[k]));
@@ -139,13 +138,7 @@ LevelPieces level_pieces(std::span<const MeshView> bodies, std::span<const int> 
                 }
             });
         }
-    } catch (const std::invalid_argument&) {
-        throw;
-    } catch (const std::length_error&) {
-        throw;
-    } catch (const std::out_of_range&) {
-        throw;
-    } catch (const std::logic_error&) {  // the engine's own: its windings or crossings contradict each other
+    } catch (const Contradiction&) {
         throw std::invalid_argument("a body's surface crosses itself or is not closed (windings disagree along an edge)");
     }
     return r;

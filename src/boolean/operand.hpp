@@ -4,11 +4,18 @@
 
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "polyvol/mesh.hpp"
 
 namespace polyvol::boolean {
+
+// The crossings or windings contradict each other: a body that is not a
+// closed 2-cycle, or crosses itself, where that disturbs the others' windings.
+struct Contradiction : std::logic_error {
+    using std::logic_error::logic_error;
+};
 
 // One operand: its welded vertices and fan triangles (v0, vi, vi+1).
 //   corner(t, i) = positions of vertex tri[3 t + i]
@@ -88,7 +95,7 @@ Crossings find_crossings(const Operand& a, const Operand& b, Pairs pairs = Pairs
 // Winding number at every vertex of `self` of the other operand's bodies
 // other than the vertex's own (with &self == &other: of the other bodies of
 // the same operand); vertices no face uses get 0. hits: every crossing of
-// self's edges with those bodies' triangles. Throws std::logic_error when the
+// self's edges with those bodies' triangles. Throws Contradiction when the
 // crossings contradict each other (a body that is not a closed 2-cycle).
 std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, const std::vector<EdgeHit>& hits);
 

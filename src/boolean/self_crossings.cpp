@@ -6,11 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <tuple>
 
 #include "boolean/bodies.hpp"
 #include "boolean/operand.hpp"
-#include "exact/eft.hpp"
+#include "boolean/exact_terms.hpp"
 #include "polyvol/boolean.hpp"
 
 namespace polyvol {
@@ -25,7 +24,7 @@ SelfCrossings self_crossings(const MeshView& mesh) {
     Operand op;
     op.mesh.positions = wm.xyz;
     for (const double x : op.mesh.positions)
-        if (!exact::in_safe_range(x) || std::fabs(x) > 0x1p180) {
+        if (!in_predicate_range(x)) {
             r.status = BooleanStatus::invalid_coordinates;
             return r;
         }
@@ -45,18 +44,13 @@ SelfCrossings self_crossings(const MeshView& mesh) {
     Crossings c;
     try {
         c = find_crossings(op, op, Pairs::same_body_apart);
-    } catch (const std::logic_error&) {
+    } catch (const Contradiction&) {
         r.status = BooleanStatus::shell_crosses_itself;  // a pair the search cannot resolve
         return r;
     }
     r.candidate_pairs = c.candidate_pairs;
     r.pairs = c.cuts.size();
-    if (!c.cuts.empty()) {
-        const auto first = std::min_element(c.cuts.begin(), c.cuts.end(), [](const Cut& x, const Cut& y) {
-            return std::tie(x.a, x.b) < std::tie(y.a, y.b);
-        });
-        r.example = {face_of[first->a], face_of[first->b]};
-    }
+    if (!c.cuts.empty()) r.example = {face_of[c.cuts.front().a], face_of[c.cuts.front().b]};  // cuts are in triangle order
     return r;
 }
 

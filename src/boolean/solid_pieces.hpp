@@ -224,7 +224,7 @@ private:
             w += l.sign;
         }
         if (w != w_[g_.tri[3 * t + (e + 1) % 3]])
-            throw std::logic_error("boolean: windings along an edge disagree with its end (a shell crosses itself?)");
+            throw Contradiction("boolean: windings along an edge disagree with its end (a shell crosses itself?)");
         return walks_.emplace(key, std::move(entries)).first->second;
     }
 
@@ -372,7 +372,7 @@ private:
             // Just before, the edge is in front of x.plane iff it enters there.
             return e.w_before - (front_of(g_.body(x.plane)) + (e.sign > 0 ? 0 : 1));
         }
-        throw std::logic_error("boolean: a cut's end is not among its edge's crossings");
+        throw Contradiction("boolean: a cut's end is not among its edge's crossings");
     }
 
     // The portions of cut t ∩ s between its triple points, in order along
@@ -446,7 +446,7 @@ private:
         }
         portion(one, one);
         if (w != windings_at_end(xe))
-            throw std::logic_error("boolean: windings along a cut disagree with its end");
+            throw Contradiction("boolean: windings along a cut disagree with its end");
     }
 
     // The cones over a cut's portions: (μ' - μ) det(κ_t a_t - κ_s a_s, P, Q).

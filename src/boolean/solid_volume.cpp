@@ -103,7 +103,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
     for (std::size_t d = 0; d < wm.referenced(); ++d)
         for (int k = 0; k < 3; ++k) {
             const double x = wm.position(static_cast<uint32_t>(d))[k];
-            if (!exact::in_safe_range(x) || std::fabs(x) > 0x1p180) return fail(BooleanStatus::invalid_coordinates);
+            if (!in_predicate_range(x)) return fail(BooleanStatus::invalid_coordinates);
             if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
         }
     if (e0 == std::numeric_limits<int>::max()) e0 = 0;
@@ -201,7 +201,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
         finish_operand(g);
         try {
             solid_group(g, g_face, shells, body_sign, scale, mesh.face_count(), pieces, whole, r);
-        } catch (const std::logic_error&) {
+        } catch (const Contradiction&) {
             return fail(BooleanStatus::shell_crosses_itself);
         }
     }

@@ -115,7 +115,7 @@ std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, 
             used[x] = 1;
             triangle_of[x] = static_cast<uint32_t>(t);
             if (!forest.relate(x, y, k[3 * t + e]))
-                throw std::logic_error("boolean: winding numbers along edges disagree (an operand is not closed)");
+                throw Contradiction("boolean: winding numbers along edges disagree (an operand is not closed)");
         }
     }
     constexpr int64_t kUnknown = INT64_MIN;
