@@ -222,4 +222,26 @@ struct GridSummary {
 GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& grid, const GridOutput& out,
                          const GridOptions& options = {});
 
+// A block of a grid's cells: i in [lo[0], hi[0]), j in [lo[1], hi[1]), k in
+// [lo[2], hi[2]) — one chunk of a grid too large for one machine.
+struct GridBlock {
+    std::array<std::size_t, 3> lo{}, hi{};
+    std::size_t cell_count() const { return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
+};
+
+// The cells of one block, with the same bits grid_volumes gives them in the
+// whole grid, computed from the bodies alone: the outputs are sized and
+// indexed as for a grid of the block's shape (bx, by, bz), and the summary
+// counts the block's cells (its volumes are their sums). Only the triangles
+// that reach the block's columns at or above its floor are clipped; a
+// column's scan still runs from the grid's top down (the projected area of
+// the surface above the block enters each of its cells, summed cell by cell
+// as in the whole grid), so blocks lower in the grid cost more, and memory
+// is that of the block's outputs plus a tile of sums per thread. The union
+// outputs repeat the crossings of the bodies (all of them) in each block.
+// Throws as grid_volumes, and std::invalid_argument for an empty block or
+// one reaching outside the grid.
+GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes& grid, const GridBlock& block,
+                               const GridOutput& out, const GridOptions& options = {});
+
 }  // namespace polyvol

@@ -116,6 +116,11 @@ namespace polyvol {
 
 // F(x) for x in R^n (x.size() == dimension). Inside is F <= 0.
 using ImplicitFunction = std::function<double(std::span<const double>)>;
+// F at k points at once (for callers whose F costs a call, as a Python
+// function on a numpy array): points holds k × n coordinates, point i at
+// points[n*i .. n*i + n-1]; values receives the k values. The walk asks for
+// a cube's corners (the coarse scan, a lattice line) per call.
+using ImplicitBatchFunction = std::function<void(std::span<const double> points, std::span<double> values)>;
 
 inline constexpr int kImplicitMaxDimension = 8;
 
@@ -225,6 +230,10 @@ private:
 // The volume of {x in box : F(x) <= 0} (see the top of this file). Throws
 // std::invalid_argument for invalid options and ImplicitError as documented.
 ImplicitVolume implicit_volume(const ImplicitFunction& f, const ImplicitOptions& options);
+// The same with F evaluated in batches; the same points are evaluated (a few
+// more at most: the rest of a batch past an error) and the result has the
+// same bits as with the pointwise F of the same values.
+ImplicitVolume implicit_volume_batch(const ImplicitBatchFunction& f, const ImplicitOptions& options);
 
 // The PL surface on the lattice of spacing options.h only (no estimate), as a
 // closed oriented chain; `pass` receives the counts (its volume is left 0).

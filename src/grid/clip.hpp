@@ -176,18 +176,18 @@ void split_into_slabs(const Polygon& poly, int axis, const Axis& ax, int keep_lo
 }
 
 // Clips one polygon (a triangle) into its pieces, one per cell, for the
-// columns i in [ix0, ix1], j in [iy0, iy1] (a tile) and every z slab from 0 to
-// nz (nz: above the grid, where only the projected area matters); parts
-// below z[0] and outside the tile are dropped. Calls piece(poly, i, j, k).
+// columns i in [ix0, ix1], j in [iy0, iy1] (a tile) and every z slab from kz0
+// to nz (nz: above the grid, where only the projected area matters); parts
+// below z[kz0] and outside the tile are dropped. Calls piece(poly, i, j, k).
 struct ClipBuffers {
     SplitBuffers x, y, z;
 };
 template <class Piece>
 void clip_to_cells(const Polygon& tri, const Axis& ax, const Axis& ay, const Axis& az, int ix0, int ix1, int iy0,
-                   int iy1, ClipBuffers& buf, Piece&& piece) {
+                   int iy1, int kz0, ClipBuffers& buf, Piece&& piece) {
     split_into_slabs(tri, 0, ax, ix0, ix1, buf.x, [&](const Polygon& px, int i) {
         split_into_slabs(px, 1, ay, iy0, iy1, buf.y, [&](const Polygon& py, int j) {
-            split_into_slabs(py, 2, az, 0, az.cells(), buf.z, [&](const Polygon& pz, int k) { piece(pz, i, j, k); });
+            split_into_slabs(py, 2, az, kz0, az.cells(), buf.z, [&](const Polygon& pz, int k) { piece(pz, i, j, k); });
         });
     });
 }

@@ -85,22 +85,38 @@ Triangles fan_triangles(const MeshView& m) {
     return t;
 }
 
+// The block's columns are cut into tiles; each tile scans its columns from
+// the grid's top down to the block's floor k0 (the cells above the block
+// count through their sums, as in the whole grid) and outputs the block's
+// layers k0 .. k0 + bnz - 1.
 struct Layout {
-    int nx, ny, nz;
+    int nx, ny;   // the block's columns
+    int nz;       // layers scanned: the grid's nz - k0
+    int bnz;      // layers output (the block's)
+    int i0, j0, k0;  // the block's first cell
     int tile;     // columns per tile side
     int ntx, nty;
     std::size_t tiles() const { return static_cast<std::size_t>(ntx) * nty; }
+    std::size_t out_cells() const { return static_cast<std::size_t>(nx) * ny * bnz; }
+    // Index into the outputs of global column (i, j), output layer kb.
+    std::size_t out_cell(int i, int j, int kb) const {
+        return (static_cast<std::size_t>(i - i0) * ny + (j - j0)) * bnz + kb;
+    }
+    bool direct() const { return bnz == nz; }  // the scan writes straight into the outputs
 };
 
-// Tile size from the grid's shape only (never from the thread count): tile
+// Tile size from the block's shape only (never from the thread count): tile
 // sums of at most ~8 MB, and at least ~64 tiles to share out when possible.
-Layout choose_layout(int nx, int ny, int nz, bool moments) {
+Layout choose_layout(const GridAxes& g, const GridBlock& b, bool moments) {
+    const int nx = static_cast<int>(b.hi[0] - b.lo[0]), ny = static_cast<int>(b.hi[1] - b.lo[1]);
+    const int nz = static_cast<int>(g.nz() - b.lo[2]);
     const double bytes_per_cell = (moments ? 7 : 2) * 16.0 + 1;
     int t = 16;
     while (t > 1 && static_cast<double>(t) * t * (nz + 1) * bytes_per_cell > 8e6) t /= 2;
     auto count = [&](int s) { return static_cast<double>((nx + s - 1) / s) * ((ny + s - 1) / s); };
     while (t > 4 && count(t) < 64) t /= 2;
-    Layout l{nx, ny, nz, t, (nx + t - 1) / t, (ny + t - 1) / t};
+    Layout l{nx, ny, nz, static_cast<int>(b.hi[2] - b.lo[2]), static_cast<int>(b.lo[0]), static_cast<int>(b.lo[1]),
+             static_cast<int>(b.lo[2]), t, (nx + t - 1) / t, (ny + t - 1) / t};
     return l;
 }
 
@@ -137,14 +153,14 @@ TileRange tile_range(const MeshView& m, const uint32_t* v, const Axis& ax, const
         lo[a] = std::min({p, q, s});
         hi[a] = std::max({p, q, s});
     }
-    if (hi[2] < az.plane(0)) return r;  // wholly below the grid: contributes nothing
+    if (hi[2] < az.plane(l.k0)) return r;  // wholly below the block: contributes nothing
     int x0, x1, y0, y1;
     ax.slab_range(lo[0], hi[0], x0, x1);
     ay.slab_range(lo[1], hi[1], y0, y1);
-    x0 = std::max(x0, 0);
-    x1 = std::min(x1, l.nx - 1);
-    y0 = std::max(y0, 0);
-    y1 = std::min(y1, l.ny - 1);
+    x0 = std::max(x0, l.i0) - l.i0;
+    x1 = std::min(x1, l.i0 + l.nx - 1) - l.i0;
+    y0 = std::max(y0, l.j0) - l.j0;
+    y1 = std::min(y1, l.j0 + l.ny - 1) - l.j0;
     if (x0 > x1 || y0 > y1) return r;
     r.tx0 = x0 / l.tile;
     r.tx1 = x1 / l.tile;
@@ -215,6 +231,7 @@ struct Workspace {
     std::vector<uint8_t> state;              // bodies × tile cells: BodyCell
     std::vector<double> level_column;        // levels × nz: their scans of one column
     std::vector<uint8_t> level_state;        // nz
+    std::vector<double> column, column_moments;  // one body's scan of a column (blocks not reaching the top)
 };
 
 struct Partial {
@@ -274,30 +291,30 @@ std::size_t scatter_tile(const Job& job, std::size_t b, std::size_t tile, int ix
     const double* xs = job.g.x.data();
     const double* ys = job.g.y.data();
     const double* zs = job.g.z.data();
-    const int nz = job.l.nz;
+    const int nz = static_cast<int>(job.g.nz()), k0 = job.l.k0, k1 = k0 + job.l.bnz;
     const uint8_t* on_level = job.levels ? job.levels->whole[b].data() : nullptr;
     std::size_t pieces = 0;
     for (std::size_t e = bins.offsets[tile]; e < bins.offsets[tile + 1]; ++e) {
         const uint32_t t = bins.entries[e];
         const uint8_t levels = on_level ? on_level[t] : 1;  // one body: its surface is the union's
         const uint32_t* v = &job.tris[b].index[3 * std::size_t{t}];
-        grid::clip_to_cells(load_triangle(ws.tri, m, v), job.ax, job.ay, job.az, ix0, ix1, iy0, iy1, ws.clip,
+        grid::clip_to_cells(load_triangle(ws.tri, m, v), job.ax, job.ay, job.az, ix0, ix1, iy0, iy1, k0, ws.clip,
                             [&](const grid::Polygon& piece, int i, int j, int k) {
                                 const int kt = std::min(k + 1, nz);
                                 const double corner[3] = {xs[i], ys[j], zs[k]};
                                 const double far[3] = {xs[i + 1], ys[j + 1], zs[kt]};
                                 const grid::PieceIntegrals r = grid::piece_integrals<kMoments>(piece, corner, far);
-                                ws.sums.scatter(i - ix0, j - iy0, k, r);
+                                ws.sums.scatter(i - ix0, j - iy0, k - k0, r);
                                 for (std::size_t l = 0; l < ws.level_sums.size(); ++l)
-                                    if (levels & (1u << l)) ws.level_sums[l].scatter(i - ix0, j - iy0, k, r);
+                                    if (levels & (1u << l)) ws.level_sums[l].scatter(i - ix0, j - iy0, k - k0, r);
                                 ++pieces;
-                                if (job.surface && k < nz) {  // tiles own their cells: no race
+                                if (job.surface && k < k1) {  // tiles own their cells: no race
                                     double a[3];
                                     grid::piece_vector_area(piece, corner, a);
                                     const double area = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-                                    const std::size_t cell = job.g.cell(i, j, k);
+                                    const std::size_t cell = job.l.out_cell(i, j, k - k0);
                                     add_surface(job.out.wetted_area, job.out.surface_normal,
-                                                b * job.g.cell_count() + cell, area, a);
+                                                b * job.l.out_cells() + cell, area, a);
                                     if (levels & 1u)
                                         add_surface(job.out.union_wetted_area, job.out.union_surface_normal, cell,
                                                     area, a);
@@ -317,23 +334,23 @@ void scatter_fans(const Job& job, std::size_t level, std::size_t tile, int ix0, 
     const double* xs = job.g.x.data();
     const double* ys = job.g.y.data();
     const double* zs = job.g.z.data();
-    const int nz = job.l.nz;
+    const int nz = static_cast<int>(job.g.nz()), k0 = job.l.k0, k1 = k0 + job.l.bnz;
     const bool surface = level == 0 && (!job.out.union_wetted_area.empty() || !job.out.union_surface_normal.empty());
     for (std::size_t e = f.bins.offsets[tile]; e < f.bins.offsets[tile + 1]; ++e) {
         const uint32_t t = f.bins.entries[e];
         grid::clip_to_cells(load_triangle(ws.tri, m, &f.index[3 * std::size_t{t}]), job.ax, job.ay, job.az, ix0, ix1,
-                            iy0, iy1, ws.clip, [&](const grid::Polygon& piece, int i, int j, int k) {
+                            iy0, iy1, k0, ws.clip, [&](const grid::Polygon& piece, int i, int j, int k) {
                                 const int kt = std::min(k + 1, nz);
                                 const double corner[3] = {xs[i], ys[j], zs[k]};
                                 const double far[3] = {xs[i + 1], ys[j + 1], zs[kt]};
-                                ws.level_sums[level].scatter(i - ix0, j - iy0, k,
+                                ws.level_sums[level].scatter(i - ix0, j - iy0, k - k0,
                                                              grid::piece_integrals<false>(piece, corner, far));
-                                if (surface && k < nz) {
+                                if (surface && k < k1) {
                                     double a[3];
                                     grid::piece_vector_area(piece, corner, a);
                                     const auto& n = f.normal[t];
                                     add_surface(job.out.union_wetted_area, job.out.union_surface_normal,
-                                                job.g.cell(i, j, k), a[0] * n[0] + a[1] * n[1] + a[2] * n[2], a);
+                                                job.l.out_cell(i, j, k - k0), a[0] * n[0] + a[1] * n[1] + a[2] * n[2], a);
                                 }
                             });
     }
@@ -361,16 +378,28 @@ void add_column(exact::ExactSum& sum, const double* v, int n) {
     }
 }
 
+// Cells of each kind among n states.
+grid::ColumnCounts count_states(const uint8_t* state, int n) {
+    grid::ColumnCounts c;
+    for (int k = 0; k < n; ++k) (state[k] == grid::kEmpty ? c.empty : state[k] == grid::kFull ? c.full : c.cut) += 1;
+    return c;
+}
+
 void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
     const Layout& l = job.l;
     const int tx = static_cast<int>(tile / l.nty), ty = static_cast<int>(tile % l.nty);
-    const int ix0 = tx * l.tile, ix1 = std::min(l.nx, ix0 + l.tile) - 1;
-    const int iy0 = ty * l.tile, iy1 = std::min(l.ny, iy0 + l.tile) - 1;
+    const int ix0 = l.i0 + tx * l.tile, ix1 = std::min(l.i0 + l.nx, ix0 + l.tile) - 1;
+    const int iy0 = l.j0 + ty * l.tile, iy1 = std::min(l.j0 + l.ny, iy0 + l.tile) - 1;
     const int tw = ix1 - ix0 + 1, th = iy1 - iy0 + 1;
     const std::size_t nb = job.bodies.size();
     const std::size_t tile_cells = static_cast<std::size_t>(tw) * th * l.nz;
-    const std::size_t cells = job.g.cell_count();
+    const std::size_t cells = l.out_cells();
+    const double* z = job.g.z.data() + l.k0;  // the scanned layers' planes
     ws.state.resize(nb * tile_cells);
+    if (!l.direct()) {
+        ws.column.resize(l.nz);
+        ws.column_moments.resize(job.moments ? 3 * std::size_t(l.nz) : 0);
+    }
     const std::size_t nlevels = job.fans.size();
     ws.level_sums.resize(nlevels);
     for (grid::TileSums& sums : ws.level_sums) sums.reset(l.tile, l.nz + 1, false);
@@ -381,17 +410,26 @@ void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
         for (int ci = 0; ci < tw; ++ci) {
             for (int cj = 0; cj < th; ++cj) {
                 const int i = ix0 + ci, j = iy0 + cj;
-                const std::size_t cell0 = job.g.cell(i, j, 0);
+                const std::size_t cell0 = l.out_cell(i, j, 0);
                 double* vol = &job.out.volumes[b * cells + cell0];
                 double* mom = job.moments ? &job.out.first_moments[3 * (b * cells + cell0)] : nullptr;
                 uint8_t* state = &ws.state[b * tile_cells + (static_cast<std::size_t>(ci) * th + cj) * l.nz];
-                const grid::ColumnGeometry geom{job.g.x[i], job.g.x[i + 1], job.g.y[j], job.g.y[j + 1],
-                                                job.g.z.data(), l.nz};
-                const grid::ColumnCounts counts = grid::scan_column(ws.sums, ci, cj, geom, vol, mom, state);
+                const grid::ColumnGeometry geom{job.g.x[i], job.g.x[i + 1], job.g.y[j], job.g.y[j + 1], z, l.nz};
+                grid::ColumnCounts counts;
+                if (l.direct()) {
+                    counts = grid::scan_column(ws.sums, ci, cj, geom, vol, mom, state);
+                } else {
+                    // A block below the grid's top: scan down to its floor, keep its layers.
+                    grid::scan_column(ws.sums, ci, cj, geom, ws.column.data(), mom ? ws.column_moments.data() : nullptr,
+                                      state);
+                    std::copy_n(ws.column.data(), l.bnz, vol);
+                    if (mom) std::copy_n(ws.column_moments.data(), 3 * l.bnz, mom);
+                    counts = count_states(state, l.bnz);
+                }
                 part.empty[b] += counts.empty;
                 part.full[b] += counts.full;
                 part.cut[b] += counts.cut;
-                if (counts.empty != static_cast<std::size_t>(l.nz)) add_column(part.body_volume[b], vol, l.nz);
+                if (counts.empty != static_cast<std::size_t>(l.bnz)) add_column(part.body_volume[b], vol, l.bnz);
             }
         }
     }
@@ -403,13 +441,13 @@ void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
     for (int ci = 0; ci < tw; ++ci) {
         for (int cj = 0; cj < th; ++cj) {
             const int i = ix0 + ci, j = iy0 + cj;
-            const std::size_t cell0 = job.g.cell(i, j, 0);
+            const std::size_t cell0 = l.out_cell(i, j, 0);
             const std::size_t local0 = (static_cast<std::size_t>(ci) * th + cj) * l.nz;
-            const grid::ColumnGeometry geom{job.g.x[i], job.g.x[i + 1], job.g.y[j], job.g.y[j + 1], job.g.z.data(), l.nz};
+            const grid::ColumnGeometry geom{job.g.x[i], job.g.x[i + 1], job.g.y[j], job.g.y[j + 1], z, l.nz};
             for (std::size_t level = 0; level < nlevels; ++level)
                 grid::scan_column(ws.level_sums[level], ci, cj, geom, &ws.level_column[level * l.nz], nullptr,
                                   ws.level_state.data());
-            for (int k = 0; k < l.nz; ++k) {
+            for (int k = 0; k < l.bnz; ++k) {
                 // The bodies' own values decide the cell unless two or more surfaces enter it.
                 std::size_t full = 0, cut = 0, cut_body = 0;
                 for (std::size_t b = 0; b < nb; ++b) {
@@ -420,7 +458,7 @@ void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
                         cut_body = b;
                     }
                 }
-                const double cell_volume = job.g.cell_volume(i, j, k);
+                const double cell_volume = job.g.cell_volume(i, j, l.k0 + k);
                 const double one_cut = cut == 1 ? job.out.volumes[cut_body * cells + cell0 + k] : 0;
                 const double u = full > 0 ? cell_volume : cut <= 1 ? one_cut : ws.level_column[k];
                 const std::size_t c = cell0 + k;
@@ -454,12 +492,20 @@ void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
 
 GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, const GridOutput& out,
                          const GridOptions& options) {
+    return grid_block_volumes(bodies, g, GridBlock{{0, 0, 0}, {g.nx(), g.ny(), g.nz()}}, out, options);
+}
+
+GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes& g, const GridBlock& block,
+                               const GridOutput& out, const GridOptions& options) {
     check_axis(g.x, "x");
     check_axis(g.y, "y");
     check_axis(g.z, "z");
     const std::size_t nb = bodies.size();
     if (nb == 0) throw std::invalid_argument("grid: no bodies");
-    const std::size_t cells = g.cell_count();
+    for (int a = 0; a < 3; ++a)
+        if (!(block.lo[a] < block.hi[a] && block.hi[a] <= (a == 0 ? g.nx() : a == 1 ? g.ny() : g.nz())))
+            throw std::invalid_argument("grid: the block must be a non-empty range of cells within the grid");
+    const std::size_t cells = block.cell_count();
     if (out.volumes.size() != nb * cells)
         throw std::invalid_argument("grid: volumes must hold bodies * cells = " + std::to_string(nb * cells) +
                                     " values, not " + std::to_string(out.volumes.size()));
@@ -487,8 +533,7 @@ GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, co
                                !out.union_surface_normal.empty();
 
     const Axis ax(g.x), ay(g.y), az(g.z);
-    const Layout layout = choose_layout(static_cast<int>(g.nx()), static_cast<int>(g.ny()),
-                                        static_cast<int>(g.nz()), moments);
+    const Layout layout = choose_layout(g, block, moments);
     std::vector<Triangles> tris;
     std::vector<Bins> bins;
     for (const MeshView& m : bodies) {

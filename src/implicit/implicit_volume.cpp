@@ -57,7 +57,7 @@ double resolved_h(const ImplicitOptions& o, const Box& b) {
 // volume is streamed (ConeSum: the cone formula, no chain, no validation —
 // the chain is closed by construction) into pass.volume and
 // pass.rounding_error_bound.
-void run_pass(const ImplicitFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
+void run_pass(const ImplicitBatchFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
               ImplicitPass& pass, Chain* chain) {
     const auto t0 = Clock::now();
     const implicit::Lattice lattice(o.dimension, b.lo, b.hi, cells);
@@ -99,7 +99,7 @@ void measure_pass(const Chain& chain, const ImplicitOptions& o, ImplicitPass& pa
 
 // One pass measured: streamed unless the chain is wanted (kept) or the prism
 // formula is asked for (chain_volume only).
-void volume_pass(const ImplicitFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
+void volume_pass(const ImplicitBatchFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
                  ImplicitPass& pass, std::optional<Chain>* kept) {
     if (!kept && o.formula == SimplexFormula::cone) {
         run_pass(f, o, b, cells, pass, nullptr);
@@ -128,16 +128,30 @@ Richardson richardson(double fine, double coarse, double ratio, double order) {
     return {(factor * fine - coarse) / (factor - 1), std::fabs(fine - coarse) / (factor - 1)};
 }
 
+namespace {
+// A pointwise F as a batch function: one call per point.
+ImplicitBatchFunction batch_of(const ImplicitFunction& f, int dimension) {
+    const auto n = static_cast<std::size_t>(dimension);
+    return [&f, n](std::span<const double> points, std::span<double> values) {
+        for (std::size_t i = 0; i < values.size(); ++i) values[i] = f(points.subspan(i * n, n));
+    };
+}
+}  // namespace
+
 Chain implicit_surface(const ImplicitFunction& f, const ImplicitOptions& options, ImplicitPass* pass) {
     const Box b = checked_box(options);
     const std::vector<int32_t> cells = implicit::lattice_cells(b.lo, b.hi, resolved_h(options, b));
     ImplicitPass local;
     Chain chain;
-    run_pass(f, options, b, cells, pass ? *pass : local, &chain);
+    run_pass(batch_of(f, options.dimension), options, b, cells, pass ? *pass : local, &chain);
     return chain;
 }
 
 ImplicitVolume implicit_volume(const ImplicitFunction& f, const ImplicitOptions& options) {
+    return implicit_volume_batch(batch_of(f, options.dimension), options);
+}
+
+ImplicitVolume implicit_volume_batch(const ImplicitBatchFunction& f, const ImplicitOptions& options) {
     const auto t0 = Clock::now();
     const Box b = checked_box(options);
     ImplicitVolume r;

@@ -52,6 +52,7 @@ void coarse_scan(const Lattice& lattice, Sampler& sampler, SurfaceBuilder& build
         for (int32_t j = 0; j <= m; ++j)
             real[k].push_back(static_cast<int32_t>(std::llround(static_cast<double>(j) * cells / m)));
     }
+    std::vector<Index> along;  // one line's coarse vertices
     for (int axis = 0; axis < n; ++axis) {
         // Odometer over the other axes' coarse indices.
         std::array<std::size_t, kMaxDim> digit{};
@@ -62,6 +63,12 @@ void coarse_scan(const Lattice& lattice, Sampler& sampler, SurfaceBuilder& build
             int32_t previous = -1;  // virtual: positive
             bool previous_positive = true;
             const std::size_t count = real[axis].size();
+            along.resize(count);
+            for (std::size_t j = 0; j < count; ++j) {
+                along[j] = line;
+                along[j][axis] = real[axis][j];
+            }
+            sampler.prefetch(along);
             for (std::size_t j = 0; j <= count; ++j) {
                 const int32_t index = j < count ? real[axis][j] : lattice.cells[axis] + 1;
                 p[axis] = index;

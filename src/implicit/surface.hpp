@@ -99,11 +99,17 @@ std::vector<int32_t> lattice_cells(std::span<const double> lo, std::span<const d
 
 // F at lattice vertices, each evaluated at most once. Virtual vertices are
 // +infinity and never evaluated. NaN throws; with BoxRule::error a boundary
-// vertex with F <= 0 throws.
+// vertex with F <= 0 throws. prefetch() evaluates several vertices in one
+// call of F; each is then taken in by value() when first asked for, so the
+// checks and the boundary list run in the order the walk asks, as without
+// prefetching (the same bits).
 class Sampler {
 public:
-    Sampler(const Lattice& lattice, const ImplicitFunction& f, BoxRule rule);
+    Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule rule);
     double value(const Index& v);
+    // Evaluates those of vs not yet known in one call (replacing the
+    // previous prefetch's values not yet asked for).
+    void prefetch(std::span<const Index> vs);
     // Sign rule: positive iff F > 0 (0 counts as negative).
     bool positive(const Index& v) { return value(v) > 0; }
     std::size_t evaluations() const { return evaluations_; }
@@ -114,10 +120,13 @@ public:
 
 private:
     const Lattice& lattice_;
-    const ImplicitFunction& f_;
+    const ImplicitBatchFunction& f_;
     BoxRule rule_;
     FlatMap<double> values_;
     std::vector<double> x_;
+    std::vector<std::pair<uint64_t, double>> pending_;  // prefetched, not yet asked for
+    std::size_t cursor_ = 0;                            // where the next one asked for probably is
+    std::vector<double> points_, batch_;
     std::size_t evaluations_ = 0;
     std::size_t box_inside_ = 0;
     std::vector<Index> boundary_inside_;

@@ -86,10 +86,14 @@ SurfaceBuilder::SurfaceBuilder(const Lattice& lattice, Sampler& sampler, std::si
 void SurfaceBuilder::sample(CubeSamples& cube) {
     const uint32_t corners = 1u << cube.d;
     cube.any_positive = cube.any_negative = false;
+    std::array<Index, 1u << kMaxDim> u;
     for (uint32_t b = 0; b < corners; ++b) {
-        Index u = cube.corner;
-        for (int i = 0; i < cube.d; ++i) u[cube.axes[i]] += static_cast<int32_t>((b >> i) & 1u);
-        cube.f[b] = sampler_.value(u);
+        u[b] = cube.corner;
+        for (int i = 0; i < cube.d; ++i) u[b][cube.axes[i]] += static_cast<int32_t>((b >> i) & 1u);
+    }
+    sampler_.prefetch(std::span<const Index>(u.data(), corners));
+    for (uint32_t b = 0; b < corners; ++b) {
+        cube.f[b] = sampler_.value(u[b]);
         cube.positive[b] = cube.f[b] > 0;
         (cube.positive[b] ? cube.any_positive : cube.any_negative) = true;
     }

@@ -539,4 +539,36 @@ TEST(Expression, DrivesTheVolume) {
     EXPECT_NEAR(16 * r.volume, ball_volume(4), 1e-3 * ball_volume(4));
 }
 
+// F in batches: the same points and bits as pointwise, in far fewer calls
+// (a cube's corners, a coarse lattice line), clipped and not, in 3 and 4 dimensions.
+TEST(ImplicitVolume, BatchedFHasThePointwiseBits) {
+    for (const int n : {3, 4}) {
+        ImplicitOptions o;
+        o.dimension = n;
+        o.lo = {-1.0};
+        o.hi = {n == 3 ? 0.9 : 1.2};  // n = 3: the ball is clipped by the box
+        o.h = n == 3 ? 0.05 : 0.2;
+        const ImplicitFunction f = [](std::span<const double> x) {
+            double s = -1;
+            for (std::size_t k = 0; k < x.size(); ++k) s += (1 + 0.3 * static_cast<double>(k)) * x[k] * x[k];
+            return s;
+        };
+        std::size_t calls = 0, points = 0;
+        const ImplicitBatchFunction batch = [&](std::span<const double> p, std::span<double> v) {
+            ++calls;
+            points += v.size();
+            ASSERT_EQ(p.size(), v.size() * static_cast<std::size_t>(n));
+            for (std::size_t i = 0; i < v.size(); ++i) v[i] = f(p.subspan(i * n, static_cast<std::size_t>(n)));
+        };
+        const ImplicitVolume a = implicit_volume(f, o), b = implicit_volume_batch(batch, o);
+        EXPECT_EQ(a.volume, b.volume);
+        EXPECT_EQ(a.fine.volume, b.fine.volume);
+        EXPECT_EQ(a.coarse->volume, b.coarse->volume);
+        EXPECT_EQ(a.fine.boundary_simplices, b.fine.boundary_simplices);
+        EXPECT_EQ(a.fine.box_vertices_inside, b.fine.box_vertices_inside);
+        EXPECT_EQ(points, a.fine.function_evaluations + a.coarse->function_evaluations);
+        EXPECT_LT(4 * calls, points);
+    }
+}
+
 }  // namespace
