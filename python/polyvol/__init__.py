@@ -1,0 +1,419 @@
+"""polyvol: exact volume, area, centroid and inertia of polyhedra from their
+boundary meshes; the exact volume of solids in every cell of a grid; volumes
+of chains in R^n, of plane polygons and of implicit solids.
+
+Units are those of the coordinates: volumes in units³, areas in units²,
+moments in units⁴, second moments and inertia in units⁵ (times the density).
+Every number comes with its guarantee: "correctly rounded" (the exact value
+for the coordinates as given, rounded once to the nearest double) or a
+rigorous error bound. Meshes are read exactly as the ``polyvol`` command
+reads them (docs/python.md).
+
+    >>> import polyvol
+    >>> m = polyvol.load("part.stl")
+    >>> p = polyvol.mass_properties(m)
+    >>> p.volume, p.centroid, p.inertia
+"""
+
+import math
+import warnings
+
+import numpy as np
+
+from . import _arrays
+from ._errors import ExpressionError, ImplicitError, ReadError
+from ._polyvol import __version__
+from . import _polyvol as _core
+
+__all__ = [
+    "Mesh", "load", "load_bytes", "mass_properties", "volume", "check", "solid", "overlap", "self_crossings",
+    "grid", "Grid", "chain_volume", "polygon_area", "load_chain", "load_polygons", "implicit",
+    "ReadError", "ImplicitError", "ExpressionError", "__version__",
+]
+
+
+def _plain(value):
+    """Plain Python values as the CLI's JSON holds them (NaN and infinity as None)."""
+    if isinstance(value, np.ndarray):
+        return _plain(value.tolist())
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, _Result):
+        return value.to_dict()
+    return value
+
+
+class _Result:
+    """A result: its fields as attributes, to_dict() with the CLI's JSON keys."""
+
+    _fields = ()
+
+    def __init__(self, **fields):
+        self.__dict__.update(fields)
+
+    def to_dict(self):
+        """The fields as plain Python values, under the keys of the CLI's --json."""
+        return {k: _plain(getattr(self, k)) for k in self._fields}
+
+    def __repr__(self):
+        shown = []
+        for k in self._fields:
+            v = getattr(self, k)
+            if isinstance(v, np.ndarray):
+                v = np.array2string(v, precision=17, separator=", ").replace("\n", "")
+            elif isinstance(v, list) and len(v) > 4:
+                v = f"[{len(v)} items]"
+            shown.append(f"{k}={v}")
+        return f"{type(self).__name__}({', '.join(shown)})"
+
+
+# ---- meshes ------------------------------------------------------------------
+
+class Mesh:
+    """A mesh as read from a file (polyvol.load) or made from arrays
+    (Mesh(vertices, faces)). ``vertices`` and the face arrays are read-only
+    numpy views of the C++ arrays (no copy)."""
+
+    def __init__(self, vertices=None, faces=None, *, _core_mesh=None):
+        if _core_mesh is None:
+            v, idx, offsets = _arrays.mesh(vertices, faces)
+            _core_mesh = _core.mesh_from_arrays(v, idx, offsets)
+        self._core = _core_mesh
+
+    @property
+    def vertices(self):
+        """(n, 3) float64: the coordinates exactly as read (float32 widened exactly)."""
+        return self._core.vertices
+
+    @property
+    def is_triangle_mesh(self):
+        return self._core.offsets is None
+
+    @property
+    def faces(self):
+        """(m, 3) uint32 vertex indices, counter-clockwise seen from outside.
+        A mesh with other polygons has face_offsets and face_indices instead."""
+        if self._core.offsets is not None:
+            raise ValueError("this mesh has faces that are not triangles: use face_offsets and face_indices")
+        return self._core.indices.reshape(-1, 3)
+
+    @property
+    def face_offsets(self):
+        """(m + 1,) uint32: face f is face_indices[face_offsets[f]:face_offsets[f + 1]]."""
+        if self._core.offsets is None:
+            return np.arange(0, self._core.indices.size + 1, 3, dtype=np.uint32)
+        return self._core.offsets
+
+    @property
+    def face_indices(self):
+        """The faces' vertex indices, one face after the other (see face_offsets)."""
+        return self._core.indices
+
+    format = property(lambda self: self._core.format, doc='"stl", "obj", "off", "ply", "3mf", "amf" or "unknown" (arrays)')
+    encoding = property(lambda self: self._core.encoding, doc='"ascii", "binary_le", "binary_be", "zip", "xml"')
+    gzip = property(lambda self: self._core.gzip, doc="whether the file was gzip-compressed")
+    notes = property(lambda self: self._core.notes, doc="quirks met while reading")
+    vertices_in_file = property(lambda self: self._core.vertices_in_file,
+                                doc="vertices as the file lists them (STL: three per facet, before welding)")
+    face_count = property(lambda self: self._core.face_count)
+    triangle_count = property(lambda self: self._core.triangle_count, doc="fan triangles of the faces")
+
+    def __repr__(self):
+        return (f"Mesh(format={self.format!r}, vertices={self.vertices.shape[0]}, faces={self.face_count}, "
+                f"triangles={self.triangle_count})")
+
+
+def load(path):
+    """Reads a mesh file: STL (ASCII, binary), OBJ, OFF, PLY, 3MF, AMF, any of
+    them gzip-compressed; the format is chosen by content, as the CLI does.
+    Raises ReadError (a ValueError) with .path, .line or .offset and .message."""
+    return Mesh(_core_mesh=_core.load(str(path)))
+
+
+def load_bytes(data, name="memory"):
+    """Reads a mesh from bytes; ``name`` appears in errors and its extension is a hint."""
+    return Mesh(_core_mesh=_core.load_bytes(bytes(data), name))
+
+
+# ---- mass properties -----------------------------------------------------------
+
+class MassProperties(_Result):
+    """Mass properties of a mesh (the cone rule's sums, measure.hpp):
+    volume, mass = density * volume, area, centroid (3,), first_moments (3,),
+    second_moments (3, 3) = density * ∫x_i x_j about the origin, inertia (3, 3)
+    about the centroid, inertia_origin (3, 3), edge_length; and their
+    guarantees: volume_correctly_rounded (else volume_error_bound, absolute),
+    moments_correctly_rounded (else moments_relative_error), area_relative_error,
+    edge_length_relative_error."""
+
+    _fields = ("method", "accuracy", "density", "volume", "volume_correctly_rounded", "volume_error_bound", "mass",
+               "area", "area_relative_error", "centroid", "first_moments", "second_moments", "inertia",
+               "inertia_origin", "moments_accuracy", "moments_relative_error", "edge_length",
+               "edge_length_relative_error")
+
+
+def mass_properties(mesh, faces=None, *, density=1.0, method="cone", accuracy="correctly-rounded",
+                    second_moments=True, edge_length=True):
+    """Volume, mass, area, centroid, moments, inertia and edge length of a
+    closed mesh (a polyvol.Mesh, an object with .vertices and .faces, or
+    vertices and faces arrays).
+
+    method: "cone" (det/6 per fan triangle), "prism", "pyramid" or "vtnb"
+    (Franklin's vertex-edge-face formula); it chooses the volume only.
+    accuracy: "correctly-rounded" (the exact value rounded once: volume,
+    mass, moments, centroid, inertia) or "fast" (double sums with a rigorous
+    bound). Area and edge length always carry a relative bound.
+    For an open surface the sums are about the origin: check(mesh).closed says
+    whether they are a solid's."""
+    v, idx, offsets = _arrays.mesh(mesh, faces)
+    p = _core.mass_properties(v, idx, offsets, method, accuracy, float(density), second_moments, edge_length)
+    return MassProperties(
+        method=p.method, accuracy=p.accuracy, density=float(density), volume=p.volume,
+        volume_correctly_rounded=p.volume_correctly_rounded, volume_error_bound=p.volume_error_bound, mass=p.mass,
+        area=p.area, area_relative_error=p.area_relative_error, centroid=p.centroid, first_moments=p.first_moments,
+        second_moments=p.second_moments, inertia=p.inertia, inertia_origin=p.inertia_origin,
+        moments_correctly_rounded=p.moments_correctly_rounded,
+        moments_accuracy="correctly-rounded" if p.moments_correctly_rounded else "error-bound",
+        moments_relative_error=p.moments_relative_error, edge_length=p.edge_length,
+        edge_length_relative_error=p.edge_length_relative_error)
+
+
+def volume(mesh, faces=None, *, method="cone", accuracy="correctly-rounded"):
+    """The signed volume (negative for an inside-out surface), correctly rounded
+    by default (see mass_properties)."""
+    v, idx, offsets = _arrays.mesh(mesh, faces)
+    return _core.mass_properties(v, idx, offsets, method, accuracy, 1.0, False, False).volume
+
+
+# ---- topology --------------------------------------------------------------------
+
+class Shell(_Result):
+    """An edge-connected component: signed_volume (correctly rounded), faces,
+    boundary_edges, unbalanced_edges, euler_characteristic, genus (None
+    unless defined), winding_of_others (the other shells' winding number at
+    a point of it) and role: "solid", "cavity", "inside_out", "nested" or "open"."""
+
+    _fields = ("role", "signed_volume", "faces", "boundary_edges", "unbalanced_edges", "euler_characteristic",
+               "genus", "winding_of_others")
+
+
+class Topology(_Result):
+    """What `polyvol check` reports. ``closed`` is True when the surface is a
+    closed 2-cycle (no unbalanced edge: its volume does not depend on the
+    origin); ``misoriented_edges`` counts edges used twice in one direction."""
+
+    _fields = ("closed", "closed_2_cycle", "faces", "triangles", "vertices_welded", "edges", "boundary_edges",
+               "nonmanifold_edges", "misoriented_edges", "unbalanced_edges", "unbalanced_example",
+               "degenerate_triangles", "euler_characteristic", "components", "cavities", "inside_out_shells",
+               "nested_shells", "shells")
+
+
+def check(mesh, faces=None, *, shells=True):
+    """The topology report of `polyvol check`: edge counts, components,
+    shells with their volumes and nesting (shells=False: the edge counts only)."""
+    v, idx, offsets = _arrays.mesh(mesh, faces)
+    t = _core.topology(v, idx, offsets, shells)
+    example = None
+    if t.unbalanced_example is not None:
+        e = t.unbalanced_example
+        example = [[e[0], e[1], e[2]], [e[3], e[4], e[5]]]
+    return Topology(
+        closed=t.closed_2_cycle, closed_2_cycle=t.closed_2_cycle, faces=t.faces, triangles=t.triangles,
+        vertices_welded=t.vertices_welded, edges=t.edges, boundary_edges=t.boundary_edges,
+        nonmanifold_edges=t.nonmanifold_edges, misoriented_edges=t.misoriented_edges,
+        unbalanced_edges=t.unbalanced_edges, unbalanced_example=example,
+        degenerate_triangles=t.triangles_with_repeated_vertex + t.zero_area_triangles,
+        euler_characteristic=t.euler_characteristic, components=t.components_edge_connected, cavities=t.cavities,
+        inside_out_shells=t.inside_out_shells, nested_shells=t.nested_shells,
+        shells=[Shell(role=s.role, signed_volume=s.signed_volume, faces=s.faces, boundary_edges=s.boundary_edges,
+                      unbalanced_edges=s.unbalanced_edges, euler_characteristic=s.euler_characteristic,
+                      genus=s.genus, winding_of_others=s.winding_of_others) for s in t.shells])
+
+
+# ---- overlapping shells and booleans ------------------------------------------------
+
+class SolidVolume(_Result):
+    """The solid a mesh with overlapping shells bounds (winding number >= 1,
+    what a slicer prints): volume correctly rounded, winding_volume (the sum
+    of the shells' volumes, what mass_properties gives), the counts of
+    overlapping shells and crossing triangle pairs; with moments, its
+    first_moments and second_moments (correctly rounded), centroid (relative
+    error < 2^-51) and inertia about the centroid (inertia_relative_error)."""
+
+    _fields = ("status", "volume", "winding_volume", "shells", "overlapping_shells", "crossing_pairs",
+               "centroid", "first_moments", "second_moments", "inertia", "inertia_relative_error")
+
+
+def solid(mesh, faces=None, *, moments=True):
+    """Volume (and mass properties) of the region where the winding number of
+    the mesh's shells is >= 1. Raises ValueError when it is undefined (an
+    open mesh, a shell crossing itself where that matters)."""
+    v, idx, offsets = _arrays.mesh(mesh, faces)
+    s = _core.solid_volume(v, idx, offsets, moments)
+    if s.status != "ok":
+        raise ValueError(f"no solid: {s.message}")
+    return SolidVolume(status=s.status, volume=s.volume, winding_volume=s.winding_volume, shells=s.shells,
+                       overlapping_shells=s.overlapping_shells, crossing_pairs=s.crossing_pairs,
+                       centroid=s.centroid if moments else None, first_moments=s.first_moments if moments else None,
+                       second_moments=s.second_moments if moments else None,
+                       inertia=s.inertia if moments else None,
+                       inertia_relative_error=s.inertia_relative_error if moments else None)
+
+
+class BooleanVolumes(_Result):
+    """Volumes of A, B, A∩B, A∪B, A−B, B−A (each correctly rounded) and the
+    areas of their boundaries (each within area_error_bound)."""
+
+    _fields = ("volume_a", "volume_b", "intersection", "union", "a_minus_b", "b_minus_a", "accuracy", "area_a",
+               "area_b", "area_intersection", "area_union", "area_a_minus_b", "area_b_minus_a", "area_error_bound",
+               "candidate_pairs", "crossing_pairs")
+
+
+def overlap(a, b):
+    """Volumes of the booleans of two closed, outward meshes, exactly, without
+    building them (`polyvol overlap`). Raises ValueError when a mesh is not a
+    solid (open, inside out, overlapping itself, coordinates out of range)."""
+    pa, ia, oa = _arrays.mesh(a)
+    pb, ib, ob = _arrays.mesh(b)
+    r = _core.boolean_volumes(pa, ia, oa, pb, ib, ob)
+    if r.status != "ok":
+        raise ValueError(f"no boolean volumes: {r.message}")
+    return BooleanVolumes(accuracy="correctly-rounded", **{k: getattr(r, k) for k in BooleanVolumes._fields
+                                                           if k != "accuracy"})
+
+
+class SelfCrossings(_Result):
+    """Pairs of triangles of one body that share no vertex and cross."""
+
+    _fields = ("pairs", "candidate_pairs", "example")
+
+
+def self_crossings(mesh, faces=None):
+    """Where a mesh's surface crosses itself (exact predicates): the number of
+    crossing triangle pairs and one example as (face, face)."""
+    v, idx, offsets = _arrays.mesh(mesh, faces)
+    s = _core.self_crossings(v, idx, offsets)
+    if s.status != "ok":
+        raise ValueError("self_crossings: a coordinate is not finite or out of the predicates' range")
+    return SelfCrossings(pairs=s.pairs, candidate_pairs=s.candidate_pairs,
+                         example=list(s.example) if s.example is not None else None)
+
+
+# ---- grids ---------------------------------------------------------------------------
+
+from ._grid import Grid, grid  # noqa: E402  (uses the helpers above)
+
+
+# ---- chains, polygons, implicit solids ------------------------------------------------------
+
+class ChainVolume(_Result):
+    """Volume (signed) and centroid of a boundary chain in R^n: correctly
+    rounded, or within error_bound (absolute) and centroid_error_bound."""
+
+    _fields = ("dimension", "formula", "accuracy", "volume", "error_bound", "correctly_rounded", "centroid",
+               "centroid_error_bound", "centroid_correctly_rounded", "simplices", "vertices",
+               "degenerate_simplices", "unmatched_faces", "boundary_faces", "misoriented_faces",
+               "nonmanifold_faces", "components", "closed")
+
+
+def _chain_result(d):
+    d = dict(d)
+    d["error_bound"] = d.pop("volume_error_bound")
+    d["correctly_rounded"] = d.pop("volume_correctly_rounded")
+    d["accuracy"] = "correctly-rounded" if d["correctly_rounded"] else "error-bound"
+    return d
+
+
+def chain_volume(points, simplices, formula="cone", accuracy="auto"):
+    """Volume and centroid of the polyhedron in R^n bounded by an oriented
+    chain of (n-1)-simplices: points (m, n), simplices (k, n) vertex indices
+    (docs/chain-format.md). formula "cone" (2.1) or "prism" (2.2); accuracy
+    "auto" (correctly rounded for n <= 3, a rigorous bound above), "bounded"
+    or "exact". ``closed`` says whether the chain is a cycle."""
+    p = _arrays.coordinates(points, columns=None, name="points")
+    s = _arrays.indices(simplices, p.shape[0], name="simplices")
+    if s.ndim != 2 or s.shape[1] != p.shape[1]:
+        raise ValueError(f"simplices must have shape (k, {p.shape[1]}), not {s.shape}")
+    return ChainVolume(**_chain_result(_core.chain_volume(p, s, formula, accuracy)))
+
+
+class PolygonArea(_Result):
+    """Area (signed: counter-clockwise outer loops positive, holes clockwise)
+    and centroid of plane polygons, correctly rounded."""
+
+    _fields = ("area", "correctly_rounded", "error_bound", "centroid", "centroid_correctly_rounded", "closed")
+
+
+def polygon_area(loops, formula="cone"):
+    """Area and centroid of polygons with holes: ``loops`` a list of (k, 2)
+    arrays, each a closed loop (the last vertex joins the first); outer
+    loops counter-clockwise, holes clockwise."""
+    arrays = [_arrays.coordinates(loop, columns=2, name="loop") for loop in loops]
+    points = np.concatenate(arrays) if arrays else np.zeros((0, 2))
+    offsets = np.zeros(len(arrays) + 1, dtype=np.uint32)
+    np.cumsum([a.shape[0] for a in arrays], out=offsets[1:])
+    idx = np.arange(points.shape[0], dtype=np.uint32)
+    d = _chain_result(_core.polygon_area(points, offsets, idx, formula))
+    return PolygonArea(area=d["volume"], correctly_rounded=d["correctly_rounded"], error_bound=d["error_bound"],
+                       centroid=d["centroid"], centroid_correctly_rounded=d["centroid_correctly_rounded"],
+                       closed=d["closed"])
+
+
+def load_chain(path):
+    """Reads a .chain file or `qconvex o Qt` output: (points (m, n), simplices (k, n))."""
+    return _core.read_chain(str(path))
+
+
+def load_polygons(path):
+    """Reads the polygon text format (one loop per line): a list of (k, 2) arrays."""
+    return _core.read_polygons(str(path))
+
+
+class ImplicitVolume(_Result):
+    """Volume of {F <= 0} in a box from a piecewise-linear approximation on a
+    Kuhn triangulation: ``volume`` is the Richardson extrapolation of the
+    lattices of spacing h and 2h, ``error_estimate`` its estimated error
+    (an estimate, not a bound: it holds in the O(h²) regime), ``volume_pl``
+    the PL solid's volume at spacing h; ``clipped`` when the solid reaches
+    the box (it is then clipped by it)."""
+
+    _fields = ("dimension", "h", "volume", "error_estimate", "volume_pl", "volume_pl_2h", "clipped",
+               "boundary_simplices", "function_evaluations", "seconds", "fine", "coarse")
+
+
+def implicit(f, dim, box, h=None, *, coarse_cells=0, error_estimate=True, box_rule="clip", seeds=None):
+    """The volume of {x in box : F(x) <= 0} in R^dim (docs/implicit.md).
+
+    f: an expression string in x, y, z or x1..xn (muparser syntax), or a
+    Python callable taking a (k, dim) float64 array of points and returning
+    k values (it is called with many points at once: a cube's corners, a
+    lattice line). box: (lo, hi), each a number or dim numbers. h: the
+    lattice spacing (None: the widest side / the default cell count).
+    Raises ExpressionError, ImplicitError (NaN values, the box touched with
+    box_rule="error")."""
+    lo, hi = box
+    lo = [float(x) for x in np.atleast_1d(lo)]
+    hi = [float(x) for x in np.atleast_1d(hi)]
+    s = [] if seeds is None else [float(x) for x in np.asarray(seeds, dtype=np.float64).reshape(-1)]
+    if not isinstance(f, str) and not callable(f):
+        raise TypeError("f must be an expression string or a callable")
+    r = _core.implicit_volume(f, int(dim), lo, hi, 0.0 if h is None else float(h), int(coarse_cells),
+                              bool(error_estimate), box_rule, s)
+    fine, coarse = r["fine"], r["coarse"]
+    return ImplicitVolume(dimension=r["dimension"], h=r["h"], volume=r["volume"],
+                          error_estimate=r["error_estimate"] if error_estimate else None, volume_pl=fine["volume"],
+                          volume_pl_2h=coarse["volume"] if coarse else None, clipped=r["clipped"],
+                          boundary_simplices=fine["boundary_simplices"],
+                          function_evaluations=fine["function_evaluations"] + (
+                              coarse["function_evaluations"] if coarse else 0),
+                          seconds=r["seconds"], fine=fine, coarse=coarse)
+
+
+def _warn(message):
+    warnings.warn(message, stacklevel=3)

@@ -1,0 +1,38 @@
+"""The exceptions polyvol raises, with the position of the problem."""
+
+
+class ReadError(ValueError):
+    """A file could not be read as a mesh (or chain, or polygons).
+
+    ``path`` is the file, ``line`` the 1-based line of a text format (None
+    when not applicable), ``offset`` the byte offset of a binary format
+    (None when not applicable; counted in the decompressed data for .gz) and
+    ``message`` what was wrong or expected. ``str(e)`` says all of it.
+    """
+
+    def __init__(self, text, path=None, line=None, offset=None, message=None):
+        super().__init__(text)
+        self.path = path
+        self.line = line
+        self.offset = offset
+        self.message = message if message is not None else text
+
+
+class ImplicitError(ValueError):
+    """The implicit solid could not be measured: ``code`` is "not_a_number"
+    (F returned NaN at ``point``), "touches_box" (box="error" and F <= 0 at
+    ``point`` on the box boundary) or "too_large" (the lattice is too fine)."""
+
+    def __init__(self, text, code, point):
+        super().__init__(text)
+        self.code = code
+        self.point = list(point)
+
+
+class ExpressionError(ValueError):
+    """An expression for F could not be parsed; ``position`` is the 0-based
+    character where the problem is, or -1."""
+
+    def __init__(self, text, position):
+        super().__init__(text)
+        self.position = position

@@ -1,0 +1,13 @@
+// python/src/bindings.hpp — the parts of the module, one per area of the C++ API.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace polyvol::python {
+
+void bind_io(pybind11::module_& m);       // io.hpp, grid_io.hpp: reading meshes, writing grids
+void bind_measure(pybind11::module_& m);  // measure.hpp, topology.hpp, boolean.hpp
+void bind_grid(pybind11::module_& m);     // grid.hpp
+void bind_chain(pybind11::module_& m);    // chain.hpp, simplicial.hpp, implicit.hpp
+
+}  // namespace polyvol::python

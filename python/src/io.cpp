@@ -1,0 +1,106 @@
+// python/src/io.cpp — meshes read from files (polyvol/io.hpp) as zero-copy
+// numpy views, and the grid writers (polyvol/grid_io.hpp).
+#include <memory>
+#include <string>
+
+#include <pybind11/stl.h>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "polyvol/grid_io.hpp"
+#include "polyvol/io.hpp"
+
+namespace polyvol::python {
+
+namespace {
+
+LoadedMesh mesh_from_arrays(const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
+    const MeshView v = mesh_view(positions, indices, offsets);
+    LoadedMesh l;
+    l.mesh.positions.assign(v.positions.begin(), v.positions.end());
+    l.mesh.indices.assign(v.indices.begin(), v.indices.end());
+    l.mesh.face_offsets.assign(v.face_offsets.begin(), v.face_offsets.end());
+    l.vertices_in_file = l.mesh.vertex_count();
+    return l;
+}
+
+}  // namespace
+
+void bind_io(py::module_& m) {
+    py::class_<LoadedMesh, std::shared_ptr<LoadedMesh>>(m, "Mesh")
+        .def_property_readonly("vertices",
+                               [](py::object self) {
+                                   const auto& l = self.cast<const LoadedMesh&>();
+                                   return view_array<double>(l.mesh.positions.data(),
+                                                             {static_cast<py::ssize_t>(l.mesh.vertex_count()), 3}, self);
+                               })
+        .def_property_readonly("indices",
+                               [](py::object self) {
+                                   const auto& l = self.cast<const LoadedMesh&>();
+                                   return view_array<uint32_t>(l.mesh.indices.data(),
+                                                               {static_cast<py::ssize_t>(l.mesh.indices.size())}, self);
+                               })
+        .def_property_readonly("offsets",
+                               [](py::object self) -> py::object {
+                                   const auto& l = self.cast<const LoadedMesh&>();
+                                   if (l.mesh.face_offsets.empty()) return py::none();
+                                   return view_array<uint32_t>(
+                                       l.mesh.face_offsets.data(),
+                                       {static_cast<py::ssize_t>(l.mesh.face_offsets.size())}, self);
+                               })
+        .def_property_readonly("face_count", [](const LoadedMesh& l) { return l.mesh.face_count(); })
+        .def_property_readonly("triangle_count", [](const LoadedMesh& l) { return l.mesh.view().triangle_count(); })
+        .def_property_readonly("format", [](const LoadedMesh& l) { return std::string(format_name(l.format)); })
+        .def_readonly("encoding", &LoadedMesh::encoding)
+        .def_readonly("gzip", &LoadedMesh::gzip)
+        .def_readonly("notes", &LoadedMesh::notes)
+        .def_readonly("vertices_in_file", &LoadedMesh::vertices_in_file);
+
+    m.def(
+        "load",
+        [](const std::string& path) {
+            py::gil_scoped_release release;
+            return std::make_shared<LoadedMesh>(read_mesh_file(path));
+        },
+        py::arg("path"));
+    m.def(
+        "load_bytes",
+        [](const py::bytes& data, const std::string& name) {
+            const std::string_view bytes = data;  // the bytes object outlives the call
+            py::gil_scoped_release release;
+            return std::make_shared<LoadedMesh>(read_mesh_memory(
+                std::span<const std::byte>(reinterpret_cast<const std::byte*>(bytes.data()), bytes.size()), name));
+        },
+        py::arg("data"), py::arg("name"));
+    m.def(
+        "mesh_from_arrays",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
+            return std::make_shared<LoadedMesh>(mesh_from_arrays(positions, indices, offsets));
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"));
+
+    m.def(
+        "write_npy",
+        [](const std::string& path, const Doubles& values) {
+            std::vector<std::size_t> shape(values.shape(), values.shape() + values.ndim());
+            py::gil_scoped_release release;
+            write_npy(path, span_of(values), shape);
+        },
+        py::arg("path"), py::arg("values"));
+    // arrays: a list of (name, values (cells[, components]) in polyvol's order, components)
+    m.def(
+        "write_vtk",
+        [](const std::string& path, const Doubles& x, const Doubles& y, const Doubles& z,
+           const std::vector<std::tuple<std::string, Doubles, int>>& arrays, bool image) {
+            std::vector<CellArray> cells;
+            for (const auto& [name, values, components] : arrays) cells.push_back({name, span_of(values), components});
+            py::gil_scoped_release release;
+            if (image)
+                write_vti(path, span_of(x), span_of(y), span_of(z), cells);
+            else
+                write_vtr(path, span_of(x), span_of(y), span_of(z), cells);
+        },
+        py::arg("path"), py::arg("x"), py::arg("y"), py::arg("z"), py::arg("arrays"), py::arg("image"));
+}
+
+}  // namespace polyvol::python

@@ -1,0 +1,231 @@
+// python/src/measure.cpp — mass properties (measure.hpp), topology
+// (topology.hpp) and the volumes of booleans and overlapping shells
+// (boolean.hpp) of meshes given as numpy arrays.
+#include <pybind11/stl.h>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "polyvol/boolean.hpp"
+#include "polyvol/measure.hpp"
+#include "polyvol/topology.hpp"
+
+namespace polyvol::python {
+
+namespace {
+
+Method parse_method(const std::string& s) {
+    if (s == "cone") return Method::cone;
+    if (s == "prism") return Method::prism;
+    if (s == "pyramid") return Method::pyramid;
+    if (s == "vtnb") return Method::vtnb;
+    throw std::invalid_argument("method must be 'cone', 'prism', 'pyramid' or 'vtnb', not '" + s + "'");
+}
+
+Accuracy parse_accuracy(const std::string& s) {
+    if (s == "correctly-rounded") return Accuracy::correctly_rounded;
+    if (s == "fast") return Accuracy::fast;
+    throw std::invalid_argument("accuracy must be 'correctly-rounded' or 'fast', not '" + s + "'");
+}
+
+const char* role_name(ShellRole r) {
+    switch (r) {
+        case ShellRole::solid: return "solid";
+        case ShellRole::cavity: return "cavity";
+        case ShellRole::inside_out: return "inside_out";
+        case ShellRole::nested: return "nested";
+        case ShellRole::open: return "open";
+    }
+    return "open";
+}
+
+const char* status_name(BooleanStatus s) {
+    switch (s) {
+        case BooleanStatus::ok: return "ok";
+        case BooleanStatus::a_not_closed: return "a_not_closed";
+        case BooleanStatus::b_not_closed: return "b_not_closed";
+        case BooleanStatus::a_inside_out: return "a_inside_out";
+        case BooleanStatus::b_inside_out: return "b_inside_out";
+        case BooleanStatus::a_overlaps_itself: return "a_overlaps_itself";
+        case BooleanStatus::b_overlaps_itself: return "b_overlaps_itself";
+        case BooleanStatus::invalid_coordinates: return "invalid_coordinates";
+        case BooleanStatus::shell_crosses_itself: return "shell_crosses_itself";
+    }
+    return "ok";
+}
+
+template <std::size_t N>
+py::array_t<double> vec(const std::array<double, N>& a) {
+    return copy_array<double>(std::span<const double>(a.data(), N), {static_cast<py::ssize_t>(N)});
+}
+
+}  // namespace
+
+void bind_measure(py::module_& m) {
+    py::class_<MassProperties>(m, "MassProperties")
+        .def_readonly("volume", &MassProperties::volume)
+        .def_readonly("mass", &MassProperties::mass)
+        .def_readonly("area", &MassProperties::area)
+        .def_readonly("edge_length", &MassProperties::edge_length)
+        .def_property_readonly("first_moments", [](const MassProperties& p) { return vec(p.first_moments); })
+        .def_property_readonly("centroid", [](const MassProperties& p) { return vec(p.centroid); })
+        .def_property_readonly("second_moments", [](const MassProperties& p) { return symmetric3(p.second_moments); })
+        .def_property_readonly("inertia", [](const MassProperties& p) { return symmetric3(p.inertia_centroid); })
+        .def_property_readonly("inertia_origin", [](const MassProperties& p) { return symmetric3(p.inertia_origin); })
+        .def_readonly("volume_correctly_rounded", &MassProperties::volume_correctly_rounded)
+        .def_readonly("volume_error_bound", &MassProperties::volume_error_bound)
+        .def_readonly("moments_correctly_rounded", &MassProperties::moments_correctly_rounded)
+        .def_readonly("moments_relative_error", &MassProperties::moments_relative_error)
+        .def_readonly("area_relative_error", &MassProperties::area_relative_error)
+        .def_readonly("edge_length_relative_error", &MassProperties::edge_length_relative_error)
+        .def_property_readonly("method", [](const MassProperties& p) { return std::string(method_name(p.method)); })
+        .def_property_readonly("accuracy",
+                               [](const MassProperties& p) { return std::string(accuracy_name(p.accuracy)); });
+
+    m.def(
+        "mass_properties",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets,
+           const std::string& method, const std::string& accuracy, double density, bool second_moments,
+           bool edge_length) {
+            const MeshView view = mesh_view(positions, indices, offsets);
+            MeasureOptions o;
+            o.method = parse_method(method);
+            o.accuracy = parse_accuracy(accuracy);
+            o.density = density;
+            o.second_moments = second_moments;
+            o.edge_length = edge_length;
+            py::gil_scoped_release release;
+            return mass_properties(view, o);
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("method"), py::arg("accuracy"),
+        py::arg("density"), py::arg("second_moments"), py::arg("edge_length"));
+
+    m.def(
+        "closedness",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
+            const MeshView view = mesh_view(positions, indices, offsets);
+            py::gil_scoped_release release;
+            const Closedness c = fingerprint_closedness(view);
+            return std::string(c == Closedness::closed ? "closed" : c == Closedness::open ? "open" : "undecided");
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"));
+
+    py::class_<Shell>(m, "Shell")
+        .def_readonly("signed_volume", &Shell::signed_volume)
+        .def_readonly("faces", &Shell::faces)
+        .def_readonly("vertices", &Shell::vertices)
+        .def_readonly("edges", &Shell::edges)
+        .def_readonly("boundary_edges", &Shell::boundary_edges)
+        .def_readonly("unbalanced_edges", &Shell::unbalanced_edges)
+        .def_readonly("euler_characteristic", &Shell::euler_characteristic)
+        .def_readonly("genus", &Shell::genus)
+        .def_readonly("winding_of_others", &Shell::winding_of_others)
+        .def_readonly("first_face", &Shell::first_face)
+        .def_property_readonly("role", [](const Shell& s) { return std::string(role_name(s.role)); });
+
+    py::class_<TopologyReport>(m, "TopologyReport")
+        .def_readonly("faces", &TopologyReport::faces)
+        .def_readonly("faces_with_lt3_vertices", &TopologyReport::faces_with_lt3_vertices)
+        .def_readonly("triangles", &TopologyReport::triangles)
+        .def_readonly("vertices_welded", &TopologyReport::vertices_welded)
+        .def_readonly("vertices_referenced", &TopologyReport::vertices_referenced)
+        .def_readonly("edges", &TopologyReport::edges)
+        .def_readonly("boundary_edges", &TopologyReport::boundary_edges)
+        .def_readonly("nonmanifold_edges", &TopologyReport::nonmanifold_edges)
+        .def_readonly("misoriented_edges", &TopologyReport::misoriented_edges)
+        .def_readonly("unbalanced_edges", &TopologyReport::unbalanced_edges)
+        .def_readonly("degenerate_edge_uses", &TopologyReport::degenerate_edge_uses)
+        .def_readonly("triangles_with_repeated_vertex", &TopologyReport::triangles_with_repeated_vertex)
+        .def_readonly("zero_area_triangles", &TopologyReport::zero_area_triangles)
+        .def_readonly("euler_characteristic", &TopologyReport::euler_characteristic)
+        .def_readonly("components_vertex_connected", &TopologyReport::components_vertex_connected)
+        .def_readonly("components_edge_connected", &TopologyReport::components_edge_connected)
+        .def_readonly("closed", &TopologyReport::closed)
+        .def_readonly("edge_manifold", &TopologyReport::edge_manifold)
+        .def_readonly("consistently_oriented", &TopologyReport::consistently_oriented)
+        .def_readonly("closed_2_cycle", &TopologyReport::closed_2_cycle)
+        .def_readonly("unbalanced_example", &TopologyReport::unbalanced_example)
+        .def_readonly("shells", &TopologyReport::shells)
+        .def_readonly("cavities", &TopologyReport::cavities)
+        .def_readonly("inside_out_shells", &TopologyReport::inside_out_shells)
+        .def_readonly("nested_shells", &TopologyReport::nested_shells);
+
+    m.def(
+        "topology",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets, bool shells) {
+            const MeshView view = mesh_view(positions, indices, offsets);
+            py::gil_scoped_release release;
+            return analyze_topology(view, {shells});
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("shells"));
+
+    py::class_<SelfCrossings>(m, "SelfCrossings")
+        .def_property_readonly("status", [](const SelfCrossings& s) { return std::string(status_name(s.status)); })
+        .def_readonly("pairs", &SelfCrossings::pairs)
+        .def_readonly("candidate_pairs", &SelfCrossings::candidate_pairs)
+        .def_readonly("example", &SelfCrossings::example);
+    m.def(
+        "self_crossings",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
+            const MeshView view = mesh_view(positions, indices, offsets);
+            py::gil_scoped_release release;
+            return self_crossings(view);
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"));
+
+    py::class_<SolidVolume>(m, "SolidVolume")
+        .def_property_readonly("status", [](const SolidVolume& s) { return std::string(status_name(s.status)); })
+        .def_property_readonly("message",
+                               [](const SolidVolume& s) { return std::string(boolean_status_message(s.status)); })
+        .def_readonly("volume", &SolidVolume::volume)
+        .def_readonly("winding_volume", &SolidVolume::winding_volume)
+        .def_readonly("shells", &SolidVolume::shells)
+        .def_readonly("overlapping_shells", &SolidVolume::overlapping_shells)
+        .def_readonly("crossing_pairs", &SolidVolume::crossing_pairs)
+        .def_readonly("crossing_example", &SolidVolume::crossing_example)
+        .def_readonly("moments", &SolidVolume::moments)
+        .def_property_readonly("first_moments", [](const SolidVolume& s) { return vec(s.first_moments); })
+        .def_property_readonly("second_moments", [](const SolidVolume& s) { return symmetric3(s.second_moments); })
+        .def_property_readonly("centroid", [](const SolidVolume& s) { return vec(s.centroid); })
+        .def_property_readonly("inertia", [](const SolidVolume& s) { return symmetric3(s.inertia_centroid); })
+        .def_readonly("inertia_relative_error", &SolidVolume::inertia_relative_error);
+    m.def(
+        "solid_volume",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets, bool moments) {
+            const MeshView view = mesh_view(positions, indices, offsets);
+            py::gil_scoped_release release;
+            return solid_volume(view, moments);
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("moments"));
+
+    py::class_<BooleanVolumes>(m, "BooleanVolumes")
+        .def_property_readonly("status", [](const BooleanVolumes& b) { return std::string(status_name(b.status)); })
+        .def_property_readonly("message",
+                               [](const BooleanVolumes& b) { return std::string(boolean_status_message(b.status)); })
+        .def_readonly("volume_a", &BooleanVolumes::volume_a)
+        .def_readonly("volume_b", &BooleanVolumes::volume_b)
+        .def_readonly("intersection", &BooleanVolumes::intersection)
+        .def_readonly("union", &BooleanVolumes::union_volume)
+        .def_readonly("a_minus_b", &BooleanVolumes::a_minus_b)
+        .def_readonly("b_minus_a", &BooleanVolumes::b_minus_a)
+        .def_readonly("area_a", &BooleanVolumes::area_a)
+        .def_readonly("area_b", &BooleanVolumes::area_b)
+        .def_readonly("area_intersection", &BooleanVolumes::area_intersection)
+        .def_readonly("area_union", &BooleanVolumes::area_union)
+        .def_readonly("area_a_minus_b", &BooleanVolumes::area_a_minus_b)
+        .def_readonly("area_b_minus_a", &BooleanVolumes::area_b_minus_a)
+        .def_readonly("area_error_bound", &BooleanVolumes::area_error_bound)
+        .def_readonly("candidate_pairs", &BooleanVolumes::candidate_pairs)
+        .def_readonly("crossing_pairs", &BooleanVolumes::crossing_pairs);
+    m.def(
+        "boolean_volumes",
+        [](const Doubles& pa, const Indices& ia, const std::optional<Indices>& oa, const Doubles& pb,
+           const Indices& ib, const std::optional<Indices>& ob) {
+            const MeshView a = mesh_view(pa, ia, oa), b = mesh_view(pb, ib, ob);
+            py::gil_scoped_release release;
+            return boolean_volumes(a, b);
+        },
+        py::arg("positions_a"), py::arg("indices_a"), py::arg("offsets_a"), py::arg("positions_b"),
+        py::arg("indices_b"), py::arg("offsets_b"));
+}
+
+}  // namespace polyvol::python
