@@ -26,7 +26,7 @@ from ._polyvol import __version__
 from . import _polyvol as _core
 
 __all__ = [
-    "Mesh", "load", "load_bytes", "mass_properties", "volume", "check", "solid", "overlap", "self_crossings",
+    "Mesh", "load", "load_bytes", "measure_file", "mass_properties", "volume", "check", "solid", "overlap", "self_crossings",
     "grid", "Grid", "chain_volume", "polygon_area", "load_chain", "load_polygons", "implicit",
     "ReadError", "ImplicitError", "ExpressionError", "__version__",
 ]
@@ -139,6 +139,18 @@ def load(path):
 def load_bytes(data, name="memory"):
     """Reads a mesh from bytes; ``name`` appears in errors and its extension is a hint."""
     return Mesh(_core_mesh=_core.load_bytes(bytes(data), name))
+
+
+def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounded", allow_open=False, solid=False):
+    """Everything `polyvol measure --json FILE` reports for one file, as a dict
+    with its keys (the CLI's own code computes it): format and counts,
+    topology and shells, the mass properties with their guarantees (of the
+    solid when shells overlap), and exit_code with error or warning when the
+    file cannot be read (2) or measured (3). Never raises for a bad file.
+    solid=True looks for a surface crossing itself at any size (--solid)."""
+    import json
+    return json.loads(_core.measure_file_json(str(path), method, accuracy, float(density), bool(allow_open),
+                                              bool(solid)))
 
 
 # ---- mass properties -----------------------------------------------------------

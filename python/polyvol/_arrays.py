@@ -90,6 +90,11 @@ def mesh(m, f=None):
             m, f = m.vertices, m.faces
         elif isinstance(m, tuple) and len(m) == 2:
             m, f = m
+        elif isinstance(m, tuple) and len(m) == 3:  # this function's own result
+            v = coordinates(m[0])
+            idx = indices(m[1], v.shape[0])
+            offsets = None if m[2] is None else np.ascontiguousarray(m[2], dtype=np.uint32)
+            return v, idx, offsets
         else:
             raise TypeError("expected a polyvol.Mesh, an object with .vertices and .faces, or (vertices, faces)")
     v = coordinates(m)

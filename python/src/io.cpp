@@ -9,6 +9,7 @@
 #include "bindings.hpp"
 #include "polyvol/grid_io.hpp"
 #include "polyvol/io.hpp"
+#include "report.hpp"
 
 namespace polyvol::python {
 
@@ -101,6 +102,36 @@ void bind_io(py::module_& m) {
                 write_vtr(path, span_of(x), span_of(y), span_of(z), cells);
         },
         py::arg("path"), py::arg("x"), py::arg("y"), py::arg("z"), py::arg("arrays"), py::arg("image"));
+
+    // What `polyvol measure --json FILE` (with --solid: self-crossings looked
+    // for at any size) prints for the file, as a JSON text: the CLI's own
+    // report (cli/report.cpp), never throwing (errors are its fields).
+    m.def(
+        "measure_file_json",
+        [](const std::string& path, const std::string& method, const std::string& accuracy, double density,
+           bool allow_open, bool solid) {
+            cli::Request request;
+            request.measure.method = method == "cone"      ? Method::cone
+                                     : method == "prism"   ? Method::prism
+                                     : method == "pyramid" ? Method::pyramid
+                                     : method == "vtnb"    ? Method::vtnb
+                                                           : throw std::invalid_argument("unknown method '" + method + "'");
+            if (accuracy != "correctly-rounded" && accuracy != "fast")
+                throw std::invalid_argument("accuracy must be 'correctly-rounded' or 'fast'");
+            request.measure.accuracy = accuracy == "fast" ? Accuracy::fast : Accuracy::correctly_rounded;
+            request.measure.density = density;
+            request.allow_open = allow_open;
+            request.self_check_always = solid;
+            std::string text;
+            {
+                py::gil_scoped_release release;
+                const cli::FileResult r = cli::process_file(path, request);
+                text = cli::to_json(r, request).dump();
+            }
+            return text;
+        },
+        py::arg("path"), py::arg("method"), py::arg("accuracy"), py::arg("density"), py::arg("allow_open"),
+        py::arg("solid"));
 }
 
 }  // namespace polyvol::python

@@ -1,0 +1,124 @@
+"""polyvol on Dask: many files as a dataframe, and grids larger than one
+machine as a dask array of independently computed blocks.
+
+Both run on whatever scheduler is active: the threads of this process by
+default, or a dask.distributed cluster (``Client(...)``; docs/python.md shows
+``dask scheduler`` / ``dask worker`` and batch systems)."""
+
+import functools
+import math
+
+import numpy as np
+
+import dask
+import dask.array as da
+import dask.dataframe as dd
+import pandas as pd
+
+import polyvol
+from . import _arrays
+from . import _grid
+
+# The dataframe's columns: the keys of `polyvol measure --json` (a key a file
+# does not have is None in its row).
+COLUMNS = (
+    "file", "exit_code", "error", "warning", "format", "encoding", "gzip", "notes", "vertices", "faces", "triangles",
+    "vertices_welded", "edges", "boundary_edges", "nonmanifold_edges", "misoriented_edges", "unbalanced_edges",
+    "unbalanced_example", "degenerate_triangles", "components", "closed_2_cycle", "euler_characteristic", "cavities",
+    "inside_out_shells", "shells", "method", "accuracy", "density", "volume", "volume_error_bound", "mass", "area",
+    "area_relative_error", "centroid", "first_moments", "second_moments", "inertia", "inertia_origin",
+    "moments_accuracy", "moments_relative_error", "edge_length", "edge_length_relative_error", "overlap_checked",
+    "winding_volume", "overlapping_shells", "crossing_pairs", "self_crossing_checked", "self_crossing_pairs",
+    "self_crossing_example",
+)
+
+
+def _rows(paths, options):
+    rows = [polyvol.measure_file(p, **options) for p in paths]
+    return pd.DataFrame([{c: r.get(c) for c in COLUMNS} for r in rows], columns=list(COLUMNS))
+
+
+def _meta():
+    frame = pd.DataFrame({c: pd.Series(dtype=object) for c in COLUMNS})
+    for c in ("exit_code", "vertices", "faces", "triangles"):
+        frame[c] = frame[c].astype("int64")
+    return frame
+
+
+def measure_files(paths, files_per_partition=16, **options):
+    """A dask.dataframe with one row per file: the keys of `polyvol measure
+    --json` as columns (COLUMNS), in the order of ``paths``. A file that
+    cannot be read or measured gets its exit_code (2 or 3) and error in its
+    row; nothing raises. options: density, method, accuracy, allow_open,
+    solid (as polyvol.measure_file). Each partition measures
+    ``files_per_partition`` files on one worker."""
+    paths = [str(p) for p in paths]
+    parts = [dask.delayed(_rows)(paths[i:i + files_per_partition], options)
+             for i in range(0, len(paths), files_per_partition)]
+    if not parts:
+        return dd.from_pandas(_meta(), npartitions=1)
+    return dd.from_delayed(parts, meta=_meta(), verify_meta=False)
+
+
+@functools.lru_cache(maxsize=8)
+def _read(path):
+    """A mesh file read once per worker process."""
+    return _arrays.mesh(polyvol.load(path))
+
+
+class _Body:
+    """A body's arrays as one value of the graph (a tuple would read as a task)."""
+
+    def __init__(self, arrays):
+        self.arrays = arrays
+
+
+def _block(bodies, edges, block, field, options):
+    """One block's cells of one field, computed from the bodies alone."""
+    meshes = [_read(b) if isinstance(b, str) else b.arrays for b in bodies]
+    return np.asarray(getattr(polyvol.grid(meshes, edges=edges, block=block, **options), field))
+
+
+def _assemble(blocks, counts, axis):
+    """The blocks (an array of dask arrays, one per block) joined along the
+    grid's three axes, which start at `axis` in each block."""
+    return da.concatenate(
+        [da.concatenate([da.concatenate([blocks[i, j, k] for k in range(counts[2])], axis=axis + 2)
+                         for j in range(counts[1])], axis=axis + 1) for i in range(counts[0])], axis=axis)
+
+
+def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, cell_size=None, what="volumes",
+         union=None, intersection=False, moments=False):
+    """The exact per-cell values of polyvol.grid as a dask.array whose blocks
+    are computed independently, each from the mesh alone (polyvol.grid's
+    block=: only the triangles that reach the block's columns are clipped, and
+    the projected area of the surface above it in those columns is summed
+    cell by cell as in the whole grid), with the bits the whole grid has; no
+    worker ever holds the whole grid.
+
+    mesh: a polyvol.Mesh, (vertices, faces), a path (each worker reads the
+    file itself: only the path travels), or a list of them (several bodies).
+    dims, bounds, cells, cell_size: the grid, as polyvol.grid chooses it.
+    chunks: cells per block along each axis. what: "volumes" ((nx, ny, nz),
+    or (bodies, nx, ny, nz)), "union", "intersection", "cell_class" or
+    "first_moments" (a trailing axis of 3). Store with ``.to_zarr(path)``."""
+    meshes = mesh if isinstance(mesh, list) else [mesh]
+    paths = [str(m) if isinstance(m, str) or hasattr(m, "__fspath__") else None for m in meshes]
+    local = [_read(p) if p else _arrays.mesh(m) for p, m in zip(paths, meshes)]
+    x, y, z = _grid._axes(local, dims, cells, cell_size, bounds)  # the planes need the bodies' box, once
+    edges = (x, y, z)
+    shape = tuple(len(e) - 1 for e in edges)
+    chunks = tuple(int(c) for c in chunks)
+    # each body travels once: as its path, or as one node of the graph that the blocks share
+    bodies = [p if p else dask.delayed(_Body(a), pure=True, traverse=False) for p, a in zip(paths, local)]
+    options = {"union": union, "intersection": intersection, "moments": moments or what == "first_moments"}
+    lead = (len(meshes),) if len(meshes) > 1 and what in ("volumes", "first_moments") else ()
+    tail = (3,) if what == "first_moments" else ()
+    dtype = np.uint8 if what == "cell_class" else np.float64
+    counts = [math.ceil(n / c) for n, c in zip(shape, chunks)]
+    blocks = np.empty(counts, dtype=object)
+    for index in np.ndindex(*counts):
+        block = tuple((b * c, min(n, (b + 1) * c)) for b, c, n in zip(index, chunks, shape))
+        part = dask.delayed(_block, pure=True)(bodies, edges, block, what, options)
+        blocks[index] = da.from_delayed(part, shape=lead + tuple(hi - lo for lo, hi in block) + tail, dtype=dtype)
+    return _assemble(blocks, counts, len(lead))
