@@ -200,7 +200,7 @@ def volume(mesh, faces=None, *, method="cone", accuracy="correctly-rounded"):
     """The signed volume (negative for an inside-out surface), correctly rounded
     by default (see mass_properties)."""
     v, idx, offsets = _arrays.mesh(mesh, faces)
-    return _core.mass_properties(v, idx, offsets, method, accuracy, 1.0, False, False).volume
+    return _core.signed_volume(v, idx, offsets, method, accuracy)
 
 
 # ---- topology --------------------------------------------------------------------

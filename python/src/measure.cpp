@@ -100,6 +100,18 @@ void bind_measure(py::module_& m) {
         py::arg("density"), py::arg("second_moments"), py::arg("edge_length"));
 
     m.def(
+        "signed_volume",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets,
+           const std::string& method, const std::string& accuracy) {
+            const MeshView view = mesh_view(positions, indices, offsets);
+            const Method me = parse_method(method);
+            const Accuracy ac = parse_accuracy(accuracy);
+            py::gil_scoped_release release;
+            return signed_volume(view, me, ac);
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("method"), py::arg("accuracy"));
+
+    m.def(
         "closedness",
         [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
             const MeshView view = mesh_view(positions, indices, offsets);
