@@ -84,8 +84,7 @@ class Grid:
             arrays.append(("union_volume", np.ascontiguousarray(self.union).reshape(-1), 1))
         if self.intersection is not None:
             arrays.append(("intersection_volume", np.ascontiguousarray(self.intersection).reshape(-1), 1))
-        uniform = all(np.allclose(np.diff(e), (e[-1] - e[0]) / (len(e) - 1), rtol=1e-9, atol=0) for e in self.edges)
-        _core.write_vtk(str(path), *self.edges, arrays, uniform and not str(path).endswith(".vtr"))
+        _core.write_vtk(str(path), *self.edges, arrays, _uniform(self.edges) and not str(path).endswith(".vtr"))
 
     def to_dict(self):
         """The summary under the CLI's JSON keys."""
@@ -94,6 +93,11 @@ class Grid:
     def __repr__(self):
         return (f"Grid(shape={self.shape}, bodies={self.bodies}, volume={self.summary['body_volumes']}, "
                 f"union_volume={self.summary['union_volume']})")
+
+
+def _uniform(edges):
+    """Equal spacing on every axis up to 1e-9 relative (GridAxes::uniform): a VTK ImageData."""
+    return all(np.allclose(np.diff(e), (e[-1] - e[0]) / (len(e) - 1), rtol=1e-9, atol=0) for e in edges)
 
 
 def _bodies(meshes):
@@ -160,7 +164,9 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
         warnings.warn(f"polyvol.grid: {error}; the union is not given", stacklevel=2)
         r = _core.grid_volumes(bodies, x, y, z, flat, bool(moments), False, False, bool(surface))
     summary = {
-        "grid": {"dims": list(shape), "bounds": [x[0], y[0], z[0], x[-1], y[-1], z[-1]],
+        "grid": {"dims": list(shape), "bounds": [float(x[0]), float(y[0]), float(z[0]), float(x[-1]), float(y[-1]),
+                                                 float(z[-1])],
+                 "cells": shape[0] * shape[1] * shape[2], "uniform": _uniform((x, y, z)),
                  "block": [list(p) for p in block]},
         "bodies": r["bodies"],
         "body_volumes": [b["volume"] for b in r["bodies"]],
@@ -169,6 +175,8 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
         "full_cells": r["full_cells"], "empty_cells": r["empty_cells"], "cut_cells": r["cut_cells"],
         "contact_cells": r["contact_cells"],
     }
+    if summary["grid"]["uniform"]:
+        summary["grid"]["spacing"] = [float(e[-1] - e[0]) / (len(e) - 1) for e in (x, y, z)]
     if not np.isnan(r["intersection_volume"]):
         summary["intersection_volume"] = r["intersection_volume"]
     if error is not None:

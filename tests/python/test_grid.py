@@ -1,11 +1,14 @@
 """polyvol.grid: closed forms per cell (boxes), the union and intersection of
 overlapping bodies, blocks with the whole grid's bits, and the writers."""
 
+import json
+import subprocess
+
 import numpy as np
 import pytest
 
 import polyvol
-from conftest import box, uv_sphere
+from conftest import CLI, box, uv_sphere
 
 
 def overlap_volume(lo, hi, edges):
@@ -92,3 +95,19 @@ def test_writers(tmp_path):
     edges = [np.array([0, 0.1, 0.5, 1.0]), np.linspace(0, 1, 3), np.linspace(0, 1, 3)]
     polyvol.grid(box(), edges=edges).to_vti(tmp_path / "g.vtr")
     assert "<RectilinearGrid" in (tmp_path / "g.vtr").read_text()
+
+
+def test_summary_has_the_cli_keys_and_numbers(tmp_path):
+    v, f = uv_sphere(16, 32)
+    path = tmp_path / "s.off"
+    path.write_text("OFF\n%d %d 0\n" % (len(v), len(f)) + "".join(f"{a!r} {b!r} {c!r}\n" for a, b, c in v)
+                    + "".join(f"3 {a} {b} {c}\n" for a, b, c in f))
+    cli = json.loads(subprocess.run([CLI, "grid", "--dims", "6", "7", "8", "--json", str(path)],
+                                    capture_output=True, text=True, check=True).stdout)
+    g = polyvol.grid(polyvol.load(path), dims=(6, 7, 8)).to_dict()
+    for key in ("body_volumes", "union_volume", "full_cells", "empty_cells", "cut_cells", "contact_cells"):
+        assert g[key] == cli[key], key
+    for key in ("dims", "bounds", "cells", "uniform", "spacing"):
+        assert g["grid"][key] == cli["grid"][key], key
+    for key in ("volume", "triangles", "pieces", "full_cells", "empty_cells", "cut_cells"):
+        assert g["bodies"][0][key] == cli["bodies"][0][key], key
