@@ -42,14 +42,14 @@ class Grid:
         self.first_moments = squeeze(arrays["first_moments"]) if "first_moments" in arrays else None
         self.wetted_area = squeeze(arrays["wetted_area"]) if "wetted_area" in arrays else None
         self.surface_normal = squeeze(arrays["surface_normal"]) if "surface_normal" in arrays else None
-        if one:
-            self.union = self.volumes
+        if one:  # one body: the union and the intersection are the body
+            self.union = self.intersection = self.volumes
             self.union_wetted_area, self.union_surface_normal = self.wetted_area, self.surface_normal
         else:
             self.union = arrays.get("union")
             self.union_wetted_area = arrays.get("union_wetted_area")
             self.union_surface_normal = arrays.get("union_surface_normal")
-        self.intersection = arrays.get("intersection")
+            self.intersection = arrays.get("intersection")
         self.cell_class = arrays.get("cell_class")
 
     @property

@@ -40,8 +40,7 @@ def _rows(paths, options):
 
 def _meta():
     frame = pd.DataFrame({c: pd.Series(dtype=object) for c in COLUMNS})
-    for c in ("exit_code", "vertices", "faces", "triangles"):
-        frame[c] = frame[c].astype("int64")
+    frame["exit_code"] = frame["exit_code"].astype("int64")  # the one key every row has
     return frame
 
 
@@ -111,7 +110,10 @@ def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, ce
     chunks = tuple(int(c) for c in chunks)
     # each body travels once: as its path, or as one node of the graph that the blocks share
     bodies = [p if p else dask.delayed(_Body(a), pure=True, traverse=False) for p, a in zip(paths, local)]
-    options = {"union": union, "intersection": intersection, "moments": moments or what == "first_moments"}
+    # the union's crossings only where asked for: each block repeats them
+    wants_union = what in ("union", "intersection", "cell_class") if union is None else bool(union)
+    options = {"union": wants_union, "intersection": intersection or what == "intersection",
+               "moments": moments or what == "first_moments"}
     lead = (len(meshes),) if len(meshes) > 1 and what in ("volumes", "first_moments") else ()
     tail = (3,) if what == "first_moments" else ()
     dtype = np.uint8 if what == "cell_class" else np.float64

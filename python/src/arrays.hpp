@@ -46,7 +46,7 @@ py::array_t<T> view_array(const T* data, std::vector<py::ssize_t> shape, py::han
     std::vector<py::ssize_t> strides(shape.size(), static_cast<py::ssize_t>(sizeof(T)));
     for (std::size_t d = shape.size(); d-- > 1;) strides[d - 1] = strides[d] * shape[d];
     py::array_t<T> a(shape, strides, data, owner);
-    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+    a.attr("flags").attr("writeable") = false;
     return a;
 }
 
