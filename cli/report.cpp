@@ -36,6 +36,7 @@ std::string_view role_name(ShellRole r) {
         case ShellRole::inside_out: return "inside-out";
         case ShellRole::nested: return "nested";
         case ShellRole::open: return "open";
+        case ShellRole::undecided: return "undecided";
     }
     return "?";
 }

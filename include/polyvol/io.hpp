@@ -81,9 +81,9 @@ LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& 
 
 // ---- Streaming binary STL (src/io/stl_stream.cpp) --------------------------
 // For files too large to hold: the 50-byte triangle records are handed to the
-// caller window by window, from a mapping of the file whose finished slabs are
-// dropped (or, with StlStreamOptions::map = false, read with pread into a
-// fixed buffer per thread), so memory stays constant whatever the file size.
+// caller window by window, read with pread into a fixed buffer per thread
+// (or, with StlStreamOptions::map, from a mapping of the file whose finished
+// slabs are dropped), so memory stays constant whatever the file size.
 
 struct BinaryStlProbe {
     bool binary_stl = false;      // what read_mesh_file would read as binary STL
@@ -106,16 +106,17 @@ struct StlStreamOptions {
     // Read and call back on several threads at once (oneTBB). The callback
     // must then be thread-safe; windows arrive in no particular order.
     bool parallel = true;
-    // Map the file and hand out windows of the mapping (no copy), dropping
-    // each finished slab of slab_bytes from the process (in whole 2 MiB
-    // units when slabs are at least that long, so that a page cache in large
-    // folios is never split; a unit two slabs share goes when both have
-    // finished), so the resident set stays about threads x slab_bytes plus
-    // a few shared units per thread (the pages stay in the page cache).
-    // A file truncated by another process while mapped ends the process
-    // with SIGBUS; map = false reads with pread(2) into per-thread buffers
-    // instead and reports it as a ReadError (the offset where data stopped).
-    bool map = true;
+    // false (the default): read with pread(2) into one buffer per thread,
+    // so that a file truncated by another process meanwhile is a ReadError
+    // at the offset where the data stopped. true: map the file and hand out
+    // windows of the mapping (no copy), dropping each finished slab of
+    // slab_bytes from the process (in whole 2 MiB units when slabs are at
+    // least that long, so that a page cache in large folios is never split),
+    // so the resident set stays about threads x slab_bytes; but a file
+    // truncated while mapped ends the process with SIGBUS. (Measured on
+    // 8M cached triangles: pread 0.84x the mapping's time here;
+    // docs/benchmarks.md.)
+    bool map = false;
     std::size_t slab_bytes = std::size_t{4} << 20;
 };
 

@@ -30,7 +30,10 @@
 // another face to face counts as inside it. A balanced shell is "inside" when
 // winding_of_others >= 0.5. The sums are exact double sums unless they would
 // cost more than ~1.7e7 solid angles (very many shells): far clusters are then
-// approximated (Barill et al. 2018), typically within 1e-3.
+// approximated (Barill et al. 2018), typically within 1e-3. Shells whose boxes
+// all overlap defeat that too (nothing is far); past ~3.4e7 solid angles and tree nodes the
+// remaining shells' windings are left NaN and closed ones are `undecided`, so
+// that the report always ends in seconds.
 //
 // analyze_topology runs in O(n log n) (sort-based edge table, union–find),
 // several million triangles per second. It throws std::invalid_argument
@@ -54,6 +57,8 @@ enum class ShellRole {
     inside_out,  // closed, negative volume, inside nothing: the surface is turned inside out
     nested,      // closed, positive, inside another positive shell (overlapping solids)
     open,        // has unbalanced edges
+    undecided,   // closed, but its nesting was not decided: the winding numbers would cost more than
+                 // the work limit (a million or so shells whose boxes overlap, as in a fan of needles)
 };
 // "closed" here means balanced (no unbalanced edge), and volume 0 counts as positive.
 
@@ -69,7 +74,8 @@ struct Shell {
     int64_t euler_characteristic = 0;// V - E + F of this shell's polygons
     std::optional<int64_t> genus;    // (2 - χ)/2 for a closed, edge-manifold, consistently oriented
                                      // shell whose χ is even and <= 2 (pinched vertices can break that)
-    double winding_of_others = 0;    // winding number of all other shells at a point of this one (see top)
+    double winding_of_others = 0;    // winding number of all other shells at a point of this one (see top;
+                                     // NaN when not decided within the work limit)
     std::size_t first_face = 0;      // index (file order) of its first face
     ShellRole role = ShellRole::open;
 };

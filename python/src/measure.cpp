@@ -31,9 +31,10 @@ const char* role_name(ShellRole r) {
     switch (r) {
         case ShellRole::solid: return "solid";
         case ShellRole::cavity: return "cavity";
-        case ShellRole::inside_out: return "inside_out";
+        case ShellRole::inside_out: return "inside-out";
         case ShellRole::nested: return "nested";
         case ShellRole::open: return "open";
+        case ShellRole::undecided: return "undecided";
     }
     return "open";
 }

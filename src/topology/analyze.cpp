@@ -59,6 +59,7 @@ std::size_t count_vertex_components(const WeldedMesh& m) {
 // halfway (≈1 inside a solid, ≈0 outside or inside a cavity of it).
 ShellRole classify(const Shell& s) {
     if (s.unbalanced_edges != 0) return ShellRole::open;
+    if (std::isnan(s.winding_of_others)) return ShellRole::undecided;
     const bool inside = s.winding_of_others >= 0.5;
     if (s.signed_volume < 0) return inside ? ShellRole::cavity : ShellRole::inside_out;
     return inside ? ShellRole::nested : ShellRole::solid;

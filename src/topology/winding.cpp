@@ -277,19 +277,32 @@ public:
     }
 
     // Exact sums (far_ratio == inf; reuses the tree exact_cost built) or with the far field of clusters farther than far_ratio × radius.
-    std::vector<double> evaluate(double far_ratio) {
+    // work_limit bounds the solid angles and nodes visited in all (the
+    // shells not reached by then get NaN).
+    std::vector<double> evaluate(double far_ratio, double work_limit) {
         const bool approximate = std::isfinite(far_ratio);
         if (approximate) build_triangle_trees();
         if (approximate || shell_tree_.nodes.empty()) build_shell_tree(approximate);
-        std::vector<double> w(shells_.size());
+        std::vector<double> w(shells_.size(), std::numeric_limits<double>::quiet_NaN());
+        std::atomic<double> work{0};
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, shells_.size()), [&](const auto& r) {
             for (std::size_t s = r.begin(); s != r.end(); ++s) {
+                if (approximate && work.load(std::memory_order_relaxed) > work_limit) return;
                 const double* p = shells_[s].probe.data();
                 double omega = 0;
-                visit(p, static_cast<uint32_t>(s), far_ratio,
-                      [&](const Node& n) { omega += far_solid_angle(n.cluster, p); },
-                      [&](uint32_t t) { omega += shell_solid_angle(t, p, far_ratio); });
+                std::size_t visited = 0;
+                visited += visit(p, static_cast<uint32_t>(s), far_ratio,
+                      [&](const Node& n) {
+                          omega += far_solid_angle(n.cluster, p);
+                          ++visited;
+                      },
+                      [&](uint32_t t) {
+                          omega += shell_solid_angle(t, p, far_ratio);
+                          visited += shell_size(t);
+                      });
                 w[s] = omega / (4 * std::numbers::pi);
+                double expected = work.load(std::memory_order_relaxed);
+                while (!work.compare_exchange_weak(expected, expected + static_cast<double>(visited))) {}
             }
         });
         return w;
@@ -377,14 +390,17 @@ private:
     // Walks the shell tree for the probe p of shell `self`: on_far(node) for
     // far nodes (open shells only), on_shell(t) for each other shell that
     // must be summed.
+    // Returns the number of nodes visited.
     template <class OnFar, class OnShell>
-    void visit(const double* p, uint32_t self, double ratio, OnFar&& on_far, OnShell&& on_shell) const {
-        if (shell_tree_.nodes.empty()) return;
+    std::size_t visit(const double* p, uint32_t self, double ratio, OnFar&& on_far, OnShell&& on_shell) const {
+        if (shell_tree_.nodes.empty()) return 0;
         const uint32_t self_at = position_[self];
         std::vector<uint32_t> stack{0};
+        std::size_t visited = 0;
         while (!stack.empty()) {
             const Node& n = shell_tree_.nodes[stack.back()];
             stack.pop_back();
+            ++visited;
             const bool holds_self = n.begin <= self_at && self_at < n.end;
             if (!holds_self) {
                 if (n.all_balanced && !n.box.contains(p)) continue;
@@ -403,6 +419,7 @@ private:
                 stack.push_back(n.right);
             }
         }
+        return visited;
     }
 
     double shell_solid_angle(uint32_t t, const double* p, double ratio) const {
@@ -450,7 +467,7 @@ std::vector<double> winding_of_other_shells(const WeldedMesh& mesh, const ShellT
     if (shells.size() < 2) return std::vector<double>(shells.size(), 0.0);
     WindingEvaluator evaluator(mesh, triangles, shells);
     const bool exact = evaluator.exact_cost(options.exact_budget) <= options.exact_budget;
-    return evaluator.evaluate(exact ? kNever : options.far_ratio);
+    return evaluator.evaluate(exact ? kNever : options.far_ratio, options.work_limit);
 }
 
 }  // namespace polyvol::topology

@@ -35,9 +35,14 @@ double solid_angle(const double* p, const double* a, const double* b, const doub
 struct WindingOptions {
     double exact_budget = 1 << 24;  // most solid angles evaluated before approximating
     double far_ratio = 3;           // approximate clusters farther than this × their radius
+    // Most solid angles and tree nodes the approximate sums may visit; the
+    // shells not reached by then get NaN (clusters that all overlap are
+    // never far, and the sums would be quadratic).
+    double work_limit = 1 << 25;
 };
 
-// w[s] = Σ over shells t != s of the winding number of t at shells[s].probe.
+// w[s] = Σ over shells t != s of the winding number of t at shells[s].probe,
+// or NaN for the shells left when the work limit was reached.
 std::vector<double> winding_of_other_shells(const WeldedMesh& mesh, const ShellTriangles& triangles,
                                             std::span<const ShellGeometry> shells,
                                             const WindingOptions& options = {});

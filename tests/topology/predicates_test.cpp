@@ -143,5 +143,35 @@ TEST(Winding, ManyOpenShellsStayFast) {
     EXPECT_LT(seconds, 20.0);
 }
 
+// Shells whose boxes all overlap (needles from one corner): nothing is far,
+// so the sums would be quadratic. The work limit leaves the shells it does
+// not reach NaN (closed ones become `undecided` in the report) instead of
+// running for minutes; the ones it reaches keep their exact values.
+TEST(Winding, AWorkLimitStopsSumsThatNothingMakesFar) {
+    Mesh m;
+    for (int t = 0; t < 3000; ++t) {  // closed thin tetrahedra from near the origin to x = t + 1
+        const double x = t + 1.0, e = 1e-3 * (1 + t % 7);
+        const uint32_t o = m.add_vertex(0, 0, 0), a = m.add_vertex(x, 0, e), b = m.add_vertex(x, e, 0),
+                       c = m.add_vertex(x, -e, -e);
+        m.add_triangle(o, b, a);
+        m.add_triangle(o, c, b);
+        m.add_triangle(o, a, c);
+        m.add_triangle(a, b, c);
+    }
+    const Shells s(m);
+    ASSERT_EQ(s.geometry.size(), 3000u);
+    const std::vector<double> all = s.winding({.exact_budget = 0, .work_limit = 1e18});
+    const std::vector<double> cut = s.winding({.exact_budget = 0, .work_limit = 2e5});
+    std::size_t reached = 0;
+    for (std::size_t i = 0; i < cut.size(); ++i) {
+        ASSERT_FALSE(std::isnan(all[i]));
+        if (std::isnan(cut[i])) continue;
+        ++reached;
+        EXPECT_EQ(cut[i], all[i]);
+    }
+    EXPECT_GT(reached, 0u);
+    EXPECT_LT(reached, 3000u);
+}
+
 }  // namespace
 }  // namespace polyvol
