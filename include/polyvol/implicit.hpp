@@ -230,9 +230,11 @@ private:
 // The volume of {x in box : F(x) <= 0} (see the top of this file). Throws
 // std::invalid_argument for invalid options and ImplicitError as documented.
 ImplicitVolume implicit_volume(const ImplicitFunction& f, const ImplicitOptions& options);
-// The same with F evaluated in batches; the same points are evaluated (a few
-// more at most: the rest of a batch past an error) and the result has the
-// same bits as with the pointwise F of the same values.
+// The same with F evaluated in batches: a cube's corners and those of its
+// neighbours (up to 4^n points, n <= 4), a coarse lattice line. The result
+// has the same bits as with the pointwise F of the same values; F is called
+// at some points the pointwise walk never needs (ImplicitPass::
+// function_evaluations counts them), in far fewer calls.
 ImplicitVolume implicit_volume_batch(const ImplicitBatchFunction& f, const ImplicitOptions& options);
 
 // The PL surface on the lattice of spacing options.h only (no estimate), as a

@@ -57,11 +57,11 @@ double resolved_h(const ImplicitOptions& o, const Box& b) {
 // volume is streamed (ConeSum: the cone formula, no chain, no validation —
 // the chain is closed by construction) into pass.volume and
 // pass.rounding_error_bound.
-void run_pass(const ImplicitBatchFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
-              ImplicitPass& pass, Chain* chain) {
+void run_pass(const ImplicitBatchFunction& f, bool lookahead, const ImplicitOptions& o, const Box& b,
+              std::span<const int32_t> cells, ImplicitPass& pass, Chain* chain) {
     const auto t0 = Clock::now();
     const implicit::Lattice lattice(o.dimension, b.lo, b.hi, cells);
-    implicit::Sampler sampler(lattice, f, o.box_rule);
+    implicit::Sampler sampler(lattice, f, o.box_rule, lookahead);
     std::optional<implicit::ConeSum> cone;
     if (!chain) cone.emplace(lattice);
     implicit::SurfaceBuilder builder(lattice, sampler, o.max_boundary_simplices, cone ? &*cone : nullptr);
@@ -99,14 +99,14 @@ void measure_pass(const Chain& chain, const ImplicitOptions& o, ImplicitPass& pa
 
 // One pass measured: streamed unless the chain is wanted (kept) or the prism
 // formula is asked for (chain_volume only).
-void volume_pass(const ImplicitBatchFunction& f, const ImplicitOptions& o, const Box& b, std::span<const int32_t> cells,
-                 ImplicitPass& pass, std::optional<Chain>* kept) {
+void volume_pass(const ImplicitBatchFunction& f, bool lookahead, const ImplicitOptions& o, const Box& b,
+                 std::span<const int32_t> cells, ImplicitPass& pass, std::optional<Chain>* kept) {
     if (!kept && o.formula == SimplexFormula::cone) {
-        run_pass(f, o, b, cells, pass, nullptr);
+        run_pass(f, lookahead, o, b, cells, pass, nullptr);
         return;
     }
     Chain chain;
-    run_pass(f, o, b, cells, pass, &chain);
+    run_pass(f, lookahead, o, b, cells, pass, &chain);
     measure_pass(chain, o, pass);
     if (kept) *kept = std::move(chain);
 }
@@ -143,28 +143,37 @@ Chain implicit_surface(const ImplicitFunction& f, const ImplicitOptions& options
     const std::vector<int32_t> cells = implicit::lattice_cells(b.lo, b.hi, resolved_h(options, b));
     ImplicitPass local;
     Chain chain;
-    run_pass(batch_of(f, options.dimension), options, b, cells, pass ? *pass : local, &chain);
+    run_pass(batch_of(f, options.dimension), false, options, b, cells, pass ? *pass : local, &chain);
     return chain;
 }
 
+namespace {
+ImplicitVolume volume_with(const ImplicitBatchFunction& f, bool lookahead, const ImplicitOptions& options);
+}  // namespace
+
 ImplicitVolume implicit_volume(const ImplicitFunction& f, const ImplicitOptions& options) {
-    return implicit_volume_batch(batch_of(f, options.dimension), options);
+    return volume_with(batch_of(f, options.dimension), false, options);
 }
 
 ImplicitVolume implicit_volume_batch(const ImplicitBatchFunction& f, const ImplicitOptions& options) {
+    return volume_with(f, true, options);
+}
+
+namespace {
+ImplicitVolume volume_with(const ImplicitBatchFunction& f, bool lookahead, const ImplicitOptions& options) {
     const auto t0 = Clock::now();
     const Box b = checked_box(options);
     ImplicitVolume r;
     r.dimension = options.dimension;
     r.h = resolved_h(options, b);
     const std::vector<int32_t> cells = implicit::lattice_cells(b.lo, b.hi, r.h);
-    volume_pass(f, options, b, cells, r.fine, options.keep_chain ? &r.chain : nullptr);
+    volume_pass(f, lookahead, options, b, cells, r.fine, options.keep_chain ? &r.chain : nullptr);
     r.clipped = r.fine.box_vertices_inside > 0;
     if (options.error_estimate) {
         std::vector<int32_t> half(cells);
         for (auto& c : half) c /= 2;  // even, so spacing exactly 2 h_k
         ImplicitPass coarse;
-        volume_pass(f, options, b, half, coarse, nullptr);
+        volume_pass(f, lookahead, options, b, half, coarse, nullptr);
         const Richardson e = richardson(r.fine.volume, coarse.volume);
         r.volume_extrapolated = e.extrapolated;
         r.volume = e.extrapolated;
@@ -178,5 +187,6 @@ ImplicitVolume implicit_volume_batch(const ImplicitBatchFunction& f, const Impli
     r.seconds = seconds_since(t0);
     return r;
 }
+}  // namespace
 
 }  // namespace polyvol

@@ -1,4 +1,5 @@
 // The lattice of one pass and the cached samples of F on it.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -65,28 +66,26 @@ Lattice::Lattice(int dimension, std::span<const double> lo_, std::span<const dou
                             "implicit: the lattice has too many vertices for 64-bit keys");
 }
 
-Sampler::Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule rule)
-    : lattice_(lattice), f_(f), rule_(rule), values_(1 << 12), x_(static_cast<std::size_t>(lattice.n)) {}
+Sampler::Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule rule, bool lookahead)
+    : lattice_(lattice), f_(f), rule_(rule), lookahead_(lookahead), values_(1 << 12), prefetched_(1 << 12),
+      x_(static_cast<std::size_t>(lattice.n)) {}
 
 void Sampler::prefetch(std::span<const Index> vs) {
-    pending_.clear();
-    cursor_ = 0;
+    keys_.clear();
     points_.clear();
     for (const Index& v : vs) {
         if (lattice_.is_virtual(v)) continue;
         const uint64_t key = lattice_.vertex_key(v);
-        if (values_.find(key)) continue;
-        bool listed = false;
-        for (const auto& p : pending_) listed = listed || p.first == key;
-        if (listed) continue;
-        pending_.emplace_back(key, 0.0);
+        if (values_.find(key) || prefetched_.find(key)) continue;
+        if (std::find(keys_.begin(), keys_.end(), key) != keys_.end()) continue;
+        keys_.push_back(key);
         for (int k = 0; k < lattice_.n; ++k) points_.push_back(lattice_.coordinate(k, v[k]));
     }
-    if (pending_.empty()) return;
-    batch_.assign(pending_.size(), 0.0);
+    if (keys_.empty()) return;
+    batch_.assign(keys_.size(), 0.0);
     f_(points_, batch_);
-    evaluations_ += pending_.size();
-    for (std::size_t i = 0; i < pending_.size(); ++i) pending_[i].second = batch_[i];
+    evaluations_ += keys_.size();
+    for (std::size_t i = 0; i < keys_.size(); ++i) prefetched_.insert(keys_[i], batch_[i]);
 }
 
 double Sampler::value(const Index& v) {
@@ -94,18 +93,11 @@ double Sampler::value(const Index& v) {
     const uint64_t key = lattice_.vertex_key(v);
     if (const double* cached = values_.find(key)) return *cached;
     for (int k = 0; k < lattice_.n; ++k) x_[k] = lattice_.coordinate(k, v[k]);
-    // Prefetched (asked for in about the order listed), else evaluated alone.
+    // Prefetched, else evaluated alone.
     double fx = 0;
-    bool found = false;
-    for (std::size_t i = 0; i < pending_.size() && !found; ++i) {
-        const std::size_t j = (cursor_ + i) % pending_.size();
-        if (pending_[j].first == key) {
-            fx = pending_[j].second;
-            cursor_ = j + 1;
-            found = true;
-        }
-    }
-    if (!found) {
+    if (const double* early = prefetched_.find(key)) {
+        fx = *early;
+    } else {
         f_(x_, std::span<double>(&fx, 1));
         ++evaluations_;
     }

@@ -52,7 +52,28 @@ void coarse_scan(const Lattice& lattice, Sampler& sampler, SurfaceBuilder& build
         for (int32_t j = 0; j <= m; ++j)
             real[k].push_back(static_cast<int32_t>(std::llround(static_cast<double>(j) * cells / m)));
     }
-    std::vector<Index> along;  // one line's coarse vertices
+    std::vector<Index> along, between;  // one line's coarse vertices; a segment's fine ones
+    if (sampler.lookahead()) {
+        // F a batch function: the whole coarse lattice in calls of 8192 points
+        // (every line below then finds its values).
+        std::array<std::size_t, kMaxDim> digit{};
+        while (true) {
+            Index v{};
+            for (int k = 0; k < n; ++k) v[k] = real[k][digit[k]];
+            along.push_back(v);
+            if (along.size() == 8192) {
+                sampler.prefetch(along);
+                along.clear();
+            }
+            int k = 0;
+            for (; k < n; ++k) {
+                if (++digit[k] < real[k].size()) break;
+                digit[k] = 0;
+            }
+            if (k == n) break;
+        }
+        sampler.prefetch(along);
+    }
     for (int axis = 0; axis < n; ++axis) {
         // Odometer over the other axes' coarse indices.
         std::array<std::size_t, kMaxDim> digit{};
@@ -76,6 +97,14 @@ void coarse_scan(const Lattice& lattice, Sampler& sampler, SurfaceBuilder& build
                 // A sign change next to a virtual end is a vertex on the box
                 // boundary with F <= 0: the sampler keeps it for close_faces.
                 if (positive != previous_positive && previous >= 0 && index <= lattice.cells[axis]) {
+                    if (sampler.lookahead()) {  // the segment's fine vertices in one call, for the bisection
+                        between.clear();
+                        for (int32_t i = previous + 1; i < index; ++i) {
+                            between.push_back(line);
+                            between.back()[axis] = i;
+                        }
+                        sampler.prefetch(between);
+                    }
                     const Index u = bisect(line, axis, previous, index, sampler);
                     builder.walk_from(kuhn_simplex_with_edge(u, n, axis, lattice.cells));
                 }

@@ -102,14 +102,16 @@ std::vector<int32_t> lattice_cells(std::span<const double> lo, std::span<const d
 // vertex with F <= 0 throws. prefetch() evaluates several vertices in one
 // call of F; each is then taken in by value() when first asked for, so the
 // checks and the boundary list run in the order the walk asks, as without
-// prefetching (the same bits).
+// prefetching (the same bits). With lookahead (F a batch function whose
+// calls cost), the walk prefetches a cube's neighbourhood, not only its
+// corners: more points per call, a few evaluated for nothing.
 class Sampler {
 public:
-    Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule rule);
+    Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule rule, bool lookahead = false);
     double value(const Index& v);
-    // Evaluates those of vs not yet known in one call (replacing the
-    // previous prefetch's values not yet asked for).
+    // Evaluates those of vs not yet known in one call.
     void prefetch(std::span<const Index> vs);
+    bool lookahead() const { return lookahead_; }
     // Sign rule: positive iff F > 0 (0 counts as negative).
     bool positive(const Index& v) { return value(v) > 0; }
     std::size_t evaluations() const { return evaluations_; }
@@ -122,10 +124,11 @@ private:
     const Lattice& lattice_;
     const ImplicitBatchFunction& f_;
     BoxRule rule_;
+    bool lookahead_;
     FlatMap<double> values_;
+    FlatMap<double> prefetched_;  // evaluated, taken into values_ when first asked for
     std::vector<double> x_;
-    std::vector<std::pair<uint64_t, double>> pending_;  // prefetched, not yet asked for
-    std::size_t cursor_ = 0;                            // where the next one asked for probably is
+    std::vector<uint64_t> keys_;
     std::vector<double> points_, batch_;
     std::size_t evaluations_ = 0;
     std::size_t box_inside_ = 0;
@@ -206,6 +209,7 @@ private:
 
     const Lattice& lattice_;
     Sampler& sampler_;
+    std::vector<Index> near_;  // a cube's neighbourhood, for the sampler's lookahead
     const PieceTable& table_;
     const PieceTable& closure_;
     std::size_t max_simplices_;

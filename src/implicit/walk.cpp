@@ -91,7 +91,18 @@ void SurfaceBuilder::sample(CubeSamples& cube) {
         u[b] = cube.corner;
         for (int i = 0; i < cube.d; ++i) u[b][cube.axes[i]] += static_cast<int32_t>((b >> i) & 1u);
     }
-    sampler_.prefetch(std::span<const Index>(u.data(), corners));
+    if (sampler_.lookahead() && cube.d <= 4) {
+        // The 4^d vertices from corner - 1 to corner + 2: the corners of this
+        // cube and of its neighbours, which the walk visits next.
+        near_.resize(std::size_t{1} << (2 * cube.d));
+        for (uint32_t c = 0; c < near_.size(); ++c) {
+            near_[c] = cube.corner;
+            for (int i = 0; i < cube.d; ++i) near_[c][cube.axes[i]] += static_cast<int32_t>((c >> (2 * i)) & 3u) - 1;
+        }
+        sampler_.prefetch(near_);
+    } else {
+        sampler_.prefetch(std::span<const Index>(u.data(), corners));
+    }
     for (uint32_t b = 0; b < corners; ++b) {
         cube.f[b] = sampler_.value(u[b]);
         cube.positive[b] = cube.f[b] > 0;
