@@ -4,10 +4,12 @@ of chains in R^n, of plane polygons and of implicit solids.
 
 Units are those of the coordinates: volumes in units³, areas in units²,
 moments in units⁴, second moments and inertia in units⁵ (times the density).
-Every number comes with its guarantee: "correctly rounded" (the exact value
-for the coordinates as given, rounded once to the nearest double) or a
-rigorous error bound. Meshes are read exactly as the ``polyvol`` command
-reads them (docs/python.md).
+Mass properties come with their guarantee: "correctly rounded" (the exact
+value for the coordinates as given, rounded once to the nearest double) or
+a rigorous error bound; grid cells are exact up to the rounding of their
+terms (docs/grid.md); implicit volumes carry an error estimate, not a bound.
+Meshes are read exactly as the ``polyvol`` command reads them
+(docs/python.md).
 
     >>> import polyvol
     >>> m = polyvol.load("part.stl")
@@ -16,6 +18,7 @@ reads them (docs/python.md).
 """
 
 import math
+import os
 import warnings
 
 import numpy as np
@@ -132,8 +135,9 @@ class Mesh:
 def load(path):
     """Reads a mesh file: STL (ASCII, binary), OBJ, OFF, PLY, 3MF, AMF, any of
     them gzip-compressed; the format is chosen by content, as the CLI does.
-    Raises ReadError (a ValueError) with .path, .line or .offset and .message."""
-    return Mesh(_core_mesh=_core.load(str(path)))
+    Raises ReadError (a ValueError) with .path, .line or .offset and .message.
+    path: a str, bytes or os.PathLike (names that are not UTF-8 work)."""
+    return Mesh(_core_mesh=_core.load(os.fsencode(path)))
 
 
 def load_bytes(data, name="memory"):
@@ -149,14 +153,18 @@ def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounde
     file cannot be read (2) or measured (3). Never raises for a bad file.
     solid=True looks for a surface crossing itself at any size (--solid)."""
     import json
-    return json.loads(_core.measure_file_json(str(path), method, accuracy, float(density), bool(allow_open),
-                                              bool(solid)))
+    report = json.loads(_core.measure_file_json(os.fsencode(path), method, accuracy, float(density),
+                                                bool(allow_open), bool(solid)))
+    report["file"] = os.fsdecode(path)
+    return report
 
 
 # ---- mass properties -----------------------------------------------------------
 
 class MassProperties(_Result):
-    """Mass properties of a mesh (the cone rule's sums, measure.hpp):
+    """Mass properties of a mesh (the cone rule's sums, measure.hpp); ``accuracy``
+    is the volume's guarantee, "correctly-rounded" or "error-bound", as in the
+    CLI's JSON:
     volume, mass = density * volume, area, centroid (3,), first_moments (3,),
     second_moments (3, 3) = density * ∫x_i x_j about the origin, inertia (3, 3)
     about the centroid, inertia_origin (3, 3), edge_length; and their
@@ -164,7 +172,7 @@ class MassProperties(_Result):
     moments_correctly_rounded (else moments_relative_error), area_relative_error,
     edge_length_relative_error."""
 
-    _fields = ("method", "accuracy", "density", "volume", "volume_correctly_rounded", "volume_error_bound", "mass",
+    _fields = ("method", "accuracy", "density", "volume", "volume_error_bound", "mass",
                "area", "area_relative_error", "centroid", "first_moments", "second_moments", "inertia",
                "inertia_origin", "moments_accuracy", "moments_relative_error", "edge_length",
                "edge_length_relative_error")
@@ -186,7 +194,8 @@ def mass_properties(mesh, faces=None, *, density=1.0, method="cone", accuracy="c
     v, idx, offsets = _arrays.mesh(mesh, faces)
     p = _core.mass_properties(v, idx, offsets, method, accuracy, float(density), second_moments, edge_length)
     return MassProperties(
-        method=p.method, accuracy=p.accuracy, density=float(density), volume=p.volume,
+        method=p.method, accuracy="correctly-rounded" if p.volume_correctly_rounded else "error-bound",
+        density=float(density), volume=p.volume,
         volume_correctly_rounded=p.volume_correctly_rounded, volume_error_bound=p.volume_error_bound, mass=p.mass,
         area=p.area, area_relative_error=p.area_relative_error, centroid=p.centroid, first_moments=p.first_moments,
         second_moments=p.second_moments, inertia=p.inertia, inertia_origin=p.inertia_origin,
@@ -209,7 +218,8 @@ class Shell(_Result):
     """An edge-connected component: signed_volume (correctly rounded), faces,
     boundary_edges, unbalanced_edges, euler_characteristic, genus (None
     unless defined), winding_of_others (the other shells' winding number at
-    a point of it) and role: "solid", "cavity", "inside_out", "nested" or "open"."""
+    a point of it) and role: "solid", "cavity", "inside-out", "nested", "open",
+    "crossing" (crosses another shell: solid() resolves it) or "undecided"."""
 
     _fields = ("role", "signed_volume", "faces", "boundary_edges", "unbalanced_edges", "euler_characteristic",
                "genus", "winding_of_others")
@@ -220,30 +230,57 @@ class Topology(_Result):
     closed 2-cycle (no unbalanced edge: its volume does not depend on the
     origin); ``misoriented_edges`` counts edges used twice in one direction."""
 
-    _fields = ("closed", "closed_2_cycle", "faces", "triangles", "vertices_welded", "edges", "boundary_edges",
+    _fields = ("closed_2_cycle", "faces", "triangles", "vertices", "vertices_welded", "edges", "boundary_edges",
                "nonmanifold_edges", "misoriented_edges", "unbalanced_edges", "unbalanced_example",
                "degenerate_triangles", "euler_characteristic", "components", "cavities", "inside_out_shells",
-               "nested_shells", "shells")
+               "shells", "self_crossing_checked", "self_crossing_pairs", "self_crossing_example")
+
+    def to_dict(self):
+        d = super().to_dict()
+        for key in ("unbalanced_example", "self_crossing_example"):  # the CLI writes them only when there is one
+            if d[key] is None:
+                del d[key]
+        return d
 
 
-def check(mesh, faces=None, *, shells=True):
+def check(mesh, faces=None, *, shells=True, self_crossings=True):
     """The topology report of `polyvol check`: edge counts, components,
-    shells with their volumes and nesting (shells=False: the edge counts only)."""
+    shells with their volumes and nesting (shells=False: the edge counts only),
+    and for a closed surface whether it crosses itself (self_crossings=False:
+    not looked for). ``closed``: a closed 2-cycle; ``nested_shells``: shells
+    inside another solid shell. to_dict() has the keys of `polyvol check --json`."""
     v, idx, offsets = _arrays.mesh(mesh, faces)
     t = _core.topology(v, idx, offsets, shells)
+    crossings = None
+    if self_crossings and t.closed_2_cycle:
+        s = _core.self_crossings(v, idx, offsets)
+        crossings = s if s.status == "ok" else None
+    core = getattr(mesh, "_core", None) if faces is None else None
+    # Shells of a closed surface in several parts that cross one another are
+    # "crossing" (as `polyvol check` says; solid() gives the solid they bound).
+    crosses = None
+    if t.closed_2_cycle and t.components_vertex_connected > 1:
+        s = _core.solid_volume(v, idx, offsets, False)
+        if s.status == "ok" and s.face_crosses.size:
+            crosses = s.face_crosses
     example = None
     if t.unbalanced_example is not None:
         e = t.unbalanced_example
         example = [[e[0], e[1], e[2]], [e[3], e[4], e[5]]]
     return Topology(
         closed=t.closed_2_cycle, closed_2_cycle=t.closed_2_cycle, faces=t.faces, triangles=t.triangles,
+        vertices=core.vertices_in_file if core is not None else int(v.shape[0]),
+        self_crossing_checked=crossings is not None,
+        self_crossing_pairs=crossings.pairs if crossings is not None else None,
+        self_crossing_example=list(crossings.example) if crossings is not None and crossings.example else None,
         vertices_welded=t.vertices_welded, edges=t.edges, boundary_edges=t.boundary_edges,
         nonmanifold_edges=t.nonmanifold_edges, misoriented_edges=t.misoriented_edges,
         unbalanced_edges=t.unbalanced_edges, unbalanced_example=example,
         degenerate_triangles=t.triangles_with_repeated_vertex + t.zero_area_triangles,
         euler_characteristic=t.euler_characteristic, components=t.components_edge_connected, cavities=t.cavities,
         inside_out_shells=t.inside_out_shells, nested_shells=t.nested_shells,
-        shells=[Shell(role=s.role, signed_volume=s.signed_volume, faces=s.faces, boundary_edges=s.boundary_edges,
+        shells=[Shell(role="crossing" if crosses is not None and crosses[s.first_face] else s.role,
+                      signed_volume=s.signed_volume, faces=s.faces, boundary_edges=s.boundary_edges,
                       unbalanced_edges=s.unbalanced_edges, euler_characteristic=s.euler_characteristic,
                       genus=s.genus, winding_of_others=s.winding_of_others) for s in t.shells])
 
@@ -284,7 +321,7 @@ class BooleanVolumes(_Result):
 
     _fields = ("volume_a", "volume_b", "intersection", "union", "a_minus_b", "b_minus_a", "accuracy", "area_a",
                "area_b", "area_intersection", "area_union", "area_a_minus_b", "area_b_minus_a", "area_error_bound",
-               "candidate_pairs", "crossing_pairs")
+               "triangles_a", "triangles_b", "candidate_pairs", "crossing_pairs", "rational_terms")
 
 
 def overlap(a, b):
@@ -328,10 +365,16 @@ class ChainVolume(_Result):
     """Volume (signed) and centroid of a boundary chain in R^n: correctly
     rounded, or within error_bound (absolute) and centroid_error_bound."""
 
-    _fields = ("dimension", "formula", "accuracy", "volume", "error_bound", "correctly_rounded", "centroid",
-               "centroid_error_bound", "centroid_correctly_rounded", "simplices", "vertices",
-               "degenerate_simplices", "unmatched_faces", "boundary_faces", "misoriented_faces",
-               "nonmanifold_faces", "components", "closed")
+    def to_dict(self):
+        d = super().to_dict()
+        if d.get("traversal") is None:  # as `polyvol ndim`: only for a bounded result
+            d.pop("traversal", None)
+        return d
+
+    _fields = ("dimension", "vertices", "vertices_welded", "simplices", "degenerate_simplices", "faces",
+               "unmatched_faces", "boundary_faces", "misoriented_faces", "nonmanifold_faces", "components", "formula",
+               "accuracy", "volume", "error_bound", "correctly_rounded", "centroid", "centroid_error_bound",
+               "centroid_correctly_rounded", "traversal")
 
 
 def _chain_result(d):
@@ -339,6 +382,8 @@ def _chain_result(d):
     d["error_bound"] = d.pop("volume_error_bound")
     d["correctly_rounded"] = d.pop("volume_correctly_rounded")
     d["accuracy"] = "correctly-rounded" if d["correctly_rounded"] else "error-bound"
+    if d["correctly_rounded"]:
+        d["traversal"] = None  # the determinants' walk matters only for a bounded result
     return d
 
 
@@ -359,7 +404,7 @@ class PolygonArea(_Result):
     """Area (signed: counter-clockwise outer loops positive, holes clockwise)
     and centroid of plane polygons, correctly rounded."""
 
-    _fields = ("area", "correctly_rounded", "error_bound", "centroid", "centroid_correctly_rounded", "closed")
+    _fields = ("area", "correctly_rounded", "error_bound", "centroid", "centroid_correctly_rounded")
 
 
 def polygon_area(loops, formula="cone"):
@@ -379,12 +424,12 @@ def polygon_area(loops, formula="cone"):
 
 def load_chain(path):
     """Reads a .chain file or `qconvex o Qt` output: (points (m, n), simplices (k, n))."""
-    return _core.read_chain(str(path))
+    return _core.read_chain(os.fsencode(path))
 
 
 def load_polygons(path):
     """Reads the polygon text format (one loop per line): a list of (k, 2) arrays."""
-    return _core.read_polygons(str(path))
+    return _core.read_polygons(os.fsencode(path))
 
 
 class ImplicitVolume(_Result):
@@ -395,8 +440,9 @@ class ImplicitVolume(_Result):
     the PL solid's volume at spacing h; ``clipped`` when the solid reaches
     the box (it is then clipped by it)."""
 
-    _fields = ("dimension", "h", "volume", "error_estimate", "volume_pl", "volume_pl_2h", "clipped",
-               "boundary_simplices", "function_evaluations", "seconds", "fine", "coarse")
+    _fields = ("expression", "dimension", "h", "spacing", "volume", "volume_pl", "error_estimate",
+               "boundary_simplices", "clipped", "box_rule", "formula", "streamed", "seconds", "fine", "volume_pl_2h",
+               "coarse")
 
 
 def implicit(f, dim, box, h=None, *, coarse_cells=0, error_estimate=True, box_rule="clip", seeds=None):
@@ -418,7 +464,8 @@ def implicit(f, dim, box, h=None, *, coarse_cells=0, error_estimate=True, box_ru
     r = _core.implicit_volume(f, int(dim), lo, hi, 0.0 if h is None else float(h), int(coarse_cells),
                               bool(error_estimate), box_rule, s)
     fine, coarse = r["fine"], r["coarse"]
-    return ImplicitVolume(dimension=r["dimension"], h=r["h"], volume=r["volume"],
+    return ImplicitVolume(expression=f if isinstance(f, str) else None, spacing=fine["spacing"], box_rule=box_rule,
+                          formula="cone", streamed=True, dimension=r["dimension"], h=r["h"], volume=r["volume"],
                           error_estimate=r["error_estimate"] if error_estimate else None, volume_pl=fine["volume"],
                           volume_pl_2h=coarse["volume"] if coarse else None, clipped=r["clipped"],
                           boundary_simplices=fine["boundary_simplices"],

@@ -51,7 +51,9 @@ def faces(f, vertex_count):
     """(indices, offsets) of faces given as an (m, k) integer array (k >= 3)
     or a sequence of index sequences of any lengths >= 3 (offsets None when
     every face is a triangle)."""
-    if isinstance(f, np.ndarray) or _rectangular(f):
+    if isinstance(f, np.ndarray) and f.size == 0:
+        return np.zeros(0, dtype=np.uint32), None
+    if isinstance(f, np.ndarray) or (_rectangular(f) and len(f) > 0):
         x = np.asarray(f)
         if x.dtype.kind in "iu" and x.ndim == 2:
             if x.shape[1] < 3:
@@ -65,7 +67,11 @@ def faces(f, vertex_count):
         if x.dtype.kind != "O":
             raise ValueError(f"faces must have shape (m, k), not {x.shape}")
     sizes = [len(face) for face in f]
-    flat = np.concatenate([np.asarray(face) for face in f]) if sizes else np.zeros(0, np.int64)
+    if not sizes:  # no faces: a mesh with nothing to measure
+        return np.zeros(0, dtype=np.uint32), None
+    if min(sizes) < 3:
+        raise ValueError(f"faces must have 3 or more vertices each, not {min(sizes)}")
+    flat = np.concatenate([np.asarray(face) for face in f])
     offsets = np.zeros(len(sizes) + 1, dtype=np.uint32)
     np.cumsum(sizes, out=offsets[1:])
     return indices(flat, vertex_count), offsets

@@ -21,12 +21,13 @@ class Grid:
                      for one mesh, its volumes), exact in every cell, contact
                      cells included; None when undefined (union_error says why)
     intersection     (nx, ny, nz) when asked for
-    cell_class       (nx, ny, nz) uint8: 0 empty, 1 full, 2 cut, 3 contact (several meshes)
+    cell_class       (nx, ny, nz) uint8: 0 empty, 1 full, 2 cut, 3 contact (several meshes,
+                     or one with union=True)
     first_moments    (..., 3) when moments=True: ∫x, ∫y, ∫z of each cell's part
     wetted_area, surface_normal, union_wetted_area, union_surface_normal
                      with surface=True: each surface's area in each cell and ∫ n dA
-    edges            (x, y, z): the plane coordinates
-    block            ((i0, i1), (j0, j1), (k0, k1)) of the whole grid these cells are
+    edges            (x, y, z): the plane coordinates (of the block, for a block)
+    block            ((i0, i1), (j0, j1), (k0, k1)): where these cells lie in the whole grid
     summary          totals and cell counts (the CLI's JSON keys)
     """
 
@@ -45,12 +46,13 @@ class Grid:
         if one:  # one body: the union and the intersection are the body
             self.union = self.intersection = self.volumes
             self.union_wetted_area, self.union_surface_normal = self.wetted_area, self.surface_normal
+            self.cell_class = arrays.get("cell_class")
         else:
             self.union = arrays.get("union")
             self.union_wetted_area = arrays.get("union_wetted_area")
             self.union_surface_normal = arrays.get("union_surface_normal")
             self.intersection = arrays.get("intersection")
-        self.cell_class = arrays.get("cell_class")
+            self.cell_class = arrays.get("cell_class")
 
     @property
     def shape(self):
@@ -120,9 +122,22 @@ def axes(meshes, dims=None, cells=None, cell_size=None, bounds=None):
 def _axes(bodies, dims, cells, cell_size, bounds):
     if sum(a is not None for a in (dims, cells, cell_size)) > 1:
         raise ValueError("give at most one of dims, cells and cell_size")
-    d = [0, 0, 0] if dims is None else [int(n) for n in dims]
-    b = None if bounds is None else [float(v) for v in bounds]
-    return _core.grid_axes(bodies, int(cells or 128), float(cell_size or 0.0), d, b)
+    d = [0, 0, 0]
+    if dims is not None:
+        d = [int(n) for n in dims]
+        if len(d) != 3 or min(d) < 1 or max(d) > 2 ** 20:
+            raise ValueError(f"dims must be three cell counts from 1 to 2^20, not {tuple(dims)}")
+    if cells is not None and not 1 <= int(cells) <= 2 ** 20:
+        raise ValueError(f"cells must be from 1 to 2^20, not {cells}")
+    if cell_size is not None and not float(cell_size) > 0:
+        raise ValueError(f"cell_size must be > 0, not {cell_size}")
+    b = None
+    if bounds is not None:
+        b = [float(v) for v in bounds]
+        if len(b) != 6:
+            raise ValueError("bounds must be (xmin, ymin, zmin, xmax, ymax, zmax)")
+    return _core.grid_axes(bodies, 128 if cells is None else int(cells), 0.0 if cell_size is None else float(cell_size),
+                           d, b)
 
 
 def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=False, *, union=None,
@@ -147,11 +162,16 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
         x, y, z = (_arrays.coordinates(np.asarray(e).reshape(-1, 1), columns=1, name="edges").reshape(-1)
                    for e in edges)
     shape = (len(x) - 1, len(y) - 1, len(z) - 1)
-    if block is None:
+    whole = block is None
+    if whole:
         block = tuple((0, n) for n in shape)
-    flat = [int(v) for pair in block for v in pair]
+    block = tuple((int(lo), int(hi)) for lo, hi in block)
+    if len(block) != 3 or any(not 0 <= lo < hi <= n for (lo, hi), n in zip(block, shape)):
+        raise ValueError(f"block must be three ranges (lo, hi) of cells within the grid {shape}, not {block}")
+    flat = [v for pair in block for v in pair]
     several = len(bodies) > 1
-    want_union = several if union is None else bool(union) and several
+    # the union (its crossings) by default with several bodies; union=True also gives one body's cell classes
+    want_union = several if union is None else bool(union)
     error = None
     try:
         r = _core.grid_volumes(bodies, x, y, z, flat, bool(moments), want_union, bool(intersection) and several,
@@ -163,11 +183,15 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
         error = str(e)
         warnings.warn(f"polyvol.grid: {error}; the union is not given", stacklevel=2)
         r = _core.grid_volumes(bodies, x, y, z, flat, bool(moments), False, False, bool(surface))
+    # a block is a grid of its own: its planes, with where it lies in the whole grid
+    x, y, z = (e[lo:hi + 1] for e, (lo, hi) in zip((x, y, z), block))
+    bshape = tuple(hi - lo for lo, hi in block)
+    for body, arrays in zip(r["bodies"], bodies):
+        body["mesh_volume"] = _core.signed_volume(*arrays, "cone", "correctly-rounded")
     summary = {
-        "grid": {"dims": list(shape), "bounds": [float(x[0]), float(y[0]), float(z[0]), float(x[-1]), float(y[-1]),
-                                                 float(z[-1])],
-                 "cells": shape[0] * shape[1] * shape[2], "uniform": _uniform((x, y, z)),
-                 "block": [list(p) for p in block]},
+        "grid": {"dims": list(bshape), "bounds": [float(x[0]), float(y[0]), float(z[0]), float(x[-1]),
+                                                  float(y[-1]), float(z[-1])],
+                 "cells": bshape[0] * bshape[1] * bshape[2], "uniform": _uniform((x, y, z))},
         "bodies": r["bodies"],
         "body_volumes": [b["volume"] for b in r["bodies"]],
         "union_volume": None if np.isnan(r["union_volume"]) else r["union_volume"],
@@ -177,8 +201,11 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
     }
     if summary["grid"]["uniform"]:
         summary["grid"]["spacing"] = [float(e[-1] - e[0]) / (len(e) - 1) for e in (x, y, z)]
+    if not whole:
+        summary["grid"]["block"] = [list(p) for p in block]
+        summary["grid"]["whole_dims"] = list(shape)
     if not np.isnan(r["intersection_volume"]):
         summary["intersection_volume"] = r["intersection_volume"]
     if error is not None:
         summary["union_error"] = error
-    return Grid((x, y, z), r, summary, len(bodies), tuple(tuple(p) for p in block))
+    return Grid((x, y, z), r, summary, len(bodies), block)

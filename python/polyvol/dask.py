@@ -7,6 +7,7 @@ default, or a dask.distributed cluster (``Client(...)``; docs/python.md shows
 
 import functools
 import math
+import os
 
 import numpy as np
 
@@ -33,15 +34,33 @@ COLUMNS = (
 )
 
 
+# Column types: numbers as float64 (NaN where a file has none), counts as
+# nullable integers, the rest (text, flags, lists) as objects.
+FLOATS = ("density", "volume", "volume_error_bound", "mass", "area", "area_relative_error",
+          "moments_relative_error", "edge_length", "edge_length_relative_error", "winding_volume")
+COUNTS = ("vertices", "faces", "triangles", "vertices_welded", "edges", "boundary_edges", "nonmanifold_edges",
+          "misoriented_edges", "unbalanced_edges", "degenerate_triangles", "components", "euler_characteristic",
+          "cavities", "inside_out_shells", "overlapping_shells", "crossing_pairs", "self_crossing_pairs")
+
+
+def _typed(frame):
+    for c in FLOATS:
+        frame[c] = pd.to_numeric(frame[c], errors="coerce").astype("float64")
+    for c in COUNTS:
+        frame[c] = pd.to_numeric(frame[c], errors="coerce").astype("Int64")
+    frame["exit_code"] = frame["exit_code"].astype("int64")
+    return frame
+
+
 def _rows(paths, options):
     rows = [polyvol.measure_file(p, **options) for p in paths]
-    return pd.DataFrame([{c: r.get(c) for c in COLUMNS} for r in rows], columns=list(COLUMNS))
+    return _typed(pd.DataFrame([{c: r.get(c) for c in COLUMNS} for r in rows], columns=list(COLUMNS)))
 
 
 def _meta():
     frame = pd.DataFrame({c: pd.Series(dtype=object) for c in COLUMNS})
-    frame["exit_code"] = frame["exit_code"].astype("int64")  # the one key every row has
-    return frame
+    frame["exit_code"] = 0
+    return _typed(frame.iloc[:0])
 
 
 def measure_files(paths, files_per_partition=16, **options):
@@ -51,7 +70,7 @@ def measure_files(paths, files_per_partition=16, **options):
     row; nothing raises. options: density, method, accuracy, allow_open,
     solid (as polyvol.measure_file). Each partition measures
     ``files_per_partition`` files on one worker."""
-    paths = [str(p) for p in paths]
+    paths = [os.fsdecode(p) for p in paths]
     parts = [dask.delayed(_rows)(paths[i:i + files_per_partition], options)
              for i in range(0, len(paths), files_per_partition)]
     if not parts:
@@ -101,8 +120,11 @@ def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, ce
     chunks: cells per block along each axis. what: "volumes" ((nx, ny, nz),
     or (bodies, nx, ny, nz)), "union", "intersection", "cell_class" or
     "first_moments" (a trailing axis of 3). Store with ``.to_zarr(path)``."""
+    fields = ("volumes", "union", "intersection", "cell_class", "first_moments")
+    if what not in fields:
+        raise ValueError(f"what must be one of {', '.join(fields)}, not {what!r}")
     meshes = mesh if isinstance(mesh, list) else [mesh]
-    paths = [str(m) if isinstance(m, str) or hasattr(m, "__fspath__") else None for m in meshes]
+    paths = [os.fsdecode(m) if isinstance(m, (str, bytes)) or hasattr(m, "__fspath__") else None for m in meshes]
     local = [_read(p) if p else _arrays.mesh(m) for p, m in zip(paths, meshes)]
     x, y, z = _grid._axes(local, dims, cells, cell_size, bounds)  # the planes need the bodies' box, once
     edges = (x, y, z)

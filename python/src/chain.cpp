@@ -46,8 +46,11 @@ py::dict chain_result(const ChainVolume& v) {
     d["formula"] = std::string(simplex_formula_name(v.formula));
     d["accuracy"] = std::string(chain_accuracy_name(v.accuracy));
     const ChainReport& t = v.topology;
+    d["traversal"] = std::string(traversal_name(v.traversal));
     d["simplices"] = t.simplices;
     d["vertices"] = t.vertices;
+    d["vertices_welded"] = t.vertices_welded;
+    d["faces"] = t.faces;
     d["degenerate_simplices"] = t.degenerate_simplices;
     d["unmatched_faces"] = t.unmatched_faces;
     d["boundary_faces"] = t.boundary_faces;
@@ -69,6 +72,7 @@ py::dict pass_dict(const ImplicitPass& p) {
     d["function_evaluations"] = p.function_evaluations;
     d["components"] = p.components;
     d["box_vertices_inside"] = p.box_vertices_inside;
+    d["face_simplices"] = p.face_simplices;
     d["seconds"] = p.seconds;
     return d;
 }

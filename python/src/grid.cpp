@@ -72,8 +72,9 @@ void bind_grid(py::module_& m) {
             const std::size_t nb = views.size(), cells = b.cell_count();
             const bool several = nb > 1;
             std::vector<double> volumes(nb * cells), first(moments ? 3 * nb * cells : 0);
+            // One body: its union is its volumes, but its cells' classes can be asked for.
             std::vector<double> uni(several && union_volume ? cells : 0), inter(several && intersection ? cells : 0);
-            std::vector<uint8_t> cls(several && union_volume ? cells : 0);
+            std::vector<uint8_t> cls(union_volume ? cells : 0);
             std::vector<double> wet(surface ? nb * cells : 0), normal(surface ? 3 * nb * cells : 0);
             std::vector<double> uwet(surface && several && union_volume ? cells : 0),
                 unormal(surface && several && union_volume ? 3 * cells : 0);

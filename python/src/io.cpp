@@ -126,7 +126,8 @@ void bind_io(py::module_& m) {
             {
                 py::gil_scoped_release release;
                 const cli::FileResult r = cli::process_file(path, request);
-                text = cli::to_json(r, request).dump();
+                // replace: a file name that is not UTF-8 must not make the report throw
+                text = cli::to_json(r, request).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
             }
             return text;
         },

@@ -195,6 +195,11 @@ void bind_measure(py::module_& m) {
         .def_readonly("overlapping_shells", &SolidVolume::overlapping_shells)
         .def_readonly("crossing_pairs", &SolidVolume::crossing_pairs)
         .def_readonly("crossing_example", &SolidVolume::crossing_example)
+        .def_property_readonly("face_crosses",
+                               [](const SolidVolume& s) {
+                                   return copy_array<uint8_t>(s.face_crosses,
+                                                              {static_cast<py::ssize_t>(s.face_crosses.size())});
+                               })
         .def_readonly("moments", &SolidVolume::moments)
         .def_property_readonly("first_moments", [](const SolidVolume& s) { return vec(s.first_moments); })
         .def_property_readonly("second_moments", [](const SolidVolume& s) { return symmetric3(s.second_moments); })
@@ -227,8 +232,11 @@ void bind_measure(py::module_& m) {
         .def_readonly("area_a_minus_b", &BooleanVolumes::area_a_minus_b)
         .def_readonly("area_b_minus_a", &BooleanVolumes::area_b_minus_a)
         .def_readonly("area_error_bound", &BooleanVolumes::area_error_bound)
+        .def_readonly("triangles_a", &BooleanVolumes::triangles_a)
+        .def_readonly("triangles_b", &BooleanVolumes::triangles_b)
         .def_readonly("candidate_pairs", &BooleanVolumes::candidate_pairs)
-        .def_readonly("crossing_pairs", &BooleanVolumes::crossing_pairs);
+        .def_readonly("crossing_pairs", &BooleanVolumes::crossing_pairs)
+        .def_readonly("rational_terms", &BooleanVolumes::rational_terms);
     m.def(
         "boolean_volumes",
         [](const Doubles& pa, const Indices& ia, const std::optional<Indices>& oa, const Doubles& pb,

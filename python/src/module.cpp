@@ -56,6 +56,14 @@ py::array_t<double> symmetric3(const std::array<double, 6>& m) {
 
 namespace {
 
+// Text from the file system (a path, or a message holding one): decoded as
+// Python decodes file names (surrogateescape), so non-UTF-8 names survive.
+py::str fs_text(const std::string& s) {
+    PyObject* o = PyUnicode_DecodeFSDefaultAndSize(s.data(), static_cast<Py_ssize_t>(s.size()));
+    if (o == nullptr) throw py::error_already_set();
+    return py::reinterpret_steal<py::str>(o);
+}
+
 // C++ exceptions with a position become the package's exception classes
 // (polyvol/_errors.py), their fields as attributes.
 void translate_exceptions() {
@@ -66,7 +74,7 @@ void translate_exceptions() {
             const py::object cls = py::module_::import("polyvol._errors").attr("ReadError");
             const py::object line = e.line ? py::object(py::int_(e.line)) : py::object(py::none());
             const py::object offset = e.has_byte_offset ? py::object(py::int_(e.byte_offset)) : py::object(py::none());
-            const py::object exc = cls(e.what(), e.file, line, offset, e.message);
+            const py::object exc = cls(fs_text(e.what()), fs_text(e.file), line, offset, fs_text(e.message));
             PyErr_SetObject(cls.ptr(), exc.ptr());
         } catch (const ImplicitError& e) {
             const py::object cls = py::module_::import("polyvol._errors").attr("ImplicitError");

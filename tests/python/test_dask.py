@@ -6,6 +6,7 @@ bit, also written to zarr."""
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import polyvol
@@ -23,7 +24,7 @@ def client():
 
 
 def missing(x):
-    return x is None or (isinstance(x, float) and math.isnan(x))
+    return x is None or x is pd.NA or (isinstance(x, float) and math.isnan(x))
 
 
 def same(got, want):
@@ -45,6 +46,11 @@ def test_measure_files_over_the_corpus_equals_the_plain_loop(client):
             assert same(got, want.get(key)), (path, key, got, want.get(key))
     assert (frame["exit_code"] == 2).sum() >= 5  # the unreadable files are rows, with their errors
     assert frame.loc[frame["exit_code"] == 2, "error"].str.len().min() > 0
+    assert frame["volume"].dtype == np.float64 and str(frame["triangles"].dtype) == "Int64"
+    lazy = pvd.measure_files(paths[:20], files_per_partition=8)
+    assert lazy["volume"].dtype == np.float64  # the meta's types: numeric operations work lazily
+    assert lazy[lazy.exit_code == 0]["volume"].sum().compute() == pytest.approx(
+        sum(polyvol.measure_file(p).get("volume") or 0 for p in paths[:20]), rel=1e-12)
 
 
 def test_grid_blocks_on_workers_equal_the_whole_grid(client, tmp_path):
