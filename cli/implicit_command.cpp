@@ -9,6 +9,8 @@
 // error / the lattice is too large.
 #include "implicit_command.hpp"
 
+#include "memory.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -154,6 +156,9 @@ CLI::App* add_implicit_command(CLI::App& app, ImplicitArgs& a) {
     cmd->add_flag("--no-estimate", a.no_estimate, "Skip the 2h lattice: volume of the PL solid at h only");
     cmd->add_flag("--json", a.json, "Print one JSON object");
     cmd->add_option("--stl", a.stl, "3D only: write the PL surface at h (marching tetrahedra) as binary STL");
+    cmd->add_option("--max-memory", a.max_memory,
+                    "Refuse a lattice that would need more memory than this, e.g. 8G or 512M (estimated from the 2h "
+                    "lattice before the fine one starts; default: three quarters of physical memory)");
     return cmd;
 }
 
@@ -197,6 +202,13 @@ int run_implicit_command(const ImplicitArgs& a) {
         return Exit::usage;
     }
     o.keep_chain = !a.stl.empty();
+    const std::optional<uint64_t> limit =
+        a.max_memory.empty() ? std::optional<uint64_t>(default_memory_limit()) : parse_bytes(a.max_memory);
+    if (!limit) {
+        std::cerr << "polyvol: --max-memory takes a size such as 8G or 512M, not '" << a.max_memory << "'\n";
+        return Exit::usage;
+    }
+    o.max_memory_bytes = static_cast<std::size_t>(*limit);
 
     ImplicitVolume r;
     try {
@@ -208,7 +220,11 @@ int run_implicit_command(const ImplicitArgs& a) {
         std::cerr << "\n";
         return Exit::unreadable;
     } catch (const ImplicitError& e) {
-        std::cerr << "polyvol: " << e.what() << "\n";
+        std::cerr << "polyvol: " << e.what();
+        if (e.code() == ImplicitError::Code::too_large && std::string(e.what()).find("memory") != std::string::npos)
+            std::cerr << " (the limit: " << (a.max_memory.empty() ? "three quarters of this machine's memory, " : "--max-memory ")
+                      << bytes_text(static_cast<double>(*limit)) << ")";
+        std::cerr << "\n";
         return Exit::invalid;
     } catch (const std::invalid_argument& e) {
         std::cerr << "polyvol: " << e.what() << "\n";

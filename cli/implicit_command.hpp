@@ -22,6 +22,7 @@ struct ImplicitArgs {
     bool no_estimate = false;
     bool json = false;
     std::string stl;                  // 3D: write the PL surface
+    std::string max_memory;           // empty: three quarters of physical memory
 };
 
 // Registers the subcommand on app; its options fill args.
@@ -30,7 +31,7 @@ CLI::App* add_implicit_command(CLI::App& app, ImplicitArgs& args);
 // Runs it; returns the exit code: 0 ok; 1 usage (bad option, --stl outside 3D);
 // 2 the expression cannot be parsed (unreadable input); 3 F is NaN at a
 // lattice vertex, or the solid reaches the box with --box-rule error, or the
-// lattice is too large.
+// lattice is too large (for 64-bit keys, or for --max-memory).
 int run_implicit_command(const ImplicitArgs& args);
 
 }  // namespace polyvol::cli

@@ -42,7 +42,12 @@ struct Common {
     bool stream = false;  // volume --stream: JSON from the streaming path too
     bool volume_only = false;  // volume --volume-only
     bool solid = false;        // volume/measure --solid: the full overlap and self-crossing check
+    bool orient = false;       // --orient: faces wound consistently and outward before measuring
 };
+
+const char* const kOrientHelp =
+    "Orient the faces first: consistently within each shell (a walk over the faces), and outward, cavities "
+    "inward by nesting; reports the faces flipped, then measures the oriented mesh";
 
 void add_measure_options(CLI::App* cmd, Common& c) {
     cmd->add_option("files", c.files, "Mesh files (STL, OBJ, OFF, PLY, 3MF, AMF, optionally .gz); - reads stdin")
@@ -62,6 +67,7 @@ void add_measure_options(CLI::App* cmd, Common& c) {
         ->capture_default_str();
     cmd->add_flag("--allow-open", c.allow_open,
                   "Measure surfaces with unbalanced edges anyway (the result then depends on the origin)");
+    cmd->add_flag("--orient", c.orient, kOrientHelp);
 }
 
 Request make_request(const Common& c, bool need_mass) {
@@ -73,6 +79,7 @@ Request make_request(const Common& c, bool need_mass) {
     r.measure.density = c.density;
     r.allow_open = c.allow_open;
     r.need_mass = need_mass;
+    r.orient = c.orient;
     return r;
 }
 
@@ -83,7 +90,7 @@ int run(Command command, const Common& c) {
     // Binary STL through the streaming path: the table always, JSON only with
     // --stream (the streaming path has no second moments, inertia, edge
     // length or components: README).
-    request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid;
+    request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid && !c.orient;
     request.self_check_always = command == Command::check || c.solid;
     request.volume_only = command == Command::volume && c.volume_only;
     request.table_only = command == Command::volume && (!c.json || request.volume_only);
@@ -152,6 +159,7 @@ int main(int argc, char** argv) {
                                               "unbalanced edges, shells and how they nest");
     check->add_option("files", check_opts.files, "Mesh files; - reads stdin")->required();
     check->add_flag("--json", check_opts.json, "Print JSON");
+    check->add_flag("--orient", check_opts.orient, kOrientHelp);
     NdimCommands ndim_commands;
     add_ndim_commands(app, ndim_commands);
     GridArgs grid_args;

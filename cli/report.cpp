@@ -42,6 +42,11 @@ std::string_view role_name(ShellRole r) {
 }
 
 std::string unbalanced_message(const TopologyReport& t) {
+    if (t.boundary_edges == 0 && t.nonmanifold_edges == 0 && t.misoriented_edges > 0)
+        return "closed, but " + std::to_string(t.misoriented_edges) + " edge" +
+               (t.misoriented_edges == 1 ? " is" : "s are") + " misoriented (faces wound inconsistently): " +
+               std::to_string(t.unbalanced_edges) + " unbalanced edge" + (t.unbalanced_edges == 1 ? "" : "s") +
+               ", each used twice in the same direction; --orient winds the faces consistently and outward";
     std::string m = "not a closed surface: " + std::to_string(t.unbalanced_edges) +
                     " unbalanced edge" + (t.unbalanced_edges == 1 ? "" : "s") +
                     " (used a different number of times in its two directions)";
@@ -195,6 +200,15 @@ FileResult process_file(const std::string& path, const Request& request) {
     }
     r.seconds_read = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
+    if (request.orient) {
+        r.oriented = orient_mesh(r.loaded->mesh);
+        if (!r.oriented->orientable) {
+            r.exit_code = Exit::invalid;
+            r.error = path + ": cannot orient the faces: a shell is not orientable (an edge used twice in one "
+                             "direction that no flip fixes, or by three or more faces)";
+            return r;
+        }
+    }
     const MeshView view = r.loaded->mesh.view();
     r.closed_by_fingerprint =
         request.closedness_by_fingerprint && fingerprint_closedness(view) == Closedness::closed;
@@ -251,6 +265,15 @@ FileResult process_file(const std::string& path, const Request& request) {
     return r;
 }
 
+// What --orient did, in words.
+std::string orient_sentence(const OrientResult& o) {
+    std::string s = "oriented: " + std::to_string(o.flipped) + " face" + (o.flipped == 1 ? "" : "s") + " flipped";
+    if (o.undecided > 0)
+        s += "; " + std::to_string(o.undecided) + " shell" + (o.undecided == 1 ? "'s" : "s'") +
+             " outward side not decided (left as wound)";
+    return s;
+}
+
 // The sentence for a file whose shells overlap, or "".
 std::string overlap_sentence(const FileResult& r) {
     if (!r.solid || r.solid->overlapping_shells == 0) return "";
@@ -298,6 +321,11 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["vertices"] = l.vertices_in_file;
         j["faces"] = l.mesh.face_count();
         j["triangles"] = l.mesh.view().triangle_count();
+        if (r.oriented) {
+            j["oriented"] = r.oriented->orientable;
+            j["oriented_faces_flipped"] = r.oriented->flipped;
+            j["oriented_shells_undecided"] = r.oriented->undecided;
+        }
     } else {
         j["format"] = nullptr;
     }
@@ -407,6 +435,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     std::string streamed_notes, loaded_notes, overlap_notes;
     for (const auto& r : results) {
         any_fingerprint = any_fingerprint || r.streamed || r.closed_by_fingerprint;
+        if (r.oriented && r.oriented->orientable) loaded_notes += "  " + r.file + ": " + orient_sentence(*r.oriented) + "\n";
         if (r.streamed) {
             const SoupResult& s = *r.streamed;
             any_rounded = true;
@@ -477,6 +506,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
         << "; " << l.vertices_in_file << " vertices, " << l.mesh.face_count() << " faces, "
         << l.mesh.view().triangle_count() << " triangles)\n";
     out << "  method          " << method_name(request.measure.method) << ", density " << shortest(request.measure.density) << "\n";
+    if (r.oriented) out << "  orientation     " << orient_sentence(*r.oriented) << "\n";
     const bool overlap = r.solid && r.solid->overlapping_shells > 0;
     if (overlap) {
         out << "  volume          " << shortest(m.volume)
@@ -525,6 +555,7 @@ std::string check_report(const FileResult& r) {
     const auto& l = *r.loaded;
     out << r.file << "  (" << format_name(l.format) << ", " << l.encoding << (l.gzip ? ", gzip" : "") << ")\n";
     for (const auto& n : l.notes) out << "  note: " << n << "\n";
+    if (r.oriented) out << "  orientation     " << orient_sentence(*r.oriented) << "\n";
     out << "  vertices        " << l.vertices_in_file << " read, " << t.vertices_welded << " after welding, "
         << t.vertices_referenced << " used by faces\n";
     out << "  faces           " << t.faces << " (" << t.faces_with_lt3_vertices << " with fewer than 3 vertices, ignored), "

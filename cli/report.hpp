@@ -11,6 +11,7 @@
 #include "polyvol/boolean.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
+#include "polyvol/simplicial.hpp"
 #include "polyvol/soup.hpp"
 #include "polyvol/topology.hpp"
 
@@ -45,6 +46,8 @@ struct FileResult {
     // looked for (Request::self_check_always); else why not.
     std::optional<SelfCrossings> self;
     std::string self_not_checked;
+    // Request::orient: what orienting the loaded mesh did (before any measure).
+    std::optional<OrientResult> oriented;
 };
 
 // Files up to this many fan triangles are checked for a surface crossing
@@ -82,6 +85,9 @@ struct Request {
     // A surface crossing itself within one shell: looked for in closed files
     // up to kSelfCheckTriangles, or in every closed file (`check`, `--solid`).
     bool self_check_always = false;
+    // --orient: the loaded mesh's faces wound consistently and outward
+    // (orient_mesh) before it is analysed and measured.
+    bool orient = false;
 };
 
 // Reads, analyses and measures one file; never throws.

@@ -162,7 +162,19 @@ struct ImplicitOptions {
     // Refuse (ImplicitError::Code::too_large) to build more boundary simplices
     // than this in one pass — a guard against an h far too small.
     std::size_t max_boundary_simplices = std::size_t{1} << 28;
+    // Refuse (ImplicitError::Code::too_large) work that would take more
+    // memory than this (bytes; 0: no limit). The memory follows the lattice
+    // vertices F is evaluated at (their values, the cubes walked): about
+    // kImplicitBytesPerEvaluation each, plus the chain when kept. With the
+    // error estimate, the 2h lattice runs first and the fine one's need is
+    // estimated from it (2^(n-1) times its evaluations) before it starts;
+    // either pass stops when its evaluations pass the limit.
+    std::size_t max_memory_bytes = 0;
 };
+
+// Measured peak memory per evaluated lattice vertex (values, visited cubes,
+// hash tables at their load factor): 135 B in 3D, 176 B in 4D on a ball.
+inline constexpr std::size_t kImplicitBytesPerEvaluation = 200;
 
 // Default lattice cells along the widest side: 512, 96, 32, 16, 12, 8, 8 for
 // n = 2 .. 8.

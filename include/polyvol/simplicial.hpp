@@ -69,6 +69,7 @@
 #include <vector>
 
 #include "polyvol/chain.hpp"
+#include "polyvol/mesh.hpp"
 
 namespace polyvol {
 
@@ -169,9 +170,18 @@ struct OrientResult {
     bool orientable = true;         // false: some component cannot be made consistent (nothing changed)
     std::size_t flipped = 0;        // simplices whose orientation was reversed
     std::size_t components = 0;
-    std::size_t undecided = 0;      // components whose volume sign or nesting could not be decided (left as made consistent)
+    std::size_t undecided = 0;      // components whose volume sign or nesting could not be decided, or that are not
+                                    // closed (cut off by faces used more than twice): left as made consistent
 };
 OrientResult orient_chain(Chain& chain);
+
+// The same for a 3D mesh (mesh.hpp): its faces made consistent within each
+// shell and turned so that outer shells face outward and cavities inward
+// (orient_chain on the fan triangles; a face is reversed as
+// (v0, vk, ..., v1)). `flipped` counts faces. Nothing changes when the
+// mesh is not orientable (a shell with an edge used twice in one direction
+// that no flip can fix: a Möbius strip, or three faces on an edge).
+OrientResult orient_mesh(Mesh& mesh);
 
 // The 2D chain of a polygon set: edge (v_i, v_{i+1}) for each loop, wrapping.
 Chain polygon_chain(const PolygonsView& polygons);

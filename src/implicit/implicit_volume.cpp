@@ -57,11 +57,18 @@ double resolved_h(const ImplicitOptions& o, const Box& b) {
 // volume is streamed (ConeSum: the cone formula, no chain, no validation —
 // the chain is closed by construction) into pass.volume and
 // pass.rounding_error_bound.
+// The evaluations options.max_memory_bytes allows (0: no limit); a kept
+// chain about doubles the memory per evaluation.
+std::size_t max_evaluations(const ImplicitOptions& o) {
+    if (o.max_memory_bytes == 0) return 0;
+    return std::max<std::size_t>(1, o.max_memory_bytes / (kImplicitBytesPerEvaluation * (o.keep_chain ? 2 : 1)));
+}
+
 void run_pass(const ImplicitBatchFunction& f, bool lookahead, const ImplicitOptions& o, const Box& b,
               std::span<const int32_t> cells, ImplicitPass& pass, Chain* chain) {
     const auto t0 = Clock::now();
     const implicit::Lattice lattice(o.dimension, b.lo, b.hi, cells);
-    implicit::Sampler sampler(lattice, f, o.box_rule, lookahead);
+    implicit::Sampler sampler(lattice, f, o.box_rule, lookahead, max_evaluations(o));
     std::optional<implicit::ConeSum> cone;
     if (!chain) cone.emplace(lattice);
     implicit::SurfaceBuilder builder(lattice, sampler, o.max_boundary_simplices, cone ? &*cone : nullptr);
@@ -167,13 +174,29 @@ ImplicitVolume volume_with(const ImplicitBatchFunction& f, bool lookahead, const
     r.dimension = options.dimension;
     r.h = resolved_h(options, b);
     const std::vector<int32_t> cells = implicit::lattice_cells(b.lo, b.hi, r.h);
-    volume_pass(f, lookahead, options, b, cells, r.fine, options.keep_chain ? &r.chain : nullptr);
-    r.clipped = r.fine.box_vertices_inside > 0;
+    // The 2h lattice first: its evaluations times 2^(n-1) (the surface's
+    // vertices scale as h^-(n-1)) estimate the fine pass's memory before it starts.
+    ImplicitPass coarse;
     if (options.error_estimate) {
         std::vector<int32_t> half(cells);
         for (auto& c : half) c /= 2;  // even, so spacing exactly 2 h_k
-        ImplicitPass coarse;
         volume_pass(f, lookahead, options, b, half, coarse, nullptr);
+        const double estimate = std::ldexp(static_cast<double>(coarse.function_evaluations), options.dimension - 1);
+        const std::size_t most = max_evaluations(options);
+        if (most != 0 && estimate > static_cast<double>(most))
+            throw ImplicitError(ImplicitError::Code::too_large, {},
+                                "implicit: the lattice of spacing h would need about " +
+                                    std::to_string(static_cast<long long>(
+                                        estimate * kImplicitBytesPerEvaluation * (options.keep_chain ? 2 : 1) / 1e6)) +
+                                    " MB (estimated from the 2h lattice: " +
+                                    std::to_string(coarse.function_evaluations) + " vertices evaluated there, 2^" +
+                                    std::to_string(options.dimension - 1) +
+                                    " times as many at h), more than the memory limit allows; a larger h, a smaller "
+                                    "box, or a higher limit");
+    }
+    volume_pass(f, lookahead, options, b, cells, r.fine, options.keep_chain ? &r.chain : nullptr);
+    r.clipped = r.fine.box_vertices_inside > 0;
+    if (options.error_estimate) {
         const Richardson e = richardson(r.fine.volume, coarse.volume);
         r.volume_extrapolated = e.extrapolated;
         r.volume = e.extrapolated;

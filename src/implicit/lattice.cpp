@@ -66,9 +66,20 @@ Lattice::Lattice(int dimension, std::span<const double> lo_, std::span<const dou
                             "implicit: the lattice has too many vertices for 64-bit keys");
 }
 
-Sampler::Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule rule, bool lookahead)
-    : lattice_(lattice), f_(f), rule_(rule), lookahead_(lookahead), values_(1 << 12), prefetched_(1 << 12),
-      x_(static_cast<std::size_t>(lattice.n)) {}
+Sampler::Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule rule, bool lookahead,
+                 std::size_t max_evaluations)
+    : lattice_(lattice), f_(f), rule_(rule), lookahead_(lookahead), max_evaluations_(max_evaluations),
+      values_(1 << 12), prefetched_(1 << 12), x_(static_cast<std::size_t>(lattice.n)) {}
+
+void Sampler::count(std::size_t evaluations) {
+    evaluations_ += evaluations;
+    if (max_evaluations_ != 0 && evaluations_ > max_evaluations_)
+        throw ImplicitError(ImplicitError::Code::too_large, {},
+                            "implicit: the lattice needs more memory than allowed: over " +
+                                std::to_string(evaluations_) + " lattice vertices evaluated (about " +
+                                std::to_string(kImplicitBytesPerEvaluation) +
+                                " bytes each); a larger h, a smaller box, or a higher memory limit");
+}
 
 void Sampler::prefetch(std::span<const Index> vs) {
     keys_.clear();
@@ -84,7 +95,7 @@ void Sampler::prefetch(std::span<const Index> vs) {
     if (keys_.empty()) return;
     batch_.assign(keys_.size(), 0.0);
     f_(points_, batch_);
-    evaluations_ += keys_.size();
+    count(keys_.size());
     for (std::size_t i = 0; i < keys_.size(); ++i) prefetched_.insert(keys_[i], batch_[i]);
 }
 
@@ -99,7 +110,7 @@ double Sampler::value(const Index& v) {
         fx = *early;
     } else {
         f_(x_, std::span<double>(&fx, 1));
-        ++evaluations_;
+        count(1);
     }
     if (std::isnan(fx))
         throw ImplicitError(ImplicitError::Code::not_a_number, x_, "F is NaN at " + point_text(x_));

@@ -107,7 +107,9 @@ std::vector<int32_t> lattice_cells(std::span<const double> lo, std::span<const d
 // corners: more points per call, a few evaluated for nothing.
 class Sampler {
 public:
-    Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule rule, bool lookahead = false);
+    // max_evaluations: ImplicitError(too_large) past this many (0: no limit).
+    Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule rule, bool lookahead = false,
+            std::size_t max_evaluations = 0);
     double value(const Index& v);
     // Evaluates those of vs not yet known in one call.
     void prefetch(std::span<const Index> vs);
@@ -125,6 +127,8 @@ private:
     const ImplicitBatchFunction& f_;
     BoxRule rule_;
     bool lookahead_;
+    std::size_t max_evaluations_;
+    void count(std::size_t evaluations);
     FlatMap<double> values_;
     FlatMap<double> prefetched_;  // evaluated, taken into values_ when first asked for
     std::vector<double> x_;

@@ -112,7 +112,9 @@ OrientResult orient_chain(Chain& chain) {
                 simplices.insert(simplices.end(), wv.simplices.begin() + std::size_t{s} * n,
                                  wv.simplices.begin() + (std::size_t{s} + 1) * n);
             const ChainVolume v = chain_volume({n, wv.coordinates, simplices}, o);
-            if (std::isfinite(v.volume) && std::abs(v.volume) > v.volume_error_bound)
+            // An open component (cut off by faces used more than twice) has no inside: its
+            // volume's sign depends on the origin, so it is left as wound (undecided).
+            if (v.topology.closed() && std::isfinite(v.volume) && std::abs(v.volume) > v.volume_error_bound)
                 vol_sign[comp] = v.volume > 0 ? 1 : -1;
         }
     }

@@ -95,6 +95,12 @@ TEST(ImplicitCli, ExitCodes) {
     const CliResult clip = polyvol("implicit 'x^2 + y^2 - 1' --dim 2 --box 0:1 --h 0.01 --json");
     EXPECT_EQ(clip.code, 0);
     EXPECT_NEAR(json::parse(clip.out)["volume"].get<double>(), std::numbers::pi / 4, 1e-4);
+    // a lattice beyond --max-memory: refused before the fine pass, exit 3, the limit named
+    const CliResult big = polyvol("implicit 'x^2 + y^2 + z^2 - 1' --box -1.5:1.5 --h 0.004 --max-memory 200M");
+    EXPECT_EQ(big.code, 3);
+    EXPECT_NE(big.err.find("--max-memory 200 MiB"), std::string::npos) << big.err;
+    EXPECT_NE(big.err.find("estimated from the 2h lattice"), std::string::npos) << big.err;
+    EXPECT_EQ(polyvol("implicit 'x^2 + y^2 - 1' --box -2:2 --max-memory lots").code, 1);
 }
 
 TEST(ImplicitCli, EmptySet) {

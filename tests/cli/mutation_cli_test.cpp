@@ -10,6 +10,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -118,13 +120,64 @@ TEST(MutationCli, EveryDefectIsRefusedWithoutAVolume) {
             if (std::string(ext) == ".obj") write_obj(p, soup); else write_stl(p, soup);
             const auto table = cli_test::run_polyvol("volume '" + p.string() + "'");
             EXPECT_EQ(table.code, 3) << kind << ext << table.out << table.err;
-            EXPECT_NE(table.err.find("not a closed surface"), std::string::npos) << kind << ext << table.err;
+            // A flip leaves the surface closed, wound inconsistently: the message says so and names --orient.
+            const std::string words = kind == "flip" ? "closed, but 3 edges are misoriented" : "not a closed surface";
+            EXPECT_NE(table.err.find(words), std::string::npos) << kind << ext << table.err;
+            if (kind == "flip") {
+                EXPECT_NE(table.err.find("--orient"), std::string::npos) << table.err;
+            }
             EXPECT_NE(table.out.find("open surface: not measured"), std::string::npos) << kind << ext << table.out;
             const auto j = nlohmann::json::parse(cli_test::run_polyvol("volume --json '" + p.string() + "'").out)[0];
             EXPECT_EQ(j["exit_code"], 3) << kind << ext;
             EXPECT_TRUE(!j.contains("volume") || j["volume"].is_null()) << kind << ext << j.dump();
         }
     }
+    // --orient winds the flipped triangle back: the intact sphere's volume in
+    // the same format (an OBJ's decimals are not the STL's float32 values), bit for bit.
+    write_stl(scratch("intact.stl"), base);
+    for (const char* ext : {".obj", ".stl"}) {
+        const auto intact =
+            nlohmann::json::parse(cli_test::run_polyvol("volume --json '" + scratch(std::string("intact") + ext).string() + "'").out)[0];
+        const fs::path p = scratch(std::string("flip") + ext);
+        const auto r = cli_test::run_polyvol("volume --orient --json '" + p.string() + "'");
+        ASSERT_EQ(r.code, 0) << ext << r.err;
+        const auto j = nlohmann::json::parse(r.out)[0];
+        EXPECT_EQ(j["oriented_faces_flipped"], 1) << ext;
+        EXPECT_EQ(j["volume"].get<double>(), intact["volume"].get<double>()) << ext;
+        const auto table = cli_test::run_polyvol("measure --orient '" + p.string() + "'");
+        EXPECT_EQ(table.code, 0);
+        EXPECT_NE(table.out.find("oriented: 1 face flipped"), std::string::npos) << table.out;
+    }
+}
+
+// --orient on whole shells: a box turned inside out comes out outward, and a
+// cavity wound outward comes out inward (by nesting): the solid's volume.
+TEST(MutationCli, OrientTurnsShellsOutwardAndCavitiesInward) {
+    const fs::path inside_out = scratch("inside_out.obj"), cavity = scratch("cavity.obj");
+    cli_test::write_boxes_obj(inside_out, {{0, 0, 0, 2, 3, 4}});
+    {  // reverse every face of the box
+        std::ifstream in(inside_out);
+        std::string line, text;
+        while (std::getline(in, line)) {
+            if (line.rfind("f ", 0) == 0) {
+                std::istringstream w(line.substr(2));
+                std::vector<std::string> v{std::istream_iterator<std::string>(w), {}};
+                line = "f " + v[0] + " " + v[3] + " " + v[2] + " " + v[1];
+            }
+            text += line + "\n";
+        }
+        std::ofstream(inside_out) << text;
+    }
+    cli_test::write_boxes_obj(cavity, {{0, 0, 0, 4, 4, 4}, {1, 1, 1, 2, 3, 2}});  // both outward
+    const auto a = nlohmann::json::parse(cli_test::run_polyvol("measure --orient --json '" + inside_out.string() + "'").out)[0];
+    EXPECT_EQ(a["volume"].get<double>(), 24.0);
+    EXPECT_EQ(a["oriented_faces_flipped"], 6);
+    const auto b = nlohmann::json::parse(cli_test::run_polyvol("measure --orient --json '" + cavity.string() + "'").out)[0];
+    EXPECT_EQ(b["volume"].get<double>(), 64.0 - 2.0);
+    EXPECT_EQ(b["oriented_faces_flipped"], 6);
+    EXPECT_EQ(b["cavities"], 1);
+    const auto plain = nlohmann::json::parse(cli_test::run_polyvol("measure --json '" + cavity.string() + "'").out)[0];
+    EXPECT_EQ(plain["volume"].get<double>(), 64.0);  // without --orient: the solid of the overlapping shells
 }
 
 }  // namespace

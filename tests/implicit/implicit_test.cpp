@@ -572,4 +572,40 @@ TEST(ImplicitVolume, BatchedFHasThePointwiseBits) {
     }
 }
 
+// A memory limit refuses a lattice before it is walked (estimated from the
+// 2h lattice: 2^(n-1) times its evaluations) or while it is (without the
+// estimate, when the evaluations pass the limit); within the limit, the
+// result is the unlimited one.
+TEST(ImplicitVolume, AMemoryLimitRefusesTooFineALattice) {
+    const ImplicitFunction f = parse_implicit_expression("x^2+y^2+z^2-1", 3);
+    ImplicitOptions o;
+    o.dimension = 3;
+    o.lo = {-1.5};
+    o.hi = {1.5};
+    o.h = 0.02;
+    const ImplicitVolume free = implicit_volume(f, o);
+    const std::size_t need = (free.fine.function_evaluations + free.coarse->function_evaluations) *
+                             kImplicitBytesPerEvaluation;
+    o.max_memory_bytes = 4 * need;
+    EXPECT_EQ(implicit_volume(f, o).volume, free.volume);
+    // the 2h lattice fits, the fine one's estimate (4 times its evaluations) does not
+    o.max_memory_bytes = 2 * free.coarse->function_evaluations * kImplicitBytesPerEvaluation;
+    try {
+        implicit_volume(f, o);
+        FAIL() << "no error";
+    } catch (const ImplicitError& e) {
+        EXPECT_EQ(e.code(), ImplicitError::Code::too_large);
+        EXPECT_NE(std::string(e.what()).find("estimated from the 2h lattice"), std::string::npos) << e.what();
+    }
+    o.error_estimate = false;  // no 2h lattice to estimate from: the walk stops at the limit
+    o.max_memory_bytes = free.fine.function_evaluations / 2 * kImplicitBytesPerEvaluation;
+    try {
+        implicit_volume(f, o);
+        FAIL() << "no error";
+    } catch (const ImplicitError& e) {
+        EXPECT_EQ(e.code(), ImplicitError::Code::too_large);
+        EXPECT_NE(std::string(e.what()).find("more memory than allowed"), std::string::npos) << e.what();
+    }
+}
+
 }  // namespace

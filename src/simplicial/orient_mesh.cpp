@@ -1,0 +1,58 @@
+// simplicial/orient_mesh.cpp — orient_mesh: a mesh's faces wound
+// consistently and outward, by orient_chain on its fan triangles.
+//
+// The fan triangles of a face share its diagonals, each used by exactly two
+// of them in opposite directions, so the walk gives them one flip; a face is
+// reversed when its fan triangles were, as (v0, vk, ..., v1) (the same fan
+// diagonals, so the same pieces). If a face's fan triangles end up with
+// different flips (a diagonal that is also another face's edge), nothing
+// changes and the mesh is reported not orientable.
+#include "polyvol/simplicial.hpp"
+
+#include <algorithm>
+
+namespace polyvol {
+
+OrientResult orient_mesh(Mesh& mesh) {
+    const MeshView view = mesh.view();
+    Chain chain;
+    chain.dimension = 3;
+    chain.coordinates = mesh.positions;
+    chain.simplices.reserve(3 * view.triangle_count());
+    std::vector<std::size_t> first_triangle(view.face_count() + 1, 0);
+    for (std::size_t f = 0; f < view.face_count(); ++f) {
+        first_triangle[f] = chain.simplices.size() / 3;
+        const auto face = view.face(f);
+        for (std::size_t i = 1; i + 1 < face.size(); ++i)
+            chain.simplices.insert(chain.simplices.end(), {face[0], face[i], face[i + 1]});
+    }
+    first_triangle[view.face_count()] = chain.simplices.size() / 3;
+    const std::vector<uint32_t> before = chain.simplices;
+    OrientResult r = orient_chain(chain);
+    if (!r.orientable) return r;
+    // orient_chain flips a triangle by exchanging its first two vertices
+    auto flipped = [&](std::size_t t) { return chain.simplices[3 * t] != before[3 * t]; };
+    std::vector<std::size_t> reverse;
+    for (std::size_t f = 0; f < view.face_count(); ++f) {
+        const std::size_t t0 = first_triangle[f], t1 = first_triangle[f + 1];
+        if (t0 == t1 || !flipped(t0)) {
+            for (std::size_t t = t0; t < t1; ++t)
+                if (flipped(t)) return OrientResult{false, 0, r.components, r.undecided};
+            continue;
+        }
+        for (std::size_t t = t0; t < t1; ++t)
+            if (!flipped(t)) return OrientResult{false, 0, r.components, r.undecided};
+        reverse.push_back(f);
+    }
+    const bool triangles = mesh.face_offsets.empty();
+    for (const std::size_t f : reverse) {
+        const std::size_t begin = triangles ? 3 * f : mesh.face_offsets[f];
+        const std::size_t end = triangles ? begin + 3 : mesh.face_offsets[f + 1];
+        std::reverse(mesh.indices.begin() + static_cast<std::ptrdiff_t>(begin) + 1,
+                     mesh.indices.begin() + static_cast<std::ptrdiff_t>(end));
+    }
+    r.flipped = reverse.size();
+    return r;
+}
+
+}  // namespace polyvol
