@@ -29,7 +29,7 @@ from ._polyvol import __version__
 from . import _polyvol as _core
 
 __all__ = [
-    "Mesh", "load", "load_bytes", "measure_file", "mass_properties", "volume", "check", "solid", "overlap", "self_crossings",
+    "Mesh", "load", "load_bytes", "measure_file", "orient", "mass_properties", "volume", "check", "solid", "overlap", "self_crossings",
     "grid", "Grid", "chain_volume", "polygon_area", "load_chain", "load_polygons", "implicit",
     "ReadError", "ImplicitError", "ExpressionError", "__version__",
 ]
@@ -145,18 +145,40 @@ def load_bytes(data, name="memory"):
     return Mesh(_core_mesh=_core.load_bytes(bytes(data), name))
 
 
-def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounded", allow_open=False, solid=False):
+def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounded", allow_open=False, solid=False,
+                 orient=False):
     """Everything `polyvol measure --json FILE` reports for one file, as a dict
     with its keys (the CLI's own code computes it): format and counts,
     topology and shells, the mass properties with their guarantees (of the
     solid when shells overlap), and exit_code with error or warning when the
     file cannot be read (2) or measured (3). Never raises for a bad file.
-    solid=True looks for a surface crossing itself at any size (--solid)."""
+    solid=True looks for a surface crossing itself at any size (--solid);
+    orient=True winds the faces consistently and outward first (--orient)."""
     import json
     report = json.loads(_core.measure_file_json(os.fsencode(path), method, accuracy, float(density),
-                                                bool(allow_open), bool(solid)))
+                                                bool(allow_open), bool(solid), bool(orient)))
     report["file"] = os.fsdecode(path)
     return report
+
+
+class Orientation(_Result):
+    """What orient() did: faces_flipped, shells, undecided (shells left as wound:
+    their outward side could not be decided, or non-manifold edges cut them open)."""
+
+    _fields = ("orientable", "faces_flipped", "shells", "undecided")
+
+
+def orient(mesh, faces=None):
+    """A copy of the mesh with its faces wound consistently within each shell,
+    outer shells outward and cavities inward by nesting (`--orient`), and an
+    Orientation saying what changed. Raises ValueError when a shell cannot be
+    oriented (an edge shared by three or more faces, a Möbius strip)."""
+    v, idx, offsets = _arrays.mesh(mesh, faces)
+    core, report = _core.orient(v, idx, offsets)
+    if not report["orientable"]:
+        raise ValueError("orient: a shell is not orientable (an edge used twice in one direction that no flip "
+                         "fixes, or by three or more faces)")
+    return Mesh(_core_mesh=core), Orientation(**report)
 
 
 # ---- mass properties -----------------------------------------------------------

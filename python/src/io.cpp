@@ -9,6 +9,7 @@
 #include "bindings.hpp"
 #include "polyvol/grid_io.hpp"
 #include "polyvol/io.hpp"
+#include "polyvol/simplicial.hpp"
 #include "report.hpp"
 
 namespace polyvol::python {
@@ -109,8 +110,9 @@ void bind_io(py::module_& m) {
     m.def(
         "measure_file_json",
         [](const std::string& path, const std::string& method, const std::string& accuracy, double density,
-           bool allow_open, bool solid) {
+           bool allow_open, bool solid, bool orient) {
             cli::Request request;
+            request.orient = orient;
             request.measure.method = method == "cone"      ? Method::cone
                                      : method == "prism"   ? Method::prism
                                      : method == "pyramid" ? Method::pyramid
@@ -132,7 +134,26 @@ void bind_io(py::module_& m) {
             return text;
         },
         py::arg("path"), py::arg("method"), py::arg("accuracy"), py::arg("density"), py::arg("allow_open"),
-        py::arg("solid"));
+        py::arg("solid"), py::arg("orient"));
+
+    // A copy of the mesh wound consistently and outward (orient_mesh), and what that did.
+    m.def(
+        "orient",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
+            auto l = std::make_shared<LoadedMesh>(mesh_from_arrays(positions, indices, offsets));
+            OrientResult r;
+            {
+                py::gil_scoped_release release;
+                r = orient_mesh(l->mesh);
+            }
+            py::dict d;
+            d["orientable"] = r.orientable;
+            d["faces_flipped"] = r.flipped;
+            d["shells"] = r.components;
+            d["undecided"] = r.undecided;
+            return std::make_tuple(l, d);
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"));
 }
 
 }  // namespace polyvol::python

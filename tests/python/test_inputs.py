@@ -203,3 +203,22 @@ def test_results_print_and_convert_to_plain_dicts():
     d = p.to_dict()
     assert d["centroid"] == [0.5, 0.5, 0.5] and isinstance(d["inertia"][0][0], float)
     assert polyvol.check(v, f).to_dict()["shells"][0]["role"] == "solid"
+
+
+def test_orient_winds_flipped_faces_back_and_turns_shells_outward(tmp_path):
+    v, f = uv_sphere(10, 20)
+    want = polyvol.volume(v, f)
+    bad = f.copy()
+    bad[[3, 40, 77]] = bad[[3, 40, 77]][:, ::-1]
+    assert polyvol.check(v, bad).misoriented_edges == 9
+    m, o = polyvol.orient(v, bad)
+    assert (o.faces_flipped, o.undecided) == (3, 0)
+    assert polyvol.volume(m) == want and polyvol.check(m).closed
+    m, o = polyvol.orient(v, f[:, ::-1].copy())  # inside out
+    assert o.faces_flipped == len(f) and polyvol.volume(m) == want
+    path = tmp_path / "flipped.off"
+    path.write_text(f"OFF\n{len(v)} {len(bad)} 0\n" + "".join(f"{a!r} {b!r} {c!r}\n" for a, b, c in v)
+                    + "".join(f"3 {a} {b} {c}\n" for a, b, c in bad))
+    assert polyvol.measure_file(path)["exit_code"] == 3
+    report = polyvol.measure_file(path, orient=True)
+    assert report["oriented_faces_flipped"] == 3 and report["volume"] == want
