@@ -29,18 +29,6 @@ nlohmann::json matrix3(const std::array<double, 6>& s) {
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-std::string_view role_name(ShellRole r) {
-    switch (r) {
-        case ShellRole::solid: return "solid";
-        case ShellRole::cavity: return "cavity";
-        case ShellRole::inside_out: return "inside-out";
-        case ShellRole::nested: return "nested";
-        case ShellRole::open: return "open";
-        case ShellRole::undecided: return "undecided";
-    }
-    return "?";
-}
-
 std::string unbalanced_message(const TopologyReport& t) {
     if (t.boundary_edges == 0 && t.nonmanifold_edges == 0 && t.misoriented_edges > 0)
         return "closed, but " + std::to_string(t.misoriented_edges) + " edge" +
@@ -361,7 +349,7 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
                               {"role", r.solid && s.first_face < r.solid->face_crosses.size() &&
                                                r.solid->face_crosses[s.first_face]
                                            ? std::string("crossing")
-                                           : std::string(role_name(s.role))}};
+                                           : std::string(shell_role_name(s.role))}};
             sj["genus"] = s.genus ? nlohmann::json(*s.genus) : nlohmann::json(nullptr);
             shells.push_back(std::move(sj));
         }
@@ -580,7 +568,7 @@ std::string check_report(const FileResult& r) {
             break;
         }
         const bool crossing = r.solid && s.first_face < r.solid->face_crosses.size() && r.solid->face_crosses[s.first_face];
-        out << "  shell " << shown << ": " << (crossing ? std::string_view("crossing another shell") : role_name(s.role))
+        out << "  shell " << shown << ": " << (crossing ? std::string_view("crossing another shell") : shell_role_name(s.role))
             << ", volume " << shortest(s.signed_volume) << ", "
             << s.faces << " faces, χ = " << s.euler_characteristic;
         if (s.genus) out << ", genus " << *s.genus;

@@ -45,6 +45,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "polyvol/mesh.hpp"
@@ -61,6 +62,9 @@ enum class ShellRole {
                  // the work limit (a million or so shells whose boxes overlap, as in a fan of needles)
 };
 // "closed" here means balanced (no unbalanced edge), and volume 0 counts as positive.
+
+// "solid", "cavity", "inside-out", "nested", "open", "undecided".
+std::string_view shell_role_name(ShellRole role);
 
 struct Shell {
     double signed_volume = 0;        // cone-rule volume of this shell's fan triangles about the

@@ -23,6 +23,12 @@ std::vector<MeshView> views_of(const std::vector<BodyArrays>& bodies) {
 
 std::vector<double> vector_of(const Doubles& a) { return {a.data(), a.data() + a.size()}; }
 
+// A grid's planes as three new arrays.
+std::tuple<py::array_t<double>, py::array_t<double>, py::array_t<double>> planes(const GridAxes& g) {
+    auto one = [](const std::vector<double>& v) { return copy_array<double>(v, {static_cast<py::ssize_t>(v.size())}); };
+    return {one(g.x), one(g.y), one(g.z)};
+}
+
 }  // namespace
 
 void bind_grid(py::module_& m) {
@@ -41,19 +47,14 @@ void bind_grid(py::module_& m) {
                 py::gil_scoped_release release;
                 g = make_grid(views, spec);
             }
-            return std::make_tuple(copy_array<double>(g.x, {static_cast<py::ssize_t>(g.x.size())}),
-                                   copy_array<double>(g.y, {static_cast<py::ssize_t>(g.y.size())}),
-                                   copy_array<double>(g.z, {static_cast<py::ssize_t>(g.z.size())}));
+            return planes(g);
         },
         py::arg("bodies"), py::arg("cells"), py::arg("cell_size"), py::arg("dims"), py::arg("bounds"));
 
     m.def(
         "uniform_axes",
         [](std::array<double, 6> bounds, std::array<uint32_t, 3> dims) {
-            const GridAxes g = uniform_axes(bounds, dims);
-            return std::make_tuple(copy_array<double>(g.x, {static_cast<py::ssize_t>(g.x.size())}),
-                                   copy_array<double>(g.y, {static_cast<py::ssize_t>(g.y.size())}),
-                                   copy_array<double>(g.z, {static_cast<py::ssize_t>(g.z.size())}));
+            return planes(uniform_axes(bounds, dims));
         },
         py::arg("bounds"), py::arg("dims"));
 

@@ -27,18 +27,6 @@ Accuracy parse_accuracy(const std::string& s) {
     throw std::invalid_argument("accuracy must be 'correctly-rounded' or 'fast', not '" + s + "'");
 }
 
-const char* role_name(ShellRole r) {
-    switch (r) {
-        case ShellRole::solid: return "solid";
-        case ShellRole::cavity: return "cavity";
-        case ShellRole::inside_out: return "inside-out";
-        case ShellRole::nested: return "nested";
-        case ShellRole::open: return "open";
-        case ShellRole::undecided: return "undecided";
-    }
-    return "open";
-}
-
 const char* status_name(BooleanStatus s) {
     switch (s) {
         case BooleanStatus::ok: return "ok";
@@ -133,7 +121,7 @@ void bind_measure(py::module_& m) {
         .def_readonly("genus", &Shell::genus)
         .def_readonly("winding_of_others", &Shell::winding_of_others)
         .def_readonly("first_face", &Shell::first_face)
-        .def_property_readonly("role", [](const Shell& s) { return std::string(role_name(s.role)); });
+        .def_property_readonly("role", [](const Shell& s) { return std::string(shell_role_name(s.role)); });
 
     py::class_<TopologyReport>(m, "TopologyReport")
         .def_readonly("faces", &TopologyReport::faces)

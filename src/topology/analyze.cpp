@@ -81,6 +81,18 @@ std::vector<Shell> order_shells(std::vector<ShellGeometry>&& geometry, std::span
 
 }  // namespace
 
+std::string_view shell_role_name(ShellRole role) {
+    switch (role) {
+        case ShellRole::solid: return "solid";
+        case ShellRole::cavity: return "cavity";
+        case ShellRole::inside_out: return "inside-out";
+        case ShellRole::nested: return "nested";
+        case ShellRole::open: return "open";
+        case ShellRole::undecided: return "undecided";
+    }
+    return "open";
+}
+
 TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& options) {
     topology::check_mesh_arrays(mesh);
     TopologyReport r;
