@@ -323,19 +323,20 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["nonmanifold_edges"] = t.nonmanifold_edges;
         j["misoriented_edges"] = t.misoriented_edges;
         j["unbalanced_edges"] = t.unbalanced_edges;
-        j["components"] = t.components_edge_connected;
         j["closed_2_cycle"] = t.closed_2_cycle;
         j["euler_characteristic"] = t.euler_characteristic;
         j["vertices_welded"] = t.vertices_welded;
         j["edges"] = t.edges;
-        j["degenerate_triangles"] = t.triangles_with_repeated_vertex + t.zero_area_triangles;
         if (t.unbalanced_example) {
             const auto& e = *t.unbalanced_example;
             j["unbalanced_example"] = {{e[0], e[1], e[2]}, {e[3], e[4], e[5]}};
         }
     }
-    if (r.topology && !request.volume_only) {  // shells and nesting: not computed for --volume-only
+    if (r.topology && !request.volume_only) {  // shells, nesting, degenerate faces: not computed for --volume-only
         const auto& t = *r.topology;
+        j["components"] = t.components_edge_connected;
+        // zero_area_triangles counts those with a repeated vertex too (their cross product is zero)
+        j["degenerate_triangles"] = t.zero_area_triangles;
         j["cavities"] = t.cavities;
         j["inside_out_shells"] = t.inside_out_shells;
         nlohmann::json shells = nlohmann::json::array();
@@ -553,8 +554,8 @@ std::string check_report(const FileResult& r) {
     out << "  non-manifold    " << t.nonmanifold_edges << "\n";
     out << "  misoriented     " << t.misoriented_edges << "\n";
     out << "  unbalanced      " << t.unbalanced_edges << "\n";
-    out << "  degenerate      " << t.triangles_with_repeated_vertex << " triangles with a repeated vertex, "
-        << t.zero_area_triangles << " of zero area, " << t.degenerate_edge_uses << " zero-length sides\n";
+    out << "  degenerate      " << t.zero_area_triangles << " triangles of zero area (" << t.triangles_with_repeated_vertex
+        << " of them with a repeated vertex), " << t.degenerate_edge_uses << " zero-length sides\n";
     out << "  Euler char.     " << t.euler_characteristic << "\n";
     out << "  components      " << t.components_edge_connected << " edge-connected, " << t.components_vertex_connected
         << " vertex-connected\n";

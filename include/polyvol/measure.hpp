@@ -36,7 +36,8 @@ namespace polyvol {
 //             incidences: V = -1/6 Σ (V·T)(V·N)(V·B), A = 1/2 Σ (V·T)(V·N),
 //             L = -1/2 Σ V·T (valid for closed, edge-manifold surfaces).
 // The method chooses only `volume` (and `mass`; for vtnb also `area` and
-// `edge_length`). Moments, centroid and inertia always come from the cone
+// `edge_length` of a closed surface, by the closedness fingerprint; an open
+// one gets the direct sums, Franklin's being sums about a local origin there). Moments, centroid and inertia always come from the cone
 // rule's sums, with the chosen accuracy; the centroid divides by the cone
 // rule's volume. With Accuracy::correctly_rounded the volume of cone, prism
 // and pyramid is the exact value of that formula on the given doubles,

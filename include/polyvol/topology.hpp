@@ -100,7 +100,7 @@ struct TopologyReport {
     std::size_t degenerate_edge_uses = 0;     // polygon sides whose two ends weld together
     // degenerate faces
     std::size_t triangles_with_repeated_vertex = 0;
-    std::size_t zero_area_triangles = 0;      // cross product exactly zero
+    std::size_t zero_area_triangles = 0;      // cross product exactly zero (those with a repeated vertex included)
     // global
     int64_t euler_characteristic = 0;         // V - E + F of the polygon mesh
     std::size_t components_vertex_connected = 0;

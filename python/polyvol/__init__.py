@@ -298,7 +298,7 @@ def check(mesh, faces=None, *, shells=True, self_crossings=True):
         vertices_welded=t.vertices_welded, edges=t.edges, boundary_edges=t.boundary_edges,
         nonmanifold_edges=t.nonmanifold_edges, misoriented_edges=t.misoriented_edges,
         unbalanced_edges=t.unbalanced_edges, unbalanced_example=example,
-        degenerate_triangles=t.triangles_with_repeated_vertex + t.zero_area_triangles,
+        degenerate_triangles=t.zero_area_triangles,  # those with a repeated vertex included
         euler_characteristic=t.euler_characteristic, components=t.components_edge_connected, cavities=t.cavities,
         inside_out_shells=t.inside_out_shells, nested_shells=t.nested_shells,
         shells=[Shell(role="crossing" if crosses is not None and crosses[s.first_face] else s.role,

@@ -357,6 +357,7 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
     }
 
     measure::SumWithBound area{}, length{};
+    bool franklin_area = false;  // vtnb on a closed surface: area and length from Franklin's sums
     // Franklin's pyramid sum is the cone rule's sum exactly, for every mesh
     // (pyramid.cpp): correctly rounded, it is the cone's volume and mass.
     const bool cone_volume = options.method == Method::cone ||
@@ -374,8 +375,14 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
         const measure::VtnbResult v = measure::vtnb_measures(mesh);
         p.volume = v.volume.value;
         p.volume_error_bound = v.volume.error_bound;
-        area = v.area;
-        length = v.length;
+        // Franklin's area and length hold for closed surfaces only; on an
+        // open one they are sums about the local origin, not the surface's
+        // area and edge length, which the direct sums below then give.
+        if (fingerprint_closedness(mesh) == Closedness::closed) {
+            area = v.area;
+            length = v.length;
+            franklin_area = true;
+        }
     } else {
         const measure::SumWithBound v =
             options.method == Method::prism ? measure::prism_volume(mesh) : measure::pyramid_volume(mesh);
@@ -385,7 +392,7 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
     // Otherwise the mass is density × volume rounded again (not covered by
     // moments_correctly_rounded).
     if (!cone_volume) p.mass = options.density * p.volume;
-    if (options.method != Method::vtnb) {
+    if (!franklin_area) {
         area = measure::fan_area(mesh);
         if (options.edge_length) length = measure::welded_edge_length(mesh);
     }
