@@ -134,7 +134,8 @@ int run(Command command, const Common& c) {
 
 int main(int argc, char** argv) {
     CLI::App app{"polyvol: exact volume, area, centroid, inertia and topology of polyhedral meshes.\n"
-                 "Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid for the request."};
+                 "Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid for the request "
+                 "(check: not a closed 2-cycle)."};
     app.set_version_flag("--version", "polyvol " POLYVOL_VERSION);
     app.require_subcommand(1);
     Common volume_opts, measure_opts, check_opts;

@@ -217,6 +217,11 @@ FileResult process_file(const std::string& path, const Request& request) {
                                          : mass_properties(view, request.measure);
     }
     const bool closed = r.closed_by_fingerprint || r.topology->closed_2_cycle;
+    // `check`: a surface that is not a closed 2-cycle exits 3 too (the report says why).
+    if (!request.need_mass && !closed) r.exit_code = Exit::invalid;
+    if (view.triangle_count() == 0)
+        r.warning += (r.warning.empty() ? "" : "; ") + path +
+                     ": no faces (a point cloud, or an empty file?): there is nothing to measure, every figure is 0";
     if (request.check_overlap && closed) {
         r.overlap_checked = true;
         if (has_several_parts(view)) {

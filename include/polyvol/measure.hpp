@@ -58,13 +58,22 @@ enum class Method { cone, prism, pyramid, vtnb };
 //                       exactly (expansions / big integers) only when the
 //                       filter cannot decide the rounding (e.g. an exact zero).
 //   fast              — double arithmetic per triangle (the sum across blocks is
-//                       exact), with a rigorous a-posteriori error bound.
+//                       exact), with a rigorous a-posteriori error bound; when
+//                       that bound exceeds kFastRelativeLimit of the moments
+//                       (or of the cone volume), mass_properties computes them
+//                       correctly rounded instead (MassProperties::accuracy
+//                       says which).
 // Meshes with a coordinate outside {0} ∪ [2^-160, 2^190] take an exact
 // big-integer path for the cone rule's sums in both modes (then correctly
 // rounded), and for the prism volume when correctly rounded. Area and edge
 // length are computed in double in both modes (with bounds). Non-finite
 // coordinates on a used vertex give NaN results.
 enum class Accuracy { correctly_rounded, fast };
+
+// Accuracy::fast's largest relative bound on the moments before they are
+// computed correctly rounded instead: a bound beyond it means digits that
+// may be wrong where users read them.
+inline constexpr double kFastRelativeLimit = 1e-6;
 
 std::string_view method_name(Method m);     // "cone", ...
 std::string_view accuracy_name(Accuracy a); // "correctly-rounded", "fast"
@@ -104,7 +113,7 @@ struct MassProperties {
     double area_relative_error = 0;       // bound, relative
     double edge_length_relative_error = 0;// bound, relative
     Method method = Method::cone;
-    Accuracy accuracy = Accuracy::correctly_rounded;
+    Accuracy accuracy = Accuracy::correctly_rounded;  // as computed: fast may have become correctly_rounded
 };
 
 // All mass properties in one pass over the mesh.

@@ -331,7 +331,27 @@ std::array<double, 6> inertia_from_second_moments(const std::array<double, 6>& m
     return {m[1] + m[2], m[0] + m[2], m[0] + m[1], -m[3], -m[4], -m[5]};
 }
 
+namespace {
+MassProperties measure_with(const MeshView& mesh, const MeasureOptions& options);
+}  // namespace
+
+// Accuracy::fast whose bounds say the moments (or the cone volume) may be
+// wrong beyond kFastRelativeLimit — cancellation, as for a part far from the
+// origin — is computed again correctly rounded, rather than given as
+// numbers that mean nothing.
 MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& options) {
+    if (options.accuracy != Accuracy::fast) return measure_with(mesh, options);
+    const MassProperties fast = measure_with(mesh, options);
+    const bool volume_ok = options.method != Method::cone ||
+                           fast.volume_error_bound <= kFastRelativeLimit * std::abs(fast.volume);
+    if (fast.moments_relative_error <= kFastRelativeLimit && volume_ok) return fast;
+    MeasureOptions exact = options;
+    exact.accuracy = Accuracy::correctly_rounded;
+    return measure_with(mesh, exact);
+}
+
+namespace {
+MassProperties measure_with(const MeshView& mesh, const MeasureOptions& options) {
     MassProperties p;
     p.method = options.method;
     p.accuracy = options.accuracy;
@@ -402,6 +422,7 @@ MassProperties mass_properties(const MeshView& mesh, const MeasureOptions& optio
     p.edge_length_relative_error = options.edge_length ? relative_bound(length) : kNaN;
     return p;
 }
+}  // namespace
 
 double signed_volume(const MeshView& mesh, Method method, Accuracy accuracy) {
     switch (method) {

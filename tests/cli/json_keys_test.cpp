@@ -27,6 +27,15 @@ fs::path scratch(const std::string& name, const std::string& text) {
 
 json run(const std::string& args) { return json::parse(cli_test::run_polyvol(args).out)[0]; }
 
+struct CliRunJson {
+    int code;
+    json j;
+};
+CliRunJson run_both(const std::string& args) {
+    const auto r = cli_test::run_polyvol(args);
+    return {r.code, json::parse(r.out)[0]};
+}
+
 TEST(JsonKeys, VolumeOnlyHasNoShellCountsItDidNotCompute) {
     const fs::path p = scratch("cube.obj", "");
     cli_test::write_boxes_obj(p, {{0, 0, 0, 1, 2, 3}});
@@ -65,6 +74,32 @@ TEST(JsonKeys, VtnbOnAnOpenSurfaceGivesTheSurfacesAreaAndEdgeLength) {
     const json closed = run("measure --method vtnb --json '" + q.string() + "'");
     EXPECT_NEAR(closed["edge_length"].get<double>(), 24.0, 1e-12);
     EXPECT_NEAR(closed["area"].get<double>(), 22.0, 1e-12);
+    fs::remove(p);
+    fs::remove(q);
+}
+
+TEST(JsonKeys, AFileWithoutFacesSaysSo) {
+    const fs::path p = scratch("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    const CliRunJson r = run_both("volume --json '" + p.string() + "'");
+    EXPECT_EQ(r.code, 0);
+    EXPECT_NE(r.j.value("warning", "").find("no faces"), std::string::npos) << r.j.dump();
+    EXPECT_NE(cli_test::run_polyvol("volume '" + p.string() + "'").err.find("no faces"), std::string::npos);
+    fs::remove(p);
+}
+
+// --accuracy fast on a part far from the origin: its bound would mean wrong
+// leading digits, so the moments are computed correctly rounded and say so.
+TEST(JsonKeys, FastFallsBackWhereItsBoundMeansNothing) {
+    const fs::path p = scratch("far.obj", "");
+    cli_test::write_boxes_obj(p, {{1e5, 1e5, 1e5, 1e5 + 1, 1e5 + 2, 1e5 + 3}});  // 6 digits: written exactly
+    const json j = run("measure --accuracy fast --json '" + p.string() + "'");
+    EXPECT_EQ(j["volume"], 6.0);
+    EXPECT_EQ(j["accuracy"], "correctly-rounded");
+    EXPECT_EQ(j["moments_accuracy"], "correctly-rounded");
+    EXPECT_EQ(j["inertia"][2][2], 6.0 * (1 + 4) / 12);
+    const fs::path q = scratch("near.obj", "");
+    cli_test::write_boxes_obj(q, {{0, 0, 0, 1, 2, 3}});
+    EXPECT_EQ(run("measure --accuracy fast --json '" + q.string() + "'")["moments_accuracy"], "error-bound");
     fs::remove(p);
     fs::remove(q);
 }
