@@ -1,9 +1,18 @@
 // python/src/bindings.hpp — the parts of the module, one per area of the C++ API.
 #pragma once
 
+#include <string>
+
 #include <pybind11/pybind11.h>
 
+#include "polyvol/measure.hpp"
+
 namespace polyvol::python {
+
+// "cone", "prism", "pyramid", "vtnb" and "correctly-rounded", "fast", as the
+// CLI spells them; anything else is a ValueError naming the choices.
+Method parse_method(const std::string& s);
+Accuracy parse_accuracy(const std::string& s);
 
 void bind_io(pybind11::module_& m);       // io.hpp, grid_io.hpp: reading meshes, writing grids
 void bind_measure(pybind11::module_& m);  // measure.hpp, topology.hpp, boolean.hpp

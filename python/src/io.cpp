@@ -113,14 +113,8 @@ void bind_io(py::module_& m) {
            bool allow_open, bool solid, bool orient) {
             cli::Request request;
             request.orient = orient;
-            request.measure.method = method == "cone"      ? Method::cone
-                                     : method == "prism"   ? Method::prism
-                                     : method == "pyramid" ? Method::pyramid
-                                     : method == "vtnb"    ? Method::vtnb
-                                                           : throw std::invalid_argument("unknown method '" + method + "'");
-            if (accuracy != "correctly-rounded" && accuracy != "fast")
-                throw std::invalid_argument("accuracy must be 'correctly-rounded' or 'fast'");
-            request.measure.accuracy = accuracy == "fast" ? Accuracy::fast : Accuracy::correctly_rounded;
+            request.measure.method = parse_method(method);
+            request.measure.accuracy = parse_accuracy(accuracy);
             request.measure.density = density;
             request.allow_open = allow_open;
             request.self_check_always = solid;

@@ -11,8 +11,6 @@
 
 namespace polyvol::python {
 
-namespace {
-
 Method parse_method(const std::string& s) {
     if (s == "cone") return Method::cone;
     if (s == "prism") return Method::prism;
@@ -26,6 +24,8 @@ Accuracy parse_accuracy(const std::string& s) {
     if (s == "fast") return Accuracy::fast;
     throw std::invalid_argument("accuracy must be 'correctly-rounded' or 'fast', not '" + s + "'");
 }
+
+namespace {
 
 const char* status_name(BooleanStatus s) {
     switch (s) {
