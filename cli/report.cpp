@@ -162,11 +162,23 @@ bool has_several_parts(const MeshView& view) {
     return false;
 }
 
+bool solid_differs(const SolidVolume& s) { return s.overlapping_shells > 0 || s.shells_crossing_themselves > 0; }
+
 std::string self_crossing_sentence(const SelfCrossings& s) {
     std::string text = "its surface crosses itself within a shell (" + std::to_string(s.pairs) + " crossing triangle pair" +
                        (s.pairs == 1 ? "" : "s");
     if (s.example) text += ", e.g. faces " + std::to_string((*s.example)[0]) + " and " + std::to_string((*s.example)[1]);
     return text + ")";
+}
+
+// The self-crossing line of the reports: none, or the pairs and what became of them.
+std::string self_crossing_line(const FileResult& r) {
+    if (!r.self) return r.self_not_checked;
+    if (r.self->pairs == 0) return "none within a shell";
+    return self_crossing_sentence(*r.self) +
+           (r.solid && r.solid->shells_crossing_themselves > 0 ? "; resolved: the volume is the solid's"
+            : r.self_unresolved ? "; not resolved: it also touches or folds onto itself there"
+                                : "");
 }
 
 FileResult process_file(const std::string& path, const Request& request) {
@@ -222,22 +234,6 @@ FileResult process_file(const std::string& path, const Request& request) {
     if (view.triangle_count() == 0)
         r.warning += (r.warning.empty() ? "" : "; ") + path +
                      ": no faces (a point cloud, or an empty file?): there is nothing to measure, every figure is 0";
-    if (request.check_overlap && closed) {
-        r.overlap_checked = true;
-        if (has_several_parts(view)) {
-            const bool moments = request.need_mass && !request.volume_only;
-            r.solid = solid_volume(view, moments);
-            if (r.solid->status == BooleanStatus::ok && r.solid->overlapping_shells > 0 && r.mass)
-                use_solid_properties(*r.solid, request.measure.density, *r.mass);
-            if (r.solid->status != BooleanStatus::ok) {
-                r.warning += (r.warning.empty() ? "" : "; ") + path +
-                             ": shells not checked for overlap: " + boolean_status_message(r.solid->status) +
-                             "; the volume is the sum of the shells' volumes";
-                r.overlap_checked = false;
-                r.solid.reset();
-            }
-        }
-    }
     if (!closed) {
         r.self_not_checked = "not a closed surface";
     } else if (!request.self_check_always && view.triangle_count() > kSelfCheckTriangles) {
@@ -249,10 +245,37 @@ FileResult process_file(const std::string& path, const Request& request) {
             r.warning += (r.warning.empty() ? "" : "; ") + path + ": not checked for a surface crossing itself: " +
                          boolean_status_message(r.self->status);
             r.self.reset();
-        } else if (r.self->pairs > 0 && request.need_mass) {
-            r.warning += (r.warning.empty() ? "" : "; ") + path + ": " + self_crossing_sentence(*r.self) +
-                         ": the volume counts the region it wraps by its winding number there, not as the solid";
         }
+    }
+    // The solid: where shells overlap, or a shell crosses itself, the region
+    // where the winding number is >= 1 (solid_volume resolves both).
+    const bool crosses_itself = r.self && r.self->pairs > 0;
+    if (request.check_overlap && closed) {
+        r.overlap_checked = true;
+        const bool moments = request.need_mass && !request.volume_only;
+        const bool several = has_several_parts(view);
+        if (several || crosses_itself) r.solid = solid_volume(view, moments, crosses_itself);
+        if (r.solid && r.solid->status == BooleanStatus::shell_touches_itself) {
+            if (request.need_mass)
+                r.warning += (r.warning.empty() ? "" : "; ") + path + ": " + self_crossing_sentence(*r.self) +
+                             " and also touches or folds onto itself there: its solid is not decided, so the volume "
+                             "counts the region it wraps by its winding number";
+            r.self_unresolved = true;
+            r.solid.reset();
+            if (several) r.solid = solid_volume(view, moments);
+        }
+        if (r.solid && r.solid->status == BooleanStatus::ok && solid_differs(*r.solid) && r.mass)
+            use_solid_properties(*r.solid, request.measure.density, *r.mass);
+        if (r.solid && r.solid->status != BooleanStatus::ok) {
+            r.warning += (r.warning.empty() ? "" : "; ") + path +
+                         ": shells not checked for overlap: " + boolean_status_message(r.solid->status) +
+                         "; the volume is the sum of the shells' volumes";
+            r.overlap_checked = false;
+            r.solid.reset();
+        }
+    } else if (crosses_itself && request.need_mass) {
+        r.warning += (r.warning.empty() ? "" : "; ") + path + ": " + self_crossing_sentence(*r.self) +
+                     ": the volume counts the region it wraps by its winding number there, not as the solid";
     }
     r.seconds_measure = seconds_since(t0);
     return r;
@@ -269,11 +292,18 @@ std::string orient_sentence(const OrientResult& o) {
 
 // The sentence for a file whose shells overlap, or "".
 std::string overlap_sentence(const FileResult& r) {
-    if (!r.solid || r.solid->overlapping_shells == 0) return "";
+    if (!r.solid || !solid_differs(*r.solid)) return "";
     const SolidVolume& s = *r.solid;
-    return std::to_string(s.overlapping_shells) + " of " + std::to_string(s.shells) + " shells overlap (" +
-           std::to_string(s.crossing_pairs) + " crossing triangle pairs): the volume is the solid's (winding number >= 1, "
-           "correctly rounded); the shells' volumes add up to " + shortest(s.winding_volume);
+    std::string what;
+    if (s.overlapping_shells > 0)
+        what = std::to_string(s.overlapping_shells) + " of " + std::to_string(s.shells) + " shells overlap (" +
+               std::to_string(s.crossing_pairs) + " crossing triangle pairs)";
+    if (s.shells_crossing_themselves > 0)
+        what += (what.empty() ? "" : " and ") + std::to_string(s.shells_crossing_themselves) + " shell" +
+                (s.shells_crossing_themselves == 1 ? " crosses itself" : "s cross themselves") + " (" +
+                std::to_string(s.self_crossing_pairs) + " triangle pairs)";
+    return what + ": the volume is the solid's (winding number >= 1, correctly rounded); the shells' volumes add up to " +
+           shortest(s.winding_volume);
 }
 
 std::string volume_guarantee(const MassProperties& m) {
@@ -383,10 +413,12 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
             j["winding_volume"] = number(r.solid->winding_volume);
             j["overlapping_shells"] = r.solid->overlapping_shells;
             j["crossing_pairs"] = r.solid->crossing_pairs;
+            j["self_crossing_resolved"] = r.solid->shells_crossing_themselves > 0;
         } else if (r.overlap_checked) {
             j["winding_volume"] = number(m.volume);
             j["overlapping_shells"] = 0;
             j["crossing_pairs"] = 0;
+            j["self_crossing_resolved"] = false;
         }
     }
     if (r.mass && !request.volume_only) {
@@ -452,7 +484,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
             continue;
         }
         const auto& m = *r.mass;
-        const bool overlap = r.solid && r.solid->overlapping_shells > 0;
+        const bool overlap = r.solid && solid_differs(*r.solid);
         any_checked = any_checked || r.overlap_checked;
         (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
         const std::string vol =
@@ -501,7 +533,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
         << l.mesh.view().triangle_count() << " triangles)\n";
     out << "  method          " << method_name(request.measure.method) << ", density " << shortest(request.measure.density) << "\n";
     if (r.oriented) out << "  orientation     " << orient_sentence(*r.oriented) << "\n";
-    const bool overlap = r.solid && r.solid->overlapping_shells > 0;
+    const bool overlap = r.solid && solid_differs(*r.solid);
     if (overlap) {
         out << "  volume          " << shortest(m.volume)
             << "   [correctly rounded: the solid where the winding number is >= 1]\n";
@@ -512,11 +544,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
         out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m) << "]\n";
     }
     if (r.overlap_checked) out << "  overlap         shells checked against one another\n";
-    out << "  self-crossing   "
-        << (!r.self              ? r.self_not_checked
-            : r.self->pairs == 0 ? std::string("none within a shell")
-                                 : self_crossing_sentence(*r.self))
-        << "\n";
+    out << "  self-crossing   " << self_crossing_line(r) << "\n";
     out << "  mass            " << shortest(m.mass) << "\n";
     out << "  surface area    " << shortest(m.area) << "   [relative error <= " << shortest(m.area_relative_error) << "]\n";
     out << "  edge length     " << shortest(m.edge_length) << "   [relative error <= " << shortest(m.edge_length_relative_error) << "]\n";
@@ -589,9 +617,7 @@ std::string check_report(const FileResult& r) {
         out << "; the solid (winding number >= 1) has volume " << shortest(r.solid->volume) << ", the shells add up to "
             << shortest(r.solid->winding_volume) << "\n";
     }
-    if (r.self)
-        out << "  self-crossing   " << (r.self->pairs == 0 ? std::string("none within a shell") : self_crossing_sentence(*r.self))
-            << "\n";
+    if (r.self) out << "  self-crossing   " << self_crossing_line(r) << "\n";
     if (t.cavities || t.inside_out_shells || t.nested_shells)
         out << "  nesting         " << t.cavities << " cavities, " << t.inside_out_shells << " inside-out shells, "
             << t.nested_shells << " shells inside other solids\n";

@@ -36,8 +36,9 @@ struct FileResult {
     // Set instead of loaded/topology/mass when a binary STL went through the
     // streaming path (Request::stream): nothing was loaded or welded.
     std::optional<SoupResult> streamed;
-    // The solid of overlapping shells (polyvol/boolean.hpp's solid_volume),
-    // computed when the loaded mesh has more than one part.
+    // The solid of overlapping shells, or of a shell crossing itself
+    // (polyvol/boolean.hpp's solid_volume), computed when the loaded mesh has
+    // more than one part or self_crossings found pairs.
     std::optional<SolidVolume> solid;
     // A loaded mesh whose shells were checked for overlap (also when it has one
     // part, which cannot overlap another); false when streamed.
@@ -46,6 +47,8 @@ struct FileResult {
     // looked for (Request::self_check_always); else why not.
     std::optional<SelfCrossings> self;
     std::string self_not_checked;
+    // The surface crosses itself and also touches itself there: not resolved.
+    bool self_unresolved = false;
     // Request::orient: what orienting the loaded mesh did (before any measure).
     std::optional<OrientResult> oriented;
 };

@@ -41,6 +41,8 @@ enum class BooleanStatus {
     b_overlaps_itself,
     invalid_coordinates, // a coordinate is not finite, or outside 0 ∪ [2^-160, 2^180] in magnitude
     shell_crosses_itself,// solid_volume: the windings along an edge or a cut disagree, as when a shell crosses itself
+    shell_touches_itself,// solid_volume resolving self-crossings: a shell that crosses itself also touches or
+                         // folds onto itself (or has no clean ray for its winding): its solid is not decided
 };
 
 struct BooleanVolumes {
@@ -65,13 +67,16 @@ BooleanVolumes boolean_volumes(const MeshView& a, const MeshView& b);
 
 const char* boolean_status_message(BooleanStatus status);
 
-// The solid a mesh whose shells may overlap bounds: the region where the
-// winding number of all its shells is >= 1 (what a slicer prints; cavities,
-// inward shells inside outward ones, subtract). The shells are the
-// edge-connected components; each must be a closed 2-cycle that does not
-// cross itself (crossings between different shells are the point).
+// The solid a mesh whose shells may overlap or cross themselves bounds: the
+// region where the winding number of all its shells is >= 1 (what a slicer
+// prints; cavities, inward shells inside outward ones, subtract). The shells
+// are the edge-connected components, together a closed 2-cycle. Crossings
+// between different shells are always resolved; a shell crossing itself
+// only when asked (within_shells: the crossing search within each shell,
+// self_crossings below, about 3.5x what measure costs).
 struct SolidVolume {
-    BooleanStatus status = BooleanStatus::ok;  // a_not_closed (the mesh), invalid_coordinates, shell_crosses_itself
+    BooleanStatus status = BooleanStatus::ok;  // a_not_closed (the mesh), invalid_coordinates, shell_crosses_itself,
+                                               // shell_touches_itself
     double volume = 0;          // |{winding >= 1}|, correctly rounded
     double winding_volume = 0;  // Σ of the shells' signed volumes = ∫ winding number (the cone rule's sum), correctly rounded
     std::size_t shells = 0;
@@ -84,6 +89,12 @@ struct SolidVolume {
     // Per face (file order), 1 when its shell crosses another shell; empty
     // when no shells cross.
     std::vector<uint8_t> face_crosses;
+    // Crossings within shells (within_shells): looked for, resolved (the
+    // volume is then the solid's with them), their pairs and one example.
+    bool within_checked = false;
+    std::size_t self_crossing_pairs = 0;
+    std::size_t shells_crossing_themselves = 0;
+    std::optional<std::array<std::size_t, 2>> self_crossing_example;
     // With moments (solid_volume's second argument), of the solid, density 1
     // (measure.hpp's conventions: {xx, yy, zz, xy, yz, zx}):
     bool moments = false;
@@ -96,10 +107,14 @@ struct SolidVolume {
 
 // Touching and coincident shells are resolved by moving shell k of each
 // group by k (ε, ε², ε³) (docs/boolean.md). Throws std::invalid_argument for
-// inconsistent mesh arrays. A shell that crosses itself is not looked for;
-// where its windings disagree the status says so (shell_crosses_itself);
-// where they happen to agree the volume counts its self-overlap as winding.
-SolidVolume solid_volume(const MeshView& mesh, bool moments = false);
+// inconsistent mesh arrays.
+// Without within_shells a shell that crosses itself is not looked for: where
+// its windings disagree the status says so (shell_crosses_itself), where
+// they happen to agree the volume counts its self-overlap as winding. With
+// it, such a shell's crossings are resolved exactly; one body cannot be
+// perturbed against itself, so a shell that also touches itself, or folds
+// onto itself through a shared vertex or edge, gets shell_touches_itself.
+SolidVolume solid_volume(const MeshView& mesh, bool moments = false, bool within_shells = false);
 
 // Where a mesh's surface crosses itself within one of solid_volume's bodies
 // (the parts the file joins through shared edges when each is closed, else

@@ -30,7 +30,7 @@ COLUMNS = (
     "area_relative_error", "centroid", "first_moments", "second_moments", "inertia", "inertia_origin",
     "moments_accuracy", "moments_relative_error", "edge_length", "edge_length_relative_error", "overlap_checked",
     "winding_volume", "overlapping_shells", "crossing_pairs", "self_crossing_checked", "self_crossing_pairs",
-    "self_crossing_example",
+    "self_crossing_example", "self_crossing_resolved",
 )
 
 

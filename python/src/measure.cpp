@@ -38,6 +38,7 @@ const char* status_name(BooleanStatus s) {
         case BooleanStatus::b_overlaps_itself: return "b_overlaps_itself";
         case BooleanStatus::invalid_coordinates: return "invalid_coordinates";
         case BooleanStatus::shell_crosses_itself: return "shell_crosses_itself";
+        case BooleanStatus::shell_touches_itself: return "shell_touches_itself";
     }
     return "ok";
 }
@@ -183,6 +184,10 @@ void bind_measure(py::module_& m) {
         .def_readonly("overlapping_shells", &SolidVolume::overlapping_shells)
         .def_readonly("crossing_pairs", &SolidVolume::crossing_pairs)
         .def_readonly("crossing_example", &SolidVolume::crossing_example)
+        .def_readonly("within_checked", &SolidVolume::within_checked)
+        .def_readonly("self_crossing_pairs", &SolidVolume::self_crossing_pairs)
+        .def_readonly("shells_crossing_themselves", &SolidVolume::shells_crossing_themselves)
+        .def_readonly("self_crossing_example", &SolidVolume::self_crossing_example)
         .def_property_readonly("face_crosses",
                                [](const SolidVolume& s) {
                                    return copy_array<uint8_t>(s.face_crosses,
@@ -196,12 +201,14 @@ void bind_measure(py::module_& m) {
         .def_readonly("inertia_relative_error", &SolidVolume::inertia_relative_error);
     m.def(
         "solid_volume",
-        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets, bool moments) {
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets, bool moments,
+           bool within_shells) {
             const MeshView view = mesh_view(positions, indices, offsets);
             py::gil_scoped_release release;
-            return solid_volume(view, moments);
+            return solid_volume(view, moments, within_shells);
         },
-        py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("moments"));
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("moments"),
+        py::arg("within_shells") = false);
 
     py::class_<BooleanVolumes>(m, "BooleanVolumes")
         .def_property_readonly("status", [](const BooleanVolumes& b) { return std::string(status_name(b.status)); })

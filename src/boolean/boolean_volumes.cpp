@@ -251,6 +251,8 @@ const char* boolean_status_message(BooleanStatus status) {
         case BooleanStatus::b_overlaps_itself: return "B's shells overlap (its winding number exceeds 1 somewhere)";
         case BooleanStatus::shell_crosses_itself:
             return "a shell crosses itself (the winding numbers along its edges or cuts disagree)";
+        case BooleanStatus::shell_touches_itself:
+            return "a shell that crosses itself also touches or folds onto itself there (its solid is not decided)";
         case BooleanStatus::invalid_coordinates:
             return "a coordinate is not finite or outside 0 and 2^-160 .. 2^180 in magnitude";
     }

@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include <gmpxx.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -143,6 +144,100 @@ bool shares_vertex(const Operand& op, uint32_t t, uint32_t s) {
     return false;
 }
 
+bool same_crossings(const Crossings& x, const Crossings& y) {
+    auto hit = [](const EdgeHit& h) { return std::tie(h.tri, h.other, h.edge, h.sign); };
+    auto cut = [](const Cut& c) { return std::tie(c.a, c.b, c.start.of_b, c.start.edge, c.end.of_b, c.end.edge); };
+    auto equal = [](const auto& u, const auto& v, auto key) {
+        return u.size() == v.size() && std::equal(u.begin(), u.end(), v.begin(), [&](const auto& p, const auto& q) {
+                   return key(p) == key(q);
+               });
+    };
+    return equal(x.a_hits, y.a_hits, hit) && equal(x.b_hits, y.b_hits, hit) && equal(x.cuts, y.cuts, cut);
+}
+
+// Triangles t and s of one body sharing one or two vertices meet only there
+// (or along the shared edge) unless the surface folds onto itself: then
+// they overlap along a segment from a shared vertex, which no cut between
+// edge crossings represents. Throws SelfContact for such a pair.
+//   * Two shared (edge u w; a, c the others): a fold iff c lies in t's plane
+//     on a's side of the line u w.
+//   * One shared (v; t = (v, a, b), s = (v, c, d)): t meets the plane of s
+//     only at v when a and b are strictly on one side of it (likewise s and
+//     t). Otherwise t ∩ plane(s) runs from v along u_t = |o_b|(a - v) + |o_a|(b - v)
+//     (o = orient(s, ·)) and s ∩ plane(t) along u_s; both lie on the line
+//     where the planes meet, and the triangles overlap beyond v iff
+//     u_t · u_s > 0. Coplanar: iff no boundary line of one corner at v
+//     separates it from the other.
+void check_fold(const Operand& op, uint32_t t, uint32_t s) {
+    if (op.degenerate[t] || op.degenerate[s]) return;
+    int ti[3], si[3], shared = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (op.tri[3 * std::size_t{t} + i] == op.tri[3 * std::size_t{s} + j]) {
+                ti[shared] = i;
+                si[shared++] = j;
+            }
+    if (shared == 0) return;
+    if (shared == 3) throw SelfContact("boolean: two triangles of a body that crosses itself coincide");
+    const double* const T[3] = {op.corner(t, 0), op.corner(t, 1), op.corner(t, 2)};
+    const double* const S[3] = {op.corner(s, 0), op.corner(s, 1), op.corner(s, 2)};
+    // A projection that keeps t's plane 2D: axis k with N_t[k] != 0, (i, j, k) cyclic.
+    int pi = 1, pj = 2, nk = 0;
+    for (const auto& [i, j] : {std::pair{1, 2}, std::pair{2, 0}, std::pair{0, 1}}) {
+        if ((nk = cross_component_sign(T[0], T[1], T[0], T[2], i, j)) != 0) {
+            pi = i;
+            pj = j;
+            break;
+        }
+    }
+    // The orientation of (o, x, y) within t's plane, positive for t itself.
+    auto o2 = [&](const double* o, const double* x, const double* y) {
+        return nk * cross_component_sign(o, x, o, y, pi, pj);
+    };
+    if (shared == 2) {
+        const double* u = T[ti[0]];
+        const double* w = T[ti[1]];
+        const double* a = T[3 - ti[0] - ti[1]];
+        const double* c = S[3 - si[0] - si[1]];
+        if (orient3d_sign(T[0], T[1], T[2], c) != 0) return;
+        const int side_a = o2(u, w, a), side_c = o2(u, w, c);
+        if (side_a != 0 && side_a == side_c) throw SelfContact("boolean: a body that crosses itself folds onto itself across an edge");
+        return;
+    }
+    const double* v = T[ti[0]];
+    const double* a = T[(ti[0] + 1) % 3];
+    const double* b = T[(ti[0] + 2) % 3];
+    const double* c = S[(si[0] + 1) % 3];
+    const double* d = S[(si[0] + 2) % 3];
+    const int sa = orient3d_sign(S[0], S[1], S[2], a), sb = orient3d_sign(S[0], S[1], S[2], b);
+    const int sc = orient3d_sign(T[0], T[1], T[2], c), sd = orient3d_sign(T[0], T[1], T[2], d);
+    if (sa * sb > 0 || sc * sd > 0) return;
+    if (sa == 0 && sb == 0 && sc == 0 && sd == 0) {
+        if (o2(v, c, d) < 0) std::swap(c, d);
+        const bool apart = (o2(v, a, c) <= 0 && o2(v, a, d) <= 0) || (o2(v, b, c) >= 0 && o2(v, b, d) >= 0) ||
+                           (o2(v, c, a) <= 0 && o2(v, c, b) <= 0) || (o2(v, d, a) >= 0 && o2(v, d, b) >= 0);
+        if (!apart) throw SelfContact("boolean: a body that crosses itself folds onto itself at a vertex");
+        return;
+    }
+    using Q3 = std::array<mpq_class, 3>;
+    auto q3 = [](const double* p) { return Q3{mpq_class(p[0]), mpq_class(p[1]), mpq_class(p[2])}; };
+    auto sub = [](const Q3& x, const Q3& y) { return Q3{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
+    auto orient_q = [&](const double* const P[3], const double* x) {
+        const Q3 p0 = q3(P[0]), u = sub(q3(P[1]), p0), w = sub(q3(P[2]), p0), r = sub(q3(x), p0);
+        return mpq_class(r[0] * (u[1] * w[2] - u[2] * w[1]) + r[1] * (u[2] * w[0] - u[0] * w[2]) +
+                         r[2] * (u[0] * w[1] - u[1] * w[0]));
+    };
+    auto along = [&](const double* x, const double* y, const mpq_class& ox, const mpq_class& oy) {
+        const Q3 vv = q3(v), dx = sub(q3(x), vv), dy = sub(q3(y), vv);
+        const mpq_class fx = abs(oy), fy = abs(ox);
+        return Q3{fx * dx[0] + fy * dy[0], fx * dx[1] + fy * dy[1], fx * dx[2] + fy * dy[2]};
+    };
+    const Q3 ut = along(a, b, orient_q(S, a), orient_q(S, b));
+    const Q3 us = along(c, d, orient_q(T, c), orient_q(T, d));
+    if (ut[0] * us[0] + ut[1] * us[1] + ut[2] * us[2] > 0)
+        throw SelfContact("boolean: a body that crosses itself folds onto itself at a vertex");
+}
+
 // A uniform grid over a box: about `target` cells, cubic where the box allows.
 struct CellGrid {
     std::array<double, 6> box{};
@@ -187,7 +282,9 @@ struct CellGrid {
 Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
     Crossings result;
     const bool same = &A == &B;
-    const bool within = same && pairs == Pairs::same_body_apart;
+    const bool strict = same && pairs == Pairs::self_crossing;
+    const bool within = (same && pairs == Pairs::same_body_apart) || strict;
+    auto examined = [&](const Operand& op, uint32_t t) { return !strict || op.crosses_itself(op.body(t)); };
     std::array<double, 6> common{};
     for (int k = 0; k < 3; ++k) {
         common[k] = std::max(A.bounds[k], B.bounds[k]);
@@ -207,7 +304,7 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(op.triangles()), 4096),
                           [&](const auto& range) {
                               for (uint32_t t = range.begin(); t != range.end(); ++t) {
-                                  if (!boxes_meet(&op.box[6 * std::size_t{t}], common.data())) continue;
+                                  if (!boxes_meet(&op.box[6 * std::size_t{t}], common.data()) || !examined(op, t)) continue;
                                   const uint64_t bit = label(t);
                                   grid.for_cells(&op.box[6 * std::size_t{t}], [&](std::size_t c) {
                                       if (!(present[c].load(std::memory_order_relaxed) & bit))
@@ -223,7 +320,7 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(op.triangles()), 4096),
                           [&](const auto& range) {
                               for (uint32_t t = range.begin(); t != range.end(); ++t) {
-                                  if (!boxes_meet(&op.box[6 * std::size_t{t}], common.data())) continue;
+                                  if (!boxes_meet(&op.box[6 * std::size_t{t}], common.data()) || !examined(op, t)) continue;
                                   const uint64_t others = same && !by_body ? ~uint64_t{0} : ~label(t);  // all: any cell
                                   bool hit = false;
                                   grid.for_cells(&op.box[6 * std::size_t{t}], [&](std::size_t c) { hit = hit || (present[c].load(std::memory_order_relaxed) & others); });
@@ -274,13 +371,29 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
                     const uint32_t tb = binned[i];
                     if (same && tb <= ta) continue;
                     if (same && (B.body(tb) == A.body(ta)) != within) continue;
-                    if (within && shares_vertex(A, ta, tb)) continue;
+                    const bool neighbours = within && shares_vertex(A, ta, tb);
+                    if (neighbours && !strict) continue;
                     const double* other = &B.box[6 * std::size_t{tb}];
                     if (!boxes_meet(box, other)) continue;
                     if (grid.cell(grid.index(0, std::max(box[0], other[0])), grid.index(1, std::max(box[1], other[1])),
                                   grid.index(2, std::max(box[2], other[2]))) != c)
                         continue;
+                    if (neighbours) {
+                        check_fold(A, ta, tb);
+                        continue;
+                    }
                     ++local.found.candidate_pairs;
+                    if (strict) {
+                        // Unperturbed: what the pair does must not depend on
+                        // which way one of them would be moved.
+                        Crossings plus, minus;
+                        cross_pair(A, ta, B, tb, +1, plus);
+                        cross_pair(A, ta, B, tb, -1, minus);
+                        if (!same_crossings(plus, minus))
+                            throw SelfContact("boolean: a body that crosses itself also touches itself");
+                        append(local.found, plus);
+                        continue;
+                    }
                     if (within) {
                         // One body: a pair crosses only if it does whichever way the
                         // later triangle is moved (touching crosses one way only).

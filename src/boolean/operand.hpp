@@ -17,6 +17,14 @@ struct Contradiction : std::logic_error {
     using std::logic_error::logic_error;
 };
 
+// A body that crosses itself also touches itself, or folds onto itself
+// through a shared vertex or edge, where it matters: the perturbation that
+// separates bodies cannot separate one body from itself, so its solid is
+// not decided (docs/boolean.md, "A surface crossing itself").
+struct SelfContact : std::logic_error {
+    using std::logic_error::logic_error;
+};
+
 // One operand: its welded vertices and fan triangles (v0, vi, vi+1).
 //   corner(t, i) = positions of vertex tri[3 t + i]
 //   edge e of triangle t runs from corner e to corner (e + 1) % 3
@@ -31,8 +39,10 @@ struct Operand {
     std::array<double, 6> bounds{};  // of the used vertices (empty operand: inverted)
     std::vector<uint32_t> body_of_triangle;  // empty: every triangle in body 0
     std::vector<int32_t> body_shift{0};      // per body: the multiple of δ it is moved by
+    std::vector<uint8_t> body_crosses;       // per body: 1 when it crosses itself (empty: none does)
 
     uint32_t body(std::size_t t) const { return body_of_triangle.empty() ? 0 : body_of_triangle[t]; }
+    bool crosses_itself(uint32_t body) const { return !body_crosses.empty() && body_crosses[body] != 0; }
     int32_t shift(std::size_t t) const { return body_shift[body(t)]; }
 
     std::size_t triangles() const { return tri.size() / 3; }
@@ -83,6 +93,9 @@ struct Crossings {
 enum class Pairs {
     other_bodies,     // triangles of different bodies
     same_body_apart,  // triangles of one body sharing no vertex (the later one moved by δ)
+    self_crossing,    // triangles of one body that crosses_itself, unperturbed: pairs sharing no
+                      // vertex whose crossings do not depend on a perturbation, and pairs sharing
+                      // one that do not fold onto each other; anything else throws SelfContact
 };
 
 // Every crossing between A and B (each body moved by its shift δ): a
@@ -97,6 +110,27 @@ Crossings find_crossings(const Operand& a, const Operand& b, Pairs pairs = Pairs
 // the same operand); vertices no face uses get 0. hits: every crossing of
 // self's edges with those bodies' triangles. Throws Contradiction when the
 // crossings contradict each other (a body that is not a closed 2-cycle).
-std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, const std::vector<EdgeHit>& hits);
+//
+// A body that crosses itself (one operand): its vertices get the winding in
+// front of the surface there, its own included, less its default front
+// value (0 outward, -1 inward: `front`); hits then include its crossings of
+// itself, and `seeds` hold one vertex of each such body with that value's
+// own part there (own_front_seed).
+struct WindingSeed {
+    uint32_t vertex;
+    int64_t own;  // the body's own winding in front of the surface at vertex, less its default front value
+};
+std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, const std::vector<EdgeHit>& hits,
+                                     const std::vector<WindingSeed>& seeds = {});
+
+// The seed of a body that crosses itself: a corner a of one of its
+// triangles t and the body's own winding in front of the surface at a. From
+// the centroid q of t, a ray along the axis nearest t's normal, to t's
+// front, counts the body's triangles it crosses (the winding at q's front
+// side), and the segment a -> q inside t the triangles it crosses on the way
+// (each changes the winding in front of t by one). Exact; a triangle the
+// ray or the segment only touches sends it to another t. Throws SelfContact
+// when no t of the first few gives a clean count.
+WindingSeed own_front_seed(const Operand& op, uint32_t body, int front);
 
 }  // namespace polyvol::boolean

@@ -14,13 +14,11 @@
 
 namespace polyvol {
 
-SelfCrossings self_crossings(const MeshView& mesh) {
-    using namespace boolean;
+namespace boolean {
+
+SelfCrossings self_crossings_of(const MeshView& mesh, const topology::WeldedMesh& wm,
+                                const topology::ShellLabels& labels, std::vector<uint8_t>* crossing) {
     SelfCrossings r;
-    topology::check_mesh_arrays(mesh);
-    // The bodies solid_volume uses; each one's fan triangles on welded vertices.
-    const topology::WeldedMesh wm = topology::weld_polygons(mesh);
-    const topology::ShellLabels labels = bodies_of(wm);
     Operand op;
     op.mesh.positions = wm.xyz;
     for (const double x : op.mesh.positions)
@@ -51,7 +49,20 @@ SelfCrossings self_crossings(const MeshView& mesh) {
     r.candidate_pairs = c.candidate_pairs;
     r.pairs = c.cuts.size();
     if (!c.cuts.empty()) r.example = {face_of[c.cuts.front().a], face_of[c.cuts.front().b]};  // cuts are in triangle order
+    if (crossing) {
+        crossing->assign(labels.count, 0);
+        for (const Cut& cut : c.cuts) (*crossing)[op.body(cut.a)] = 1;
+    }
     return r;
+}
+
+}  // namespace boolean
+
+SelfCrossings self_crossings(const MeshView& mesh) {
+    topology::check_mesh_arrays(mesh);
+    // The bodies solid_volume uses; each one's fan triangles on welded vertices.
+    const topology::WeldedMesh wm = topology::weld_polygons(mesh);
+    return boolean::self_crossings_of(mesh, wm, boolean::bodies_of(wm), nullptr);
 }
 
 }  // namespace polyvol

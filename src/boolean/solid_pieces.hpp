@@ -176,7 +176,49 @@ private:
         const EpsPoint a = {e1[0] - e0[0], e1[1] - e0[1], e1[2] - e0[2]};
         const EpsPoint b = {e2[0] - e0[0], e2[1] - e0[1], e2[2] - e0[2]};
         const EpsPoint d = {num[0] - e0[0] * den, num[1] - e0[1] * den, num[2] - e0[2] * den};
-        return det3_of<EpsPoly>(a, b, d).sign() * den.sign();
+        const int sign = det3_of<EpsPoly>(a, b, d).sign() * den.sign();
+        // Zero for every ε: r and the point's triangles are of one body
+        // crossing itself. The point is on r's plane; on r itself the body
+        // touches itself there, else 0 (no triple point at that end).
+        if (sign == 0 && in_triangle(P, r))
+            throw SelfContact("boolean: a crossing point of a body that crosses itself lies on its own surface");
+        return sign;
+    }
+
+    // Whether the point P of r's plane lies in the closed triangle r: the
+    // three 2D orientations along r's largest normal axis agree.
+    bool in_triangle(const Point0& P, uint32_t r) const {
+        const IntPoint c[3] = {scale_.of(corner(r, 0)), scale_.of(corner(r, 1)), scale_.of(corner(r, 2))};
+        const IntPoint u = {c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]};
+        const IntPoint v = {c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]};
+        int k = 0;
+        mpz_class best = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+            const mpz_class n = abs(mpz_class(u[i] * v[j] - u[j] * v[i]));
+            if (n > best) {
+                best = n;
+                k = axis;
+            }
+        }
+        const int i = (k + 1) % 3, j = (k + 2) % 3;
+        int pos = 0, neg = 0;
+        for (int e = 0; e < 3; ++e) {
+            const IntPoint& x = c[e];
+            const IntPoint& y = c[(e + 1) % 3];
+            // (y - x) × (P - x) along k, P = num / den (den > 0)
+            const mpz_class o = (y[i] - x[i]) * (P.num[j] - x[j] * P.den) - (y[j] - x[j]) * (P.num[i] - x[i] * P.den);
+            pos += sgn(o) > 0;
+            neg += sgn(o) < 0;
+        }
+        return pos == 0 || neg == 0;
+    }
+
+    bool shares_vertex(uint32_t t, uint32_t s) const {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (g_.tri[3 * std::size_t{t} + i] == g_.tri[3 * std::size_t{s} + j]) return true;
+        return false;
     }
 
     // The crossings along edge e of triangle t, in order, with W_others before each.
@@ -253,7 +295,12 @@ private:
             const Key &x = keys[a], &y = keys[b];
             const int s = (x.dp * y.d - y.dp * x.d).sign() * x.d_sign * y.d_sign;
             if (s != 0) return s < 0;
-            return run[a].ref.plane < run[b].ref.plane;  // the same point for every ε: any order
+            // The same point for every ε: any order, unless a body crossing
+            // itself is involved (its own planes meet the edge at one point).
+            for (const L* l : {&run[a], &run[b]})
+                if (g_.crosses_itself(g_.body(l->ref.plane)) || g_.crosses_itself(g_.body(l->ref.owner)))
+                    throw SelfContact("boolean: an edge meets a body that crosses itself where it crosses itself");
+            return run[a].ref.plane < run[b].ref.plane;
         });
         std::vector<L> sorted;
         sorted.reserve(run.size());
@@ -398,16 +445,21 @@ private:
             const Cut& other = cross_.cuts[(*it)[1]];
             const uint32_t r = other.a == t ? other.b : other.a;
             const uint32_t br = g_.body(r);
-            if (br == bi || br == bj) continue;
+            // A body's own triangle crosses the cut only if the body crosses
+            // itself, and not where it is adjacent to t or s (it meets the
+            // cut at most at its end, on their shared edge).
+            if ((br == bi || br == bj) && !g_.crosses_itself(br)) continue;
+            if (r == s || (br == bi && shares_vertex(r, t)) || (br == bj && shares_vertex(r, s))) continue;
             const int sp = side(xs, P, r), sq = side(xe, Q, r);
-            if (sp == sq) continue;
+            if (sp == sq || sp == 0 || sq == 0) continue;  // 0: the lines meet at an end, outside r
             // The cut t ∩ r must meet the plane of s between its ends.
             auto ref2 = [&](const CutEnd& e) {
                 const uint32_t oa = other.a, ob = other.b;
                 return e.of_b ? CrossingRef{ob, e.edge, oa} : CrossingRef{oa, e.edge, ob};
             };
             const CrossingRef ys = ref2(other.start), ye = ref2(other.end);
-            if (side(ys, point0(ys), s) == side(ye, point0(ye), s)) continue;
+            const int ys_side = side(ys, point0(ys), s), ye_side = side(ye, point0(ye), s);
+            if (ys_side == ye_side || ys_side == 0 || ye_side == 0) continue;
             // μ = side(P) / (side(P) - side(Q)) at ε = 0, sides as N_r·(X - r0).
             auto value = [&](const Point0& X) {
                 const IntPoint r0 = scale_.of(corner(r, 0)), r1 = scale_.of(corner(r, 1)), r2 = scale_.of(corner(r, 2));

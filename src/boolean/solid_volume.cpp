@@ -5,7 +5,9 @@
 // each moved by its own multiple of δ; the boundary of {W >= 1} comes from
 // solid_pieces.hpp, triangle by triangle, and its cone sum is rounded once.
 // Shells whose boxes overlap no other shell's are their own solid (or
-// nothing, inward) and cost nothing more. Each shell must not cross itself.
+// nothing, inward) and cost nothing more. A shell crossing itself is
+// resolved when asked for (within_shells): its own crossings join the
+// others' and its windings count its own surface.
 #include <algorithm>
 #include <limits>
 #include <map>
@@ -33,18 +35,57 @@ namespace polyvol {
 namespace boolean {
 namespace {
 
-// One group of shells whose boxes overlap: its crossings, windings and
-// pieces (added to `pieces`), and what the report says of it.
+// Whether the triangles around every vertex of `body` form one fan, each
+// edge between two of them (no pinched vertex, no edge of four triangles):
+// then "in front of the surface at a vertex" is one region, as the windings
+// of a body crossing itself need.
+bool one_fan_at_every_vertex(const Operand& g, uint32_t body) {
+    struct Corner {
+        uint32_t v, next, prev;
+    };
+    std::vector<Corner> corners;
+    for (std::size_t t = 0; t < g.triangles(); ++t) {
+        if (g.body(t) != body) continue;
+        for (int i = 0; i < 3; ++i)
+            corners.push_back({g.tri[3 * t + i], g.tri[3 * t + (i + 1) % 3], g.tri[3 * t + (i + 2) % 3]});
+    }
+    auto key = [](const Corner& c) { return std::pair{c.v, c.next}; };
+    std::sort(corners.begin(), corners.end(), [&](const Corner& x, const Corner& y) { return key(x) < key(y); });
+    for (std::size_t i = 0; i < corners.size();) {
+        std::size_t j = i;
+        while (j < corners.size() && corners[j].v == corners[i].v) ++j;
+        const auto first = corners.begin() + static_cast<std::ptrdiff_t>(i), last = corners.begin() + static_cast<std::ptrdiff_t>(j);
+        for (auto it = first; it + 1 != last; ++it)
+            if (it->next == (it + 1)->next) return false;  // an edge of more than two triangles
+        // Around v: corner (v, x, y) is followed by the corner whose next is y.
+        std::size_t steps = 0;
+        uint32_t at = corners[i].next;
+        do {
+            const auto it = std::lower_bound(first, last, Corner{corners[i].v, at, 0},
+                                             [&](const Corner& x, const Corner& y) { return key(x) < key(y); });
+            if (it == last || it->next != at) return false;
+            at = it->prev;
+            ++steps;
+        } while (at != corners[i].next && steps <= j - i);
+        if (steps != j - i) return false;
+        i = j;
+    }
+    return true;
+}
+
+// One group of shells whose boxes overlap (or one shell crossing itself):
+// its crossings, windings and pieces (added to `pieces`), and what the
+// report says of it.
 void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const std::vector<uint32_t>& shells,
                  const std::vector<int>& body_sign, const Scale& scale, std::size_t faces, std::span<PieceSum> pieces,
                  Mesh& whole, SolidVolume& r) {
     const std::size_t n = g.triangles();
-    const Crossings cross = find_crossings(g, g);
+    Crossings cross = find_crossings(g, g);
 
         r.crossing_pairs += cross.cuts.size();
         std::vector<EdgeHit> hits = cross.a_hits;
         hits.insert(hits.end(), cross.b_hits.begin(), cross.b_hits.end());
-        const std::vector<int32_t> w = vertex_windings(g, g, hits);
+        std::vector<int32_t> w = vertex_windings(g, g, hits);
         // Overlapping: crossing another shell, or an outward shell inside another solid.
         std::vector<uint8_t> overlapping(shells.size(), 0);
         for (const Cut& c : cross.cuts) overlapping[g.body(c.a)] = overlapping[g.body(c.b)] = 1;
@@ -59,6 +100,24 @@ void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const st
             for (std::size_t t = 0; t < n; ++t)
                 if (crosses[g.body(t)]) r.face_crosses[g_face[t]] = 1;
         }
+    // Bodies crossing themselves: their own crossings join the others', and
+    // their windings count their own surface (operand.hpp, vertex_windings).
+    std::vector<WindingSeed> seeds;
+    for (uint32_t b = 0; b < shells.size(); ++b) {
+        if (!g.crosses_itself(b)) continue;
+        if (!one_fan_at_every_vertex(g, b))
+            throw SelfContact("boolean: a body that crosses itself pinches at a vertex or an edge");
+        seeds.push_back(own_front_seed(g, b, body_sign[b] > 0 ? 0 : -1));
+    }
+    if (!seeds.empty()) {
+        const Crossings own = find_crossings(g, g, Pairs::self_crossing);
+        cross.a_hits.insert(cross.a_hits.end(), own.a_hits.begin(), own.a_hits.end());
+        cross.b_hits.insert(cross.b_hits.end(), own.b_hits.begin(), own.b_hits.end());
+        cross.cuts.insert(cross.cuts.end(), own.cuts.begin(), own.cuts.end());
+        hits.insert(hits.end(), own.a_hits.begin(), own.a_hits.end());
+        hits.insert(hits.end(), own.b_hits.begin(), own.b_hits.end());
+        w = vertex_windings(g, g, hits, seeds);
+    }
     std::vector<uint32_t> whole_triangles;
     SolidPieces(g, cross, w, body_sign, scale).sum(pieces, whole_triangles);
     const auto base = static_cast<uint32_t>(whole.vertex_count());
@@ -69,7 +128,7 @@ void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const st
 }  // namespace
 }  // namespace boolean
 
-SolidVolume solid_volume(const MeshView& mesh, bool moments) {
+SolidVolume solid_volume(const MeshView& mesh, bool moments, bool within_shells) {
     using namespace boolean;
     SolidVolume r;
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -88,6 +147,15 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
     const topology::WeldedMesh wm = topology::weld_polygons(mesh);
     const topology::ShellLabels labels = bodies_of(wm);
     r.shells = labels.count;
+    std::vector<uint8_t> crosses_itself(labels.count, 0);
+    if (within_shells) {
+        const SelfCrossings self = self_crossings_of(mesh, wm, labels, &crosses_itself);
+        if (self.status != BooleanStatus::ok) return fail(self.status);
+        r.within_checked = true;
+        r.self_crossing_pairs = self.pairs;
+        r.self_crossing_example = self.example;
+        r.shells_crossing_themselves = static_cast<std::size_t>(std::count(crosses_itself.begin(), crosses_itself.end(), 1));
+    }
     std::vector<std::vector<std::array<uint32_t, 3>>> shell_tris(labels.count);
     std::vector<std::vector<uint32_t>> shell_faces(labels.count);  // the face of each fan triangle
     for (uint32_t f = 0, poly = 0; f < mesh.face_count(); ++f) {
@@ -157,7 +225,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
     Mesh whole;  // whole triangles of the solid's boundary, summed at the end
     const Scale scale{e0};
     for (const auto& [root, shells] : members) {
-        if (shells.size() == 1) {
+        if (shells.size() == 1 && !crosses_itself[shells[0]]) {
             if (shell_sign[shells[0]] < 0) continue;  // inward alone: no solid
             const auto base = static_cast<uint32_t>(whole.vertex_count());
             std::map<uint32_t, uint32_t> local;
@@ -184,6 +252,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
         for (uint32_t b = 0; b < shells.size(); ++b) {
             const uint32_t sh = shells[b];
             g.body_shift.push_back(static_cast<int32_t>(b + 1));
+            g.body_crosses.push_back(crosses_itself[sh]);
             body_sign.push_back(shell_sign[sh]);
             const uint32_t first_vertex = static_cast<uint32_t>(g.mesh.vertex_count());
             g_face.insert(g_face.end(), shell_faces[sh].begin(), shell_faces[sh].end());
@@ -203,6 +272,8 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments) {
             solid_group(g, g_face, shells, body_sign, scale, mesh.face_count(), pieces, whole, r);
         } catch (const Contradiction&) {
             return fail(BooleanStatus::shell_crosses_itself);
+        } catch (const SelfContact&) {
+            return fail(BooleanStatus::shell_touches_itself);
         }
     }
     // The whole triangles' sums by measure's kernels (parallel): the volume

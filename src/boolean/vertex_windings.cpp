@@ -7,7 +7,12 @@
 // per connected part of the operand; each part then needs one value: 0 for a
 // vertex outside the other operand's box, else the signed crossings of a ray
 // from the vertex to a point beyond that box (where w = 0).
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <array>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 
@@ -99,9 +104,115 @@ int64_t ray_winding(const double* p, uint32_t body, int32_t shift, const Operand
     return -crossings;
 }
 
+using Q3 = std::array<mpq_class, 3>;
+
+Q3 rational(const double* p) { return {mpq_class(p[0]), mpq_class(p[1]), mpq_class(p[2])}; }
+
+int orient_sign(const Q3& s0, const Q3& s1, const Q3& s2, const Q3& x) {
+    const Q3 u = {s1[0] - s0[0], s1[1] - s0[1], s1[2] - s0[2]};
+    const Q3 v = {s2[0] - s0[0], s2[1] - s0[1], s2[2] - s0[2]};
+    const Q3 w = {x[0] - s0[0], x[1] - s0[1], x[2] - s0[2]};
+    return sgn(mpq_class(w[0] * (u[1] * v[2] - u[2] * v[1]) + w[1] * (u[2] * v[0] - u[0] * v[2]) +
+                         w[2] * (u[0] * v[1] - u[1] * v[0])));
+}
+
+// The sign of (y - x) × (z - x) projected along axis k.
+int orient2_sign(const Q3& x, const Q3& y, const Q3& z, int k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    return sgn(mpq_class((y[i] - x[i]) * (z[j] - x[j]) - (y[j] - x[j]) * (z[i] - x[i])));
+}
+
+struct Touch {};  // the ray or the segment meets a triangle other than by crossing its interior
+
+// The body's own winding in front of triangle t at its centroid, less the
+// crossings of the segment from t's corner 0 to the centroid: the winding
+// in front of the surface at corner 0 (operand.hpp, own_front_seed).
+int64_t own_front_at_corner(const Operand& op, uint32_t body, uint32_t t) {
+    const Q3 a = rational(op.corner(t, 0)), b = rational(op.corner(t, 1)), c = rational(op.corner(t, 2));
+    Q3 q;
+    for (int k = 0; k < 3; ++k) q[k] = (a[k] + b[k] + c[k]) / 3;
+    // The ray: from q along ±e_k, k the largest component of N_t, toward t's front.
+    const Q3 u = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const Q3 n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    int k = 0;
+    for (int i = 1; i < 3; ++i)
+        if (abs(n[i]) > abs(n[k])) k = i;
+    const int dir = sgn(n[k]);
+    double qd[3], lo[3], hi[3];  // q in double, and the segment a -> q's box, with a margin
+    for (int i = 0; i < 3; ++i) {
+        qd[i] = q[i].get_d();
+        const double margin = 1e-9 * (std::fabs(qd[i]) + std::fabs(op.corner(t, 0)[i])) + 1e-300;
+        lo[i] = std::min(qd[i], op.corner(t, 0)[i]) - margin;
+        hi[i] = std::max(qd[i], op.corner(t, 0)[i]) + margin;
+    }
+    const int ii = (k + 1) % 3, jj = (k + 2) % 3;
+    const double mi = 1e-9 * std::fabs(qd[ii]) + 1e-300, mj = 1e-9 * std::fabs(qd[jj]) + 1e-300;
+    int64_t entering = 0, along = 0;
+    for (std::size_t s = 0; s < op.triangles(); ++s) {
+        if (s == t || op.body(s) != body || op.degenerate[s]) continue;
+        const double* box = &op.box[6 * s];
+        const bool on_ray = box[ii] <= qd[ii] + mi && box[3 + ii] >= qd[ii] - mi && box[jj] <= qd[jj] + mj &&
+                            box[3 + jj] >= qd[jj] - mj;
+        const bool on_segment = box[0] <= hi[0] && box[3] >= lo[0] && box[1] <= hi[1] && box[4] >= lo[1] &&
+                                box[2] <= hi[2] && box[5] >= lo[2];
+        if (!on_ray && !on_segment) continue;
+        const Q3 s0 = rational(op.corner(s, 0)), s1 = rational(op.corner(s, 1)), s2 = rational(op.corner(s, 2));
+        const int oq = orient_sign(s0, s1, s2, q);
+        if (on_ray) {
+            // Where the ray pierces s's plane, q's projection along e_k is inside s's.
+            const int e0 = orient2_sign(s0, s1, q, k), e1 = orient2_sign(s1, s2, q, k), e2 = orient2_sign(s2, s0, q, k);
+            const int nsk = orient2_sign(s0, s1, s2, k);  // sign of N_s[k]
+            if (nsk != 0 && (e0 == 0 || e1 == 0 || e2 == 0)) {
+                if ((e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0)) throw Touch{};
+            } else if (nsk != 0 && e0 == e1 && e1 == e2) {
+                if (oq == 0) throw Touch{};                // q on s
+                if (oq == -dir * nsk) entering += oq;      // ahead of q: +1 from s's front to its back
+            }
+        }
+        if (on_segment && !(op.tri[3 * s] == op.tri[3 * t] || op.tri[3 * s + 1] == op.tri[3 * t] ||
+                            op.tri[3 * s + 2] == op.tri[3 * t] || op.tri[3 * s] == op.tri[3 * t + 1] ||
+                            op.tri[3 * s + 1] == op.tri[3 * t + 1] || op.tri[3 * s + 2] == op.tri[3 * t + 1] ||
+                            op.tri[3 * s] == op.tri[3 * t + 2] || op.tri[3 * s + 1] == op.tri[3 * t + 2] ||
+                            op.tri[3 * s + 2] == op.tri[3 * t + 2])) {
+            // Triangles sharing a vertex with t meet the segment only where
+            // the body folds (refused by the crossing search).
+            const int oa = orient_sign(s0, s1, s2, a);
+            if (oq == 0) throw Touch{};
+            if (oa != 0 && oa != oq) {
+                // The crossing of segment a -> q with s's plane is inside s iff
+                // orient(a, q, s_j, s_j+1) has one sign for the three edges.
+                const int f0 = orient_sign(a, q, s0, s1), f1 = orient_sign(a, q, s1, s2), f2 = orient_sign(a, q, s2, s0);
+                if (f0 == 0 || f1 == 0 || f2 == 0) {
+                    if ((f0 >= 0 && f1 >= 0 && f2 >= 0) || (f0 <= 0 && f1 <= 0 && f2 <= 0)) throw Touch{};
+                } else if (f0 == f1 && f1 == f2) {
+                    along += oa;  // +1: from s's front to its back, the winding in front of t rises
+                }
+            }
+        }
+    }
+    // W(q front) = -entering; W(q front) = W(a front) + along.
+    return -entering - along;
+}
+
 }  // namespace
 
-std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, const std::vector<EdgeHit>& hits) {
+WindingSeed own_front_seed(const Operand& op, uint32_t body, int front) {
+    std::vector<uint32_t> candidates;
+    for (std::size_t t = 0; t < op.triangles(); ++t)
+        if (op.body(t) == body && !op.degenerate[t]) candidates.push_back(static_cast<uint32_t>(t));
+    constexpr std::size_t kTries = 16;
+    for (std::size_t i = 0; i < std::min(kTries, candidates.size()); ++i) {
+        const uint32_t t = candidates[i * candidates.size() / std::min(kTries, candidates.size())];
+        try {
+            return {op.tri[3 * std::size_t{t}], own_front_at_corner(op, body, t) - front};
+        } catch (const Touch&) {
+        }
+    }
+    throw SelfContact("boolean: no clean ray for the winding of a body that crosses itself");
+}
+
+std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, const std::vector<EdgeHit>& hits,
+                                     const std::vector<WindingSeed>& seeds) {
     const std::size_t nv = self.mesh.vertex_count();
     const bool same = &self == &other;
     std::vector<int64_t> k(self.tri.size(), 0);  // per triangle edge: signed crossings
@@ -120,6 +231,12 @@ std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, 
     }
     constexpr int64_t kUnknown = INT64_MIN;
     std::vector<int64_t> root_value(nv, kUnknown);
+    for (const WindingSeed& seed : seeds) {  // bodies crossing themselves: their own part too
+        int64_t off;
+        const uint32_t r = forest.find(seed.vertex, off);
+        const uint32_t t = triangle_of[seed.vertex];
+        root_value[r] = ray_winding(self.point(seed.vertex), self.body(t), self.shift(t), other, same) + seed.own - off;
+    }
     const bool far_away_exists = other.triangles() > 0;
     for (uint32_t v = 0; v < nv; ++v) {
         if (!used[v]) continue;

@@ -138,6 +138,9 @@ TEST(OverlapCli, ASurfaceCrossingItselfIsReported) {
     EXPECT_EQ(j["self_crossing_checked"], true);
     EXPECT_EQ(j["self_crossing_pairs"], 6);
     EXPECT_EQ(j["self_crossing_example"].size(), 2u);
+    EXPECT_NE(v.err.find("also touches or folds onto itself there"), std::string::npos) << v.err;  // pinched edge
+    EXPECT_EQ(j["self_crossing_resolved"], false);
+    EXPECT_EQ(j["volume"], j["winding_volume"]);
     const auto check = cli_test::run_polyvol("check '" + p.string() + "'");
     ASSERT_EQ(check.code, 0) << check.err;
     EXPECT_NE(check.out.find("self-crossing   its surface crosses itself within a shell (6"), std::string::npos)
@@ -149,6 +152,32 @@ TEST(OverlapCli, ASurfaceCrossingItselfIsReported) {
     const fs::path box = write_boxes("plain.obj", {{0, 0, 0, 1, 1, 1}});
     EXPECT_NE(cli_test::run_polyvol("check '" + box.string() + "'").out.find("self-crossing   none within a shell"),
               std::string::npos);
+}
+
+// One shell crossing itself where nothing touches (tests/data/self_crossing:
+// two spheres joined by a tube through both): resolved, the volume and the
+// moments are the solid's, equal to those of the same chain as three shells.
+TEST(OverlapCli, ASurfaceCrossingItselfIsResolved) {
+    const fs::path dir = fs::path(POLYVOL_TEST_DATA) / "self_crossing";
+    auto measure = [](const fs::path& p) {
+        const auto r = cli_test::run_polyvol("measure --json '" + p.string() + "'");
+        EXPECT_EQ(r.code, 0) << r.err;
+        return nlohmann::json::parse(r.out)[0];
+    };
+    const auto one = measure(dir / "one.obj"), three = measure(dir / "three.obj");
+    EXPECT_EQ(one["self_crossing_checked"], true);
+    EXPECT_EQ(one["self_crossing_pairs"], 88);
+    EXPECT_EQ(one["self_crossing_resolved"], true);
+    EXPECT_EQ(one["overlapping_shells"], 0);
+    EXPECT_EQ(three["overlapping_shells"], 3);
+    EXPECT_EQ(one["volume"], three["volume"]);
+    EXPECT_EQ(one["winding_volume"], three["winding_volume"]);
+    EXPECT_LT(one["volume"].get<double>(), one["winding_volume"].get<double>());
+    EXPECT_EQ(one["second_moments"], three["second_moments"]);
+    const auto table = cli_test::run_polyvol("measure '" + (dir / "one.obj").string() + "'");
+    EXPECT_NE(table.out.find("1 shell crosses itself (88 triangle pairs): the volume is the solid's"), std::string::npos)
+        << table.out;
+    EXPECT_NE(table.out.find("; resolved: the volume is the solid's"), std::string::npos) << table.out;
 }
 
 }  // namespace
