@@ -4,6 +4,8 @@ TypeError), objects shaped like a trimesh mesh, and the errors."""
 
 import gzip
 
+import pathlib
+
 import numpy as np
 import pytest
 
@@ -194,6 +196,20 @@ def test_overlapping_shells_and_booleans():
     with pytest.raises(ValueError):
         polyvol.overlap((a[0], a[1][:-1]), b)
     assert polyvol.self_crossings(*both).pairs == 0
+
+
+def test_a_shell_crossing_itself_is_resolved():
+    # tests/data/self_crossing: two spheres joined by a tube through both (one
+    # shell), and the same 2-chain as three shells: one solid.
+    data = pathlib.Path(__file__).resolve().parents[1] / "data" / "self_crossing"
+    one, three = polyvol.load(data / "one.obj"), polyvol.load(data / "three.obj")
+    s, t = polyvol.solid(one), polyvol.solid(three)
+    assert s.self_crossing_checked and s.self_crossing_pairs == 88 and s.shells_crossing_themselves == 1
+    assert (s.volume, s.winding_volume) == (t.volume, t.winding_volume)
+    assert s.volume < s.winding_volume
+    assert np.array_equal(s.second_moments, t.second_moments)
+    unresolved = polyvol.solid(one, within_shells=False)
+    assert not unresolved.self_crossing_checked and unresolved.volume == unresolved.winding_volume
 
 
 def test_results_print_and_convert_to_plain_dicts():
