@@ -108,6 +108,10 @@ put('qhull', 'cube3.txt', subprocess.run(['qconvex', 'o'], input=cube, capture_o
                                          check=True).stdout)
 put('polygons', 'holes.txt', '# a square with a square hole: area 64\n0 0 10 0 10 10 0 10\n2 2 2 8 8 8 8 2\n')
 put('polygons', 'tri.txt', '0 0 1 0 0 1\r\n\n# c\n5 5 6 5 6 6 5 6\n')
+# A shell crossing itself (two spheres joined by a tube through both), for solid_volume's within_shells.
+sys.path.insert(0, 'tests/data/self_crossing')
+import make as self_crossing  # noqa: E402
+put('pipeline', 'self_crossing.obj', self_crossing.obj_text(*self_crossing.joined(3, 3)[0]))
 # The whole path: a few of each format; the grid's inputs start with 3 bytes that choose the grid.
 for path in ['obj/tet.obj', 'off/cube-shuffled.off', 'stl/tet_bin.stl', 'ply/tet_le.ply', '3mf/tet.3mf', 'obj/box.obj']:
     with open(SEEDS + path, 'rb') as f:

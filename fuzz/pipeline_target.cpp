@@ -28,7 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, std::size_t size) {
         (void)mass_properties(view, o);
     }
     if (t.closed_2_cycle && view.triangle_count() <= 2000) {
-        (void)solid_volume(view, true);
+        (void)solid_volume(view, true, true);
         (void)self_crossings(view);
     }
     return 0;

@@ -137,12 +137,6 @@ bool hit_order(const EdgeHit& x, const EdgeHit& y) {
     return std::tie(x.tri, x.edge, x.other) < std::tie(y.tri, y.edge, y.other);
 }
 
-bool shares_vertex(const Operand& op, uint32_t t, uint32_t s) {
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            if (op.tri[3 * std::size_t{t} + i] == op.tri[3 * std::size_t{s} + j]) return true;
-    return false;
-}
 
 bool same_crossings(const Crossings& x, const Crossings& y) {
     auto hit = [](const EdgeHit& h) { return std::tie(h.tri, h.other, h.edge, h.sign); };
@@ -173,7 +167,7 @@ void check_fold(const Operand& op, uint32_t t, uint32_t s) {
     int ti[3], si[3], shared = 0;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-            if (op.tri[3 * std::size_t{t} + i] == op.tri[3 * std::size_t{s} + j]) {
+            if (op.site_of(op.tri[3 * std::size_t{t} + i]) == op.site_of(op.tri[3 * std::size_t{s} + j])) {
                 ti[shared] = i;
                 si[shared++] = j;
             }
@@ -371,7 +365,7 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
                     const uint32_t tb = binned[i];
                     if (same && tb <= ta) continue;
                     if (same && (B.body(tb) == A.body(ta)) != within) continue;
-                    const bool neighbours = within && shares_vertex(A, ta, tb);
+                    const bool neighbours = within && A.share_corner(ta, tb);
                     if (neighbours && !strict) continue;
                     const double* other = &B.box[6 * std::size_t{tb}];
                     if (!boxes_meet(box, other)) continue;

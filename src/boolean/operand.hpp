@@ -40,11 +40,23 @@ struct Operand {
     std::vector<uint32_t> body_of_triangle;  // empty: every triangle in body 0
     std::vector<int32_t> body_shift{0};      // per body: the multiple of δ it is moved by
     std::vector<uint8_t> body_crosses;       // per body: 1 when it crosses itself (empty: none does)
+    // Per vertex, the vertex it was split from (split_sheets: one position,
+    // several sheets); empty when no vertex was split.
+    std::vector<uint32_t> site;
 
     uint32_t body(std::size_t t) const { return body_of_triangle.empty() ? 0 : body_of_triangle[t]; }
     bool crosses_itself(uint32_t body) const { return !body_crosses.empty() && body_crosses[body] != 0; }
     int32_t shift(std::size_t t) const { return body_shift[body(t)]; }
 
+    uint32_t site_of(uint32_t v) const { return site.empty() ? v : site[v]; }
+    // Whether triangles t and s have a corner at one place (a vertex, or
+    // copies of one split by split_sheets).
+    bool share_corner(std::size_t t, std::size_t s) const {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (site_of(tri[3 * t + i]) == site_of(tri[3 * s + j])) return true;
+        return false;
+    }
     std::size_t triangles() const { return tri.size() / 3; }
     const double* point(uint32_t v) const { return mesh.positions.data() + 3 * std::size_t{v}; }
     const double* corner(std::size_t t, int i) const { return point(tri[3 * t + i]); }
@@ -131,6 +143,15 @@ std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, 
 // (each changes the winding in front of t by one). Exact; a triangle the
 // ray or the segment only touches sends it to another t. Throws SelfContact
 // when no t of the first few gives a clean count.
-WindingSeed own_front_seed(const Operand& op, uint32_t body, int front);
+WindingSeed own_front_seed(const Operand& op, uint32_t body, int front, const std::vector<uint32_t>& candidates);
+
+// Splits a body that crosses itself into sheets where its surface is not a
+// 2-manifold: the triangles around an edge of four or more are paired by
+// angle, each pair bounding one wedge of the solid (sheets.cpp), and each
+// vertex gets one copy per fan of triangles around it (site records the
+// original). Throws SelfContact where triangles around an edge lie in one
+// plane.
+// Call before finish_operand.
+void split_sheets(Operand& op, uint32_t body);
 
 }  // namespace polyvol::boolean

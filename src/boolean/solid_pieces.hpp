@@ -214,13 +214,6 @@ private:
         return pos == 0 || neg == 0;
     }
 
-    bool shares_vertex(uint32_t t, uint32_t s) const {
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                if (g_.tri[3 * std::size_t{t} + i] == g_.tri[3 * std::size_t{s} + j]) return true;
-        return false;
-    }
-
     // The crossings along edge e of triangle t, in order, with W_others before each.
     const std::vector<WalkEntry>& walk(uint32_t t, int e) {
         const uint64_t key = 3 * uint64_t{t} + e;
@@ -449,7 +442,7 @@ private:
             // itself, and not where it is adjacent to t or s (it meets the
             // cut at most at its end, on their shared edge).
             if ((br == bi || br == bj) && !g_.crosses_itself(br)) continue;
-            if (r == s || (br == bi && shares_vertex(r, t)) || (br == bj && shares_vertex(r, s))) continue;
+            if (r == s || (br == bi && g_.share_corner(r, t)) || (br == bj && g_.share_corner(r, s))) continue;
             const int sp = side(xs, P, r), sq = side(xe, Q, r);
             if (sp == sq || sp == 0 || sq == 0) continue;  // 0: the lines meet at an end, outside r
             // The cut t ∩ r must meet the plane of s between its ends.

@@ -102,12 +102,24 @@ void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const st
         }
     // Bodies crossing themselves: their own crossings join the others', and
     // their windings count their own surface (operand.hpp, vertex_windings).
+    // One seed for each connected piece of such a body (split_sheets may
+    // have cut it in several).
     std::vector<WindingSeed> seeds;
-    for (uint32_t b = 0; b < shells.size(); ++b) {
-        if (!g.crosses_itself(b)) continue;
-        if (!one_fan_at_every_vertex(g, b))
+    topology::UnionFind pieces_of(g.mesh.vertex_count());
+    for (std::size_t t = 0; t < n; ++t)
+        if (g.crosses_itself(g.body(t))) {
+            pieces_of.unite(g.tri[3 * t], g.tri[3 * t + 1]);
+            pieces_of.unite(g.tri[3 * t], g.tri[3 * t + 2]);
+        }
+    std::map<uint32_t, std::vector<uint32_t>> piece_triangles;
+    for (std::size_t t = 0; t < n; ++t)
+        if (g.crosses_itself(g.body(t))) piece_triangles[pieces_of.find(g.tri[3 * t])].push_back(static_cast<uint32_t>(t));
+    for (uint32_t b = 0; b < shells.size(); ++b)
+        if (g.crosses_itself(b) && !one_fan_at_every_vertex(g, b))
             throw SelfContact("boolean: a body that crosses itself pinches at a vertex or an edge");
-        seeds.push_back(own_front_seed(g, b, body_sign[b] > 0 ? 0 : -1));
+    for (const auto& [root, tris] : piece_triangles) {
+        const uint32_t b = g.body(tris[0]);
+        seeds.push_back(own_front_seed(g, b, body_sign[b] > 0 ? 0 : -1, tris));
     }
     if (!seeds.empty()) {
         const Crossings own = find_crossings(g, g, Pairs::self_crossing);
@@ -267,8 +279,10 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments, bool within_shells)
                 g.body_of_triangle.push_back(b);
             }
         }
-        finish_operand(g);
         try {
+            for (uint32_t b = 0; b < shells.size(); ++b)
+                if (g.crosses_itself(b)) split_sheets(g, b);
+            finish_operand(g);
             solid_group(g, g_face, shells, body_sign, scale, mesh.face_count(), pieces, whole, r);
         } catch (const Contradiction&) {
             return fail(BooleanStatus::shell_crosses_itself);

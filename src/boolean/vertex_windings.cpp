@@ -169,11 +169,7 @@ int64_t own_front_at_corner(const Operand& op, uint32_t body, uint32_t t) {
                 if (oq == -dir * nsk) entering += oq;      // ahead of q: +1 from s's front to its back
             }
         }
-        if (on_segment && !(op.tri[3 * s] == op.tri[3 * t] || op.tri[3 * s + 1] == op.tri[3 * t] ||
-                            op.tri[3 * s + 2] == op.tri[3 * t] || op.tri[3 * s] == op.tri[3 * t + 1] ||
-                            op.tri[3 * s + 1] == op.tri[3 * t + 1] || op.tri[3 * s + 2] == op.tri[3 * t + 1] ||
-                            op.tri[3 * s] == op.tri[3 * t + 2] || op.tri[3 * s + 1] == op.tri[3 * t + 2] ||
-                            op.tri[3 * s + 2] == op.tri[3 * t + 2])) {
+        if (on_segment && !op.share_corner(s, t)) {
             // Triangles sharing a vertex with t meet the segment only where
             // the body folds (refused by the crossing search).
             const int oa = orient_sign(s0, s1, s2, a);
@@ -196,10 +192,10 @@ int64_t own_front_at_corner(const Operand& op, uint32_t body, uint32_t t) {
 
 }  // namespace
 
-WindingSeed own_front_seed(const Operand& op, uint32_t body, int front) {
+WindingSeed own_front_seed(const Operand& op, uint32_t body, int front, const std::vector<uint32_t>& all) {
     std::vector<uint32_t> candidates;
-    for (std::size_t t = 0; t < op.triangles(); ++t)
-        if (op.body(t) == body && !op.degenerate[t]) candidates.push_back(static_cast<uint32_t>(t));
+    for (const uint32_t t : all)
+        if (!op.degenerate[t]) candidates.push_back(t);
     constexpr std::size_t kTries = 16;
     for (std::size_t i = 0; i < std::min(kTries, candidates.size()); ++i) {
         const uint32_t t = candidates[i * candidates.size() / std::min(kTries, candidates.size())];

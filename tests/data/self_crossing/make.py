@@ -45,27 +45,34 @@ def walls(a, b):
     return out
 
 
+def obj_text(v, f):
+    return "".join("v %r %r %r\n" % p for p in v) + "".join("f %d %d %d\n" % tuple(i + 1 for i in t) for t in f)
+
+
 def write(name, v, f):
     with open(name, "w") as out:
-        for p in v:
-            out.write("v %r %r %r\n" % p)
-        for t in f:
-            out.write("f %d %d %d\n" % tuple(i + 1 for i in t))
+        out.write(obj_text(v, f))
 
 
-va, fa = uv_sphere(8, 16, 1.0, (0.0, 0.0, 0.0))
-vb, fb = uv_sphere(7, 14, 0.8, (0.9, 0.0625, 0.03125))
-ka, kb = extreme(va, fa, -1), extreme(vb, fb, +1)
-n = len(va)
-one_v = va + vb
-one_f = [t for k, t in enumerate(fa) if k != ka] + [tuple(i + n for i in t) for k, t in enumerate(fb) if k != kb]
-one_f += walls(fa[ka], tuple(i + n for i in fb[kb]))
-write("one.obj", one_v, one_f)
+def joined(rings_a, rings_b):
+    """(vertices, faces) of the one shell and of the three shells."""
+    va, fa = uv_sphere(rings_a, 2 * rings_a, 1.0, (0.0, 0.0, 0.0))
+    vb, fb = uv_sphere(rings_b, 2 * rings_b, 0.8, (0.9, 0.0625, 0.03125))
+    ka, kb = extreme(va, fa, -1), extreme(vb, fb, +1)
+    n = len(va)
+    one_v = va + vb
+    one_f = [t for k, t in enumerate(fa) if k != ka] + [tuple(i + n for i in t) for k, t in enumerate(fb) if k != kb]
+    one_f += walls(fa[ka], tuple(i + n for i in fb[kb]))
+    three_v = va + vb
+    three_f = fa + [tuple(i + n for i in t) for t in fb]
+    m = len(three_v)
+    three_v += [va[i] for i in fa[ka]] + [vb[i] for i in fb[kb]]
+    ta, tb = (m, m + 1, m + 2), (m + 3, m + 4, m + 5)
+    three_f += walls(ta, tb) + [(ta[0], ta[2], ta[1]), (tb[0], tb[2], tb[1])]
+    return (one_v, one_f), (three_v, three_f)
 
-three_v = va + vb
-three_f = fa + [tuple(i + n for i in t) for t in fb]
-m = len(three_v)
-three_v += [va[i] for i in fa[ka]] + [vb[i] for i in fb[kb]]
-ta, tb = (m, m + 1, m + 2), (m + 3, m + 4, m + 5)
-three_f += walls(ta, tb) + [(ta[0], ta[2], ta[1]), (tb[0], tb[2], tb[1])]
-write("three.obj", three_v, three_f)
+
+if __name__ == "__main__":
+    one, three = joined(8, 7)
+    write("one.obj", *one)
+    write("three.obj", *three)
