@@ -4,7 +4,8 @@
 // overlapping its neighbours: solid_volume (solid:1) against what `polyvol
 // measure` computes without it, analyze_topology + mass_properties (solid:0).
 // SelfCrossings: self_crossings of one sphere or torus of n triangles, the
-// cost of looking for a surface crossing itself.
+// cost of looking for a surface crossing itself. SolidSelfCrossing: the
+// cost of resolving one.
 #include <benchmark/benchmark.h>
 
 #include "generate.hpp"
@@ -56,6 +57,41 @@ void SolidTenSpheres(benchmark::State& state) {
 BENCHMARK(SolidTenSpheres)
     ->ArgsProduct({{100'000}, {0, 1}})
     ->ArgNames({"tris", "solid"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// SolidSelfCrossing: one shell crossing itself, two spheres of n triangles
+// each joined by a tube through both (bench::join_by_tube). mode 0: what
+// `polyvol measure` computes without the solid (analyze_topology +
+// mass_properties); 1: solid_volume resolving it (within_shells, the search
+// within shells included); 2: solid_volume of the same chain as three shells.
+void SolidSelfCrossing(benchmark::State& state) {
+    const auto n = static_cast<std::size_t>(state.range(0));
+    polyvol::Mesh b = polyvol::bench::sphere_with_triangles(n);
+    for (std::size_t v = 0; v < b.vertex_count(); ++v) {
+        b.positions[3 * v] = 0.8 * b.positions[3 * v] + 0.9;
+        b.positions[3 * v + 1] = 0.8 * b.positions[3 * v + 1] + 0.0625;
+        b.positions[3 * v + 2] = 0.8 * b.positions[3 * v + 2] + 0.03125;
+    }
+    const polyvol::bench::Joined j = polyvol::bench::join_by_tube(polyvol::bench::sphere_with_triangles(n), b);
+    double v = 0;
+    for (auto _ : state) {
+        if (state.range(1) == 0) {
+            benchmark::DoNotOptimize(polyvol::analyze_topology(j.one.view()).closed_2_cycle);
+            v = polyvol::mass_properties(j.one.view()).volume;
+        } else {
+            const polyvol::SolidVolume s = state.range(1) == 1 ? polyvol::solid_volume(j.one.view(), false, true)
+                                                               : polyvol::solid_volume(j.three.view());
+            if (s.status != polyvol::BooleanStatus::ok) state.SkipWithError("no solid");
+            v = s.volume;
+        }
+        benchmark::DoNotOptimize(v);
+    }
+    state.counters["triangles"] = static_cast<double>(j.one.view().triangle_count());
+}
+BENCHMARK(SolidSelfCrossing)
+    ->ArgsProduct({{100'000, 1'000'000}, {0, 1, 2}})
+    ->ArgNames({"tris", "mode"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -73,6 +74,93 @@ inline Mesh torus_with_triangles(std::size_t n, double R = 1.0, double r = 0.42)
     const auto tube = static_cast<uint32_t>(std::max(3.0, std::round(std::sqrt(half * r / R))));
     const auto around = static_cast<uint32_t>(std::max(3.0, std::round(half / tube)));
     return torus(around, tube, R, r);
+}
+
+// Two closed meshes A and B joined into one shell by a tube: the face of A
+// furthest along -x and the face of B furthest along +x removed, their rims
+// joined by three quads (six triangles) through both. As 2-chains that shell
+// is A + B + T, T the tube closed by the two faces reversed, so both bound
+// the same solid {W >= 1} (tests/boolean/self_solid_test.cpp). Triangle
+// meshes only.
+struct Joined {
+    Mesh one;    // one shell, crossing itself
+    Mesh three;  // A, B and T: three shells
+};
+
+inline std::array<uint32_t, 3> triangle_of(const Mesh& m, uint32_t f) {
+    return {m.indices[3 * f], m.indices[3 * f + 1], m.indices[3 * f + 2]};
+}
+
+// The face of m whose centroid is furthest along `sign` x.
+inline uint32_t extreme_face(const Mesh& m, double sign) {
+    uint32_t best = 0;
+    double best_x = -INFINITY;
+    for (uint32_t f = 0; f < m.indices.size() / 3; ++f) {
+        double x = 0;
+        for (uint32_t v : triangle_of(m, f)) x += m.positions[3 * v];
+        if (sign * x > best_x) {
+            best_x = sign * x;
+            best = f;
+        }
+    }
+    return best;
+}
+
+inline Joined join_by_tube(const Mesh& a, const Mesh& b) {
+    const uint32_t fa = extreme_face(a, -1), fb = extreme_face(b, +1);
+    Joined j;
+    // The walls run along fa's edges a_i -> a_i+1 and fb's b_m -> b_m+1 (the
+    // rims' other uses are the reverse), pairing a_i with b_(k - i), k the
+    // rotation that pairs the nearest corners (a twisted tube folds onto itself).
+    auto copy_without = [](Mesh& to, const Mesh& from, uint32_t skip) {
+        const auto base = static_cast<uint32_t>(to.vertex_count());
+        to.positions.insert(to.positions.end(), from.positions.begin(), from.positions.end());
+        for (uint32_t f = 0; f < from.indices.size() / 3; ++f)
+            if (f != skip) {
+                const auto c = triangle_of(from, f);
+                to.add_triangle(base + c[0], base + c[1], base + c[2]);
+            }
+        return base;
+    };
+    const uint32_t base_a = copy_without(j.one, a, fa);
+    const uint32_t base_b = copy_without(j.one, b, fb);
+    const std::array<uint32_t, 3> ra = triangle_of(a, fa), rb = triangle_of(b, fb);
+    int k = 0;
+    double best = INFINITY;
+    for (int rot = 0; rot < 3; ++rot) {
+        double d2 = 0;
+        for (int i = 0; i < 3; ++i)
+            for (int c = 0; c < 3; ++c) {
+                const double d = a.positions[3 * ra[i] + c] - b.positions[3 * rb[(rot + 3 - i) % 3] + c];
+                d2 += d * d;
+            }
+        if (d2 < best) {
+            best = d2;
+            k = rot;
+        }
+    }
+    auto walls = [&](Mesh& m, const std::array<uint32_t, 3>& av, const std::array<uint32_t, 3>& bv) {
+        auto partner = [&](int i) { return bv[(k + 3 - i) % 3]; };
+        for (int i = 0; i < 3; ++i) {
+            const uint32_t p = av[i], q = av[(i + 1) % 3], r = partner((i + 1) % 3), s = partner(i);
+            m.add_triangle(p, q, r);
+            m.add_triangle(p, r, s);
+        }
+    };
+    walls(j.one, {base_a + ra[0], base_a + ra[1], base_a + ra[2]}, {base_b + rb[0], base_b + rb[1], base_b + rb[2]});
+    j.three = a;
+    j.three.append(b);
+    Mesh t;
+    std::array<uint32_t, 3> ta{}, tb{};
+    for (int i = 0; i < 3; ++i) {
+        ta[i] = t.add_vertex(a.positions[3 * ra[i]], a.positions[3 * ra[i] + 1], a.positions[3 * ra[i] + 2]);
+        tb[i] = t.add_vertex(b.positions[3 * rb[i]], b.positions[3 * rb[i] + 1], b.positions[3 * rb[i] + 2]);
+    }
+    walls(t, ta, tb);
+    t.add_triangle(ta[0], ta[2], ta[1]);
+    t.add_triangle(tb[0], tb[2], tb[1]);
+    j.three.append(t);
+    return j;
 }
 
 }  // namespace polyvol::bench

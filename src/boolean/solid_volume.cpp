@@ -35,44 +35,6 @@ namespace polyvol {
 namespace boolean {
 namespace {
 
-// Whether the triangles around every vertex of `body` form one fan, each
-// edge between two of them (no pinched vertex, no edge of four triangles):
-// then "in front of the surface at a vertex" is one region, as the windings
-// of a body crossing itself need.
-bool one_fan_at_every_vertex(const Operand& g, uint32_t body) {
-    struct Corner {
-        uint32_t v, next, prev;
-    };
-    std::vector<Corner> corners;
-    for (std::size_t t = 0; t < g.triangles(); ++t) {
-        if (g.body(t) != body) continue;
-        for (int i = 0; i < 3; ++i)
-            corners.push_back({g.tri[3 * t + i], g.tri[3 * t + (i + 1) % 3], g.tri[3 * t + (i + 2) % 3]});
-    }
-    auto key = [](const Corner& c) { return std::pair{c.v, c.next}; };
-    std::sort(corners.begin(), corners.end(), [&](const Corner& x, const Corner& y) { return key(x) < key(y); });
-    for (std::size_t i = 0; i < corners.size();) {
-        std::size_t j = i;
-        while (j < corners.size() && corners[j].v == corners[i].v) ++j;
-        const auto first = corners.begin() + static_cast<std::ptrdiff_t>(i), last = corners.begin() + static_cast<std::ptrdiff_t>(j);
-        for (auto it = first; it + 1 != last; ++it)
-            if (it->next == (it + 1)->next) return false;  // an edge of more than two triangles
-        // Around v: corner (v, x, y) is followed by the corner whose next is y.
-        std::size_t steps = 0;
-        uint32_t at = corners[i].next;
-        do {
-            const auto it = std::lower_bound(first, last, Corner{corners[i].v, at, 0},
-                                             [&](const Corner& x, const Corner& y) { return key(x) < key(y); });
-            if (it == last || it->next != at) return false;
-            at = it->prev;
-            ++steps;
-        } while (at != corners[i].next && steps <= j - i);
-        if (steps != j - i) return false;
-        i = j;
-    }
-    return true;
-}
-
 // One group of shells whose boxes overlap (or one shell crossing itself):
 // its crossings, windings and pieces (added to `pieces`), and what the
 // report says of it.
@@ -102,8 +64,9 @@ void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const st
         }
     // Bodies crossing themselves: their own crossings join the others', and
     // their windings count their own surface (operand.hpp, vertex_windings).
-    // One seed for each connected piece of such a body (split_sheets may
-    // have cut it in several).
+    // One seed for each connected piece of such a body (split_sheets cut it
+    // into sheets, one fan of triangles around every vertex, and perhaps into
+    // several pieces).
     std::vector<WindingSeed> seeds;
     topology::UnionFind pieces_of(g.mesh.vertex_count());
     for (std::size_t t = 0; t < n; ++t)
@@ -114,9 +77,6 @@ void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const st
     std::map<uint32_t, std::vector<uint32_t>> piece_triangles;
     for (std::size_t t = 0; t < n; ++t)
         if (g.crosses_itself(g.body(t))) piece_triangles[pieces_of.find(g.tri[3 * t])].push_back(static_cast<uint32_t>(t));
-    for (uint32_t b = 0; b < shells.size(); ++b)
-        if (g.crosses_itself(b) && !one_fan_at_every_vertex(g, b))
-            throw SelfContact("boolean: a body that crosses itself pinches at a vertex or an edge");
     for (const auto& [root, tris] : piece_triangles) {
         const uint32_t b = g.body(tris[0]);
         seeds.push_back(own_front_seed(g, b, body_sign[b] > 0 ? 0 : -1, tris));

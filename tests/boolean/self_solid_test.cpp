@@ -1,5 +1,5 @@
 // solid_volume(mesh, moments, within_shells = true): the solid {W >= 1} of a
-// shell that crosses itself.
+// shell that crosses itself (bench::join_by_tube builds the shells).
 //
 // The identity the tests rest on: two closed meshes A and B joined into one
 // shell S by a tube (a face fa of A and a face fb of B removed, their rims
@@ -21,89 +21,6 @@
 
 namespace polyvol {
 namespace {
-
-struct Joined {
-    Mesh one;    // S: one shell
-    Mesh three;  // A, B and T: three shells
-};
-
-std::array<uint32_t, 3> face_of(const Mesh& m, uint32_t f) {
-    return {m.indices[3 * f], m.indices[3 * f + 1], m.indices[3 * f + 2]};
-}
-
-// The face of m whose centroid is furthest along `sign` x.
-uint32_t extreme_face(const Mesh& m, double sign) {
-    uint32_t best = 0;
-    double best_x = -INFINITY;
-    for (uint32_t f = 0; f < m.indices.size() / 3; ++f) {
-        double x = 0;
-        for (uint32_t v : face_of(m, f)) x += m.positions[3 * v];
-        if (sign * x > best_x) {
-            best_x = sign * x;
-            best = f;
-        }
-    }
-    return best;
-}
-
-Joined join_by_tube(const Mesh& a, const Mesh& b) {
-    const uint32_t fa = extreme_face(a, -1), fb = extreme_face(b, +1);
-    Joined j;
-    // S: A without fa, B without fb, and the tube's walls. Its walls run along
-    // fa's edges a_i -> a_i+1 and fb's b_m -> b_m+1 (the rims' other uses are
-    // the reverse), pairing a_i with b_(k - i), k the rotation that pairs the
-    // nearest corners (a twisted tube would fold onto itself).
-    auto copy_without = [](Mesh& to, const Mesh& from, uint32_t skip) {
-        const auto base = static_cast<uint32_t>(to.vertex_count());
-        to.positions.insert(to.positions.end(), from.positions.begin(), from.positions.end());
-        for (uint32_t f = 0; f < from.indices.size() / 3; ++f)
-            if (f != skip) {
-                const auto c = face_of(from, f);
-                to.add_triangle(base + c[0], base + c[1], base + c[2]);
-            }
-        return base;
-    };
-    const uint32_t base_a = copy_without(j.one, a, fa);
-    const uint32_t base_b = copy_without(j.one, b, fb);
-    std::array<uint32_t, 3> ra = face_of(a, fa), rb = face_of(b, fb);
-    int k = 0;
-    double best = INFINITY;
-    for (int rot = 0; rot < 3; ++rot) {
-        double d2 = 0;
-        for (int i = 0; i < 3; ++i)
-            for (int c = 0; c < 3; ++c) {
-                const double d = a.positions[3 * ra[i] + c] - b.positions[3 * rb[(rot + 3 - i) % 3] + c];
-                d2 += d * d;
-            }
-        if (d2 < best) {
-            best = d2;
-            k = rot;
-        }
-    }
-    auto walls = [&](Mesh& m, const std::array<uint32_t, 3>& av, const std::array<uint32_t, 3>& bv) {
-        auto partner = [&](int i) { return bv[(k + 3 - i) % 3]; };
-        for (int i = 0; i < 3; ++i) {
-            const uint32_t p = av[i], q = av[(i + 1) % 3], r = partner((i + 1) % 3), s = partner(i);
-            m.add_triangle(p, q, r);
-            m.add_triangle(p, r, s);
-        }
-    };
-    walls(j.one, {base_a + ra[0], base_a + ra[1], base_a + ra[2]}, {base_b + rb[0], base_b + rb[1], base_b + rb[2]});
-    // The three shells: A, B, and T = the walls on copies of the rims, closed by fa and fb reversed.
-    j.three = a;
-    j.three.append(b);
-    Mesh t;
-    std::array<uint32_t, 3> ta{}, tb{};
-    for (int i = 0; i < 3; ++i) {
-        ta[i] = t.add_vertex(a.positions[3 * ra[i]], a.positions[3 * ra[i] + 1], a.positions[3 * ra[i] + 2]);
-        tb[i] = t.add_vertex(b.positions[3 * rb[i]], b.positions[3 * rb[i] + 1], b.positions[3 * rb[i] + 2]);
-    }
-    walls(t, ta, tb);
-    t.add_triangle(ta[0], ta[2], ta[1]);
-    t.add_triangle(tb[0], tb[2], tb[1]);
-    j.three.append(t);
-    return j;
-}
 
 Mesh reversed(Mesh m) {
     for (std::size_t f = 0; f < m.indices.size() / 3; ++f) std::swap(m.indices[3 * f + 1], m.indices[3 * f + 2]);
@@ -130,7 +47,7 @@ void expect_same_solid(const Mesh& one, const Mesh& three, bool moments) {
 TEST(SelfSolid, TwoSpheresJoinedByATubeEqualThreeShells) {
     const Mesh a = bench::uv_sphere(12, 24);
     const Mesh b = bench::uv_sphere(10, 20, 0.8, 0.9, 0.0625, 0.03125);
-    const Joined j = join_by_tube(a, b);
+    const bench::Joined j = bench::join_by_tube(a, b);
     expect_same_solid(j.one, j.three, true);
 }
 
@@ -138,7 +55,7 @@ TEST(SelfSolid, FarFromTheOriginAndAtOtherSizes) {
     for (const auto& [rings, offset] : {std::pair{6u, 0.0}, std::pair{16u, 1e6}, std::pair{24u, -37.5}}) {
         const Mesh a = bench::uv_sphere(rings, 2 * rings, 1.0, offset, offset, offset);
         const Mesh b = bench::uv_sphere(rings + 1, 2 * rings + 2, 0.7, offset + 1.1, offset + 0.125, offset - 0.0625);
-        const Joined j = join_by_tube(a, b);
+        const bench::Joined j = bench::join_by_tube(a, b);
         expect_same_solid(j.one, j.three, false);
     }
 }
@@ -155,7 +72,7 @@ Mesh flat_capped_sphere(uint32_t rings, uint32_t segments, double r, double cx, 
     for (uint32_t i = 1; i + 1 < segments; ++i)
         out.add_triangle(at(rings - 1, 0), at(rings - 1, segments - i), at(rings - 1, segments - i - 1));
     for (uint32_t f = segments; f + segments < m.indices.size() / 3; ++f) {
-        const auto c = face_of(m, f);
+        const auto c = bench::triangle_of(m, f);
         out.add_triangle(c[0], c[1], c[2]);
     }
     return out;
@@ -165,21 +82,21 @@ TEST(SelfSolid, FlatCapsCrossingTheOtherSphere) {
     const Mesh a = flat_capped_sphere(10, 20, 1.0, 0, 0, 0);
     const Mesh b = flat_capped_sphere(9, 18, 0.8, 0.9, 0.0625, 0.4);  // its south cap crosses a
     ASSERT_EQ(solid_volume(a.view()).volume, solid_volume(a.view(), false, true).volume);
-    const Joined j = join_by_tube(a, b);
+    const bench::Joined j = bench::join_by_tube(a, b);
     expect_same_solid(j.one, j.three, true);
 }
 
 // A sphere whose vertex (0.75, 1, -0.25) lies on the face y = 1 of a box
 // joined to it: the shell touches itself there, a status.
 TEST(SelfSolid, TouchingIsAStatus) {
-    const Joined touching = join_by_tube(test::box({-1, -1, -1}, {1, 1, 1}), bench::uv_sphere(12, 24, 0.9, 0.75, 0.1, -0.25));
+    const bench::Joined touching = bench::join_by_tube(test::box({-1, -1, -1}, {1, 1, 1}), bench::uv_sphere(12, 24, 0.9, 0.75, 0.1, -0.25));
     EXPECT_EQ(solid_volume(touching.one.view(), false, true).status, BooleanStatus::shell_touches_itself);
 }
 
 // With other shells in the file: a third sphere crossing S, and S inside out
 // as a cavity of a big sphere (its default front winding is -1 there).
 TEST(SelfSolid, AmongOtherShellsAndAsACavity) {
-    const Joined j = join_by_tube(bench::uv_sphere(10, 20), bench::uv_sphere(9, 18, 0.75, 1.0, 0.1, -0.05));
+    const bench::Joined j = bench::join_by_tube(bench::uv_sphere(10, 20), bench::uv_sphere(9, 18, 0.75, 1.0, 0.1, -0.05));
     const Mesh c = bench::uv_sphere(8, 16, 0.6, 0.5, 0.7, 0.2);
     Mesh one = j.one, three = j.three;
     one.append(c);
@@ -209,7 +126,7 @@ TEST(SelfSolid, AmongOtherShellsAndAsACavity) {
 
 // Scaling by 2 is exact and commutes with rounding: 8 times the volume, bit for bit.
 TEST(SelfSolid, ScalingByTwoGivesEightTimesTheVolume) {
-    const Joined j = join_by_tube(bench::uv_sphere(8, 16), bench::uv_sphere(8, 16, 0.9, 0.8, 0.05, 0.1));
+    const bench::Joined j = bench::join_by_tube(bench::uv_sphere(8, 16), bench::uv_sphere(8, 16, 0.9, 0.8, 0.05, 0.1));
     Mesh doubled = j.one;
     for (double& x : doubled.positions) x *= 2;
     const SolidVolume s = solid_volume(j.one.view(), false, true);
@@ -221,7 +138,7 @@ TEST(SelfSolid, ScalingByTwoGivesEightTimesTheVolume) {
 
 // Without within_shells nothing is looked for: the shell's sum stands.
 TEST(SelfSolid, NotLookedForUnlessAsked) {
-    const Joined j = join_by_tube(bench::uv_sphere(8, 16), bench::uv_sphere(8, 16, 0.9, 0.8, 0.05, 0.1));
+    const bench::Joined j = bench::join_by_tube(bench::uv_sphere(8, 16), bench::uv_sphere(8, 16, 0.9, 0.8, 0.05, 0.1));
     const SolidVolume s = solid_volume(j.one.view());
     ASSERT_EQ(s.status, BooleanStatus::ok);
     EXPECT_FALSE(s.within_checked);
