@@ -277,6 +277,10 @@ FileResult process_file(const std::string& path, const Request& request) {
         r.warning += (r.warning.empty() ? "" : "; ") + path + ": " + self_crossing_sentence(*r.self) +
                      ": the volume counts the region it wraps by its winding number there, not as the solid";
     }
+    // Coordinates a reader computed (3MF transforms): every guarantee widened
+    // to hold for the coordinates the file defines.
+    if (r.mass && r.loaded->coordinate_error > 0)
+        widen_for_coordinate_error(view, r.loaded->coordinate_error, request.measure.density, closed, *r.mass);
     r.seconds_measure = seconds_since(t0);
     return r;
 }

@@ -69,6 +69,10 @@ struct LoadedMesh {
     std::string encoding;             // "ascii", "binary_le", "binary_be", "zip", "xml"
     bool gzip = false;                // the bytes were gzip-compressed
     std::vector<std::string> notes;   // quirks met while reading, e.g. "stl-multiple-solids(2)"
+    // A bound on |coordinate - the value the file defines| for every vertex:
+    // 0 when the coordinates are the file's numbers; above 0 where the reader
+    // computed them (3MF transforms, applied in floating point).
+    double coordinate_error = 0;
 };
 
 // Reads a file; "-" reads standard input. Throws ReadError.

@@ -130,6 +130,25 @@ double surface_area(const MeshView& mesh);
 // after welding vertices with bit-identical coordinates (-0.0 == +0.0).
 double total_edge_length(const MeshView& mesh);
 
+// How far the measures of a closed mesh can move when every coordinate moves
+// by at most delta (coordinates a reader computed, say: io.hpp's
+// LoadedMesh::coordinate_error). Absolute bounds, density 1: on |ΔV|, on
+// every |ΔF_i| (first moments), every |ΔS_ij| (second moments about the
+// origin), |Δarea| and |Δedge length| (each edge of each face counted).
+// closed: the surface is a closed 2-cycle (its volume does not depend on the
+// origin, which tightens that bound). Formulas and proof: docs/numerics.md,
+// "Coordinates within delta".
+struct PerturbationBounds {
+    double volume = 0, first_moments = 0, second_moments = 0, area = 0, edge_length = 0;
+};
+PerturbationBounds perturbation_bounds(const MeshView& mesh, double delta, bool closed);
+
+// Widens m's guarantees to hold for the coordinates within delta of those
+// m was computed from (perturbation_bounds, scaled by the density): volume,
+// area and edge length by absolute bounds, centroid, moments and inertia by
+// one relative bound (MassProperties::moments_relative_error's meaning).
+void widen_for_coordinate_error(const MeshView& mesh, double delta, double density, bool closed, MassProperties& m);
+
 // Whether the surface is a closed 2-cycle (topology.hpp's closed_2_cycle:
 // every edge between two distinct points used as often in each direction,
 // points compared by their coordinates, -0.0 == +0.0), decided by the

@@ -22,8 +22,9 @@
 // accurate as if computed in twice double precision and then rounded, so it is
 // almost always the correctly rounded value the corpus manifest uses (exact
 // rational arithmetic), but it can differ in the last bit, and nested
-// transforms round once per level. Identity transforms leave coordinates
-// untouched.
+// transforms round once per level: LoadedMesh::coordinate_error bounds the
+// difference (each level's Dot2 bound, and the earlier levels' through |M|).
+// Identity transforms leave coordinates untouched.
 //
 // Units: the model's unit attribute is read and reported as a note
 // ("3mf-unit(<unit>)") when it is not the default millimeter; coordinates are
@@ -38,6 +39,7 @@
 // the zip (its own components refer to objects of that part).
 #include <pugixml.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -90,6 +92,17 @@ inline double dot3_plus(double a0, double b0, double a1, double b1, double a2, d
     two_sum(s1, p2, s2, q2);
     two_sum(s2, c, s3, q3);
     return s3 + (((e0 + e1) + e2) + ((q1 + q2) + q3));
+}
+
+// A bound on |dot3_plus(...) - the exact value|: Dot2 of n = 4 terms (c as
+// c · 1) is within u |s| + γ_4² Σ|a_i b_i| of the exact s (Ogita, Rump, Oishi
+// 2005, Prop. 5.3; γ_k = k u / (1 - k u), γ_4² < 17 u²), so within
+// (u |r| + γ_4² Σ)/(1 - u) of the result r; rounded up generously, plus what
+// underflow in the products may lose.
+inline double dot3_plus_error(double r, double a0, double b0, double a1, double b1, double a2, double b2, double c) {
+    constexpr double u = 0x1p-53;
+    const double sum = std::fabs(a0 * b0) + std::fabs(a1 * b1) + std::fabs(a2 * b2) + std::fabs(c);
+    return (1 + 8 * u) * (u * std::fabs(r) + 20 * u * u * sum) + 0x1p-1020 * 0x1p-50;
 }
 
 struct MeshData {
@@ -403,15 +416,27 @@ private:
             pos.reserve(pos.size() + m.positions.size());
             for (std::size_t v = 0; v < nv; ++v) {
                 double x = m.positions[3 * v], y = m.positions[3 * v + 1], z = m.positions[3 * v + 2];
+                double ex = 0, ey = 0, ez = 0;  // bounds on each coordinate's error so far
                 for (auto t = chain_.rbegin(); t != chain_.rend(); ++t) {  // innermost first
                     const Affine& a = *t;
                     const double nx = dot3_plus(x, a[0], y, a[3], z, a[6], a[9]);
                     const double ny = dot3_plus(x, a[1], y, a[4], z, a[7], a[10]);
                     const double nz = dot3_plus(x, a[2], y, a[5], z, a[8], a[11]);
+                    // This level's rounding, plus the earlier errors through |M|.
+                    auto carried = [&](double m0, double m1, double m2) {
+                        return (1 + 0x1p-50) * (std::fabs(m0) * ex + std::fabs(m1) * ey + std::fabs(m2) * ez);
+                    };
+                    const double fx = dot3_plus_error(nx, x, a[0], y, a[3], z, a[6], a[9]) + carried(a[0], a[3], a[6]);
+                    const double fy = dot3_plus_error(ny, x, a[1], y, a[4], z, a[7], a[10]) + carried(a[1], a[4], a[7]);
+                    const double fz = dot3_plus_error(nz, x, a[2], y, a[5], z, a[8], a[11]) + carried(a[2], a[5], a[8]);
                     x = nx;
                     y = ny;
                     z = nz;
+                    ex = fx;
+                    ey = fy;
+                    ez = fz;
                 }
+                out_.coordinate_error = std::max({out_.coordinate_error, ex, ey, ez});
                 if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
                     fail(p, ref, "a transformed vertex overflows the double range");
                 pos.push_back(x);

@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -105,3 +106,37 @@ TEST(JsonKeys, FastFallsBackWhereItsBoundMeansNothing) {
 }
 
 }  // namespace
+
+// 3MF transforms are applied in floating point: the volume of the rounded
+// coordinates is not the file's. A tetrahedron of volume 500000/3 moved by
+// (0.1, 0.2, 0.3) and one also turned by (0.6, 0.8) are reported with a bound
+// that holds (|V - 500000/3| <= |V - its double| + half an ulp), not as
+// correctly rounded; the same file without the transform keeps the claim.
+TEST(JsonKeys, ThreeMfTransformsGiveABoundNotAClaim) {
+    auto model = [](const std::string& transform) {
+        return std::string(R"(<?xml version="1.0" encoding="UTF-8"?>
+<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">
+ <resources><object id="1" type="model"><mesh>
+  <vertices><vertex x="0" y="0" z="0"/><vertex x="100" y="0" z="0"/><vertex x="0" y="100" z="0"/><vertex x="0" y="0" z="100"/></vertices>
+  <triangles><triangle v1="0" v2="2" v3="1"/><triangle v1="0" v2="1" v3="3"/><triangle v1="0" v2="3" v3="2"/><triangle v1="1" v2="2" v3="3"/></triangles>
+ </mesh></object></resources>
+ <build><item objectid="1")") + (transform.empty() ? "" : " transform=\"" + transform + "\"") + "/></build>\n</model>\n";
+    };
+    const double exact_rounded = 500000.0 / 3, half_ulp = 0.5 * (std::nextafter(exact_rounded, 1e9) - exact_rounded);
+    const json plain = run("measure --json '" + scratch("plain.3mf", model("")).string() + "'");
+    EXPECT_EQ(plain["accuracy"], "correctly-rounded");
+    EXPECT_EQ(plain["volume"], exact_rounded);
+    const json moved = run("measure --json '" + scratch("moved.3mf", model("1 0 0 0 1 0 0 0 1 0.1 0.2 0.3")).string() + "'");
+    EXPECT_EQ(moved["accuracy"], "error-bound");
+    EXPECT_EQ(moved["moments_accuracy"], "error-bound");
+    const double v = moved["volume"], bound = moved["volume_error_bound"];
+    EXPECT_LE(std::fabs(v - exact_rounded) + half_ulp, bound);
+    EXPECT_LT(bound, 1e-8);
+    EXPECT_LT(moved["moments_relative_error"].get<double>(), 1e-12);
+    // Turned: det M = 0.6² + 0.8² in doubles, within 1e-16 of 1.
+    const json turned = run("measure --json '" + scratch("turned.3mf", model("0.6 0.8 0 -0.8 0.6 0 0 0 1 10.1 -3.3 7.7")).string() + "'");
+    EXPECT_EQ(turned["accuracy"], "error-bound");
+    EXPECT_LE(std::fabs(turned["volume"].get<double>() - exact_rounded), turned["volume_error_bound"].get<double>() + 1e-16 * exact_rounded);
+    const auto table = cli_test::run_polyvol("volume '" + scratch("moved2.3mf", model("1 0 0 0 1 0 0 0 1 0.1 0.2 0.3")).string() + "'");
+    EXPECT_NE(table.out.find(" ±"), std::string::npos) << table.out;
+}
