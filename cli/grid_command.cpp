@@ -187,7 +187,8 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
         ->required();
     auto* cells = cmd->add_option("--cells", a.cells, "Cells along the longest side, cubic cells")
                       ->check(CLI::Range(3u, 1u << 20))
-                      ->capture_default_str();
+                      ->capture_default_str()
+                      ->each([&a](const std::string&) { a.cells_given = true; });
     auto* size = cmd->add_option("--cell-size", a.cell_size, "Cubic cells of this edge length")
                      ->check(CLI::PositiveNumber);
     auto* dims = cmd->add_option("--dims", a.dims, "Cells per axis: NX NY NZ")
@@ -273,6 +274,30 @@ int run_grid_command(const GridArgs& a) {
         mesh_volumes.push_back(signed_volume(v));
     }
     if (code != Exit::ok) return code;
+
+    // Explicit planes against the other grid options: a disagreement is an
+    // error, never a silent choice.
+    {
+        const std::vector<double>* explicit_planes[3] = {&a.x_planes, &a.y_planes, &a.z_planes};
+        const char* axis = "xyz";
+        for (int k = 0; k < 3; ++k) {
+            const std::vector<double>& p = *explicit_planes[k];
+            if (p.empty()) continue;
+            const std::string flag = std::string("--") + axis[k] + "-planes";
+            if (a.dims.size() == 3 && p.size() != std::size_t{a.dims[k]} + 1)
+                return usage_error("--dims gives " + std::to_string(a.dims[k]) + " cells along " + axis[k] + " but " +
+                                   flag + " gives " + std::to_string(p.size()) + " planes (" +
+                                   std::to_string(p.size() - 1) + " cells): give one of them, or make them agree");
+            if (a.bounds.size() == 6 && (p.front() != a.bounds[k] || p.back() != a.bounds[3 + k]))
+                return usage_error("--bounds gives " + std::string(1, axis[k]) + " from " + shortest(a.bounds[k]) +
+                                   " to " + shortest(a.bounds[3 + k]) + " but " + flag + " runs from " +
+                                   shortest(p.front()) + " to " + shortest(p.back()));
+        }
+        if (!a.x_planes.empty() && !a.y_planes.empty() && !a.z_planes.empty() &&
+            (a.cells_given || a.cell_size > 0))
+            return usage_error(std::string(a.cell_size > 0 ? "--cell-size" : "--cells") +
+                               " has no effect when --x-planes, --y-planes and --z-planes give every plane");
+    }
 
     // The grid.
     GridAxes g;

@@ -12,6 +12,7 @@ namespace polyvol::cli {
 struct GridArgs {
     std::vector<std::string> files;
     uint32_t cells = 128;
+    bool cells_given = false;  // --cells was on the command line (not the default)
     double cell_size = 0;
     std::vector<uint32_t> dims;
     std::vector<double> bounds;

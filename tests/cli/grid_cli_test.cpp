@@ -276,6 +276,20 @@ TEST(GridCli, ExitCodes) {
     EXPECT_EQ(polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " --png x.png --slice w=3").code, 1);
     EXPECT_EQ(polyvol("grid " + corpus("stl-models/unitCube.ascii.stl") + " --png x.png --slice z=7").code, 1);
     EXPECT_EQ(polyvol("grid").code, 1);
+    // 1: planes that disagree with --dims, --bounds or --cells (never a silent choice)
+    const std::string cube = corpus("stl-models/unitCube.ascii.stl");
+    const CliRun dims = polyvol("grid " + cube + " --dims 4 4 4 --x-planes 0,0.5,1");
+    EXPECT_EQ(dims.code, 1);
+    EXPECT_NE(dims.err.find("--dims gives 4 cells along x but --x-planes gives 3 planes (2 cells)"), std::string::npos)
+        << dims.err;
+    EXPECT_EQ(polyvol("grid " + cube + " --dims 2 4 4 --x-planes 0,0.5,1 -o '" + scratch("agree.json").string() + "'").code, 0);
+    const CliRun bounds = polyvol("grid " + cube + " --bounds 0 0 0 1 1 1 --y-planes -0.5,0.5,1");
+    EXPECT_EQ(bounds.code, 1);
+    EXPECT_NE(bounds.err.find("--bounds gives y from 0 to 1 but --y-planes runs from -0.5 to 1"), std::string::npos)
+        << bounds.err;
+    const CliRun every = polyvol("grid " + cube + " --cells 8 --x-planes 0,1 --y-planes 0,1 --z-planes 0,1");
+    EXPECT_EQ(every.code, 1);
+    EXPECT_NE(every.err.find("--cells has no effect"), std::string::npos) << every.err;
     // 3: nothing to grid
     EXPECT_EQ(polyvol("grid " + corpus("stl-models/faceless.ascii.stl")).code, 3);
 }
