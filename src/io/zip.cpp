@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 
@@ -219,6 +220,47 @@ std::string method_text(uint64_t method) {
     return text;
 }
 
+uint64_t little_endian(Bytes data, uint64_t at, int bytes) {
+    uint64_t v = 0;
+    for (int i = bytes - 1; i >= 0; --i) v = (v << 8) | std::to_integer<uint64_t>(data[at + static_cast<uint64_t>(i)]);
+    return v;
+}
+
+// The sizes and local header offset of the central directory record at
+// `at`, from its ZIP64 extended information (extra field 0x0001) where the
+// 32-bit fields hold 0xFFFFFFFF. (Debian's minizip 1.1 does not read it, and
+// then takes 0xFFFFFFFF for the sizes.) nullopt when no field is 0xFFFFFFFF,
+// or the record is not where it should be.
+std::optional<Zip64Sizes> zip64_sizes(Bytes data, uint64_t at) {
+    constexpr uint64_t kMax = 0xFFFFFFFF;
+    if (at > data.size() || data.size() - at < 46 || little_endian(data, at, 4) != 0x02014b50) return std::nullopt;
+    Zip64Sizes z{little_endian(data, at + 24, 4), little_endian(data, at + 20, 4), little_endian(data, at + 42, 4)};
+    if (z.size != kMax && z.compressed != kMax && z.offset != kMax) return std::nullopt;
+    const uint64_t name_length = little_endian(data, at + 28, 2), extra_length = little_endian(data, at + 30, 2);
+    uint64_t p = at + 46 + name_length;
+    const uint64_t end = p + extra_length;
+    if (end > data.size()) return std::nullopt;
+    while (p + 4 <= end) {
+        const uint64_t id = little_endian(data, p, 2), length = little_endian(data, p + 2, 2);
+        p += 4;
+        if (length > end - p) return std::nullopt;
+        if (id == 0x0001) {
+            uint64_t q = p;
+            auto take = [&](uint64_t& field) {
+                if (field != kMax) return true;
+                if (q + 8 > p + length) return false;
+                field = little_endian(data, q, 8);
+                q += 8;
+                return true;
+            };
+            if (!take(z.size) || !take(z.compressed) || !take(z.offset)) return std::nullopt;
+            return z;
+        }
+        p += length;
+    }
+    return std::nullopt;  // 0xFFFFFFFF without the field: minizip's reading stands (and the limits judge it)
+}
+
 // Closes the entry minizip has open, also when reading it throws.
 class OpenEntry {
 public:
@@ -245,6 +287,7 @@ struct ZipArchive::Impl {
     struct Entry {
         std::string name;
         unz64_file_pos pos{};  // where minizip finds it in the central directory
+        std::optional<Zip64Sizes> zip64;  // read here, not by minizip
     };
 
     MemoryStream stream;
@@ -304,6 +347,7 @@ ZipArchive::ZipArchive(Bytes data, std::string name, uint64_t max_total_bytes)
         Impl::Entry e;
         e.name = decoded_name(raw, info.flag, extra);
         if (unzGetFilePos64(z.uf, &e.pos) != UNZ_OK) throw corrupt(index);
+        e.zip64 = zip64_sizes(data, e.pos.pos_in_zip_directory);
         z.by_name.emplace(e.name, index);
         z.entries.push_back(std::move(e));
         rc = unzGoToNextFile(z.uf);
@@ -358,12 +402,18 @@ std::vector<std::byte> ZipArchive::read(const std::string& entry) {
                                                "entries can be read (minizip)");
     // minizip never returns more than the claimed size; the claim is checked
     // against the budget before anything is allocated for it.
-    const uint64_t claimed = info.uncompressed_size;
+    const Impl::Entry& e = z.entries[found->second];
+    const uint64_t claimed = e.zip64 ? e.zip64->size : info.uncompressed_size;
     if (claimed > budget)
         throw ReadError::whole_file(
             name_, "zip entry '" + entry + "' claims " + bytes_text(claimed) + " uncompressed, more than " +
                        limit_text + "; refusing to decompress it");
 
+    if (e.zip64) {
+        std::vector<std::byte> out = read_zip64_entry(entry, *e.zip64, info.compression_method, info.crc);
+        used_ += out.size();
+        return out;
+    }
     if (const int rc = unzOpenCurrentFile(z.uf); rc != UNZ_OK)
         throw ReadError::whole_file(name_, "cannot open zip entry '" + entry + "': " + unz_error_text(rc));
     OpenEntry open(z.uf);
@@ -397,6 +447,60 @@ std::vector<std::byte> ZipArchive::read(const std::string& entry) {
                                                bytes_text(out.size()) + " where its header says " +
                                                bytes_text(claimed) + " (the data is corrupt)");
     used_ += out.size();
+    return out;
+}
+
+// A ZIP64 entry, from the archive in memory: its local header at the
+// offset the central directory gives, then `compressed` bytes, stored or raw
+// deflate, which must give exactly `size` bytes with the CRC-32 `crc`.
+std::vector<std::byte> ZipArchive::read_zip64_entry(const std::string& entry, const Zip64Sizes& z, uint64_t method,
+                                                     uint64_t crc) {
+    const Bytes data = impl_->stream.data;
+    auto corrupt = [&](const std::string& why) {
+        return ReadError::whole_file(name_, "cannot read zip entry '" + entry + "': " + why);
+    };
+    if (z.offset > data.size() || data.size() - z.offset < 30 || little_endian(data, z.offset, 4) != 0x04034b50)
+        throw corrupt("no local header at offset " + std::to_string(z.offset));
+    const uint64_t start = z.offset + 30 + little_endian(data, z.offset + 26, 2) + little_endian(data, z.offset + 28, 2);
+    if (start > data.size() || data.size() - start < z.compressed)
+        throw corrupt("its " + bytes_text(z.compressed) + " of data run past the end of the archive");
+    const auto* in = reinterpret_cast<const Bytef*>(data.data() + start);
+    std::vector<std::byte> out;
+    if (method == 0) {
+        if (z.compressed != z.size) throw corrupt("a stored entry whose sizes differ");
+        out.assign(data.begin() + static_cast<std::ptrdiff_t>(start),
+                   data.begin() + static_cast<std::ptrdiff_t>(start + z.size));
+    } else {
+        out.resize(static_cast<std::size_t>(z.size));
+        z_stream zs{};
+        if (inflateInit2(&zs, -MAX_WBITS) != Z_OK) throw corrupt("zlib cannot start");
+        uint64_t read = 0, written = 0;
+        int rc = Z_OK;
+        while (rc == Z_OK) {
+            constexpr uint64_t kStep = uint64_t{1} << 30;
+            zs.next_in = const_cast<Bytef*>(in + read);
+            zs.avail_in = static_cast<uInt>(std::min(kStep, z.compressed - read));
+            zs.next_out = reinterpret_cast<Bytef*>(out.data() + written);
+            zs.avail_out = static_cast<uInt>(std::min(kStep, z.size - written));
+            const uInt in_before = zs.avail_in, out_before = zs.avail_out;
+            rc = inflate(&zs, Z_NO_FLUSH);
+            read += in_before - zs.avail_in;
+            written += out_before - zs.avail_out;
+            if (rc == Z_OK && in_before == zs.avail_in && out_before == zs.avail_out) rc = Z_BUF_ERROR;
+        }
+        inflateEnd(&zs);
+        if (rc != Z_STREAM_END || written != z.size)
+            throw corrupt(rc == Z_STREAM_END ? "it holds " + bytes_text(written) + " where its header says " +
+                                                   bytes_text(z.size) + " (the data is corrupt)"
+                                             : "its deflate data is corrupt or longer than its header says");
+    }
+    uLong c = crc32(0L, Z_NULL, 0);
+    for (uint64_t done = 0; done < out.size();) {
+        const auto n = static_cast<uInt>(std::min<uint64_t>(out.size() - done, uint64_t{1} << 30));
+        c = crc32(c, reinterpret_cast<const Bytef*>(out.data() + done), n);
+        done += n;
+    }
+    if (c != crc) throw corrupt("CRC mismatch (the data is corrupt)");
     return out;
 }
 

@@ -23,6 +23,12 @@
 
 namespace polyvol::io {
 
+// An entry's uncompressed and compressed sizes and its local header's offset,
+// as its ZIP64 extra field gives them.
+struct Zip64Sizes {
+    uint64_t size = 0, compressed = 0, offset = 0;
+};
+
 class ZipArchive {
 public:
     // Opens the archive in data (which must outlive this object). Throws
@@ -55,6 +61,8 @@ public:
 
 private:
     struct Impl;  // the minizip handle (unzFile), its in-memory stream and the entry index
+    std::vector<std::byte> read_zip64_entry(const std::string& entry, const Zip64Sizes& sizes, uint64_t method,
+                                            uint64_t crc);
     std::unique_ptr<Impl> impl_;
     std::string name_;
     uint64_t limit_ = 0;

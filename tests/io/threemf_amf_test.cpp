@@ -495,6 +495,87 @@ TEST(ThreeMfReader, BadReferencesAndTransforms) {
     EXPECT_NE(e.message.find("expected <model>"), std::string::npos) << e.message;
 }
 
+// A zip whose records all use ZIP64 (as lib3mf writes them): 0xFFFFFFFF in
+// every 32-bit size and offset, the values in the extra field 0x0001 of the
+// local and central headers, a ZIP64 end of central directory. `stored`:
+// method 0 instead of deflate; `bad_crc`: the CRC of the last entry is off by one.
+Bytes make_zip64(const std::vector<std::pair<std::string, std::string>>& entries, bool stored = false,
+                 bool bad_crc = false) {
+    Bytes out, central;
+    auto put = [](Bytes& b, uint64_t v, int n) {
+        for (int i = 0; i < n; ++i) b.push_back(static_cast<std::byte>((v >> (8 * i)) & 0xFF));
+    };
+    auto put_text = [](Bytes& b, const std::string& t) {
+        for (char c : t) b.push_back(static_cast<std::byte>(c));
+    };
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+        const auto& [name, text] = entries[k];
+        std::string data = text;
+        if (!stored) {
+            z_stream zs{};
+            deflateInit2(&zs, Z_DEFAULT_COMPRESSION, Z_DEFLATED, -MAX_WBITS, 8, Z_DEFAULT_STRATEGY);
+            data.resize(deflateBound(&zs, static_cast<uLong>(text.size())));
+            zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(text.data()));
+            zs.avail_in = static_cast<uInt>(text.size());
+            zs.next_out = reinterpret_cast<Bytef*>(data.data());
+            zs.avail_out = static_cast<uInt>(data.size());
+            deflate(&zs, Z_FINISH);
+            data.resize(zs.total_out);
+            deflateEnd(&zs);
+        }
+        uint32_t crc = static_cast<uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(text.data()), static_cast<uInt>(text.size())));
+        if (bad_crc && k + 1 == entries.size()) ++crc;
+        const uint64_t offset = out.size();
+        put(out, 0x04034b50, 4); put(out, 45, 2); put(out, 0, 2); put(out, stored ? 0 : 8, 2); put(out, 0, 4);
+        put(out, crc, 4); put(out, 0xFFFFFFFF, 4); put(out, 0xFFFFFFFF, 4); put(out, name.size(), 2); put(out, 20, 2);
+        put_text(out, name);
+        put(out, 1, 2); put(out, 16, 2); put(out, text.size(), 8); put(out, data.size(), 8);
+        put_text(out, data);
+        put(central, 0x02014b50, 4); put(central, 45, 2); put(central, 45, 2); put(central, 0, 2);
+        put(central, stored ? 0 : 8, 2); put(central, 0, 4); put(central, crc, 4); put(central, 0xFFFFFFFF, 4);
+        put(central, 0xFFFFFFFF, 4); put(central, name.size(), 2); put(central, 28, 2); put(central, 0, 2);
+        put(central, 0, 2); put(central, 0, 2); put(central, 0, 4); put(central, 0xFFFFFFFF, 4);
+        put_text(central, name);
+        put(central, 1, 2); put(central, 24, 2); put(central, text.size(), 8); put(central, data.size(), 8);
+        put(central, offset, 8);
+    }
+    const uint64_t cd = out.size();
+    out.insert(out.end(), central.begin(), central.end());
+    const uint64_t end64 = out.size();
+    put(out, 0x06064b50, 4); put(out, 44, 8); put(out, 45, 2); put(out, 45, 2); put(out, 0, 4); put(out, 0, 4);
+    put(out, entries.size(), 8); put(out, entries.size(), 8); put(out, central.size(), 8); put(out, cd, 8);
+    put(out, 0x07064b50, 4); put(out, 0, 4); put(out, end64, 8); put(out, 1, 4);
+    put(out, 0x06054b50, 4); put(out, 0, 2); put(out, 0, 2); put(out, 0xFFFF, 2); put(out, 0xFFFF, 2);
+    put(out, 0xFFFFFFFF, 4); put(out, 0xFFFFFFFF, 4); put(out, 0, 2);
+    return out;
+}
+
+// ZIP64 entries (sizes 0xFFFFFFFF in the headers, the real ones in the extra
+// field) read as the same package written without ZIP64; corrupt ones are errors.
+TEST(ThreeMfReader, Zip64Entries) {
+    const std::vector<std::pair<std::string, std::string>> parts = {{"[Content_Types].xml", "<Types/>"},
+                                                                    {"_rels/.rels", kRels},
+                                                                    {"3D/3dmodel.model", kMainModel},
+                                                                    {"3D/other.model", kOtherModel}};
+    const LoadedMesh plain = polyvol::io::read_3mf_zip(make_zip(parts), "plain.3mf");
+    for (const bool stored : {false, true}) {
+        const LoadedMesh m = polyvol::io::read_3mf_zip(make_zip64(parts, stored), "zip64.3mf");
+        EXPECT_EQ(m.mesh.positions, plain.mesh.positions);
+        EXPECT_EQ(m.mesh.indices, plain.mesh.indices);
+    }
+    ReadError e = expect_read_error([&] { polyvol::io::read_3mf_zip(make_zip64(parts, false, true), "crc.3mf"); });
+    EXPECT_NE(e.message.find("CRC mismatch"), std::string::npos) << e.message;
+    Bytes stored = make_zip64(parts, true);
+    // The main model's text corrupted in place: the CRC says so.
+    const std::string probe = "<vertices>";
+    auto at = std::search(stored.begin(), stored.end(), probe.begin(), probe.end(),
+                          [](std::byte b, char c) { return b == static_cast<std::byte>(c); });
+    ASSERT_NE(at, stored.end());
+    *at = static_cast<std::byte>('[');
+    e = expect_read_error([&] { polyvol::io::read_3mf_zip(stored, "flipped.3mf"); });
+    EXPECT_NE(e.message.find("CRC mismatch"), std::string::npos) << e.message;
+}
+
 TEST(ThreeMfReader, ZipProblems) {
     const Bytes junk = to_bytes("PK\x03\x04 this is not really a zip archive");
     ReadError e = expect_read_error([&] { polyvol::io::read_3mf_zip(junk, "junk.3mf"); });
