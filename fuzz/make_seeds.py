@@ -20,6 +20,29 @@ def copy(target, rel):
     shutil.copy(CORPUS + rel, SEEDS + target + '/' + os.path.basename(rel))
 
 
+def zipped64(entries):
+    """A zip whose headers all use ZIP64 (0xFFFFFFFF sizes and offsets, the values in extra field 1)."""
+    import zlib
+    out, central = bytearray(), bytearray()
+    for name, text in entries:
+        data, raw = text.encode(), None
+        c = zlib.compressobj(9, zlib.DEFLATED, -15)
+        raw = c.compress(data) + c.flush()
+        crc, nb, off = zlib.crc32(data), name.encode(), len(out)
+        out += struct.pack('<IHHHIIIIHH', 0x04034b50, 45, 0, 8, 0, crc, 0xFFFFFFFF, 0xFFFFFFFF, len(nb), 20) + nb
+        out += struct.pack('<HHQQ', 1, 16, len(data), len(raw)) + raw
+        central += struct.pack('<IHHHHIIIIHHHHHII', 0x02014b50, 45, 45, 0, 8, 0, crc, 0xFFFFFFFF, 0xFFFFFFFF,
+                               len(nb), 28, 0, 0, 0, 0, 0xFFFFFFFF) + nb
+        central += struct.pack('<HHQQQ', 1, 24, len(data), len(raw), off)
+    cd = len(out)
+    out += central
+    end64 = len(out)
+    out += struct.pack('<IQHHIIQQQQ', 0x06064b50, 44, 45, 45, 0, 0, len(entries), len(entries), len(central), cd)
+    out += struct.pack('<IIQI', 0x07064b50, 0, end64, 1)
+    out += struct.pack('<IHHHHIIH', 0x06054b50, 0, 0, 0xFFFF, 0xFFFF, 0xFFFFFFFF, 0xFFFFFFFF, 0)
+    return bytes(out)
+
+
 def zipped(entries):
     bio = io.BytesIO()
     with zipfile.ZipFile(bio, 'w', zipfile.ZIP_DEFLATED) as z:
@@ -83,6 +106,7 @@ model = ('<?xml version="1.0" encoding="UTF-8"?>\n<model unit="millimeter" '
          '<build><item objectid="1"/><item objectid="2" transform="0 1 0 -1 0 0 0 0 1 0 0 5"/></build></model>')
 put('3mf', 'tet.3mf', zipped([('[Content_Types].xml', '<?xml version="1.0"?><Types/>'), ('3D/3dmodel.model', model)]))
 put('3mf', 'tet_stored.3mf', zipped([('3D/3dmodel.model', model)]))
+put('3mf', 'tet_zip64.3mf', zipped64([('3D/3dmodel.model', model)]))
 amf = ('<?xml version="1.0"?>\n<amf unit="millimeter"><object id="0"><mesh><vertices>'
        + ''.join('<vertex><coordinates><x>%g</x><y>%g</y><z>%g</z></coordinates></vertex>' % v for v in V)
        + '</vertices><volume>' + ''.join('<triangle><v1>%d</v1><v2>%d</v2><v3>%d</v3></triangle>' % f for f in F)
