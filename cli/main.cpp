@@ -99,12 +99,22 @@ int run(Command command, const Common& c) {
         request.measure.second_moments = false;
         request.measure.edge_length = false;
     }
+    // A zip archive of plain meshes (not a 3MF or AMF package) is its members,
+    // each measured as a file of its own, "ARCHIVE:MEMBER".
+    std::vector<std::pair<std::string, std::string>> inputs;  // (file, member)
+    for (const std::string& f : c.files) {
+        const std::vector<std::string> members = f == "-" ? std::vector<std::string>{} : mesh_archive_members(f);
+        if (members.empty()) inputs.emplace_back(f, "");
+        for (const std::string& m : members) inputs.emplace_back(f, m);
+    }
     std::vector<FileResult> results;
     int code = Exit::ok;
-    const bool progress = c.files.size() > 1;
-    for (std::size_t i = 0; i < c.files.size(); ++i) {
-        if (progress && !c.json) std::cerr << "[" << (i + 1) << "/" << c.files.size() << "] " << c.files[i] << "\n";
-        results.push_back(process_file(c.files[i], request));
+    const bool progress = inputs.size() > 1;
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const auto& [file, member] = inputs[i];
+        if (progress && !c.json)
+            std::cerr << "[" << (i + 1) << "/" << inputs.size() << "] " << file << (member.empty() ? "" : ":" + member) << "\n";
+        results.push_back(process_file(file, request, member));
         const FileResult& r = results.back();
         code = std::max(code, r.exit_code);
         if (!r.error.empty()) std::cerr << "polyvol: " << r.error << "\n";

@@ -181,14 +181,15 @@ std::string self_crossing_line(const FileResult& r) {
                                 : "");
 }
 
-FileResult process_file(const std::string& path, const Request& request) {
-    if (request.stream && request.need_mass && request.measure.method == Method::cone)
-        if (auto s = stream_binary_stl(path, request.volume_only)) return std::move(*s);
+FileResult process_file(const std::string& file, const Request& request, const std::string& member) {
+    if (request.stream && request.need_mass && request.measure.method == Method::cone && member.empty())
+        if (auto s = stream_binary_stl(file, request.volume_only)) return std::move(*s);
     FileResult r;
-    r.file = path;
+    r.file = member.empty() ? file : file + ":" + member;
+    const std::string& path = r.file;  // the name in every message
     auto t0 = std::chrono::steady_clock::now();
     try {
-        r.loaded = read_mesh_file(path);
+        r.loaded = member.empty() ? read_mesh_file(file) : read_archive_member(file, member);
     } catch (const ReadError& e) {
         r.exit_code = Exit::unreadable;
         r.error = e.what();

@@ -94,7 +94,9 @@ struct Request {
 };
 
 // Reads, analyses and measures one file; never throws.
-FileResult process_file(const std::string& path, const Request& request);
+// member: one mesh of a zip archive of meshes (mesh_archive_members),
+// reported as "FILE:MEMBER"; empty for the file itself.
+FileResult process_file(const std::string& file, const Request& request, const std::string& member = "");
 
 // Shortest decimal that reads back as the same double ("nan", "inf" spelled out).
 std::string shortest(double v);

@@ -75,8 +75,17 @@ struct LoadedMesh {
     double coordinate_error = 0;
 };
 
-// Reads a file; "-" reads standard input. Throws ReadError.
+// Reads a file; "-" reads standard input. Throws ReadError (a zip archive
+// of several meshes, not a 3MF or AMF package, included: see below).
 LoadedMesh read_mesh_file(const std::string& path);
+
+// A zip archive of plain meshes (not a 3MF package, no *.amf member): the
+// members that are meshes by their extension (stl, obj, off, ply, 3mf, each
+// also .gz), in archive order; empty for any other file.
+std::vector<std::string> mesh_archive_members(const std::string& path);
+// One member of such an archive, read as a file of its own named
+// "PATH:MEMBER" (the archive's decompression limits apply). Throws ReadError.
+LoadedMesh read_archive_member(const std::string& path, const std::string& member);
 
 // Reads from memory. name is used in messages and, through its extension, as a
 // format hint; hint overrides the extension when not unknown. Throws ReadError.

@@ -36,6 +36,7 @@
 #include <tbb/parallel_for.h>
 
 #include "io/readers.hpp"
+#include "io/zip.hpp"
 #include "io/text.hpp"
 
 namespace polyvol {
@@ -201,6 +202,20 @@ std::vector<std::byte> utf16_to_utf8(Bytes data, bool big_endian) {
     return out;
 }
 
+// The members of a zip that hold meshes by their extension (format_from_extension,
+// which looks through ".gz"), when the zip is not an AMF package (no *.amf):
+// a zip of plain meshes. Empty otherwise.
+std::vector<std::string> mesh_members(Bytes data, const std::string& name) {
+    io::ZipArchive zip(data, name);
+    std::vector<std::string> meshes;
+    for (const std::string& n : zip.file_names()) {
+        const Format f = format_from_extension(n);
+        if (f == Format::amf) return {};
+        if (f != Format::unknown) meshes.push_back(n);
+    }
+    return meshes;
+}
+
 LoadedMesh with_note_first(LoadedMesh m, std::string note) {
     m.notes.insert(m.notes.begin(), std::move(note));
     return m;
@@ -228,6 +243,16 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth, u
     if (io::is_zip(data)) {
         if (contains(data, "3D/3dmodel.model")) return io::read_3mf_zip(data, name);
         if (hint == Format::threemf) return io::read_3mf_zip(data, name);
+        // A zip of plain meshes is not one mesh: say what it holds.
+        if (const std::vector<std::string> meshes = mesh_members(data, name); !meshes.empty()) {
+            std::string list;
+            for (std::size_t i = 0; i < meshes.size() && i < 3; ++i) list += (i ? ", " : "") + meshes[i];
+            if (meshes.size() > 3) list += ", ...";
+            throw ReadError::whole_file(name, "a zip archive of " + std::to_string(meshes.size()) + " mesh file" +
+                                                  (meshes.size() == 1 ? "" : "s") + " (" + list +
+                                                  "), not a 3MF or AMF package: each is a mesh of its own "
+                                                  "(`polyvol volume` measures each as ARCHIVE:MEMBER)");
+        }
         return io::read_amf_zip(data, name);
     }
     const bool binary_stl = is_binary_stl(data);
@@ -390,6 +415,28 @@ private:
 };
 
 }  // namespace
+
+std::vector<std::string> mesh_archive_members(const std::string& path) {
+    {  // the zip magic first: other files are not read
+        std::byte head[4] = {};
+        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) return {};
+        const ssize_t n = ::pread(fd, head, sizeof head, 0);
+        ::close(fd);
+        if (n != static_cast<ssize_t>(sizeof head) || !io::is_zip(std::span<const std::byte>(head, sizeof head))) return {};
+    }
+    const FileBytes file(path);
+    if (!file.read() || !io::is_zip(file.bytes()) || contains(file.bytes(), "3D/3dmodel.model")) return {};
+    return mesh_members(file.bytes(), path);
+}
+
+LoadedMesh read_archive_member(const std::string& path, const std::string& member) {
+    const FileBytes file(path);
+    if (!file.read()) throw ReadError::whole_file(path, "cannot read the archive");
+    io::ZipArchive zip(file.bytes(), path);
+    const std::vector<std::byte> bytes = zip.read(member);
+    return read_mesh_memory(bytes, path + ":" + member, Format::unknown);
+}
 
 LoadedMesh read_mesh_file(const std::string& path) {
     if (path != "-") {

@@ -140,3 +140,21 @@ TEST(JsonKeys, ThreeMfTransformsGiveABoundNotAClaim) {
     const auto table = cli_test::run_polyvol("volume '" + scratch("moved2.3mf", model("1 0 0 0 1 0 0 0 1 0.1 0.2 0.3")).string() + "'");
     EXPECT_NE(table.out.find(" ±"), std::string::npos) << table.out;
 }
+
+// A zip of plain meshes (not a 3MF or AMF package) is its members, each
+// measured as a file of its own under ARCHIVE:MEMBER (tests/data/archives:
+// a 2-cube and a tetrahedron of legs 3, beside a README).
+TEST(JsonKeys, AZipOfMeshesIsItsMembers) {
+    const std::string zip = std::string(POLYVOL_TEST_DATA) + "/archives/two_meshes.zip";
+    const auto r = cli_test::run_polyvol("volume --json '" + zip + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json all = json::parse(r.out);
+    ASSERT_EQ(all.size(), 2u);
+    EXPECT_EQ(all[0]["file"], zip + ":cube.obj");
+    EXPECT_EQ(all[0]["volume"], 8.0);
+    EXPECT_EQ(all[1]["file"], zip + ":sub/tet.off");
+    EXPECT_EQ(all[1]["volume"], 4.5);
+    EXPECT_EQ(all[1]["format"], "off");
+    const auto table = cli_test::run_polyvol("volume '" + zip + "'");
+    EXPECT_NE(table.out.find("two_meshes.zip:sub/tet.off"), std::string::npos) << table.out;
+}

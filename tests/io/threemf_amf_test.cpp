@@ -576,6 +576,24 @@ TEST(ThreeMfReader, Zip64Entries) {
     EXPECT_NE(e.message.find("CRC mismatch"), std::string::npos) << e.message;
 }
 
+// A zip of plain meshes is not read as AMF XML: the error says what it holds,
+// and each member reads as a file of its own.
+TEST(ZipOfMeshes, IsNotOneMeshButItsMembers) {
+    const std::string path = std::string(POLYVOL_TEST_DATA) + "/archives/two_meshes.zip";
+    const ReadError e = expect_read_error([&] { polyvol::read_mesh_file(path); });
+    EXPECT_NE(e.message.find("a zip archive of 2 mesh files (cube.obj, sub/tet.off), not a 3MF or AMF package"),
+              std::string::npos)
+        << e.message;
+    EXPECT_EQ(polyvol::mesh_archive_members(path), (std::vector<std::string>{"cube.obj", "sub/tet.off"}));
+    const LoadedMesh tet = polyvol::read_archive_member(path, "sub/tet.off");
+    EXPECT_EQ(tet.format, polyvol::Format::off);
+    EXPECT_EQ(tet.mesh.face_count(), 4u);
+    expect_read_error([&] { polyvol::read_archive_member(path, "gone.stl"); });
+    // Not archives: nothing listed.
+    EXPECT_TRUE(polyvol::mesh_archive_members(std::string(POLYVOL_TEST_DATA) + "/self_crossing/one.obj").empty());
+    EXPECT_TRUE(polyvol::mesh_archive_members("/nonexistent/file.zip").empty());
+}
+
 TEST(ThreeMfReader, ZipProblems) {
     const Bytes junk = to_bytes("PK\x03\x04 this is not really a zip archive");
     ReadError e = expect_read_error([&] { polyvol::io::read_3mf_zip(junk, "junk.3mf"); });
