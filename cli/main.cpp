@@ -43,6 +43,7 @@ struct Common {
     bool volume_only = false;  // volume --volume-only
     bool solid = false;        // volume/measure --solid: the full overlap and self-crossing check
     bool orient = false;       // --orient: faces wound consistently and outward before measuring
+    bool keep_signed = false;  // --signed: an inside-out surface's signed sums, not turned outward
 };
 
 const char* const kOrientHelp =
@@ -68,6 +69,9 @@ void add_measure_options(CLI::App* cmd, Common& c) {
     cmd->add_flag("--allow-open", c.allow_open,
                   "Measure surfaces with unbalanced edges anyway (the result then depends on the origin)");
     cmd->add_flag("--orient", c.orient, kOrientHelp);
+    cmd->add_flag("--signed", c.keep_signed,
+                  "Keep the signed sums of a surface that is inside out (negative volume, mass and inertia); by "
+                  "default its shells are turned outward, and the report says so");
 }
 
 Request make_request(const Common& c, bool need_mass) {
@@ -80,6 +84,7 @@ Request make_request(const Common& c, bool need_mass) {
     r.allow_open = c.allow_open;
     r.need_mass = need_mass;
     r.orient = c.orient;
+    r.keep_signed = c.keep_signed;
     return r;
 }
 

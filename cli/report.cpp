@@ -164,6 +164,39 @@ bool has_several_parts(const MeshView& view) {
 
 bool solid_differs(const SolidVolume& s) { return s.overlapping_shells > 0 || s.shells_crossing_themselves > 0; }
 
+// Whether some part (faces joined through vertex indices) of a multi-part
+// mesh has a negative signed volume, in double: an inside-out shell or a
+// cavity, which orient_mesh then tells apart exactly. (What `volume`'s table
+// checks where it analyses no shells.)
+bool some_part_negative(const MeshView& view) {
+    std::vector<uint32_t> parent(view.vertex_count());
+    for (uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
+    auto find = [&](uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (std::size_t f = 0; f < view.face_count(); ++f) {
+        const auto c = view.face(f);
+        for (std::size_t i = 1; i < c.size(); ++i) {
+            const uint32_t a = find(c[0]), b = find(c[i]);
+            if (a != b) parent[b] = a;
+        }
+    }
+    std::vector<double> volume(view.vertex_count(), 0.0);
+    for (std::size_t f = 0; f < view.face_count(); ++f) {
+        const auto c = view.face(f);
+        if (c.size() < 3) continue;
+        const double* o = view.positions.data() + 3 * std::size_t{c[0]};
+        for (std::size_t i = 1; i + 1 < c.size(); ++i) {
+            const double* p = view.positions.data() + 3 * std::size_t{c[i]};
+            const double* q = view.positions.data() + 3 * std::size_t{c[i + 1]};
+            volume[find(c[0])] += o[0] * (p[1] * q[2] - p[2] * q[1]) + o[1] * (p[2] * q[0] - p[0] * q[2]) +
+                                  o[2] * (p[0] * q[1] - p[1] * q[0]);
+        }
+    }
+    return std::any_of(volume.begin(), volume.end(), [](double v) { return v < 0; });
+}
+
 std::string self_crossing_sentence(const SelfCrossings& s) {
     std::string text = "its surface crosses itself within a shell (" + std::to_string(s.pairs) + " crossing triangle pair" +
                        (s.pairs == 1 ? "" : "s");
@@ -183,7 +216,8 @@ std::string self_crossing_line(const FileResult& r) {
 
 FileResult process_file(const std::string& file, const Request& request, const std::string& member) {
     if (request.stream && request.need_mass && request.measure.method == Method::cone && member.empty())
-        if (auto s = stream_binary_stl(file, request.volume_only)) return std::move(*s);
+        if (auto s = stream_binary_stl(file, request.volume_only))
+            if (request.keep_signed || s->streamed->volume >= 0) return std::move(*s);  // inside out: loaded below
     FileResult r;
     r.file = member.empty() ? file : file + ":" + member;
     const std::string& path = r.file;  // the name in every message
@@ -230,6 +264,34 @@ FileResult process_file(const std::string& file, const Request& request, const s
                                          : mass_properties(view, request.measure);
     }
     const bool closed = r.closed_by_fingerprint || r.topology->closed_2_cycle;
+    // Inside out: a closed shell facing inward and inside nothing (topology's
+    // role inside_out, not a cavity) bounds the complement of a solid
+    // (negative volume, mass, inertia). Its faces are reversed, and said so;
+    // cavities and nested shells stay as they are.
+    const bool several_parts = closed && (request.check_overlap || !request.table_only) && has_several_parts(view);
+    if (r.mass && closed && !request.keep_signed && !request.orient &&
+        (r.mass->volume < 0 || (!request.table_only ? r.topology && r.topology->inside_out_shells > 0
+                                                    : several_parts && some_part_negative(view)))) {
+        OrientResult o;
+        const TopologyReport shells = analyze_topology(view, TopologyOptions{.shells = true, .face_shells = true});
+        for (std::size_t f = 0; f < view.face_count(); ++f) {
+            const uint32_t sh = shells.face_shell[f];
+            if (sh == TopologyReport::kNoShell || shells.shells[sh].role != ShellRole::inside_out) continue;
+            const auto begin = r.loaded->mesh.indices.begin() + static_cast<std::ptrdiff_t>(view.face_begin(f));
+            std::reverse(begin + 1, begin + static_cast<std::ptrdiff_t>(view.face_size(f)));  // (v0, vk, ..., v1)
+            ++o.flipped;
+        }
+        o.components = shells.inside_out_shells;
+        if (o.flipped > 0) {
+            r.turned_outward = o;
+            if (r.topology) r.topology = analyze_topology(view, TopologyOptions{.shells = !request.table_only});
+            r.mass = request.volume_only ? volume_only_properties(view, request.measure)
+                                         : mass_properties(view, request.measure);
+            r.warning += (r.warning.empty() ? "" : "; ") + path + ": inside out: " + std::to_string(o.components) +
+                         " shell" + (o.components == 1 ? "" : "s") + " turned outward (" + std::to_string(o.flipped) +
+                         " face" + (o.flipped == 1 ? "" : "s") + " reversed); --signed keeps the signed sums";
+        }
+    }
     // `check`: a surface that is not a closed 2-cycle exits 3 too (the report says why).
     if (!request.need_mass && !closed) r.exit_code = Exit::invalid;
     if (view.triangle_count() == 0)
@@ -254,7 +316,7 @@ FileResult process_file(const std::string& file, const Request& request, const s
     if (request.check_overlap && closed) {
         r.overlap_checked = true;
         const bool moments = request.need_mass && !request.volume_only;
-        const bool several = has_several_parts(view);
+        const bool several = several_parts;
         if (several || crosses_itself) r.solid = solid_volume(view, moments, crosses_itself);
         if (r.solid && r.solid->status == BooleanStatus::shell_touches_itself) {
             if (request.need_mass)
@@ -354,6 +416,8 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
             j["oriented_faces_flipped"] = r.oriented->flipped;
             j["oriented_shells_undecided"] = r.oriented->undecided;
         }
+        if (request.need_mass && !request.keep_signed && !request.orient)
+            j["turned_outward_faces"] = r.turned_outward ? r.turned_outward->flipped : 0;
     } else {
         j["format"] = nullptr;
     }
@@ -538,6 +602,9 @@ std::string measure_report(const FileResult& r, const Request& request) {
         << l.mesh.view().triangle_count() << " triangles)\n";
     out << "  method          " << method_name(request.measure.method) << ", density " << shortest(request.measure.density) << "\n";
     if (r.oriented) out << "  orientation     " << orient_sentence(*r.oriented) << "\n";
+    if (r.turned_outward)
+        out << "  orientation     inside out: " << r.turned_outward->components << " shell(s) turned outward, "
+            << r.turned_outward->flipped << " faces reversed (--signed keeps the signed sums)\n";
     const bool overlap = r.solid && solid_differs(*r.solid);
     if (overlap) {
         out << "  volume          " << shortest(m.volume)

@@ -51,6 +51,9 @@ struct FileResult {
     bool self_unresolved = false;
     // Request::orient: what orienting the loaded mesh did (before any measure).
     std::optional<OrientResult> oriented;
+    // A closed surface found inside out and turned outward (not --signed):
+    // what orient_mesh did; the figures are the turned mesh's.
+    std::optional<OrientResult> turned_outward;
 };
 
 // Files up to this many fan triangles are checked for a surface crossing
@@ -91,6 +94,9 @@ struct Request {
     // --orient: the loaded mesh's faces wound consistently and outward
     // (orient_mesh) before it is analysed and measured.
     bool orient = false;
+    // --signed: a closed surface that is inside out keeps its signed sums
+    // (negative volume); by default its shells are turned outward.
+    bool keep_signed = false;
 };
 
 // Reads, analyses and measures one file; never throws.

@@ -114,6 +114,10 @@ struct TopologyReport {
     std::optional<std::array<double, 6>> unbalanced_example;
     // shells, largest |volume| first (equal ones in the order of their first face)
     std::vector<Shell> shells;
+    // TopologyOptions::face_shells: per face (file order), the index in
+    // `shells` of its shell; kNoShell for faces of fewer than 3 vertices.
+    std::vector<uint32_t> face_shell;
+    static constexpr uint32_t kNoShell = 0xFFFFFFFF;
     std::size_t cavities = 0, inside_out_shells = 0, nested_shells = 0;  // shells with those roles
 };
 
@@ -124,6 +128,8 @@ struct TopologyOptions {
     // shells and nesting are then left empty (about 3x faster: no shell
     // volumes or winding numbers).
     bool shells = true;
+    // With shells: TopologyReport::face_shell, each face's shell.
+    bool face_shells = false;
 };
 
 TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& options = {});

@@ -146,17 +146,19 @@ def load_bytes(data, name="memory"):
 
 
 def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounded", allow_open=False, solid=False,
-                 orient=False):
+                 orient=False, signed=False):
     """Everything `polyvol measure --json FILE` reports for one file, as a dict
     with its keys (the CLI's own code computes it): format and counts,
     topology and shells, the mass properties with their guarantees (of the
     solid when shells overlap), and exit_code with error or warning when the
     file cannot be read (2) or measured (3). Never raises for a bad file.
     solid=True looks for a surface crossing itself at any size (--solid);
-    orient=True winds the faces consistently and outward first (--orient)."""
+    orient=True winds the faces consistently and outward first (--orient).
+    A shell that is inside out is turned outward (turned_outward_faces) unless
+    signed=True (--signed)."""
     import json
     report = json.loads(_core.measure_file_json(os.fsencode(path), method, accuracy, float(density),
-                                                bool(allow_open), bool(solid), bool(orient)))
+                                                bool(allow_open), bool(solid), bool(orient), bool(signed)))
     report["file"] = os.fsdecode(path)
     return report
 

@@ -30,7 +30,7 @@ COLUMNS = (
     "area_relative_error", "centroid", "first_moments", "second_moments", "inertia", "inertia_origin",
     "moments_accuracy", "moments_relative_error", "edge_length", "edge_length_relative_error", "overlap_checked",
     "winding_volume", "overlapping_shells", "crossing_pairs", "self_crossing_checked", "self_crossing_pairs",
-    "self_crossing_example", "self_crossing_resolved",
+    "self_crossing_example", "self_crossing_resolved", "turned_outward_faces",
 )
 
 
@@ -40,7 +40,8 @@ FLOATS = ("density", "volume", "volume_error_bound", "mass", "area", "area_relat
           "moments_relative_error", "edge_length", "edge_length_relative_error", "winding_volume")
 COUNTS = ("vertices", "faces", "triangles", "vertices_welded", "edges", "boundary_edges", "nonmanifold_edges",
           "misoriented_edges", "unbalanced_edges", "degenerate_triangles", "components", "euler_characteristic",
-          "cavities", "inside_out_shells", "overlapping_shells", "crossing_pairs", "self_crossing_pairs")
+          "cavities", "inside_out_shells", "overlapping_shells", "crossing_pairs", "self_crossing_pairs",
+          "turned_outward_faces")
 
 
 def _typed(frame):

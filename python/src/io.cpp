@@ -110,9 +110,10 @@ void bind_io(py::module_& m) {
     m.def(
         "measure_file_json",
         [](const std::string& path, const std::string& method, const std::string& accuracy, double density,
-           bool allow_open, bool solid, bool orient) {
+           bool allow_open, bool solid, bool orient, bool keep_signed) {
             cli::Request request;
             request.orient = orient;
+            request.keep_signed = keep_signed;
             request.measure.method = parse_method(method);
             request.measure.accuracy = parse_accuracy(accuracy);
             request.measure.density = density;
@@ -128,7 +129,7 @@ void bind_io(py::module_& m) {
             return text;
         },
         py::arg("path"), py::arg("method"), py::arg("accuracy"), py::arg("density"), py::arg("allow_open"),
-        py::arg("solid"), py::arg("orient"));
+        py::arg("solid"), py::arg("orient"), py::arg("keep_signed") = false);
 
     // A copy of the mesh wound consistently and outward (orient_mesh), and what that did.
     m.def(

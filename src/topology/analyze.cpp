@@ -4,6 +4,8 @@
 // `components`, `nesting`).
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
+#include <vector>
 
 #include "polyvol/topology.hpp"
 #include "topology/degenerate.hpp"
@@ -131,7 +133,18 @@ TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& opt
         }
     }
     const std::vector<double> winding = topology::winding_of_other_shells(m, triangles, geometry);
+    std::vector<std::size_t> first_of_label(labels.count);  // order_shells reorders them: known by first face
+    for (uint32_t sh = 0; sh < labels.count; ++sh) first_of_label[sh] = geometry[sh].report.first_face;
     r.shells = order_shells(std::move(geometry), winding);
+    if (options.face_shells) {
+        std::unordered_map<std::size_t, uint32_t> index_of_first;
+        for (uint32_t i = 0; i < r.shells.size(); ++i) index_of_first[r.shells[i].first_face] = i;
+        r.face_shell.assign(mesh.face_count(), TopologyReport::kNoShell);
+        for (std::size_t f = 0, poly = 0; f < mesh.face_count(); ++f) {
+            if (mesh.face_size(f) < 3) continue;
+            r.face_shell[f] = index_of_first.at(first_of_label[labels.of_polygon[poly++]]);
+        }
+    }
     for (const Shell& s : r.shells) {
         r.cavities += s.role == ShellRole::cavity;
         r.inside_out_shells += s.role == ShellRole::inside_out;

@@ -158,3 +158,53 @@ TEST(JsonKeys, AZipOfMeshesIsItsMembers) {
     const auto table = cli_test::run_polyvol("volume '" + zip + "'");
     EXPECT_NE(table.out.find("two_meshes.zip:sub/tet.off"), std::string::npos) << table.out;
 }
+
+// Inside out (issue #21): a closed shell facing inward and inside nothing is
+// turned outward by default, and said so; --signed keeps the signed sums.
+// A cavity (an inward shell inside a solid one) stays a cavity.
+TEST(JsonKeys, InsideOutShellsAreTurnedOutward) {
+    auto box = [](double lo, double hi, int base, bool inward) {
+        std::string v, f;
+        for (int i = 0; i < 8; ++i)
+            v += "v " + std::to_string(i & 1 ? hi : lo) + " " + std::to_string(i >> 1 & 1 ? hi : lo) + " " +
+                 std::to_string(i >> 2 & 1 ? hi : lo) + "\n";
+        const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+        for (const auto& face : q) {
+            f += "f";
+            for (int k = 0; k < 4; ++k) f += " " + std::to_string(base + 1 + face[inward ? 3 - k : k]);
+            f += "\n";
+        }
+        return std::pair{v, f};
+    };
+    auto file = [&](const std::string& name, std::vector<std::tuple<double, double, bool>> boxes) {
+        std::string v, f;
+        int base = 0;
+        for (const auto& [lo, hi, inward] : boxes) {
+            const auto [bv, bf] = box(lo, hi, base, inward);
+            v += bv;
+            f += bf;
+            base += 8;
+        }
+        return scratch(name, v + f).string();
+    };
+    const std::string inward = file("inward.obj", {{0, 2, true}});
+    const std::string mixed = file("mixed.obj", {{0, 2, false}, {5, 6, true}});
+    const std::string cavity = file("cavity.obj", {{0, 4, false}, {1, 2, true}});
+    for (const char* command : {"volume", "measure"}) {
+        const auto r = cli_test::run_polyvol(std::string(command) + " --json '" + inward + "'");
+        const json j = json::parse(r.out)[0];
+        EXPECT_EQ(j["volume"], 8.0) << command;
+        EXPECT_EQ(j["turned_outward_faces"], 6);
+        EXPECT_NE(r.err.find("inside out: 1 shell turned outward (6 faces reversed)"), std::string::npos) << r.err;
+        EXPECT_EQ(run(std::string(command) + " --json '" + mixed + "'")["volume"], 9.0) << command;
+        EXPECT_EQ(run(std::string(command) + " --json '" + cavity + "'")["volume"], 63.0) << command;
+        EXPECT_EQ(run(std::string(command) + " --json '" + cavity + "'")["turned_outward_faces"], 0);
+        EXPECT_EQ(run(std::string(command) + " --json --signed '" + inward + "'")["volume"], -8.0) << command;
+    }
+    // The table, where no shells are analysed, gives the same numbers.
+    const auto table = cli_test::run_polyvol("volume '" + mixed + "'");
+    EXPECT_NE(table.out.find("  9  "), std::string::npos) << table.out;
+    const json m = run("measure --json '" + inward + "'");
+    EXPECT_EQ(m["mass"], 8.0);
+    EXPECT_GT(m["inertia"][0][0].get<double>(), 0);
+}
