@@ -134,9 +134,9 @@ void use_solid_properties(const SolidVolume& s, double density, MassProperties& 
     m.moments_relative_error = std::max(0x1p-51, s.inertia_relative_error) + (density != 1 ? 0x1p-52 : 0.0);
 }
 
-// Whether the mesh's faces form more than one part through shared vertex
-// indices (a union–find over the indices: one pass, no sorting).
-bool has_several_parts(const MeshView& view) {
+// The part (faces joined through shared vertex indices) of every vertex, as
+// a root vertex: a union–find over the indices, one pass, no sorting.
+std::vector<uint32_t> part_roots(const MeshView& view) {
     std::vector<uint32_t> parent(view.vertex_count());
     for (uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
     auto find = [&](uint32_t v) {
@@ -151,37 +151,30 @@ bool has_several_parts(const MeshView& view) {
             if (a != b) parent[b] = a;
         }
     }
-    std::optional<uint32_t> root;
+    for (uint32_t v = 0; v < parent.size(); ++v) parent[v] = find(v);
+    return parent;
+}
+
+// Whether the mesh's faces form more than one part.
+bool has_several_parts(const MeshView& view) {
+    const std::vector<uint32_t> root = part_roots(view);
+    std::optional<uint32_t> first;
     for (std::size_t f = 0; f < view.face_count(); ++f) {
         const auto c = view.face(f);
         if (c.size() < 3) continue;
-        const uint32_t r = find(c[0]);
-        if (root && *root != r) return true;
-        root = r;
+        if (first && *first != root[c[0]]) return true;
+        first = root[c[0]];
     }
     return false;
 }
 
 bool solid_differs(const SolidVolume& s) { return s.overlapping_shells > 0 || s.shells_crossing_themselves > 0; }
 
-// Whether some part (faces joined through vertex indices) of a multi-part
-// mesh has a negative signed volume, in double: an inside-out shell or a
-// cavity, which orient_mesh then tells apart exactly. (What `volume`'s table
-// checks where it analyses no shells.)
+// Whether some part of a multi-part mesh has a negative signed volume, in
+// double: an inside-out shell or a cavity, which the topology then tells
+// apart exactly. (What `volume`'s table checks where it analyses no shells.)
 bool some_part_negative(const MeshView& view) {
-    std::vector<uint32_t> parent(view.vertex_count());
-    for (uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
-    auto find = [&](uint32_t v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (std::size_t f = 0; f < view.face_count(); ++f) {
-        const auto c = view.face(f);
-        for (std::size_t i = 1; i < c.size(); ++i) {
-            const uint32_t a = find(c[0]), b = find(c[i]);
-            if (a != b) parent[b] = a;
-        }
-    }
+    const std::vector<uint32_t> root = part_roots(view);
     std::vector<double> volume(view.vertex_count(), 0.0);
     for (std::size_t f = 0; f < view.face_count(); ++f) {
         const auto c = view.face(f);
@@ -190,7 +183,7 @@ bool some_part_negative(const MeshView& view) {
         for (std::size_t i = 1; i + 1 < c.size(); ++i) {
             const double* p = view.positions.data() + 3 * std::size_t{c[i]};
             const double* q = view.positions.data() + 3 * std::size_t{c[i + 1]};
-            volume[find(c[0])] += o[0] * (p[1] * q[2] - p[2] * q[1]) + o[1] * (p[2] * q[0] - p[0] * q[2]) +
+            volume[root[c[0]]] += o[0] * (p[1] * q[2] - p[2] * q[1]) + o[1] * (p[2] * q[0] - p[0] * q[2]) +
                                   o[2] * (p[0] * q[1] - p[1] * q[0]);
         }
     }

@@ -12,24 +12,11 @@
 namespace polyvol {
 namespace {
 
-// The box [0, 2]^3 and a tetrahedron on its bottom front edge o p (o = (0,
-// 0, 0), p = (2, 0, 0), the box's vertices 0 and 1) poking out through its
-// top face z = 2: one body (joined through that edge, used by four faces),
-// whose surface crosses itself where the tetrahedron leaves the box.
-Mesh box_and_tetrahedron_on_its_edge() {
-    Mesh m = test::box({0, 0, 0}, {2, 2, 2});
-    const uint32_t o = 0, p = 1;
-    const uint32_t q = m.add_vertex(0.8, 0.6, 3), r = m.add_vertex(1.2, 1.4, 3);
-    // (o, p, r, q) is positively oriented: outward faces
-    m.add_triangle(p, r, q);
-    m.add_triangle(o, q, r);
-    m.add_triangle(o, p, q);
-    m.add_triangle(o, r, p);
-    return m;
-}
-
+// test::box_and_tetrahedron_on_its_edge: one body (joined through that
+// edge, used by four faces), whose surface crosses itself where the
+// tetrahedron leaves the box through its top face z = 2.
 TEST(SelfCrossings, TetrahedronThroughTheBoxItSharesAnEdgeWith) {
-    const Mesh m = box_and_tetrahedron_on_its_edge();
+    const Mesh m = test::box_and_tetrahedron_on_its_edge();
     EXPECT_EQ(m.positions[3 * 1], 2.0);  // p
     const SelfCrossings s = self_crossings(m.view());
     ASSERT_EQ(s.status, BooleanStatus::ok);

@@ -156,24 +156,13 @@ TEST(SelfSolid, ShellsThatDoNotCrossThemselves) {
 }
 
 // The box [0, 2]^3 and a tetrahedron o p q r on its bottom front edge o p,
-// poking out through its top face (one shell: the edge o p has four
-// triangles, split into two sheets). The solid is the box and the part of
+// poking out through its top face (test::box_and_tetrahedron_on_its_edge:
+// one shell, the edge o p has four triangles, split into two sheets). The solid is the box and the part of
 // the tetrahedron above z = 2: its sections at s = z / 3 are parallelograms
 // of area s (1 - s) C with C = 2 |tetrahedron| / 1 = 1.6, so that part is
 // 3 C ∫_{2/3}^1 s (1 - s) ds = 28/135, and the solid 8 + 28/135 = 1108/135.
-Mesh box_and_tetrahedron(double qx) {
-    Mesh m = test::box({0, 0, 0}, {2, 2, 2});
-    const uint32_t o = 0, p = 1;
-    const uint32_t q = m.add_vertex(qx, 0.6, 3), r = m.add_vertex(1.2, 1.4, 3);
-    m.add_triangle(p, r, q);
-    m.add_triangle(o, q, r);
-    m.add_triangle(o, p, q);
-    m.add_triangle(o, r, p);
-    return m;
-}
-
 TEST(SelfSolid, AnEdgeOfFourTrianglesIsTwoSheets) {
-    const SolidVolume s = solid_volume(box_and_tetrahedron(0.8).view(), true, true);
+    const SolidVolume s = solid_volume(test::box_and_tetrahedron_on_its_edge(0.8).view(), true, true);
     ASSERT_EQ(s.status, BooleanStatus::ok) << boolean_status_message(s.status);
     EXPECT_EQ(s.volume, 1108.0 / 135);
     EXPECT_EQ(s.winding_volume, 8.8);
@@ -184,7 +173,7 @@ TEST(SelfSolid, AnEdgeOfFourTrianglesIsTwoSheets) {
 // face x = 0, along a segment from the shared corner o: a fold through a
 // vertex, which no cut between edge crossings represents. A status, never a number.
 TEST(SelfSolid, AFoldThroughAVertexIsAStatus) {
-    const SolidVolume s = solid_volume(box_and_tetrahedron(-0.5).view(), false, true);
+    const SolidVolume s = solid_volume(test::box_and_tetrahedron_on_its_edge(-0.5).view(), false, true);
     EXPECT_EQ(s.status, BooleanStatus::shell_touches_itself);
     EXPECT_TRUE(std::isnan(s.volume));
 }

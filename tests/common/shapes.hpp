@@ -68,6 +68,22 @@ inline Mesh box(std::array<double, 3> lo, std::array<double, 3> hi, BoxOptions o
     return m;
 }
 
+// The box [0, 2]^3 and a tetrahedron (o, p, r, q) on its bottom front edge
+// o p (o = (0, 0, 0), p = (2, 0, 0), the box's vertices 0 and 1) with
+// q = (qx, 0.6, 3), r = (1.2, 1.4, 3), poking out through the box's top:
+// one shell whose edge o p has four faces, and which crosses itself.
+inline Mesh box_and_tetrahedron_on_its_edge(double qx = 0.8) {
+    Mesh m = box({0, 0, 0}, {2, 2, 2});
+    const uint32_t o = 0, p = 1;
+    const uint32_t q = m.add_vertex(qx, 0.6, 3), r = m.add_vertex(1.2, 1.4, 3);
+    // (o, p, r, q) is positively oriented: outward faces
+    m.add_triangle(p, r, q);
+    m.add_triangle(o, q, r);
+    m.add_triangle(o, p, q);
+    m.add_triangle(o, r, p);
+    return m;
+}
+
 // Every face with its own vertices, as an STL file stores a mesh.
 inline Mesh unwelded(const Mesh& in) {
     Mesh out;
