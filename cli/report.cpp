@@ -168,6 +168,13 @@ bool has_several_parts(const MeshView& view) {
     return false;
 }
 
+// The principal moments and axes of the inertia about the centroid, with
+// bounds from the tensor's own guarantee (each entry correctly rounded: within
+// u of the largest entry).
+PrincipalInertia principal_of(const MassProperties& m) {
+    return principal_inertia(m.inertia_centroid, m.moments_correctly_rounded ? 0x1p-53 : m.moments_relative_error);
+}
+
 bool solid_differs(const SolidVolume& s) { return s.overlapping_shells > 0 || s.shells_crossing_themselves > 0; }
 
 // Whether some part of a multi-part mesh has a negative signed volume, in
@@ -495,6 +502,14 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["inertia_origin"] = matrix3(m.inertia_origin);
         j["moments_accuracy"] = m.moments_correctly_rounded ? "correctly-rounded" : "error-bound";
         j["moments_relative_error"] = m.moments_relative_error;
+        if (std::isfinite(m.inertia_centroid[0])) {
+            const PrincipalInertia p = principal_of(m);
+            j["principal_moments"] = {number(p.moments[0]), number(p.moments[1]), number(p.moments[2])};
+            j["principal_axes"] = nlohmann::json::array();
+            for (const auto& a : p.axes) j["principal_axes"].push_back({number(a[0]), number(a[1]), number(a[2])});
+            j["principal_moment_error"] = number(p.moment_error);
+            j["principal_axis_angle_bound"] = {number(p.axis_angle[0]), number(p.axis_angle[1]), number(p.axis_angle[2])};
+        }
         j["edge_length"] = number(m.edge_length);
         j["edge_length_relative_error"] = m.edge_length_relative_error;
     }
@@ -627,6 +642,18 @@ std::string measure_report(const FileResult& r, const Request& request) {
     tensor("second moments about the origin (density × ∫ x_i x_j):", m.second_moments);
     tensor("inertia tensor about the origin:", m.inertia_origin);
     tensor("inertia tensor about the centroid:", m.inertia_centroid);
+    if (std::isfinite(m.inertia_centroid[0])) {
+        const PrincipalInertia p = principal_of(m);
+        out << "  principal moments " << shortest(p.moments[0]) << ", " << shortest(p.moments[1]) << ", "
+            << shortest(p.moments[2]) << "   [each within " << shortest(p.moment_error) << "]\n";
+        for (std::size_t k = 0; k < 3; ++k) {
+            out << "  principal axis " << k + 1 << "  " << point_text(p.axes[k][0], p.axes[k][1], p.axes[k][2]);
+            if (std::isfinite(p.axis_angle[k]))
+                out << "   [within " << shortest(p.axis_angle[k]) << " rad]\n";
+            else
+                out << "   [not determined: equal moments]\n";
+        }
+    }
     if (m.moments_correctly_rounded)
         out << "  centroid, moments and inertia: correctly rounded (exact values of the coordinates as read, rounded once)\n";
     else

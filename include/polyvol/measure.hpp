@@ -130,6 +130,25 @@ double surface_area(const MeshView& mesh);
 // after welding vertices with bit-identical coordinates (-0.0 == +0.0).
 double total_edge_length(const MeshView& mesh);
 
+// The principal moments of inertia (the eigenvalues of a symmetric tensor
+// {xx, yy, zz, xy, yz, zx}, increasing) and axes (axes[k] the unit axis of
+// moments[k], right-handed), with bounds that hold when every entry is
+// within relative_error of the largest entry's magnitude:
+//   * each moment within moment_error of the exact tensor's: the residual
+//     |A v - λ v| of the computed pair bounds the distance to an eigenvalue
+//     of the computed tensor, and Weyl's inequality moves each eigenvalue by
+//     at most |E|_2 <= |E|_F <= 3 relative_error max|A_ij|;
+//   * each axis within axis_angle[k] radians (Davis–Kahan: sin θ <= error /
+//     gap to the other moments); infinite where the gap does not exceed
+//     twice the error (equal moments: that axis is not determined).
+struct PrincipalInertia {
+    std::array<double, 3> moments{};
+    std::array<std::array<double, 3>, 3> axes{};
+    double moment_error = 0;
+    std::array<double, 3> axis_angle{};
+};
+PrincipalInertia principal_inertia(const std::array<double, 6>& tensor, double relative_error);
+
 // How far the measures of a closed mesh can move when every coordinate moves
 // by at most delta (coordinates a reader computed, say: io.hpp's
 // LoadedMesh::coordinate_error). Absolute bounds, density 1: on |ΔV|, on

@@ -30,14 +30,16 @@ COLUMNS = (
     "area_relative_error", "centroid", "first_moments", "second_moments", "inertia", "inertia_origin",
     "moments_accuracy", "moments_relative_error", "edge_length", "edge_length_relative_error", "overlap_checked",
     "winding_volume", "overlapping_shells", "crossing_pairs", "self_crossing_checked", "self_crossing_pairs",
-    "self_crossing_example", "self_crossing_resolved", "turned_outward_faces",
+    "self_crossing_example", "self_crossing_resolved", "turned_outward_faces", "principal_moments",
+    "principal_axes", "principal_moment_error", "principal_axis_angle_bound",
 )
 
 
 # Column types: numbers as float64 (NaN where a file has none), counts as
 # nullable integers, the rest (text, flags, lists) as objects.
 FLOATS = ("density", "volume", "volume_error_bound", "mass", "area", "area_relative_error",
-          "moments_relative_error", "edge_length", "edge_length_relative_error", "winding_volume")
+          "moments_relative_error", "edge_length", "edge_length_relative_error", "winding_volume",
+          "principal_moment_error")
 COUNTS = ("vertices", "faces", "triangles", "vertices_welded", "edges", "boundary_edges", "nonmanifold_edges",
           "misoriented_edges", "unbalanced_edges", "degenerate_triangles", "components", "euler_characteristic",
           "cavities", "inside_out_shells", "overlapping_shells", "crossing_pairs", "self_crossing_pairs",

@@ -208,3 +208,22 @@ TEST(JsonKeys, InsideOutShellsAreTurnedOutward) {
     EXPECT_EQ(m["mass"], 8.0);
     EXPECT_GT(m["inertia"][0][0].get<double>(), 0);
 }
+
+// Principal moments and axes (measure, with their bounds): the box 1 x 2 x 3,
+// mass 6, has moments 2.5, 5, 6.5 about z, y, x.
+TEST(JsonKeys, PrincipalMomentsAndAxesOfABox) {
+    std::string obj = "v 0 0 0\nv 1 0 0\nv 0 2 0\nv 1 2 0\nv 0 0 3\nv 1 0 3\nv 0 2 3\nv 1 2 3\n";
+    obj += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    const json j = run("measure --json '" + scratch("box123.obj", obj).string() + "'");
+    const double e = j["principal_moment_error"];
+    EXPECT_LT(e, 1e-12);
+    EXPECT_NEAR(j["principal_moments"][0].get<double>(), 2.5, e);
+    EXPECT_NEAR(j["principal_moments"][1].get<double>(), 5, e);
+    EXPECT_NEAR(j["principal_moments"][2].get<double>(), 6.5, e);
+    EXPECT_EQ(j["principal_axes"][0], json({0.0, 0.0, 1.0}));
+    EXPECT_EQ(j["principal_axes"][1], json({0.0, 1.0, 0.0}));
+    EXPECT_LT(j["principal_axis_angle_bound"][0].get<double>(), 1e-12);
+    const auto table = cli_test::run_polyvol("measure '" + scratch("box123b.obj", obj).string() + "'");
+    EXPECT_NE(table.out.find("principal moments 2.5, 5, 6.5"), std::string::npos) << table.out;
+    EXPECT_EQ(table.out.find("-0,"), std::string::npos) << table.out;
+}
