@@ -44,6 +44,7 @@ struct Common {
     bool solid = false;        // volume/measure --solid: the full overlap and self-crossing check
     bool orient = false;       // --orient: faces wound consistently and outward before measuring
     bool keep_signed = false;  // --signed: an inside-out surface's signed sums, not turned outward
+    std::string format = "table";  // measure --format table|urdf|sdf
 };
 
 const char* const kOrientHelp =
@@ -135,7 +136,9 @@ int run(Command command, const Common& c) {
         case Command::volume: std::cout << volume_table(results, request); break;
         case Command::measure:
             for (const auto& r : results)
-                if (r.mass) std::cout << measure_report(r, request);
+                if (r.mass)
+                    std::cout << (c.format == "table" ? measure_report(r, request)
+                                                      : inertial_element(r, request, c.format == "sdf"));
             break;
         case Command::check:
             for (const auto& r : results)
@@ -171,6 +174,11 @@ int main(int argc, char** argv) {
                                                   "second moments, inertia) with their guarantees");
     add_measure_options(measure, measure_opts);
     measure->add_flag("--solid", measure_opts.solid, solid_help);
+    measure->add_option("--format", measure_opts.format,
+                        "table (the report), or urdf / sdf: each file's <inertial> element (mass, origin at the "
+                        "centroid, the inertia about it), in the file's units scaled by --density")
+        ->check(CLI::IsMember({"table", "urdf", "sdf"}))
+        ->capture_default_str();
     auto* check = app.add_subcommand("check", "Topology report: boundary, non-manifold, misoriented and "
                                               "unbalanced edges, shells and how they nest");
     check->add_option("files", check_opts.files, "Mesh files; - reads stdin")->required();

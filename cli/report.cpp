@@ -663,6 +663,33 @@ std::string measure_report(const FileResult& r, const Request& request) {
     return out.str();
 }
 
+std::string inertial_element(const FileResult& r, const Request& request, bool sdf) {
+    const MassProperties& m = *r.mass;
+    const auto& c = m.centroid;
+    const auto& i = m.inertia_centroid;  // {xx, yy, zz, xy, yz, zx}
+    std::ostringstream out;
+    auto shortest = [](double x) { return polyvol::cli::shortest(x + 0.0); };  // no -0
+    out << "<!-- " << r.file << ": units as in the file, density " << shortest(request.measure.density) << "; "
+        << (m.moments_correctly_rounded ? std::string("correctly rounded")
+                                        : "relative error <= " + shortest(m.moments_relative_error))
+        << " -->\n";
+    if (sdf) {
+        out << "<inertial>\n  <pose>" << shortest(c[0]) << " " << shortest(c[1]) << " " << shortest(c[2])
+            << " 0 0 0</pose>\n  <mass>" << shortest(m.mass) << "</mass>\n  <inertia>\n"
+            << "    <ixx>" << shortest(i[0]) << "</ixx>\n    <ixy>" << shortest(i[3]) << "</ixy>\n"
+            << "    <ixz>" << shortest(i[5]) << "</ixz>\n    <iyy>" << shortest(i[1]) << "</iyy>\n"
+            << "    <iyz>" << shortest(i[4]) << "</iyz>\n    <izz>" << shortest(i[2]) << "</izz>\n"
+            << "  </inertia>\n</inertial>\n";
+    } else {
+        out << "<inertial>\n  <origin xyz=\"" << shortest(c[0]) << " " << shortest(c[1]) << " " << shortest(c[2])
+            << "\" rpy=\"0 0 0\"/>\n  <mass value=\"" << shortest(m.mass) << "\"/>\n"
+            << "  <inertia ixx=\"" << shortest(i[0]) << "\" ixy=\"" << shortest(i[3]) << "\" ixz=\"" << shortest(i[5])
+            << "\" iyy=\"" << shortest(i[1]) << "\" iyz=\"" << shortest(i[4]) << "\" izz=\"" << shortest(i[2])
+            << "\"/>\n</inertial>\n";
+    }
+    return out.str();
+}
+
 std::string check_report(const FileResult& r) {
     std::ostringstream out;
     const auto& t = *r.topology;

@@ -104,6 +104,11 @@ struct Request {
 // reported as "FILE:MEMBER"; empty for the file itself.
 FileResult process_file(const std::string& file, const Request& request, const std::string& member = "");
 
+// The <inertial> element of a URDF link (sdf: of an SDF link) for the file:
+// mass, pose at the centroid, the inertia tensor about it (ixy = -∫ρxy, the
+// tensor's own entries, as both formats take them), in the file's units.
+std::string inertial_element(const FileResult& r, const Request& request, bool sdf);
+
 // Shortest decimal that reads back as the same double ("nan", "inf" spelled out).
 std::string shortest(double v);
 

@@ -12,6 +12,7 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+#include <pugixml.hpp>
 
 #include "cli/run_cli.hpp"
 
@@ -226,4 +227,48 @@ TEST(JsonKeys, PrincipalMomentsAndAxesOfABox) {
     const auto table = cli_test::run_polyvol("measure '" + scratch("box123b.obj", obj).string() + "'");
     EXPECT_NE(table.out.find("principal moments 2.5, 5, 6.5"), std::string::npos) << table.out;
     EXPECT_EQ(table.out.find("-0,"), std::string::npos) << table.out;
+}
+
+// measure --format urdf|sdf: the <inertial> element. The box 1 x 2 x 3 at
+// density 2 (mass 12): origin at (0.5, 1, 1.5), ixx = m (b² + c²)/12 = 13,
+// iyy = 10, izz = 5; turned by the 3-4-5 rotation R about z (c = 0.6,
+// s = 0.8), the tensor is R I R^T: ixx = 13 c² + 10 s², ixy = (13 - 10) c s.
+TEST(JsonKeys, UrdfAndSdfInertialOfABox) {
+    auto box_obj = [](double c, double s) {
+        std::string obj;
+        for (int k = 0; k < 8; ++k) {
+            const double x = k & 1 ? 1 : 0, y = k >> 1 & 1 ? 2 : 0, z = k >> 2 & 1 ? 3 : 0;
+            char line[128];
+            std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", c * x - s * y, s * x + c * y, z);
+            obj += line;
+        }
+        return obj + "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    };
+    const std::string plain = scratch("urdf_box.obj", box_obj(1, 0)).string();
+    const auto urdf = cli_test::run_polyvol("measure --format urdf --density 2 '" + plain + "'");
+    ASSERT_EQ(urdf.code, 0) << urdf.err;
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_string(urdf.out.c_str())) << urdf.out;
+    const pugi::xml_node in = doc.child("inertial");
+    EXPECT_STREQ(in.child("origin").attribute("xyz").value(), "0.5 1 1.5");
+    EXPECT_EQ(in.child("mass").attribute("value").as_double(), 12.0);
+    const pugi::xml_node inertia = in.child("inertia");
+    EXPECT_EQ(inertia.attribute("ixx").as_double(), 13.0);
+    EXPECT_EQ(inertia.attribute("iyy").as_double(), 10.0);
+    EXPECT_EQ(inertia.attribute("izz").as_double(), 5.0);
+    EXPECT_STREQ(inertia.attribute("ixy").value(), "0");
+    // Turned: R diag(13, 10, 5) R^T about the turned centroid.
+    const double c = 0.6, s = 0.8;
+    const std::string turned = scratch("sdf_box.obj", box_obj(c, s)).string();
+    const auto sdf = cli_test::run_polyvol("measure --format sdf --density 2 '" + turned + "'");
+    ASSERT_EQ(sdf.code, 0) << sdf.err;
+    ASSERT_TRUE(doc.load_string(sdf.out.c_str())) << sdf.out;
+    const pugi::xml_node t = doc.child("inertial").child("inertia");
+    auto value = [&](const char* name) { return std::stod(t.child(name).child_value()); };
+    EXPECT_NEAR(value("ixx"), 13 * c * c + 10 * s * s, 1e-12);
+    EXPECT_NEAR(value("iyy"), 13 * s * s + 10 * c * c, 1e-12);
+    EXPECT_NEAR(value("ixy"), (13 - 10) * c * s, 1e-12);
+    EXPECT_NEAR(value("izz"), 5, 1e-12);
+    EXPECT_NEAR(value("ixz"), 0, 1e-12);
+    EXPECT_NEAR(std::stod(doc.child("inertial").child("mass").child_value()), 12, 1e-12);
 }
