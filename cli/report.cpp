@@ -175,6 +175,24 @@ PrincipalInertia principal_of(const MassProperties& m) {
     return principal_inertia(m.inertia_centroid, m.moments_correctly_rounded ? 0x1p-53 : m.moments_relative_error);
 }
 
+// The box of the vertices the faces use {xmin, ymin, zmin, xmax, ymax, zmax}
+// (exact: a min and max of the coordinates); NaN when there are no faces.
+std::array<double, 6> face_bounds(const MeshView& view) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    std::array<double, 6> b{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    bool any = false;
+    for (const uint32_t v : view.indices) {
+        const double* p = view.positions.data() + 3 * std::size_t{v};
+        for (int k = 0; k < 3; ++k) {
+            b[k] = std::min(b[k], p[k]);
+            b[3 + k] = std::max(b[3 + k], p[k]);
+        }
+        any = true;
+    }
+    if (!any) b = {nan, nan, nan, nan, nan, nan};
+    return b;
+}
+
 bool solid_differs(const SolidVolume& s) { return s.overlapping_shells > 0 || s.shells_crossing_themselves > 0; }
 
 // Whether some part of a multi-part mesh has a negative signed volume, in
@@ -496,6 +514,11 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["area"] = number(m.area);
         j["area_relative_error"] = m.area_relative_error;
         j["centroid"] = {number(m.centroid[0]), number(m.centroid[1]), number(m.centroid[2])};
+        if (r.loaded) {
+            const std::array<double, 6> b = face_bounds(r.loaded->mesh.view());
+            j["bounds"] = {number(b[0]), number(b[1]), number(b[2]), number(b[3]), number(b[4]), number(b[5])};
+            j["size"] = {number(b[3] - b[0]), number(b[4] - b[1]), number(b[5] - b[2])};
+        }
         j["first_moments"] = {number(m.first_moments[0]), number(m.first_moments[1]), number(m.first_moments[2])};
         j["second_moments"] = matrix3(m.second_moments);
         j["inertia"] = matrix3(m.inertia_centroid);
@@ -629,6 +652,12 @@ std::string measure_report(const FileResult& r, const Request& request) {
     out << "  surface area    " << shortest(m.area) << "   [relative error <= " << shortest(m.area_relative_error) << "]\n";
     out << "  edge length     " << shortest(m.edge_length) << "   [relative error <= " << shortest(m.edge_length_relative_error) << "]\n";
     out << "  centroid        " << point_text(m.centroid[0], m.centroid[1], m.centroid[2]) << "\n";
+    if (r.loaded) {
+        const std::array<double, 6> b = face_bounds(r.loaded->mesh.view());
+        out << "  bounds          " << point_text(b[0], b[1], b[2]) << " to " << point_text(b[3], b[4], b[5])
+            << "; size " << shortest(b[3] - b[0]) << " x " << shortest(b[4] - b[1]) << " x " << shortest(b[5] - b[2])
+            << " (differences rounded once)\n";
+    }
     auto tensor = [&](const char* title, const std::array<double, 6>& s) {
         char line[256];
         out << "  " << title << "\n";

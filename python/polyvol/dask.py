@@ -31,7 +31,7 @@ COLUMNS = (
     "moments_accuracy", "moments_relative_error", "edge_length", "edge_length_relative_error", "overlap_checked",
     "winding_volume", "overlapping_shells", "crossing_pairs", "self_crossing_checked", "self_crossing_pairs",
     "self_crossing_example", "self_crossing_resolved", "turned_outward_faces", "principal_moments",
-    "principal_axes", "principal_moment_error", "principal_axis_angle_bound",
+    "principal_axes", "principal_moment_error", "principal_axis_angle_bound", "bounds", "size",
 )
 
 

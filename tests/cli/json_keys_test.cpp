@@ -211,7 +211,7 @@ TEST(JsonKeys, InsideOutShellsAreTurnedOutward) {
 }
 
 // Principal moments and axes (measure, with their bounds): the box 1 x 2 x 3,
-// mass 6, has moments 2.5, 5, 6.5 about z, y, x.
+// mass 6, has moments 2.5, 5, 6.5 about z, y, x; its bounds and size.
 TEST(JsonKeys, PrincipalMomentsAndAxesOfABox) {
     std::string obj = "v 0 0 0\nv 1 0 0\nv 0 2 0\nv 1 2 0\nv 0 0 3\nv 1 0 3\nv 0 2 3\nv 1 2 3\n";
     obj += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
@@ -224,6 +224,8 @@ TEST(JsonKeys, PrincipalMomentsAndAxesOfABox) {
     EXPECT_EQ(j["principal_axes"][0], json({0.0, 0.0, 1.0}));
     EXPECT_EQ(j["principal_axes"][1], json({0.0, 1.0, 0.0}));
     EXPECT_LT(j["principal_axis_angle_bound"][0].get<double>(), 1e-12);
+    EXPECT_EQ(j["bounds"], json({0.0, 0.0, 0.0, 1.0, 2.0, 3.0}));
+    EXPECT_EQ(j["size"], json({1.0, 2.0, 3.0}));
     const auto table = cli_test::run_polyvol("measure '" + scratch("box123b.obj", obj).string() + "'");
     EXPECT_NE(table.out.find("principal moments 2.5, 5, 6.5"), std::string::npos) << table.out;
     EXPECT_EQ(table.out.find("-0,"), std::string::npos) << table.out;
