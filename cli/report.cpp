@@ -361,7 +361,8 @@ FileResult process_file(const std::string& file, const Request& request, const s
     // Coordinates a reader computed (3MF transforms): every guarantee widened
     // to hold for the coordinates the file defines.
     if (r.mass && r.loaded->coordinate_error > 0)
-        widen_for_coordinate_error(view, r.loaded->coordinate_error, request.measure.density, closed, *r.mass);
+        widen_for_coordinate_error(view, r.loaded->coordinate_error, request.measure.density, closed,
+                                   r.solid && r.solid->status == BooleanStatus::ok && solid_differs(*r.solid), *r.mass);
     r.seconds_measure = seconds_since(t0);
     return r;
 }

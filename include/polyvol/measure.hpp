@@ -159,6 +159,9 @@ PrincipalInertia principal_inertia(const std::array<double, 6>& tensor, double r
 // "Coordinates within delta".
 struct PerturbationBounds {
     double volume = 0, first_moments = 0, second_moments = 0, area = 0, edge_length = 0;
+    // For a region bounded by pieces of the surface (the solid {W >= 1} of
+    // overlapping shells): the same from what each triangle sweeps.
+    double swept_volume = 0, swept_first_moments = 0, swept_second_moments = 0;
 };
 PerturbationBounds perturbation_bounds(const MeshView& mesh, double delta, bool closed);
 
@@ -166,7 +169,10 @@ PerturbationBounds perturbation_bounds(const MeshView& mesh, double delta, bool 
 // m was computed from (perturbation_bounds, scaled by the density): volume,
 // area and edge length by absolute bounds, centroid, moments and inertia by
 // one relative bound (MassProperties::moments_relative_error's meaning).
-void widen_for_coordinate_error(const MeshView& mesh, double delta, double density, bool closed, MassProperties& m);
+// region: m holds the figures of a region bounded by pieces of the surface
+// (solid_volume's solid), not the surface's own sums.
+void widen_for_coordinate_error(const MeshView& mesh, double delta, double density, bool closed, bool region,
+                                MassProperties& m);
 
 // Whether the surface is a closed 2-cycle (topology.hpp's closed_2_cycle:
 // every edge between two distinct points used as often in each direction,

@@ -145,13 +145,13 @@ std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, 
 // when no t of the first few gives a clean count.
 WindingSeed own_front_seed(const Operand& op, uint32_t body, int front, const std::vector<uint32_t>& candidates);
 
-// Splits a body that crosses itself into sheets where its surface is not a
+// Splits every body that crosses itself into sheets where its surface is not a
 // 2-manifold: the triangles around an edge of four or more are paired by
 // angle, each pair bounding one wedge of the solid (sheets.cpp), and each
 // vertex gets one copy per fan of triangles around it (site records the
 // original). Throws SelfContact where triangles around an edge lie in one
 // plane.
 // Call before finish_operand.
-void split_sheets(Operand& op, uint32_t body);
+void split_sheets(Operand& op);
 
 }  // namespace polyvol::boolean

@@ -18,7 +18,7 @@
 
 namespace polyvol::boolean {
 
-void split_sheets(Operand& op, uint32_t body) {
+void split_sheets(Operand& op) {
     struct HalfEdge {
         uint32_t lo, hi;  // vertex ids, lo < hi
         uint32_t t;
@@ -28,7 +28,7 @@ void split_sheets(Operand& op, uint32_t body) {
     std::vector<HalfEdge> half;
     std::vector<uint32_t> tris;
     for (std::size_t t = 0; t < op.triangles(); ++t) {
-        if (op.body(t) != body) continue;
+        if (!op.crosses_itself(op.body(t))) continue;
         tris.push_back(static_cast<uint32_t>(t));
         for (int e = 0; e < 3; ++e) {
             const uint32_t u = op.tri[3 * t + e], w = op.tri[3 * t + (e + 1) % 3];

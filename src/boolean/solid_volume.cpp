@@ -240,8 +240,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments, bool within_shells)
             }
         }
         try {
-            for (uint32_t b = 0; b < shells.size(); ++b)
-                if (g.crosses_itself(b)) split_sheets(g, b);
+            if (std::count(g.body_crosses.begin(), g.body_crosses.end(), 1) > 0) split_sheets(g);
             finish_operand(g);
             solid_group(g, g_face, shells, body_sign, scale, mesh.face_count(), pieces, whole, r);
         } catch (const Contradiction&) {

@@ -471,22 +471,31 @@ std::vector<std::byte> ZipArchive::read_zip64_entry(const std::string& entry, co
         out.assign(data.begin() + static_cast<std::ptrdiff_t>(start),
                    data.begin() + static_cast<std::ptrdiff_t>(start + z.size));
     } else {
-        out.resize(static_cast<std::size_t>(z.size));
+        // Output grows as it arrives (never more than the claimed size): a
+        // claim alone commits no memory.
         z_stream zs{};
         if (inflateInit2(&zs, -MAX_WBITS) != Z_OK) throw corrupt("zlib cannot start");
+        constexpr std::size_t kChunk = std::size_t{1} << 16;
+        std::vector<std::byte> chunk(kChunk);
         uint64_t read = 0, written = 0;
         int rc = Z_OK;
         while (rc == Z_OK) {
             constexpr uint64_t kStep = uint64_t{1} << 30;
             zs.next_in = const_cast<Bytef*>(in + read);
             zs.avail_in = static_cast<uInt>(std::min(kStep, z.compressed - read));
-            zs.next_out = reinterpret_cast<Bytef*>(out.data() + written);
-            zs.avail_out = static_cast<uInt>(std::min(kStep, z.size - written));
-            const uInt in_before = zs.avail_in, out_before = zs.avail_out;
+            zs.next_out = reinterpret_cast<Bytef*>(chunk.data());
+            zs.avail_out = static_cast<uInt>(kChunk);
+            const uInt in_before = zs.avail_in;
             rc = inflate(&zs, Z_NO_FLUSH);
             read += in_before - zs.avail_in;
-            written += out_before - zs.avail_out;
-            if (rc == Z_OK && in_before == zs.avail_in && out_before == zs.avail_out) rc = Z_BUF_ERROR;
+            const std::size_t got = kChunk - zs.avail_out;
+            if (got > z.size - written) {
+                rc = Z_DATA_ERROR;  // more than the header says
+                break;
+            }
+            out.insert(out.end(), chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(got));
+            written += got;
+            if (rc == Z_OK && in_before == zs.avail_in && got == 0) rc = Z_BUF_ERROR;
         }
         inflateEnd(&zs);
         if (rc != Z_STREAM_END || written != z.size)

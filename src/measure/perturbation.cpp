@@ -6,7 +6,9 @@
 // s = a + b + c, m = max |coordinate|: |Δ(D s_i)| <= |ΔD| 3m + (|D| + |ΔD|) 3δ and
 // |Δ(D q_ij)| <= |ΔD| 12 m² + (|D| + |ΔD|)(24 δ m + 12 δ²), |D| <= |a| |b×c|
 // A closed surface's volume takes the vertices relative to the middle of its
-// box instead (docs/numerics.md, "Coordinates within delta").
+// box instead. A region bounded by pieces of the surface ({W >= 1}) changes
+// only where a triangle sweeps: T ⊕ ball(ε) per triangle (docs/numerics.md,
+// "Coordinates within delta").
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -57,11 +59,14 @@ PerturbationBounds perturbation_bounds(const MeshView& mesh, double delta, bool 
         b.edge_length += 2 * eps * static_cast<double>(c.size());
         for (std::size_t i = 1; i + 1 < c.size(); ++i) {
             const V3 p = at(mesh, c[0]), q = at(mesh, c[i]), r = at(mesh, c[i + 1]);
+            // |y × z| computed, plus what cancellation in its components may
+            // have lost (each within 2u |y| |z|): an upper bound.
+            auto cross_norm = [](const V3& y, const V3& z) { return norm(cross(y, z)) + 4 * 0x1p-53 * norm(y) * norm(z); };
             auto det_movement = [&](const V3& x, const V3& y, const V3& z) {
-                return eps * (norm(cross(y, z)) + norm(cross(z, x)) + norm(cross(x, y))) +
+                return eps * (cross_norm(y, z) + cross_norm(z, x) + cross_norm(x, y)) +
                        eps * eps * (norm(x) + norm(y) + norm(z)) + eps * eps * eps;
             };
-            const double np = norm(p), nqr = norm(cross(q, r));
+            const double np = norm(p), nqr = cross_norm(q, r);
             const double dd = det_movement(p, q, r);  // about the origin, for the moments
             const double d = np * nqr;                 // >= |det(p, q, r)|
             const double m = std::max({largest(p), largest(q), largest(r)});
@@ -70,6 +75,13 @@ PerturbationBounds perturbation_bounds(const MeshView& mesh, double delta, bool 
             b.second_moments += dd * 12 * m * m + (d + dd) * (24 * delta * m + 12 * delta * delta);
             const V3 u = minus(q, p), v = minus(r, p);
             b.area += 2 * eps * (norm(u) + norm(v)) + 4 * eps * eps;
+            // What the triangle sweeps, moving its corners by at most ε: within
+            // T ⊕ ball(ε), of volume 2εA + (π/2)ε²P + (4/3)πε³ (Steiner).
+            const double area = cross_norm(u, v) / 2, perimeter = norm(u) + norm(v) + norm(minus(r, q));
+            const double sweep = 2 * eps * area + 1.5708 * eps * eps * perimeter + 4.1888 * eps * eps * eps;
+            b.swept_volume += sweep;
+            b.swept_first_moments += sweep * (m + eps);
+            b.swept_second_moments += sweep * (m + eps) * (m + eps);
         }
     }
     b.volume *= kRoundUp / 6;
@@ -77,12 +89,21 @@ PerturbationBounds perturbation_bounds(const MeshView& mesh, double delta, bool 
     b.second_moments *= kRoundUp / 120;
     b.area *= kRoundUp / 2;
     b.edge_length *= kRoundUp;
+    b.swept_volume *= kRoundUp;
+    b.swept_first_moments *= kRoundUp;
+    b.swept_second_moments *= kRoundUp;
     return b;
 }
 
-void widen_for_coordinate_error(const MeshView& mesh, double delta, double density, bool closed, MassProperties& m) {
+void widen_for_coordinate_error(const MeshView& mesh, double delta, double density, bool closed, bool region,
+                                MassProperties& m) {
     if (!(delta > 0)) return;
-    const PerturbationBounds p = perturbation_bounds(mesh, delta, closed);
+    PerturbationBounds p = perturbation_bounds(mesh, delta, closed);
+    if (region) {  // a region bounded by pieces of the surface: what the triangles sweep
+        p.volume = p.swept_volume;
+        p.first_moments = p.swept_first_moments;
+        p.second_moments = p.swept_second_moments;
+    }
     const double inf = std::numeric_limits<double>::infinity();
     const double u = 0x1p-53;
     // Volume: the rounding (half an ulp when correctly rounded) plus the movement.

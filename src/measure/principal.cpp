@@ -45,8 +45,11 @@ PrincipalInertia principal_inertia(const std::array<double, 6>& t, double relati
         const Eigen::Vector3d col = v.col(k).normalized();
         residual = std::max(residual, (a * col - solver.eigenvalues()(k) * col).norm());
     }
+    // Matching the k-th computed moment with the k-th eigenvalue takes the
+    // residual matrix's norm, at most √3 times the largest column's (Kahan).
     const double tensor_error = 3 * relative_error * largest;  // |E|_F for entries within relative_error max|A|
-    p.moment_error = (residual + 16 * u * 3 * largest + tensor_error) * (1 + 0x1p-40);
+    p.moment_error = (std::sqrt(3.0) * residual + 16 * u * 3 * largest + tensor_error) * (1 + 0x1p-40);
+    if (std::isnan(p.moment_error)) p.moment_error = inf;
     for (int k = 0; k < 3; ++k) {
         p.moments[static_cast<std::size_t>(k)] = solver.eigenvalues()(k);
         for (int i = 0; i < 3; ++i) p.axes[static_cast<std::size_t>(k)][static_cast<std::size_t>(i)] = v(i, k) + 0.0;  // no -0

@@ -563,6 +563,13 @@ TEST(ThreeMfReader, Zip64Entries) {
         EXPECT_EQ(m.mesh.positions, plain.mesh.positions);
         EXPECT_EQ(m.mesh.indices, plain.mesh.indices);
     }
+    // An empty deflated entry is empty (zlib needs an output buffer even then).
+    {
+        const Bytes with_empty = make_zip64({{"empty.txt", ""}, {"a.txt", "abc"}});
+        polyvol::io::ZipArchive zip(with_empty, "empty.zip");
+        EXPECT_TRUE(zip.read("empty.txt").empty());
+        EXPECT_EQ(zip.read("a.txt").size(), 3u);
+    }
     ReadError e = expect_read_error([&] { polyvol::io::read_3mf_zip(make_zip64(parts, false, true), "crc.3mf"); });
     EXPECT_NE(e.message.find("CRC mismatch"), std::string::npos) << e.message;
     Bytes stored = make_zip64(parts, true);
