@@ -25,6 +25,7 @@
 
 #include "boolean/operand.hpp"
 #include "boolean/predicates.hpp"
+#include "boolean/symbolic.hpp"
 
 namespace polyvol::boolean {
 
@@ -213,13 +214,11 @@ void check_fold(const Operand& op, uint32_t t, uint32_t s) {
         if (!apart) throw SelfContact("boolean: a body that crosses itself folds onto itself at a vertex");
         return;
     }
-    using Q3 = std::array<mpq_class, 3>;
-    auto q3 = [](const double* p) { return Q3{mpq_class(p[0]), mpq_class(p[1]), mpq_class(p[2])}; };
+    using Q3 = RationalPoint;
+    auto q3 = rational_point;
     auto sub = [](const Q3& x, const Q3& y) { return Q3{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
     auto orient_q = [&](const double* const P[3], const double* x) {
-        const Q3 p0 = q3(P[0]), u = sub(q3(P[1]), p0), w = sub(q3(P[2]), p0), r = sub(q3(x), p0);
-        return mpq_class(r[0] * (u[1] * w[2] - u[2] * w[1]) + r[1] * (u[2] * w[0] - u[0] * w[2]) +
-                         r[2] * (u[0] * w[1] - u[1] * w[0]));
+        return orient_of<mpq_class>(q3(P[0]), q3(P[1]), q3(P[2]), q3(x));
     };
     auto along = [&](const double* x, const double* y, const mpq_class& ox, const mpq_class& oy) {
         const Q3 vv = q3(v), dx = sub(q3(x), vv), dy = sub(q3(y), vv);

@@ -55,6 +55,11 @@ private:
 
 using EpsPoint = std::array<EpsPoly, 3>;
 
+// A point's coordinates as exact rationals (the doubles as they are), for
+// orient_of<mpq_class> where a point is not on the integer grid (a centroid).
+using RationalPoint = std::array<mpq_class, 3>;
+inline RationalPoint rational_point(const double* p) { return {mpq_class(p[0]), mpq_class(p[1]), mpq_class(p[2])}; }
+
 // The point (X, Y, Z) of a body moved by k δ.
 inline EpsPoint moved_point(const IntPoint& p, int32_t k) {
     const mpz_class m = k;

@@ -18,6 +18,7 @@
 
 #include "boolean/operand.hpp"
 #include "boolean/predicates.hpp"
+#include "boolean/symbolic.hpp"
 
 namespace polyvol::boolean {
 namespace {
@@ -104,17 +105,9 @@ int64_t ray_winding(const double* p, uint32_t body, int32_t shift, const Operand
     return -crossings;
 }
 
-using Q3 = std::array<mpq_class, 3>;
+using Q3 = RationalPoint;
 
-Q3 rational(const double* p) { return {mpq_class(p[0]), mpq_class(p[1]), mpq_class(p[2])}; }
-
-int orient_sign(const Q3& s0, const Q3& s1, const Q3& s2, const Q3& x) {
-    const Q3 u = {s1[0] - s0[0], s1[1] - s0[1], s1[2] - s0[2]};
-    const Q3 v = {s2[0] - s0[0], s2[1] - s0[1], s2[2] - s0[2]};
-    const Q3 w = {x[0] - s0[0], x[1] - s0[1], x[2] - s0[2]};
-    return sgn(mpq_class(w[0] * (u[1] * v[2] - u[2] * v[1]) + w[1] * (u[2] * v[0] - u[0] * v[2]) +
-                         w[2] * (u[0] * v[1] - u[1] * v[0])));
-}
+int orient_sign(const Q3& s0, const Q3& s1, const Q3& s2, const Q3& x) { return sgn(orient_of<mpq_class>(s0, s1, s2, x)); }
 
 // The sign of (y - x) × (z - x) projected along axis k.
 int orient2_sign(const Q3& x, const Q3& y, const Q3& z, int k) {
@@ -128,7 +121,7 @@ struct Touch {};  // the ray or the segment meets a triangle other than by cross
 // crossings of the segment from t's corner 0 to the centroid: the winding
 // in front of the surface at corner 0 (operand.hpp, own_front_seed).
 int64_t own_front_at_corner(const Operand& op, uint32_t body, uint32_t t) {
-    const Q3 a = rational(op.corner(t, 0)), b = rational(op.corner(t, 1)), c = rational(op.corner(t, 2));
+    const Q3 a = rational_point(op.corner(t, 0)), b = rational_point(op.corner(t, 1)), c = rational_point(op.corner(t, 2));
     Q3 q;
     for (int k = 0; k < 3; ++k) q[k] = (a[k] + b[k] + c[k]) / 3;
     // The ray: from q along ±e_k, k the largest component of N_t, toward t's front.
@@ -156,7 +149,7 @@ int64_t own_front_at_corner(const Operand& op, uint32_t body, uint32_t t) {
         const bool on_segment = box[0] <= hi[0] && box[3] >= lo[0] && box[1] <= hi[1] && box[4] >= lo[1] &&
                                 box[2] <= hi[2] && box[5] >= lo[2];
         if (!on_ray && !on_segment) continue;
-        const Q3 s0 = rational(op.corner(s, 0)), s1 = rational(op.corner(s, 1)), s2 = rational(op.corner(s, 2));
+        const Q3 s0 = rational_point(op.corner(s, 0)), s1 = rational_point(op.corner(s, 1)), s2 = rational_point(op.corner(s, 2));
         const int oq = orient_sign(s0, s1, s2, q);
         if (on_ray) {
             // Where the ray pierces s's plane, q's projection along e_k is inside s's.
