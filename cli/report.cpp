@@ -388,7 +388,10 @@ std::string overlap_sentence(const FileResult& r) {
         what += (what.empty() ? "" : " and ") + std::to_string(s.shells_crossing_themselves) + " shell" +
                 (s.shells_crossing_themselves == 1 ? " crosses itself" : "s cross themselves") + " (" +
                 std::to_string(s.self_crossing_pairs) + " triangle pairs)";
-    return what + ": the volume is the solid's (winding number >= 1, correctly rounded); the shells' volumes add up to " +
+    const std::string guarantee = r.mass && !r.mass->volume_correctly_rounded
+                                      ? "within " + shortest(r.mass->volume_error_bound)
+                                      : std::string("correctly rounded");
+    return what + ": the volume is the solid's (winding number >= 1, " + guarantee + "); the shells' volumes add up to " +
            shortest(s.winding_volume);
 }
 
@@ -639,8 +642,8 @@ std::string measure_report(const FileResult& r, const Request& request) {
             << r.turned_outward->flipped << " faces reversed (--signed keeps the signed sums)\n";
     const bool overlap = r.solid && solid_differs(*r.solid);
     if (overlap) {
-        out << "  volume          " << shortest(m.volume)
-            << "   [correctly rounded: the solid where the winding number is >= 1]\n";
+        out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m)
+            << "; the solid where the winding number is >= 1]\n";
         out << "  shells          " << overlap_sentence(r) << "\n";
         out << "  note            mass, centroid, moments and inertia are the solid's; surface area and edge length "
                "are the shells' sums (an overlap counts once per shell covering it)\n";

@@ -274,3 +274,32 @@ TEST(JsonKeys, UrdfAndSdfInertialOfABox) {
     EXPECT_NEAR(value("ixz"), 0, 1e-12);
     EXPECT_NEAR(std::stod(doc.child("inertial").child("mass").child_value()), 12, 1e-12);
 }
+
+// Two overlapping build items of one cube, one moved by (0.1, 0.2, 0.3): the
+// solid's volume (15 + ... of the rounded coordinates) is given with a bound,
+// and neither the table nor the shells' sentence calls it correctly rounded.
+TEST(JsonKeys, TheSolidOfTransformedItemsIsNotClaimedCorrectlyRounded) {
+    const std::string model = R"(<?xml version="1.0" encoding="UTF-8"?>
+<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">
+ <resources><object id="1" type="model"><mesh>
+  <vertices><vertex x="0" y="0" z="0"/><vertex x="2" y="0" z="0"/><vertex x="0" y="2" z="0"/><vertex x="2" y="2" z="0"/>
+   <vertex x="0" y="0" z="2"/><vertex x="2" y="0" z="2"/><vertex x="0" y="2" z="2"/><vertex x="2" y="2" z="2"/></vertices>
+  <triangles><triangle v1="0" v2="2" v3="3"/><triangle v1="0" v2="3" v3="1"/><triangle v1="4" v2="5" v3="7"/>
+   <triangle v1="4" v2="7" v3="6"/><triangle v1="0" v2="1" v3="5"/><triangle v1="0" v2="5" v3="4"/>
+   <triangle v1="2" v2="6" v3="7"/><triangle v1="2" v2="7" v3="3"/><triangle v1="0" v2="4" v3="6"/>
+   <triangle v1="0" v2="6" v3="2"/><triangle v1="1" v2="3" v3="7"/><triangle v1="1" v2="7" v3="5"/></triangles>
+ </mesh></object></resources>
+ <build><item objectid="1"/><item objectid="1" transform="1 0 0 0 1 0 0 0 1 1.1 1.2 1.3"/></build>
+</model>
+)";
+    const std::string path = scratch("two_items.3mf", model).string();
+    const json j = run("measure --json '" + path + "'");
+    EXPECT_GT(j["overlapping_shells"].get<int>(), 0);
+    EXPECT_EQ(j["accuracy"], "error-bound");
+    // 16 - 0.9 * 0.8 * 0.7 exactly, within the bound.
+    EXPECT_LE(std::fabs(j["volume"].get<double>() - (16 - 0.9 * 0.8 * 0.7)), j["volume_error_bound"].get<double>() + 1e-14);
+    const auto table = cli_test::run_polyvol("measure '" + path + "'");
+    EXPECT_EQ(table.out.find("correctly rounded"), std::string::npos) << table.out;
+    const auto volume = cli_test::run_polyvol("volume '" + path + "'");
+    EXPECT_NE(volume.out.find("winding number >= 1, within "), std::string::npos) << volume.out;
+}
