@@ -350,7 +350,8 @@ class BooleanVolumes(_Result):
     """Volumes of A, B, A∩B, A∪B, A−B, B−A (each correctly rounded) and the
     areas of their boundaries (each within area_error_bound)."""
 
-    _fields = ("volume_a", "volume_b", "intersection", "union", "a_minus_b", "b_minus_a", "accuracy", "area_a",
+    _fields = ("volume_a", "volume_b", "intersection", "union", "a_minus_b", "b_minus_a", "accuracy",
+               "volume_error_bound", "area_a",
                "area_b", "area_intersection", "area_union", "area_a_minus_b", "area_b_minus_a", "area_error_bound",
                "triangles_a", "triangles_b", "candidate_pairs", "crossing_pairs", "rational_terms")
 
@@ -364,8 +365,9 @@ def overlap(a, b):
     r = _core.boolean_volumes(pa, ia, oa, pb, ib, ob)
     if r.status != "ok":
         raise ValueError(f"no boolean volumes: {r.message}")
-    return BooleanVolumes(accuracy="correctly-rounded", **{k: getattr(r, k) for k in BooleanVolumes._fields
-                                                           if k != "accuracy"})
+    return BooleanVolumes(accuracy="correctly-rounded", volume_error_bound=0.0,
+                          **{k: getattr(r, k) for k in BooleanVolumes._fields
+                             if k not in ("accuracy", "volume_error_bound")})
 
 
 class SelfCrossings(_Result):

@@ -303,3 +303,33 @@ TEST(JsonKeys, TheSolidOfTransformedItemsIsNotClaimedCorrectlyRounded) {
     const auto volume = cli_test::run_polyvol("volume '" + path + "'");
     EXPECT_NE(volume.out.find("winding number >= 1, within "), std::string::npos) << volume.out;
 }
+
+// overlap of a cube and one moved by a 3MF transform: the volumes come with a
+// bound, not as correctly rounded, and the bound holds.
+TEST(JsonKeys, OverlapOfTransformedOperandsIsABound) {
+    auto cube = [](const std::string& transform) {
+        return std::string(R"(<?xml version="1.0" encoding="UTF-8"?>
+<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">
+ <resources><object id="1" type="model"><mesh>
+  <vertices><vertex x="0" y="0" z="0"/><vertex x="2" y="0" z="0"/><vertex x="0" y="2" z="0"/><vertex x="2" y="2" z="0"/>
+   <vertex x="0" y="0" z="2"/><vertex x="2" y="0" z="2"/><vertex x="0" y="2" z="2"/><vertex x="2" y="2" z="2"/></vertices>
+  <triangles><triangle v1="0" v2="2" v3="3"/><triangle v1="0" v2="3" v3="1"/><triangle v1="4" v2="5" v3="7"/>
+   <triangle v1="4" v2="7" v3="6"/><triangle v1="0" v2="1" v3="5"/><triangle v1="0" v2="5" v3="4"/>
+   <triangle v1="2" v2="6" v3="7"/><triangle v1="2" v2="7" v3="3"/><triangle v1="0" v2="4" v3="6"/>
+   <triangle v1="0" v2="6" v3="2"/><triangle v1="1" v2="3" v3="7"/><triangle v1="1" v2="7" v3="5"/></triangles>
+ </mesh></object></resources>
+ <build><item objectid="1")") + transform + "/></build>\n</model>\n";
+    };
+    const std::string a = scratch("cube_a.3mf", cube("")).string();
+    const std::string b = scratch("cube_b.3mf", cube(R"( transform="1 0 0 0 1 0 0 0 1 1.1 1.2 1.3")")).string();
+    const json plain = json::parse(cli_test::run_polyvol("overlap --json '" + a + "' '" + a + "'").out);
+    EXPECT_EQ(plain["accuracy"], "correctly-rounded");
+    const json j = json::parse(cli_test::run_polyvol("overlap --json '" + a + "' '" + b + "'").out);
+    EXPECT_EQ(j["accuracy"], "error-bound");
+    const double bound = j["volume_error_bound"];
+    EXPECT_GT(bound, 0);
+    EXPECT_LT(bound, 1e-10);
+    EXPECT_LE(std::fabs(j["intersection"].get<double>() - 0.9 * 0.8 * 0.7), bound + 1e-15);
+    const auto table = cli_test::run_polyvol("overlap '" + a + "' '" + b + "'");
+    EXPECT_NE(table.out.find("volumes: within ±"), std::string::npos) << table.out;
+}
