@@ -275,11 +275,9 @@ TEST(JsonKeys, UrdfAndSdfInertialOfABox) {
     EXPECT_NEAR(std::stod(doc.child("inertial").child("mass").child_value()), 12, 1e-12);
 }
 
-// Two overlapping build items of one cube, one moved by (0.1, 0.2, 0.3): the
-// solid's volume (15 + ... of the rounded coordinates) is given with a bound,
-// and neither the table nor the shells' sentence calls it correctly rounded.
-TEST(JsonKeys, TheSolidOfTransformedItemsIsNotClaimedCorrectlyRounded) {
-    const std::string model = R"(<?xml version="1.0" encoding="UTF-8"?>
+// A 3MF model of the cube [0, 2]^3 (object 1) with these build items.
+std::string cube_3mf(const std::string& items) {
+    return std::string(R"(<?xml version="1.0" encoding="UTF-8"?>
 <model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">
  <resources><object id="1" type="model"><mesh>
   <vertices><vertex x="0" y="0" z="0"/><vertex x="2" y="0" z="0"/><vertex x="0" y="2" z="0"/><vertex x="2" y="2" z="0"/>
@@ -289,9 +287,14 @@ TEST(JsonKeys, TheSolidOfTransformedItemsIsNotClaimedCorrectlyRounded) {
    <triangle v1="2" v2="6" v3="7"/><triangle v1="2" v2="7" v3="3"/><triangle v1="0" v2="4" v3="6"/>
    <triangle v1="0" v2="6" v3="2"/><triangle v1="1" v2="3" v3="7"/><triangle v1="1" v2="7" v3="5"/></triangles>
  </mesh></object></resources>
- <build><item objectid="1"/><item objectid="1" transform="1 0 0 0 1 0 0 0 1 1.1 1.2 1.3"/></build>
-</model>
-)";
+ <build>)") + items + "</build>\n</model>\n";
+}
+
+// Two overlapping build items of one cube, one moved by (0.1, 0.2, 0.3): the
+// solid's volume (15 + ... of the rounded coordinates) is given with a bound,
+// and neither the table nor the shells' sentence calls it correctly rounded.
+TEST(JsonKeys, TheSolidOfTransformedItemsIsNotClaimedCorrectlyRounded) {
+    const std::string model = cube_3mf(R"(<item objectid="1"/><item objectid="1" transform="1 0 0 0 1 0 0 0 1 1.1 1.2 1.3"/>)");
     const std::string path = scratch("two_items.3mf", model).string();
     const json j = run("measure --json '" + path + "'");
     EXPECT_GT(j["overlapping_shells"].get<int>(), 0);
@@ -307,19 +310,7 @@ TEST(JsonKeys, TheSolidOfTransformedItemsIsNotClaimedCorrectlyRounded) {
 // overlap of a cube and one moved by a 3MF transform: the volumes come with a
 // bound, not as correctly rounded, and the bound holds.
 TEST(JsonKeys, OverlapOfTransformedOperandsIsABound) {
-    auto cube = [](const std::string& transform) {
-        return std::string(R"(<?xml version="1.0" encoding="UTF-8"?>
-<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">
- <resources><object id="1" type="model"><mesh>
-  <vertices><vertex x="0" y="0" z="0"/><vertex x="2" y="0" z="0"/><vertex x="0" y="2" z="0"/><vertex x="2" y="2" z="0"/>
-   <vertex x="0" y="0" z="2"/><vertex x="2" y="0" z="2"/><vertex x="0" y="2" z="2"/><vertex x="2" y="2" z="2"/></vertices>
-  <triangles><triangle v1="0" v2="2" v3="3"/><triangle v1="0" v2="3" v3="1"/><triangle v1="4" v2="5" v3="7"/>
-   <triangle v1="4" v2="7" v3="6"/><triangle v1="0" v2="1" v3="5"/><triangle v1="0" v2="5" v3="4"/>
-   <triangle v1="2" v2="6" v3="7"/><triangle v1="2" v2="7" v3="3"/><triangle v1="0" v2="4" v3="6"/>
-   <triangle v1="0" v2="6" v3="2"/><triangle v1="1" v2="3" v3="7"/><triangle v1="1" v2="7" v3="5"/></triangles>
- </mesh></object></resources>
- <build><item objectid="1")") + transform + "/></build>\n</model>\n";
-    };
+    auto cube = [](const std::string& transform) { return cube_3mf("<item objectid=\"1\"" + transform + "/>"); };
     const std::string a = scratch("cube_a.3mf", cube("")).string();
     const std::string b = scratch("cube_b.3mf", cube(R"( transform="1 0 0 0 1 0 0 0 1 1.1 1.2 1.3")")).string();
     const json plain = json::parse(cli_test::run_polyvol("overlap --json '" + a + "' '" + a + "'").out);
