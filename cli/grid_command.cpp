@@ -270,6 +270,10 @@ int run_grid_command(const GridArgs& a) {
                          "is not defined\n";
             code = Exit::invalid;
         }
+        if (meshes[b].coordinate_error > 0)
+            std::cerr << "polyvol: warning: " << a.files[b] << ": its 3MF transforms are applied in floating point "
+                      << "(each coordinate within " << shortest(meshes[b].coordinate_error)
+                      << " of the file's): the cells are exact for the coordinates so rounded\n";
         views.push_back(v);
         mesh_volumes.push_back(signed_volume(v));
     }

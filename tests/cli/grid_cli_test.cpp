@@ -364,3 +364,23 @@ TEST(GridCli, NoUnionWithABodyInsideOut) {
 }
 
 }  // namespace
+
+namespace {
+// A 3MF body whose transform is applied in floating point: the grid says its
+// cells are exact for the rounded coordinates, not for the file's.
+TEST(GridCli, TransformedBodiesAreSaidToBeRounded) {
+    const fs::path p = scratch("moved_tet.3mf");
+    std::ofstream(p) << R"(<?xml version="1.0" encoding="UTF-8"?>
+<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">
+ <resources><object id="1" type="model"><mesh>
+  <vertices><vertex x="0" y="0" z="0"/><vertex x="1" y="0" z="0"/><vertex x="0" y="1" z="0"/><vertex x="0" y="0" z="1"/></vertices>
+  <triangles><triangle v1="0" v2="2" v3="1"/><triangle v1="0" v2="1" v3="3"/><triangle v1="0" v2="3" v3="2"/><triangle v1="1" v2="2" v3="3"/></triangles>
+ </mesh></object></resources>
+ <build><item objectid="1" transform="1 0 0 0 1 0 0 0 1 0.1 0.2 0.3"/></build>
+</model>
+)";
+    const CliRun r = polyvol("grid --cells 4 '" + p.string() + "' -o '" + scratch("moved_tet.json").string() + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("the cells are exact for the coordinates so rounded"), std::string::npos) << r.err;
+}
+}  // namespace
