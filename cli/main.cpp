@@ -45,7 +45,12 @@ struct Common {
     bool orient = false;       // --orient: faces wound consistently and outward before measuring
     bool keep_signed = false;  // --signed: an inside-out surface's signed sums, not turned outward
     std::string format = "table";  // measure --format table|urdf|sdf
+    double weld_tolerance = 0;     // --weld-tolerance
 };
+
+const char* const kWeldHelp =
+    "Merge points within this distance of one another (transitively) before anything else, for exports whose "
+    "coordinates differ in the last digits; the report says so, and the figures are the welded mesh's";
 
 const char* const kOrientHelp =
     "Orient the faces first: consistently within each shell (a walk over the faces), and outward, cavities "
@@ -70,6 +75,7 @@ void add_measure_options(CLI::App* cmd, Common& c) {
     cmd->add_flag("--allow-open", c.allow_open,
                   "Measure surfaces with unbalanced edges anyway (the result then depends on the origin)");
     cmd->add_flag("--orient", c.orient, kOrientHelp);
+    cmd->add_option("--weld-tolerance", c.weld_tolerance, kWeldHelp)->check(CLI::PositiveNumber);
     cmd->add_flag("--signed", c.keep_signed,
                   "Keep the signed sums of a surface that is inside out (negative volume, mass and inertia); by "
                   "default its shells are turned outward, and the report says so");
@@ -86,6 +92,7 @@ Request make_request(const Common& c, bool need_mass) {
     r.need_mass = need_mass;
     r.orient = c.orient;
     r.keep_signed = c.keep_signed;
+    r.weld_tolerance = c.weld_tolerance;
     return r;
 }
 
@@ -96,7 +103,8 @@ int run(Command command, const Common& c) {
     // Binary STL through the streaming path: the table always, JSON only with
     // --stream (the streaming path has no second moments, inertia, edge
     // length or components: README).
-    request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid && !c.orient;
+    request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid && !c.orient &&
+                     c.weld_tolerance == 0;
     request.self_check_always = command == Command::check || c.solid;
     request.volume_only = command == Command::volume && c.volume_only;
     request.table_only = command == Command::volume && (!c.json || request.volume_only);
@@ -184,6 +192,7 @@ int main(int argc, char** argv) {
     check->add_option("files", check_opts.files, "Mesh files; - reads stdin")->required();
     check->add_flag("--json", check_opts.json, "Print JSON");
     check->add_flag("--orient", check_opts.orient, kOrientHelp);
+    check->add_option("--weld-tolerance", check_opts.weld_tolerance, kWeldHelp)->check(CLI::PositiveNumber);
     NdimCommands ndim_commands;
     add_ndim_commands(app, ndim_commands);
     GridArgs grid_args;

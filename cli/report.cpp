@@ -29,7 +29,31 @@ nlohmann::json matrix3(const std::array<double, 6>& s) {
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-std::string unbalanced_message(const TopologyReport& t) {
+// The surface closes when points within a tolerance below 1e-9 of its size
+// (its box's diagonal) are merged: the largest power of ten at most that,
+// if welding there leaves no unbalanced edge; else 0.
+double closing_tolerance(const MeshView& view) {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t v = 0; v < view.vertex_count(); ++v)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], view.positions[3 * v + k]);
+            hi[k] = std::max(hi[k], view.positions[3 * v + k]);
+        }
+    const double size = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+    if (!(size > 0) || !std::isfinite(size)) return 0;
+    const double tolerance = std::pow(10.0, std::floor(std::log10(1e-9 * size)));
+    Mesh copy{std::vector<double>(view.positions.begin(), view.positions.end()),
+              std::vector<uint32_t>(view.face_offsets.begin(), view.face_offsets.end()),
+              std::vector<uint32_t>(view.indices.begin(), view.indices.end())};
+    try {
+        if (weld_within(copy, tolerance).moved == 0) return 0;
+    } catch (const std::invalid_argument&) {
+        return 0;
+    }
+    return analyze_topology(copy.view(), TopologyOptions{.shells = false}).closed_2_cycle ? tolerance : 0;
+}
+
+std::string unbalanced_message(const TopologyReport& t, double closes_at_tolerance = 0) {
     if (t.boundary_edges == 0 && t.nonmanifold_edges == 0 && t.misoriented_edges > 0)
         return "closed, but " + std::to_string(t.misoriented_edges) + " edge" +
                (t.misoriented_edges == 1 ? " is" : "s are") + " misoriented (faces wound inconsistently): " +
@@ -42,6 +66,9 @@ std::string unbalanced_message(const TopologyReport& t) {
         const auto& e = *t.unbalanced_example;
         m += ", e.g. " + point_text(e[0], e[1], e[2]) + " - " + point_text(e[3], e[4], e[5]);
     }
+    if (closes_at_tolerance > 0)
+        m += "; merging the points within " + shortest(closes_at_tolerance) +
+             " of one another (1e-9 of its size) closes it: --weld-tolerance " + shortest(closes_at_tolerance);
     m += "; its volume would depend on the origin (--allow-open gives it anyway)";
     return m;
 }
@@ -253,6 +280,16 @@ FileResult process_file(const std::string& file, const Request& request, const s
     }
     r.seconds_read = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
+    if (request.weld_tolerance > 0) {
+        try {
+            r.welded = weld_within(r.loaded->mesh, request.weld_tolerance);
+            r.weld_tolerance = request.weld_tolerance;
+        } catch (const std::invalid_argument& e) {
+            r.exit_code = Exit::invalid;
+            r.error = path + ": " + e.what();
+            return r;
+        }
+    }
     if (request.orient) {
         r.oriented = orient_mesh(r.loaded->mesh);
         if (!r.oriented->orientable) {
@@ -266,6 +303,7 @@ FileResult process_file(const std::string& file, const Request& request, const s
     r.closed_by_fingerprint =
         request.closedness_by_fingerprint && fingerprint_closedness(view) == Closedness::closed;
     if (!r.closed_by_fingerprint) r.topology = analyze_topology(view, TopologyOptions{.shells = !request.table_only});
+    if (r.topology && !r.topology->closed_2_cycle && !request.allow_open) r.closes_at_tolerance = closing_tolerance(view);
     if (request.need_mass) {
         if (!r.closed_by_fingerprint && !r.topology->closed_2_cycle) {
             if (request.allow_open) {
@@ -274,7 +312,7 @@ FileResult process_file(const std::string& file, const Request& request, const s
                             "the origin (they are the sums about (0,0,0))";
             } else {
                 r.exit_code = Exit::invalid;
-                r.error = path + ": " + unbalanced_message(*r.topology);
+                r.error = path + ": " + unbalanced_message(*r.topology, r.closes_at_tolerance);
             }
         }
         if (r.exit_code == Exit::ok)
@@ -367,6 +405,12 @@ FileResult process_file(const std::string& file, const Request& request, const s
     return r;
 }
 
+// What --weld-tolerance did, in words.
+std::string weld_sentence(const ToleranceWeld& w, double tolerance) {
+    return "welded at " + shortest(tolerance) + ": " + std::to_string(w.moved) + " point" + (w.moved == 1 ? "" : "s") +
+           " moved, by at most " + shortest(w.largest_move) + "; the figures are the welded mesh's";
+}
+
 // What --orient did, in words.
 std::string orient_sentence(const OrientResult& o) {
     std::string s = "oriented: " + std::to_string(o.flipped) + " face" + (o.flipped == 1 ? "" : "s") + " flipped";
@@ -430,9 +474,15 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["encoding"] = l.encoding;
         j["gzip"] = l.gzip;
         j["notes"] = l.notes;
+        if (l.format == Format::stl) j["facet_normals_against_winding"] = l.facet_normals_against_winding;
         j["vertices"] = l.vertices_in_file;
         j["faces"] = l.mesh.face_count();
         j["triangles"] = l.mesh.view().triangle_count();
+        if (r.welded) {
+            j["weld_tolerance"] = r.weld_tolerance;
+            j["welded_points_moved"] = r.welded->moved;
+            j["weld_largest_move"] = r.welded->largest_move;
+        }
         if (r.oriented) {
             j["oriented"] = r.oriented->orientable;
             j["oriented_faces_flipped"] = r.oriented->flipped;
@@ -446,6 +496,7 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
     if (r.topology) {
         const auto& t = *r.topology;
         j["boundary_edges"] = t.boundary_edges;
+        j["holes"] = t.holes;
         j["nonmanifold_edges"] = t.nonmanifold_edges;
         j["misoriented_edges"] = t.misoriented_edges;
         j["unbalanced_edges"] = t.unbalanced_edges;
@@ -565,6 +616,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     std::string streamed_notes, loaded_notes, overlap_notes;
     for (const auto& r : results) {
         any_fingerprint = any_fingerprint || r.streamed || r.closed_by_fingerprint;
+        if (r.welded)
+            loaded_notes += "  " + r.file + ": " + weld_sentence(*r.welded, r.weld_tolerance) + "\n";
         if (r.oriented && r.oriented->orientable) loaded_notes += "  " + r.file + ": " + orient_sentence(*r.oriented) + "\n";
         if (r.streamed) {
             const SoupResult& s = *r.streamed;
@@ -636,6 +689,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
         << "; " << l.vertices_in_file << " vertices, " << l.mesh.face_count() << " faces, "
         << l.mesh.view().triangle_count() << " triangles)\n";
     out << "  method          " << method_name(request.measure.method) << ", density " << shortest(request.measure.density) << "\n";
+    if (r.welded) out << "  welded          " << weld_sentence(*r.welded, r.weld_tolerance) << "\n";
     if (r.oriented) out << "  orientation     " << orient_sentence(*r.oriented) << "\n";
     if (r.turned_outward)
         out << "  orientation     inside out: " << r.turned_outward->components << " shell(s) turned outward, "
@@ -729,13 +783,19 @@ std::string check_report(const FileResult& r) {
     const auto& l = *r.loaded;
     out << r.file << "  (" << format_name(l.format) << ", " << l.encoding << (l.gzip ? ", gzip" : "") << ")\n";
     for (const auto& n : l.notes) out << "  note: " << n << "\n";
+    if (r.welded) out << "  welded          " << weld_sentence(*r.welded, r.weld_tolerance) << "\n";
+    if (l.format == Format::stl && l.facet_normals_against_winding)
+        out << "  facet normals   " << l.facet_normals_against_winding << " of " << t.triangles
+            << " point against their triangle's winding (the winding decides the orientation)\n";
     if (r.oriented) out << "  orientation     " << orient_sentence(*r.oriented) << "\n";
     out << "  vertices        " << l.vertices_in_file << " read, " << t.vertices_welded << " after welding, "
         << t.vertices_referenced << " used by faces\n";
     out << "  faces           " << t.faces << " (" << t.faces_with_lt3_vertices << " with fewer than 3 vertices, ignored), "
         << t.triangles << " fan triangles\n";
     out << "  edges           " << t.edges << "\n";
-    out << "  boundary        " << t.boundary_edges << "\n";
+    out << "  boundary        " << t.boundary_edges << " edges";
+    if (t.boundary_edges) out << " in " << t.holes << " hole" << (t.holes == 1 ? "" : "s") << " (boundary loops)";
+    out << "\n";
     out << "  non-manifold    " << t.nonmanifold_edges << "\n";
     out << "  misoriented     " << t.misoriented_edges << "\n";
     out << "  unbalanced      " << t.unbalanced_edges << "\n";
@@ -745,7 +805,7 @@ std::string check_report(const FileResult& r) {
     out << "  components      " << t.components_edge_connected << " edge-connected, " << t.components_vertex_connected
         << " vertex-connected\n";
     out << "  closed 2-cycle  " << (t.closed_2_cycle ? "yes: the volume does not depend on the origin"
-                                                      : "no: " + unbalanced_message(t))
+                                                      : "no: " + unbalanced_message(t, r.closes_at_tolerance))
         << "\n";
     std::size_t shown = 0;
     for (const Shell& s : t.shells) {

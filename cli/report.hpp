@@ -54,6 +54,12 @@ struct FileResult {
     // A closed surface found inside out and turned outward (not --signed):
     // what orient_mesh did; the figures are the turned mesh's.
     std::optional<OrientResult> turned_outward;
+    // Request::weld_tolerance: what merging the points within it did.
+    std::optional<ToleranceWeld> welded;
+    double weld_tolerance = 0;
+    // A surface that is not closed but would close when points within a
+    // tolerance below 1e-9 of its size were merged: that tolerance (else 0).
+    double closes_at_tolerance = 0;
 };
 
 // Files up to this many fan triangles are checked for a surface crossing
@@ -97,6 +103,9 @@ struct Request {
     // --signed: a closed surface that is inside out keeps its signed sums
     // (negative volume); by default its shells are turned outward.
     bool keep_signed = false;
+    // --weld-tolerance: points within it merged (weld_within) before
+    // anything is analysed or measured; 0: only equal coordinates are one point.
+    double weld_tolerance = 0;
 };
 
 // Reads, analyses and measures one file; never throws.

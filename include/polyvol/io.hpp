@@ -73,6 +73,10 @@ struct LoadedMesh {
     // 0 when the coordinates are the file's numbers; above 0 where the reader
     // computed them (3MF transforms, applied in floating point).
     double coordinate_error = 0;
+    // STL: the triangle facets whose stated normal points against the winding
+    // of their corners (n · ((b − a) × (c − a)) < 0 in double; zero normals
+    // never count). Other formats: 0.
+    std::size_t facet_normals_against_winding = 0;
 };
 
 // Reads a file; "-" reads standard input. Throws ReadError (a zip archive

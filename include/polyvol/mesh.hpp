@@ -95,4 +95,18 @@ Mesh welded(const MeshView& mesh);
 // classes' (what a reader that builds a soup wants).
 void weld_in_place(Mesh& mesh);
 
+// Points within `tolerance` of one another (Euclidean distance, computed in
+// double) merged, transitively (a chain of close points becomes one point),
+// each class onto its vertex of smallest index, which keeps its position;
+// then welded exactly (weld_in_place). Faces keep their sizes: a face whose
+// corners merged repeats a vertex. Results are then those of the welded
+// mesh, not of the file. NaN and infinite points are never merged. Throws
+// std::invalid_argument for a tolerance that is not positive and finite, or
+// one so coarse that it brings more than 2^33 pairs of points within reach.
+struct ToleranceWeld {
+    std::size_t moved = 0;      // points moved onto a different position
+    double largest_move = 0;    // the longest distance a point moved (may exceed the tolerance by chaining)
+};
+ToleranceWeld weld_within(Mesh& mesh, double tolerance);
+
 }  // namespace polyvol

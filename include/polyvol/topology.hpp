@@ -94,6 +94,8 @@ struct TopologyReport {
     // edges
     std::size_t edges = 0;
     std::size_t boundary_edges = 0;
+    std::size_t holes = 0;                    // boundary loops: connected components of the boundary
+                                              // edges (two loops touching at a vertex count as one)
     std::size_t nonmanifold_edges = 0;
     std::size_t misoriented_edges = 0;
     std::size_t unbalanced_edges = 0;

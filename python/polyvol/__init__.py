@@ -146,7 +146,7 @@ def load_bytes(data, name="memory"):
 
 
 def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounded", allow_open=False, solid=False,
-                 orient=False, signed=False):
+                 orient=False, signed=False, weld_tolerance=0.0):
     """Everything `polyvol measure --json FILE` reports for one file, as a dict
     with its keys (the CLI's own code computes it): format and counts,
     topology and shells, the mass properties with their guarantees (of the
@@ -155,10 +155,12 @@ def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounde
     solid=True looks for a surface crossing itself at any size (--solid);
     orient=True winds the faces consistently and outward first (--orient).
     A shell that is inside out is turned outward (turned_outward_faces) unless
-    signed=True (--signed)."""
+    signed=True (--signed). weld_tolerance > 0 merges the points within it
+    first (--weld-tolerance; the report says what moved)."""
     import json
     report = json.loads(_core.measure_file_json(os.fsencode(path), method, accuracy, float(density),
-                                                bool(allow_open), bool(solid), bool(orient), bool(signed)))
+                                                bool(allow_open), bool(solid), bool(orient), bool(signed),
+                                                float(weld_tolerance)))
     report["file"] = os.fsdecode(path)
     return report
 
@@ -252,10 +254,11 @@ class Shell(_Result):
 class Topology(_Result):
     """What `polyvol check` reports. ``closed`` is True when the surface is a
     closed 2-cycle (no unbalanced edge: its volume does not depend on the
-    origin); ``misoriented_edges`` counts edges used twice in one direction."""
+    origin); ``misoriented_edges`` counts edges used twice in one direction;
+    ``holes`` the boundary loops."""
 
     _fields = ("closed_2_cycle", "faces", "triangles", "vertices", "vertices_welded", "edges", "boundary_edges",
-               "nonmanifold_edges", "misoriented_edges", "unbalanced_edges", "unbalanced_example",
+               "holes", "nonmanifold_edges", "misoriented_edges", "unbalanced_edges", "unbalanced_example",
                "degenerate_triangles", "euler_characteristic", "components", "cavities", "inside_out_shells",
                "shells", "self_crossing_checked", "self_crossing_pairs", "self_crossing_example")
 
@@ -298,7 +301,7 @@ def check(mesh, faces=None, *, shells=True, self_crossings=True):
         self_crossing_pairs=crossings.pairs if crossings is not None else None,
         self_crossing_example=list(crossings.example) if crossings is not None and crossings.example else None,
         vertices_welded=t.vertices_welded, edges=t.edges, boundary_edges=t.boundary_edges,
-        nonmanifold_edges=t.nonmanifold_edges, misoriented_edges=t.misoriented_edges,
+        holes=t.holes, nonmanifold_edges=t.nonmanifold_edges, misoriented_edges=t.misoriented_edges,
         unbalanced_edges=t.unbalanced_edges, unbalanced_example=example,
         degenerate_triangles=t.zero_area_triangles,  # those with a repeated vertex included
         euler_characteristic=t.euler_characteristic, components=t.components_edge_connected, cavities=t.cavities,

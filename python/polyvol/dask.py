@@ -23,15 +23,16 @@ from . import _grid
 # The dataframe's columns: the keys of `polyvol measure --json` (a key a file
 # does not have is None in its row).
 COLUMNS = (
-    "file", "exit_code", "error", "warning", "format", "encoding", "gzip", "notes", "vertices", "faces", "triangles",
-    "vertices_welded", "edges", "boundary_edges", "nonmanifold_edges", "misoriented_edges", "unbalanced_edges",
-    "unbalanced_example", "degenerate_triangles", "components", "closed_2_cycle", "euler_characteristic", "cavities",
-    "inside_out_shells", "shells", "method", "accuracy", "density", "volume", "volume_error_bound", "mass", "area",
-    "area_relative_error", "centroid", "first_moments", "second_moments", "inertia", "inertia_origin",
-    "moments_accuracy", "moments_relative_error", "edge_length", "edge_length_relative_error", "overlap_checked",
-    "winding_volume", "overlapping_shells", "crossing_pairs", "self_crossing_checked", "self_crossing_pairs",
-    "self_crossing_example", "self_crossing_resolved", "turned_outward_faces", "principal_moments",
-    "principal_axes", "principal_moment_error", "principal_axis_angle_bound", "bounds", "size",
+    "file", "exit_code", "error", "warning", "format", "encoding", "gzip", "notes", "vertices", "faces",
+    "triangles", "vertices_welded", "edges", "boundary_edges", "holes", "nonmanifold_edges", "misoriented_edges",
+    "unbalanced_edges", "unbalanced_example", "facet_normals_against_winding", "degenerate_triangles",
+    "components", "closed_2_cycle", "euler_characteristic", "cavities", "inside_out_shells", "shells", "method",
+    "accuracy", "density", "volume", "volume_error_bound", "mass", "area", "area_relative_error", "centroid",
+    "first_moments", "second_moments", "inertia", "inertia_origin", "moments_accuracy", "moments_relative_error",
+    "edge_length", "edge_length_relative_error", "overlap_checked", "winding_volume", "overlapping_shells",
+    "crossing_pairs", "self_crossing_checked", "self_crossing_pairs", "self_crossing_example",
+    "self_crossing_resolved", "turned_outward_faces", "principal_moments", "principal_axes",
+    "principal_moment_error", "principal_axis_angle_bound", "bounds", "size",
 )
 
 
@@ -40,10 +41,10 @@ COLUMNS = (
 FLOATS = ("density", "volume", "volume_error_bound", "mass", "area", "area_relative_error",
           "moments_relative_error", "edge_length", "edge_length_relative_error", "winding_volume",
           "principal_moment_error")
-COUNTS = ("vertices", "faces", "triangles", "vertices_welded", "edges", "boundary_edges", "nonmanifold_edges",
-          "misoriented_edges", "unbalanced_edges", "degenerate_triangles", "components", "euler_characteristic",
-          "cavities", "inside_out_shells", "overlapping_shells", "crossing_pairs", "self_crossing_pairs",
-          "turned_outward_faces")
+COUNTS = ("vertices", "faces", "triangles", "vertices_welded", "edges", "boundary_edges", "holes",
+          "facet_normals_against_winding", "nonmanifold_edges", "misoriented_edges", "unbalanced_edges",
+          "degenerate_triangles", "components", "euler_characteristic", "cavities", "inside_out_shells",
+          "overlapping_shells", "crossing_pairs", "self_crossing_pairs", "turned_outward_faces")
 
 
 def _typed(frame):

@@ -110,8 +110,9 @@ void bind_io(py::module_& m) {
     m.def(
         "measure_file_json",
         [](const std::string& path, const std::string& method, const std::string& accuracy, double density,
-           bool allow_open, bool solid, bool orient, bool keep_signed) {
+           bool allow_open, bool solid, bool orient, bool keep_signed, double weld_tolerance) {
             cli::Request request;
+            request.weld_tolerance = weld_tolerance;
             request.orient = orient;
             request.keep_signed = keep_signed;
             request.measure.method = parse_method(method);
@@ -129,7 +130,7 @@ void bind_io(py::module_& m) {
             return text;
         },
         py::arg("path"), py::arg("method"), py::arg("accuracy"), py::arg("density"), py::arg("allow_open"),
-        py::arg("solid"), py::arg("orient"), py::arg("keep_signed") = false);
+        py::arg("solid"), py::arg("orient"), py::arg("keep_signed") = false, py::arg("weld_tolerance") = 0.0);
 
     // A copy of the mesh wound consistently and outward (orient_mesh), and what that did.
     m.def(

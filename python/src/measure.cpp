@@ -132,6 +132,7 @@ void bind_measure(py::module_& m) {
         .def_readonly("vertices_referenced", &TopologyReport::vertices_referenced)
         .def_readonly("edges", &TopologyReport::edges)
         .def_readonly("boundary_edges", &TopologyReport::boundary_edges)
+        .def_readonly("holes", &TopologyReport::holes)
         .def_readonly("nonmanifold_edges", &TopologyReport::nonmanifold_edges)
         .def_readonly("misoriented_edges", &TopologyReport::misoriented_edges)
         .def_readonly("unbalanced_edges", &TopologyReport::unbalanced_edges)

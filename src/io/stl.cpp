@@ -84,10 +84,23 @@ constexpr std::size_t kBinaryBlock = 16384;
 // vertices (UINT32_MAX is no index): the most corners a read may collect.
 constexpr std::size_t kMaxVertices = std::size_t{UINT32_MAX} - 1;
 
-// Widens records [t0, t1) into pos (nine doubles a record: exact).
+// Whether a facet's stated normal n points against the winding of its
+// corners p (nine coordinates): n · ((b − a) × (c − a)) < 0, in double. A
+// zero or non-finite normal (a writer's "compute it yourself") never counts.
+bool normal_against_winding(const double n[3], const double* p) {
+    const double u[3] = {p[3] - p[0], p[4] - p[1], p[5] - p[2]};
+    const double v[3] = {p[6] - p[0], p[7] - p[1], p[8] - p[2]};
+    const double d = n[0] * (u[1] * v[2] - u[2] * v[1]) + n[1] * (u[2] * v[0] - u[0] * v[2]) +
+                     n[2] * (u[0] * v[1] - u[1] * v[0]);
+    return std::isfinite(n[0] + n[1] + n[2]) && d < 0;
+}
+
+// Widens records [t0, t1) into pos (nine doubles a record: exact), and
+// counts in `against` the records whose normal points against the winding.
 // Returns the byte offset of the first non-finite coordinate, or 0 when
 // there is none (no coordinate is at offset 0).
-uint64_t widen_records(Bytes data, std::size_t t0, std::size_t t1, double* pos, bool& attributes) {
+uint64_t widen_records(Bytes data, std::size_t t0, std::size_t t1, double* pos, bool& attributes,
+                       std::size_t& against) {
     const std::byte* rec = data.data() + 84 + 50 * t0;
     for (std::size_t t = t0; t < t1; ++t, rec += 50) {
         for (int c = 0; c < 9; ++c) {
@@ -95,6 +108,8 @@ uint64_t widen_records(Bytes data, std::size_t t0, std::size_t t1, double* pos, 
             if (!std::isfinite(f)) return static_cast<uint64_t>(rec + 12 + 4 * c - data.data());
             pos[c] = static_cast<double>(f);  // exact widening
         }
+        const double normal[3] = {load_f32_le(rec), load_f32_le(rec + 4), load_f32_le(rec + 8)};
+        against += normal_against_winding(normal, pos);
         pos += 9;
         attributes = attributes || rec[48] != std::byte{0} || rec[49] != std::byte{0};
     }
@@ -133,7 +148,10 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
     if (!options.weld_stl) {
         if (out.vertices_in_file > kMaxVertices) throw too_many("corners");
         core::resize_for_filling(m.positions, std::size_t{9} * n);
-        if (const uint64_t bad = widen_records(data, 0, n, m.positions.data(), attributes)) throw_nonfinite(name, bad);
+        std::size_t against = 0;
+        if (const uint64_t bad = widen_records(data, 0, n, m.positions.data(), attributes, against))
+            throw_nonfinite(name, bad);
+        out.facet_normals_against_winding = against;
         core::resize_for_filling(m.indices, std::size_t{3} * n);
         for (std::size_t i = 0; i < m.indices.size(); ++i) m.indices[i] = static_cast<uint32_t>(i);
     } else {
@@ -141,6 +159,7 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
         std::vector<std::vector<double>> xyz(blocks);  // each block's classes' positions
         std::vector<uint64_t> bad(blocks, 0);
         std::vector<char> block_attributes(blocks, 0);
+        std::vector<std::size_t> block_against(blocks, 0);
         core::resize_for_filling(m.indices, std::size_t{3} * n);
         tbb::enumerable_thread_specific<std::vector<double>> soups;
         // The first block known to hold a bad coordinate: the blocks after it
@@ -152,7 +171,7 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
             std::vector<double>& soup = soups.local();
             soup.resize(9 * (t1 - t0));
             bool a = false;
-            bad[b] = widen_records(data, t0, t1, soup.data(), a);
+            bad[b] = widen_records(data, t0, t1, soup.data(), a, block_against[b]);
             block_attributes[b] = a;
             if (bad[b] != 0) {
                 std::size_t f = first_bad.load();
@@ -182,6 +201,7 @@ LoadedMesh read_binary_stl(Bytes data, const std::string& name, uint32_t n, cons
         for (std::size_t b = 0; b < blocks; ++b) {
             if (bad[b] != 0) throw_nonfinite(name, bad[b]);
             attributes = attributes || block_attributes[b] != 0;
+            out.facet_normals_against_winding += block_against[b];
             base[b + 1] = base[b] + xyz[b].size() / 3;
         }
         if (base[blocks] > kMaxVertices) throw too_many("distinct points in their blocks");
@@ -242,6 +262,7 @@ public:
     std::size_t vertices_read = 0;          // corners read (before any welding)
     std::vector<Event> events;
     std::size_t solids = 0;                 // solids opened in the piece
+    std::size_t normals_against = 0;        // triangle facets whose normal points against their winding
     bool named = false;                     // whether a solid was opened (last_name is set)
     std::string_view last_name;             // the name of the last solid opened
     End end = End::in_solid;
@@ -307,10 +328,12 @@ private:
             bool ok = true;
             for (tok = cur_.next(); !tok.empty() && !iequals(tok, "outer"); tok = cur_.next()) {
                 if (++count > 3) fail("expected 'outer loop' after the facet normal, found " + found(tok));
-                if (!text::is_number(tok)) ok = false;
+                if (!text::parse_double(tok, normal_[count - 1])) ok = false;
             }
             if (!ok || count != 3) note("stl-unparseable-normal");
+            has_normal = ok && count == 3;
         } else if (iequals(tok, "outer")) {
+            has_normal = false;
             note("stl-facet-without-normal");
         } else {
             fail("expected 'normal' or 'outer loop' after 'facet', found " + found(tok));
@@ -340,6 +363,7 @@ private:
         tok = cur_.next();
         if (!iequals(tok, "endfacet")) fail("expected 'endfacet', found " + found(tok));
         if (k == 3) {
+            if (has_normal) normals_against += normal_against_winding(normal_, m.positions.data() + 3 * std::size_t{first});
             m.add_triangle(first, first + 1, first + 2);
         } else {
             note("stl-loop-with-" + std::to_string(k) + "-vertices");
@@ -371,6 +395,8 @@ private:
     const char* text_end_;
     bool first_, last_;
     std::vector<uint32_t> face_;
+    bool has_normal = false;
+    double normal_[3] = {0, 0, 0};
 };
 
 // Whether a chunk may start at pos: its line's first token is 'facet' or
@@ -419,6 +445,7 @@ void join_stl(std::vector<StlPiece>& pieces, LoadedMesh& out, bool weld) {
         }
         if (p.named) open_name = p.last_name;
         solids += p.solids;
+        out.facet_normals_against_winding += p.normals_against;
     }
     if (solids > 1) out.notes.push_back("stl-multiple-solids(" + std::to_string(solids) + ")");
     std::vector<Mesh> parts;

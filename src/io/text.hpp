@@ -65,36 +65,6 @@ inline bool parse_double(std::string_view tok, double& out) {
     return r.ec == std::errc() && r.ptr == last;
 }
 
-// Whether a whole token is a number parse_double accepts, for tokens whose
-// value is not needed (an STL facet's normal): the plain decimal spellings
-// [+-]? digits [. digits] [(e|E) [+-]? digits] and [+-]? . digits [...] are
-// recognised by one scan, anything else ("inf", "5.", odd signs) by
-// parse_double itself.
-inline bool is_number(std::string_view tok) {
-    const char* p = tok.data();
-    const char* end = p + tok.size();
-    auto digits = [&] {
-        const char* s = p;
-        while (p < end && *p >= '0' && *p <= '9') ++p;
-        return p > s;
-    };
-    if (p < end && (*p == '-' || *p == '+')) ++p;
-    bool mantissa = digits();
-    if (p < end && *p == '.') {
-        ++p;
-        mantissa = digits() || mantissa;
-    }
-    bool plain = mantissa;
-    if (plain && p < end && (*p == 'e' || *p == 'E')) {
-        ++p;
-        if (p < end && (*p == '-' || *p == '+')) ++p;
-        plain = digits();
-    }
-    if (plain && p == end) return true;
-    double ignored;
-    return parse_double(tok, ignored);
-}
-
 // A whole token as a signed 64-bit integer (optional '+' or '-').
 inline bool parse_int(std::string_view tok, int64_t& out) {
     const char* first = tok.data();

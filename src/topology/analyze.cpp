@@ -11,7 +11,7 @@
 #include "topology/degenerate.hpp"
 #include "topology/edges.hpp"
 #include "topology/shells.hpp"
-#include "topology/union_find.hpp"
+#include "core/union_find.hpp"
 #include "topology/welded.hpp"
 #include "topology/winding.hpp"
 
@@ -28,6 +28,20 @@ void count_faces(const MeshView& mesh, TopologyReport& r) {
     r.triangles = mesh.triangle_count();
 }
 
+// Holes: the boundary edges joined through their shared (welded) ends.
+std::size_t count_boundary_loops(const WeldedMesh& m, const EdgeTable& edges) {
+    if (edges.boundary_ends.empty()) return 0;
+    core::UnionFind ends(m.referenced());
+    std::vector<char> on_boundary(m.referenced(), 0);
+    for (const auto& [a, b] : edges.boundary_ends) {
+        ends.unite(a, b);
+        on_boundary[a] = on_boundary[b] = 1;
+    }
+    std::size_t loops = 0;
+    for (uint32_t v = 0; v < on_boundary.size(); ++v) loops += on_boundary[v] && ends.find(v) == v;
+    return loops;
+}
+
 void count_edges(const WeldedMesh& m, const EdgeTable& edges, TopologyReport& r) {
     r.edges = edges.size();
     for (uint8_t f : edges.flags) {
@@ -41,6 +55,7 @@ void count_edges(const WeldedMesh& m, const EdgeTable& edges, TopologyReport& r)
     r.edge_manifold = r.nonmanifold_edges == 0;
     r.consistently_oriented = r.misoriented_edges == 0;
     r.closed_2_cycle = r.unbalanced_edges == 0;
+    r.holes = count_boundary_loops(m, edges);
     if (edges.unbalanced_example) {
         const double* from = m.position((*edges.unbalanced_example)[0]);
         const double* to = m.position((*edges.unbalanced_example)[1]);
@@ -50,7 +65,7 @@ void count_edges(const WeldedMesh& m, const EdgeTable& edges, TopologyReport& r)
 
 // Components of the polygons joined through shared (welded) vertices.
 std::size_t count_vertex_components(const WeldedMesh& m) {
-    topology::UnionFind vertices(m.referenced());
+    core::UnionFind vertices(m.referenced());
     m.for_each_polygon([&](uint32_t, std::span<const uint32_t> c) {
         for (std::size_t i = 1; i < c.size(); ++i) vertices.unite(m.id[c[0]], m.id[c[i]]);
     });
@@ -105,7 +120,7 @@ TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& opt
     r.vertices_referenced = m.referenced();
 
     // The polygon sets (shells) only when they are asked for.
-    topology::UnionFind polygon_sets(options.shells ? m.polygons : 0);
+    core::UnionFind polygon_sets(options.shells ? m.polygons : 0);
     const EdgeTable edges = topology::build_edge_table(m, options.shells ? &polygon_sets : nullptr);
     count_edges(m, edges, r);
     r.euler_characteristic = static_cast<int64_t>(r.vertices_referenced) -

@@ -42,7 +42,7 @@ void sort_bucket(EdgeUse* begin, EdgeUse* end) {
 
 }  // namespace
 
-EdgeTable build_edge_table(const WeldedMesh& m, UnionFind* polygon_sets) {
+EdgeTable build_edge_table(const WeldedMesh& m, core::UnionFind* polygon_sets) {
     EdgeTable t;
     const std::size_t nv = m.referenced();
 
@@ -79,7 +79,10 @@ EdgeTable build_edge_table(const WeldedMesh& m, UnionFind* polygon_sets) {
             }
             const std::size_t n = forward + backward;
             uint8_t f = 0;
-            if (n == 1) f |= kBoundary;
+            if (n == 1) {
+                f |= kBoundary;
+                t.boundary_ends.push_back({a, run->other});
+            }
             if (n > 2) f |= kNonmanifold;
             if (n == 2 && forward != 1) f |= kMisoriented;
             if (forward != backward) {

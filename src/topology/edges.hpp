@@ -14,7 +14,7 @@
 #include <optional>
 #include <vector>
 
-#include "topology/union_find.hpp"
+#include "core/union_find.hpp"
 #include "topology/welded.hpp"
 
 namespace polyvol::topology {
@@ -33,6 +33,8 @@ struct EdgeTable {
     // The first unbalanced edge in (min, max) id order, from the end it
     // leaves more often to the other (dense ids).
     std::optional<std::array<uint32_t, 2>> unbalanced_example;
+    // The two ends (dense ids) of every boundary edge, in table order.
+    std::vector<std::array<uint32_t, 2>> boundary_ends;
 
     std::size_t size() const { return flags.size(); }
 };
@@ -40,6 +42,6 @@ struct EdgeTable {
 // Builds the table and, unless polygon_sets is null (the shells are not
 // wanted), unites in it (one element per polygon) the polygons that share
 // an edge.
-EdgeTable build_edge_table(const WeldedMesh& mesh, UnionFind* polygon_sets);
+EdgeTable build_edge_table(const WeldedMesh& mesh, core::UnionFind* polygon_sets);
 
 }  // namespace polyvol::topology

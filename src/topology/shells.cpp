@@ -13,7 +13,7 @@
 
 namespace polyvol::topology {
 
-ShellLabels label_shells(UnionFind& polygon_sets) {
+ShellLabels label_shells(core::UnionFind& polygon_sets) {
     ShellLabels s;
     const std::size_t n = polygon_sets.size();
     s.of_polygon.assign(n, kNone);

@@ -9,7 +9,7 @@
 
 #include "polyvol/topology.hpp"
 #include "topology/edges.hpp"
-#include "topology/union_find.hpp"
+#include "core/union_find.hpp"
 #include "topology/welded.hpp"
 
 namespace polyvol::topology {
@@ -20,7 +20,7 @@ struct ShellLabels {
 };
 
 // Reads the polygon sets joined by build_edge_table.
-ShellLabels label_shells(UnionFind& polygon_sets);
+ShellLabels label_shells(core::UnionFind& polygon_sets);
 
 // The fan triangles (dense vertex ids) grouped by shell, face order kept
 // within a shell: shell s owns tris[offsets[s] .. offsets[s+1]).

@@ -866,23 +866,3 @@ TEST(ParallelFallback, SmallInputsAreReadSerially) {
 }
 
 }  // namespace
-
-// text::is_number (STL normals: validated, not converted) accepts exactly the
-// tokens parse_double accepts.
-TEST(Text, IsNumberAgreesWithParseDouble) {
-    const char* tokens[] = {"0", "-0", "+1", "1.", ".5", "-.5", "+.5e3", "1e5", "1E-5", "1e+5", "12.25e-300",
-                            "1e999", "-1e-999", "inf", "-inf", "nan", "NaN", "infinity", "", "-", "+", ".", "e5",
-                            "1e", "1e+", "1.2.3", "--1", "+-1", "++1", "1x", "0x1p3", "-1.#IND00", "1,5", "1 "};
-    for (const char* t : tokens) {
-        double v;
-        EXPECT_EQ(polyvol::io::text::is_number(t), polyvol::io::text::parse_double(t, v)) << "'" << t << "'";
-    }
-    std::mt19937 rng(7);
-    const char alphabet[] = "0123456789.eE+-";
-    for (int i = 0; i < 20000; ++i) {
-        std::string t(1 + rng() % 8, ' ');
-        for (char& c : t) c = alphabet[rng() % (sizeof alphabet - 1)];
-        double v;
-        ASSERT_EQ(polyvol::io::text::is_number(t), polyvol::io::text::parse_double(t, v)) << "'" << t << "'";
-    }
-}

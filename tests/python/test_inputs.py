@@ -238,3 +238,11 @@ def test_orient_winds_flipped_faces_back_and_turns_shells_outward(tmp_path):
     assert polyvol.measure_file(path)["exit_code"] == 3
     report = polyvol.measure_file(path, orient=True)
     assert report["oriented_faces_flipped"] == 3 and report["volume"] == want
+
+
+def test_measure_file_welds_within_a_tolerance():
+    data = pathlib.Path(__file__).resolve().parents[1] / "data" / "weld"
+    assert polyvol.measure_file(data / "near_box.obj")["exit_code"] == 3
+    report = polyvol.measure_file(data / "near_box.obj", weld_tolerance=1e-12)
+    assert report["welded_points_moved"] == 16
+    assert report["volume"] == polyvol.measure_file(data / "box.obj")["volume"]

@@ -75,7 +75,7 @@ struct Shells {
     std::vector<topology::ShellGeometry> geometry;
 
     explicit Shells(const Mesh& m) : welded(topology::weld_polygons(m.view())) {
-        topology::UnionFind sets(welded.polygons);
+        core::UnionFind sets(welded.polygons);
         const topology::EdgeTable edges = topology::build_edge_table(welded, &sets);
         const topology::ShellLabels labels = topology::label_shells(sets);
         triangles = topology::gather_shell_triangles(welded, labels);

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-namespace polyvol::topology {
+namespace polyvol::core {
 
 class UnionFind {
 public:
@@ -48,4 +48,4 @@ private:
     std::vector<uint32_t> size_;
 };
 
-}  // namespace polyvol::topology
+}  // namespace polyvol::core
