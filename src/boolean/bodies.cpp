@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "topology/edges.hpp"
-#include "topology/union_find.hpp"
+#include "core/union_find.hpp"
 
 namespace polyvol::boolean {
 
@@ -23,7 +23,7 @@ topology::ShellLabels bodies_of(const topology::WeldedMesh& wm) {
         }
     });
     std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.key < y.key; });
-    topology::UnionFind parts(wm.polygons);
+    core::UnionFind parts(wm.polygons);
     for (std::size_t i = 1; i < uses.size(); ++i)
         if (uses[i].key == uses[i - 1].key) parts.unite(uses[i].poly, uses[i - 1].poly);
     topology::ShellLabels labels = topology::label_shells(parts);
@@ -50,7 +50,7 @@ topology::ShellLabels bodies_of(const topology::WeldedMesh& wm) {
              ++j)
             balance += edges[j].dir;
         if (balance != 0) {
-            topology::UnionFind shells(wm.polygons);
+            core::UnionFind shells(wm.polygons);
             topology::build_edge_table(wm, &shells);
             return topology::label_shells(shells);
         }

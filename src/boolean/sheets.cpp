@@ -14,7 +14,7 @@
 
 #include "boolean/operand.hpp"
 #include "boolean/predicates.hpp"
-#include "topology/union_find.hpp"
+#include "core/union_find.hpp"
 
 namespace polyvol::boolean {
 
@@ -42,7 +42,7 @@ void split_sheets(Operand& op) {
     });
     // Corners (t, i) joined where their triangles are paired across an edge at that corner.
     auto corner = [&](uint32_t t, int i) { return 3 * std::size_t{t} + static_cast<std::size_t>(i % 3); };
-    topology::UnionFind fans(op.tri.size());
+    core::UnionFind fans(op.tri.size());
     auto join = [&](const HalfEdge& a, const HalfEdge& b) {  // a runs u -> w, b w -> u
         if (a.dir == b.dir) throw SelfContact("boolean: an edge of a body that crosses itself is used twice in one direction");
         fans.unite(static_cast<uint32_t>(corner(a.t, a.e)), static_cast<uint32_t>(corner(b.t, b.e + 1)));

@@ -28,7 +28,7 @@
 #include "polyvol/topology.hpp"
 #include "topology/edges.hpp"
 #include "topology/shells.hpp"
-#include "topology/union_find.hpp"
+#include "core/union_find.hpp"
 #include "topology/welded.hpp"
 
 namespace polyvol {
@@ -68,7 +68,7 @@ void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const st
     // into sheets, one fan of triangles around every vertex, and perhaps into
     // several pieces).
     std::vector<WindingSeed> seeds;
-    topology::UnionFind pieces_of(g.mesh.vertex_count());
+    core::UnionFind pieces_of(g.mesh.vertex_count());
     for (std::size_t t = 0; t < n; ++t)
         if (g.crosses_itself(g.body(t))) {
             pieces_of.unite(g.tri[3 * t], g.tri[3 * t + 1]);
@@ -184,7 +184,7 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments, bool within_shells)
     std::vector<uint32_t> order(labels.count);
     std::iota(order.begin(), order.end(), 0u);
     std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return box[x][0] < box[y][0]; });
-    topology::UnionFind groups(labels.count);
+    core::UnionFind groups(labels.count);
     for (std::size_t i = 0; i < order.size(); ++i)
         for (std::size_t j = i + 1; j < order.size() && box[order[j]][0] <= box[order[i]][3]; ++j) {
             const auto &p = box[order[i]], &q = box[order[j]];
