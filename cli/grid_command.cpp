@@ -13,6 +13,7 @@
 //   OUT.json  the summary only (as --json prints it)
 // Progress goes to stderr when the computation takes more than a second.
 #include "grid_command.hpp"
+#include "grammar.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -186,14 +187,14 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
     cmd->add_option("meshes", a.files, "Closed meshes; several are several bodies (per-body volumes and their union)")
         ->required();
     auto* cells = cmd->add_option("--cells", a.cells, "Cells along the longest side, cubic cells")
-                      ->check(CLI::Range(3u, 1u << 20))
+                      ->check(whole_number(3, 1 << 20))
                       ->capture_default_str()
                       ->each([&a](const std::string&) { a.cells_given = true; });
     auto* size = cmd->add_option("--cell-size", a.cell_size, "Cubic cells of this edge length")
-                     ->check(CLI::PositiveNumber);
+                     ->check(positive_number());
     auto* dims = cmd->add_option("--dims", a.dims, "Cells per axis: NX NY NZ")
                      ->expected(3)
-                     ->check(CLI::Range(1u, 1u << 20));
+                     ->check(whole_number(1, 1 << 20));
     cells->excludes(size)->excludes(dims);
     size->excludes(dims);
     cmd->add_option("--bounds", a.bounds, "Grid box XMIN YMIN ZMIN XMAX YMAX ZMAX (default: padded bounding box)")

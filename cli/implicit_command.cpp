@@ -1,14 +1,15 @@
-// `polyvol implicit EXPR --box LO:HI [--dim N] [--h H] [--json] [--stl OUT]`.
+// `polyvol implicit EXPR --bounds LO:HI [--dim N] [--h H] [--json] [-o OUT.stl]`.
 //
 // Prints the volume of {F <= 0} within the box (the Richardson extrapolation
 // from the lattices of spacing h and 2h), its error estimate, the number of
 // boundary simplices of the PL surface at h and the time. The volume is
-// streamed (no chain is built) unless --stl or --formula prism needs the
+// streamed (no chain is built) unless -o or --method prism needs the
 // chain. Exit codes: 0 ok, 1 usage, 2 an expression that does not parse, 3 F
 // is NaN at a lattice vertex / the solid reaches the box with --box-rule
 // error / the lattice is too large.
 #include "implicit_command.hpp"
 
+#include "grammar.hpp"
 #include "memory.hpp"
 
 #include <cmath>
@@ -131,16 +132,17 @@ CLI::App* add_implicit_command(CLI::App& app, ImplicitArgs& a) {
     cmd->add_option("expression", a.expression, "F as an expression, e.g. 'x^2 + y^2 + z^2 - 1'")->required();
     cmd->add_option("--dim", a.dimension,
                     "Dimension n, 2 .. 8 (default: the highest coordinate EXPR names, at least 2)")
-        ->check(CLI::Range(2, kImplicitMaxDimension));
-    cmd->add_option("--box", a.box, "The box: LO:HI for every axis, or LO:HI,LO:HI,... one per axis")->required();
+        ->check(whole_number(2, kImplicitMaxDimension));
+    cmd->add_option("--bounds", a.box, "The box: LO:HI for every axis, or LO:HI,LO:HI,... one per axis (required)");
+    cmd->add_option("--box", a.box, "")->group("");  // the old spelling, hidden
     cmd->add_option("--h", a.h,
                     "Lattice spacing (default: the widest side / 512, 96, 32, 16, 12 cells for n = 2 .. 6; "
                     "the spacing used is <= h, an even number of cells per side)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number());
     cmd->add_option("--coarse-cells", a.coarse_cells,
                     "Cells per axis of the coarse seeding scan (default: 256, 48, 16, 10, 6 for n = 2 .. 6; "
                     "-1: none, seeds only)")
-        ->check(CLI::Range(-1, 1 << 20));
+        ->check(whole_number(-1, 1 << 20));
     cmd->add_option("--seed", a.seeds, "A seed point x1,x2,...: the surface first met along +x1 from it is "
                                         "walked too (repeatable)");
     cmd->add_option("--box-rule", a.box_rule,
@@ -148,14 +150,16 @@ CLI::App* add_implicit_command(CLI::App& app, ImplicitArgs& a) {
                     "exit 3 when the solid reaches the box boundary")
         ->check(CLI::IsMember({"clip", "error"}))
         ->capture_default_str();
-    cmd->add_option("--formula", a.formula,
+    cmd->add_option("--method", a.formula,
                     "Volume formula: cone (2.1; streamed, no chain built) or prism (2.2; the chain is built and "
                     "measured by chain_volume)")
         ->check(CLI::IsMember({"cone", "prism"}))
         ->capture_default_str();
+    cmd->add_option("--formula", a.formula, "")->check(CLI::IsMember({"cone", "prism"}))->group("");  // old spelling
     cmd->add_flag("--no-estimate", a.no_estimate, "Skip the 2h lattice: volume of the PL solid at h only");
     cmd->add_flag("--json", a.json, "Print one JSON object");
-    cmd->add_option("--stl", a.stl, "3D only: write the PL surface at h (marching tetrahedra) as binary STL");
+    cmd->add_option("-o,--output", a.stl, "3D only: write the PL surface at h (marching tetrahedra) as binary STL");
+    cmd->add_option("--stl", a.stl, "")->group("");  // the old spelling
     cmd->add_option("--max-memory", a.max_memory,
                     "Refuse a lattice that would need more memory than this, e.g. 8G or 512M (estimated from the 2h "
                     "lattice before the fine one starts; default: three quarters of physical memory)");
@@ -179,8 +183,12 @@ int run_implicit_command(const ImplicitArgs& a) {
     o.dimension = dimension;
     o.lo.clear();
     o.hi.clear();
+    if (a.box.empty()) {
+        std::cerr << "polyvol implicit: --bounds LO:HI is required (the box the solid is measured in)\n";
+        return Exit::usage;
+    }
     if (!parse_box(a.box, o.lo, o.hi) || (o.lo.size() != 1 && o.lo.size() != static_cast<std::size_t>(dimension))) {
-        std::cerr << "polyvol: --box wants LO:HI or " << dimension << " comma-separated LO:HI ranges, got '" << a.box
+        std::cerr << "polyvol: --bounds wants LO:HI or " << dimension << " comma-separated LO:HI ranges, got '" << a.box
                   << "'\n";
         return Exit::usage;
     }
@@ -198,7 +206,7 @@ int run_implicit_command(const ImplicitArgs& a) {
     o.formula = a.formula == "prism" ? SimplexFormula::prism : SimplexFormula::cone;
     o.error_estimate = !a.no_estimate;
     if (!a.stl.empty() && dimension != 3) {
-        std::cerr << "polyvol: --stl needs --dim 3 (this is " << dimension << "-dimensional)\n";
+        std::cerr << "polyvol: -o (the STL surface) needs --dim 3 (this is " << dimension << "-dimensional)\n";
         return Exit::usage;
     }
     o.keep_chain = !a.stl.empty();

@@ -20,6 +20,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "grammar.hpp"
 #include "ndim_command.hpp"
 #include "grid_command.hpp"
 #include "implicit_command.hpp"
@@ -65,17 +66,19 @@ void add_measure_options(CLI::App* cmd, Common& c) {
                     "pyramid (per polygon face), vtnb (Franklin's vertex-edge-face formula)")
         ->check(CLI::IsMember({"cone", "prism", "pyramid", "vtnb"}))
         ->capture_default_str();
+    cmd->add_option("--formula", c.method, "")->check(CLI::IsMember({"cone", "prism", "pyramid", "vtnb"}))->group("");
     cmd->add_option("--accuracy", c.accuracy,
-                    "correctly-rounded (exact value rounded once) or fast (double, with an error bound)")
-        ->check(CLI::IsMember({"correctly-rounded", "fast"}))
+                    "correctly-rounded (exact value rounded once; also spelled exact) or fast (double, with an error "
+                    "bound; also spelled bounded)")
+        ->check(CLI::IsMember({"correctly-rounded", "fast", "exact", "bounded"}))
         ->capture_default_str();
     cmd->add_option("--density", c.density, "Density: scales mass, moments and inertia")
-        ->check(CLI::PositiveNumber)
+        ->check(positive_number())
         ->capture_default_str();
     cmd->add_flag("--allow-open", c.allow_open,
                   "Measure surfaces with unbalanced edges anyway (the result then depends on the origin)");
     cmd->add_flag("--orient", c.orient, kOrientHelp);
-    cmd->add_option("--weld-tolerance", c.weld_tolerance, kWeldHelp)->check(CLI::PositiveNumber);
+    cmd->add_option("--weld-tolerance", c.weld_tolerance, kWeldHelp)->check(positive_number());
     cmd->add_flag("--signed", c.keep_signed,
                   "Keep the signed sums of a surface that is inside out (negative volume, mass and inertia); by "
                   "default its shells are turned outward, and the report says so");
@@ -86,7 +89,7 @@ Request make_request(const Common& c, bool need_mass) {
     static const std::map<std::string, Method> methods{
         {"cone", Method::cone}, {"prism", Method::prism}, {"pyramid", Method::pyramid}, {"vtnb", Method::vtnb}};
     r.measure.method = methods.at(c.method);
-    r.measure.accuracy = c.accuracy == "fast" ? Accuracy::fast : Accuracy::correctly_rounded;
+    r.measure.accuracy = c.accuracy == "fast" || c.accuracy == "bounded" ? Accuracy::fast : Accuracy::correctly_rounded;
     r.measure.density = c.density;
     r.allow_open = c.allow_open;
     r.need_mass = need_mass;
@@ -164,6 +167,7 @@ int main(int argc, char** argv) {
                  "(check: not a closed 2-cycle)."};
     app.set_version_flag("--version", "polyvol " POLYVOL_VERSION);
     app.require_subcommand(1);
+    app.footer("polyvol help COMMAND: the options of one command.");
     Common volume_opts, measure_opts, check_opts;
     auto* volume = app.add_subcommand("volume", "Volume, area and centroid, one row per file");
     add_measure_options(volume, volume_opts);
@@ -192,7 +196,7 @@ int main(int argc, char** argv) {
     check->add_option("files", check_opts.files, "Mesh files; - reads stdin")->required();
     check->add_flag("--json", check_opts.json, "Print JSON");
     check->add_flag("--orient", check_opts.orient, kOrientHelp);
-    check->add_option("--weld-tolerance", check_opts.weld_tolerance, kWeldHelp)->check(CLI::PositiveNumber);
+    check->add_option("--weld-tolerance", check_opts.weld_tolerance, kWeldHelp)->check(positive_number());
     NdimCommands ndim_commands;
     add_ndim_commands(app, ndim_commands);
     GridArgs grid_args;
@@ -202,6 +206,7 @@ int main(int argc, char** argv) {
     OverlapArgs overlap_args;
     auto* overlap = add_overlap_command(app, overlap_args);
 
+    if (const int code = answer_before_parse(app, argc, argv); code >= 0) return code;
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

@@ -1,9 +1,10 @@
-// `polyvol ndim FILE` and `polyvol area FILE`: read, validate, measure, print
-// (a report for people, or one JSON object). Exit codes as the rest of the
+// `polyvol ndim FILE...` and `polyvol area FILE...`: read, validate, measure,
+// print (a report for people, or a JSON array of one object per file). Exit codes as the rest of the
 // command: 0 ok, 1 usage, 2 unreadable input, 3 a chain with unmatched faces
 // (its volume would depend on the origin) unless --allow-open.
 #include "ndim_command.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -26,25 +27,27 @@ nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlo
 ChainOptions chain_options(const NdimOptions& o) {
     ChainOptions c;
     c.formula = o.formula == "prism" ? SimplexFormula::prism : SimplexFormula::cone;
-    c.accuracy = o.accuracy == "exact"     ? ChainAccuracy::exact
-                 : o.accuracy == "bounded" ? ChainAccuracy::bounded
-                                           : ChainAccuracy::automatic;
+    // The values of volume's --accuracy mean the same here.
+    c.accuracy = o.accuracy == "exact" || o.accuracy == "correctly-rounded" ? ChainAccuracy::exact
+                 : o.accuracy == "bounded" || o.accuracy == "fast"          ? ChainAccuracy::bounded
+                                                                             : ChainAccuracy::automatic;
     c.traversal = o.traversal == "refactor" ? Traversal::refactor : Traversal::rank_one;
     return c;
 }
 
 void add_common(CLI::App* cmd, NdimOptions& o) {
-    cmd->add_option("--formula", o.formula,
+    cmd->add_option("--method", o.formula,
                     "cone: Allgower-Schmidt (2.1), det/n! per simplex; prism: (2.2), mean last coordinate "
                     "times the projected simplex")
         ->check(CLI::IsMember({"cone", "prism"}))
         ->capture_default_str();
+    cmd->add_option("--formula", o.formula, "")->check(CLI::IsMember({"cone", "prism"}))->group("");  // old spelling
     cmd->add_option("--accuracy", o.accuracy,
-                    "auto (correctly rounded for n <= 3, rigorous error bound for n >= 4), bounded, or exact "
-                    "(correctly rounded for any n, GMP: slow)")
-        ->check(CLI::IsMember({"auto", "bounded", "exact"}))
+                    "auto (correctly rounded for n <= 3, rigorous error bound for n >= 4), fast (a rigorous error "
+                    "bound; also spelled bounded), or correctly-rounded (for any n, GMP: slow; also spelled exact)")
+        ->check(CLI::IsMember({"auto", "bounded", "exact", "fast", "correctly-rounded"}))
         ->capture_default_str();
-    cmd->add_flag("--json", o.json, "Print one JSON object");
+    cmd->add_flag("--json", o.json, "Print JSON (an array with one object per file)");
     cmd->add_flag("--orient", o.orient,
                   "Orient first: consistent within each component, outer boundaries outward, cavities and "
                   "holes inward (by nesting)");
@@ -169,9 +172,9 @@ std::string report_text(const std::string& file, const std::string& what, const 
     return s.str();
 }
 
-// The shared tail: orient, measure, judge, print.
+// The shared tail: orient, measure, judge, print (with --json: into `array`).
 int measure_and_print(const std::string& file, const std::string& what, Chain& chain, bool force_orient,
-                      const NdimOptions& o, std::vector<std::string> extra) {
+                      const NdimOptions& o, std::vector<std::string> extra, nlohmann::json& array) {
     Outcome out;
     if (o.orient || force_orient) {
         const OrientResult orr = orient_chain(chain);
@@ -196,6 +199,8 @@ int measure_and_print(const std::string& file, const std::string& what, Chain& c
         } else {
             out.code = Exit::invalid;
             out.error = file + ": " + unmatched_text(r) + ": the volume would depend on the origin";
+            if (r.misoriented_faces > 0 && r.boundary_faces == 0 && r.nonmanifold_faces == 0)
+                out.error += "; the simplices are oriented inconsistently: --orient orients them";
         }
     }
     if (!out.error.empty()) std::cerr << "polyvol: " << out.error << "\n";
@@ -204,16 +209,34 @@ int measure_and_print(const std::string& file, const std::string& what, Chain& c
         nlohmann::json j = to_json(file, show ? &v : nullptr, r, o, out);
         j["format"] = what;
         if (r.dimension == 2 && show) j["area"] = num(v.volume);
-        std::cout << j.dump(2) << "\n";
+        array.push_back(std::move(j));
     } else {
         std::cout << report_text(file, what, show ? &v : nullptr, r, o, extra);
     }
     return out.code;
 }
 
-int run_ndim(const NdimOptions& o) {
-    std::optional<LoadedChain> loaded = read_or_report(o.file, [&] { return read_chain_file(o.file); });
-    if (!loaded) return Exit::unreadable;
+// A file the chain or polygon reader refused, in `array` (--json) and, when
+// it reads as a 3D mesh, with the command that measures it.
+int unreadable(const std::string& file, nlohmann::json& array, const NdimOptions& o) {
+    std::string hint;
+    if (file != "-") {
+        try {
+            const LoadedMesh m = read_mesh_file(file);
+            if (m.mesh.face_count() > 0)
+                hint = file + " is a 3D mesh (" + std::string(format_name(m.format)) +
+                       "): `polyvol volume`, `measure` and `check` measure it";
+        } catch (const std::exception&) {
+        }
+    }
+    if (!hint.empty()) std::cerr << "polyvol: " << hint << "\n";
+    if (o.json) array.push_back({{"file", file}, {"error", hint.empty() ? "unreadable" : hint}, {"exit_code", Exit::unreadable}});
+    return Exit::unreadable;
+}
+
+int run_one_ndim(const std::string& file, const NdimOptions& o, nlohmann::json& array) {
+    std::optional<LoadedChain> loaded = read_or_report(file, [&] { return read_chain_file(file); });
+    if (!loaded) return unreadable(file, array, o);
     std::vector<std::string> extra;
     if (loaded->format == ChainFormat::qhull) {
         std::ostringstream s;
@@ -221,16 +244,30 @@ int run_ndim(const NdimOptions& o) {
           << " turned outward, " << loaded->facets_undecided << " flat ones oriented by their neighbours";
         extra.push_back(s.str());
     }
-    return measure_and_print(o.file, std::string(chain_format_name(loaded->format)), loaded->chain,
-                             loaded->facets_undecided > 0, o, std::move(extra));
+    return measure_and_print(file, std::string(chain_format_name(loaded->format)), loaded->chain,
+                             loaded->facets_undecided > 0, o, std::move(extra), array);
 }
 
-int run_area(const NdimOptions& o) {
-    const std::optional<Polygons> p = read_or_report(o.file, [&] { return read_polygons_file(o.file); });
-    if (!p) return Exit::unreadable;
+int run_one_area(const std::string& file, const NdimOptions& o, nlohmann::json& array) {
+    const std::optional<Polygons> p = read_or_report(file, [&] { return read_polygons_file(file); });
+    if (!p) return unreadable(file, array, o);
     Chain c = polygon_chain(p->view());
     std::vector<std::string> extra{"loops       " + std::to_string(p->loop_count())};
-    return measure_and_print(o.file, "polygons", c, false, o, std::move(extra));
+    return measure_and_print(file, "polygons", c, false, o, std::move(extra), array);
+}
+
+// Every file in turn (a blank line between reports); with --json one array
+// of per-file objects, as `volume` prints. The exit code is the highest.
+template <class RunOne>
+int run_files(const NdimOptions& o, RunOne run_one) {
+    nlohmann::json array = nlohmann::json::array();
+    int code = Exit::ok;
+    for (std::size_t i = 0; i < o.files.size(); ++i) {
+        if (i > 0 && !o.json) std::cout << "\n";
+        code = std::max(code, run_one(o.files[i], o, array));
+    }
+    if (o.json) std::cout << array.dump(2) << "\n";
+    return code;
 }
 
 }  // namespace
@@ -238,7 +275,7 @@ int run_area(const NdimOptions& o) {
 void add_ndim_commands(CLI::App& app, NdimCommands& c) {
     c.ndim = app.add_subcommand("ndim", "Volume and centroid of a polyhedron in R^n from its oriented simplicial "
                                         "boundary (.chain, or the output of `qconvex o Qt`), with its guarantee");
-    c.ndim->add_option("file", c.ndim_options.file, "A .chain file or qhull's OFF output; - reads stdin")->required();
+    c.ndim->add_option("files", c.ndim_options.files, ".chain files or qhull's OFF output; - reads stdin")->required();
     add_common(c.ndim, c.ndim_options);
     c.ndim->add_option("--traversal", c.ndim_options.traversal,
                        "rank-one (LU column-replacement updates along a walk of adjacent simplices) or refactor "
@@ -249,13 +286,13 @@ void add_ndim_commands(CLI::App& app, NdimCommands& c) {
                      "Measure chains with unmatched faces anyway (the result then depends on the origin)");
     c.area = app.add_subcommand("area", "Area and centroid of plane polygons with holes and islands (one vertex "
                                         "loop per line: x0 y0 x1 y1 ...), correctly rounded");
-    c.area->add_option("file", c.area_options.file, "Polygon file; - reads stdin")->required();
+    c.area->add_option("files", c.area_options.files, "Polygon files; - reads stdin")->required();
     add_common(c.area, c.area_options);
 }
 
 int run_ndim_commands(const NdimCommands& c) {
-    if (c.ndim && *c.ndim) return run_ndim(c.ndim_options);
-    if (c.area && *c.area) return run_area(c.area_options);
+    if (c.ndim && *c.ndim) return run_files(c.ndim_options, run_one_ndim);
+    if (c.area && *c.area) return run_files(c.area_options, run_one_area);
     return -1;
 }
 

@@ -3,13 +3,14 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 namespace polyvol::cli {
 
 struct NdimOptions {
-    std::string file;
+    std::vector<std::string> files;
     std::string formula = "cone";        // cone | prism
     std::string accuracy = "auto";       // auto | bounded | exact
     std::string traversal = "rank-one";  // rank-one | refactor

@@ -1,12 +1,14 @@
 #include "report.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <algorithm>
 #include <sstream>
+
+#include "polyvol/chain.hpp"
 
 namespace polyvol::cli {
 namespace {
@@ -259,6 +261,15 @@ std::string self_crossing_line(const FileResult& r) {
                                 : "");
 }
 
+// Whether a file the mesh readers refused is one `polyvol ndim` reads.
+bool reads_as_chain(const std::string& file) {
+    try {
+        return read_chain_file(file).chain.simplex_count() > 0;
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
 FileResult process_file(const std::string& file, const Request& request, const std::string& member) {
     if (request.stream && request.need_mass && request.measure.method == Method::cone && member.empty())
         if (auto s = stream_binary_stl(file, request.volume_only))
@@ -272,6 +283,8 @@ FileResult process_file(const std::string& file, const Request& request, const s
     } catch (const ReadError& e) {
         r.exit_code = Exit::unreadable;
         r.error = e.what();
+        if (member.empty() && file != "-" && reads_as_chain(file))
+            r.error += "; it reads as a boundary chain (.chain or qhull's output): `polyvol ndim` measures it";
         return r;
     } catch (const std::bad_alloc&) {
         r.exit_code = Exit::unreadable;

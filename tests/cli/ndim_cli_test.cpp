@@ -70,7 +70,7 @@ protected:
 TEST_F(NdimCli, JsonHasTheDocumentedKeys) {
     const CliRun r = polyvol("ndim --json " + file("x5.chain", cross_polytope(5)));
     ASSERT_EQ(r.code, 0) << r.err;
-    const json j = json::parse(r.out);
+    const json j = json::parse(r.out)[0];
     for (const char* key : {"dimension", "simplices", "formula", "volume", "error_bound", "centroid", "unmatched_faces"})
         EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_EQ(j["dimension"], 5);
@@ -87,7 +87,7 @@ TEST_F(NdimCli, JsonHasTheDocumentedKeys) {
 TEST_F(NdimCli, PrismFormulaAndRefactorTraversal) {
     const CliRun r = polyvol("ndim --json --formula prism --traversal refactor " + file("x4.chain", cross_polytope(4)));
     ASSERT_EQ(r.code, 0) << r.err;
-    const json j = json::parse(r.out);
+    const json j = json::parse(r.out)[0];
     EXPECT_EQ(j["formula"], "prism");
     EXPECT_EQ(j["traversal"], "refactor");
     EXPECT_LE(std::abs(j["volume"].get<double>() - 16.0 / 24), j["error_bound"].get<double>());
@@ -96,7 +96,7 @@ TEST_F(NdimCli, PrismFormulaAndRefactorTraversal) {
 TEST_F(NdimCli, ThreeDimensionsIsCorrectlyRounded) {
     const CliRun r = polyvol("ndim --json " + file("x3.chain", cross_polytope(3)));
     ASSERT_EQ(r.code, 0) << r.err;
-    const json j = json::parse(r.out);
+    const json j = json::parse(r.out)[0];
     EXPECT_EQ(j["volume"].get<double>(), 8.0 / 6);
     EXPECT_EQ(j["error_bound"].get<double>(), 0.0);
     EXPECT_EQ(j["correctly_rounded"], true);
@@ -110,24 +110,24 @@ TEST_F(NdimCli, MissingSimplexExitsThree) {
     const CliRun r = polyvol("ndim --json " + file("open.chain", cross_polytope(4, 3)));
     EXPECT_EQ(r.code, 3);
     EXPECT_NE(r.err.find("unmatched"), std::string::npos) << r.err;
-    const json j = json::parse(r.out);
+    const json j = json::parse(r.out)[0];
     EXPECT_EQ(j["unmatched_faces"], 4);
     EXPECT_EQ(j["boundary_faces"], 4);
     EXPECT_TRUE(j["volume"].is_null());
     EXPECT_TRUE(j.contains("unmatched_example"));
     const CliRun a = polyvol("ndim --allow-open --json " + file("open2.chain", cross_polytope(4, 3)));
     EXPECT_EQ(a.code, 0);
-    EXPECT_TRUE(json::parse(a.out)["volume"].is_number());
+    EXPECT_TRUE(json::parse(a.out)[0]["volume"].is_number());
 }
 
 TEST_F(NdimCli, FlippedSimplexExitsThreeUnlessOriented) {
     const std::string f = file("flip.chain", cross_polytope(4, -1, 6));
     const CliRun r = polyvol("ndim --json " + f);
     EXPECT_EQ(r.code, 3);
-    EXPECT_EQ(json::parse(r.out)["misoriented_faces"], 4);
+    EXPECT_EQ(json::parse(r.out)[0]["misoriented_faces"], 4);
     const CliRun o = polyvol("ndim --orient --json " + f);
     ASSERT_EQ(o.code, 0) << o.err;
-    const json j = json::parse(o.out);
+    const json j = json::parse(o.out)[0];
     EXPECT_LE(std::abs(j["volume"].get<double>() - 16.0 / 24), j["error_bound"].get<double>());
 }
 
@@ -141,7 +141,7 @@ TEST_F(NdimCli, QhullOutputFromStdin) {
     ASSERT_EQ(status, 0);
     const CliRun c = polyvol("ndim --json - < '" + off.string() + "'");
     ASSERT_EQ(c.code, 0) << c.err;
-    const json j = json::parse(c.out);
+    const json j = json::parse(c.out)[0];
     EXPECT_EQ(j["format"], "qhull");
     EXPECT_EQ(j["unmatched_faces"], 0);
     EXPECT_LE(std::abs(j["volume"].get<double>() - 1.0), j["error_bound"].get<double>() + 1e-15);
@@ -164,7 +164,7 @@ TEST_F(NdimCli, AreaOfPolygonsWithHoles) {
     for (const char* formula : {"cone", "prism"}) {
         const CliRun r = polyvol(std::string("area --json --formula ") + formula + " " + f);
         ASSERT_EQ(r.code, 0) << r.err;
-        const json j = json::parse(r.out);
+        const json j = json::parse(r.out)[0];
         EXPECT_EQ(j["area"].get<double>(), 64.0);
         EXPECT_EQ(j["volume"].get<double>(), 64.0);
         EXPECT_EQ(j["correctly_rounded"], true);
@@ -173,8 +173,8 @@ TEST_F(NdimCli, AreaOfPolygonsWithHoles) {
     }
     // All loops listed clockwise: --orient makes the outer one positive, the hole negative.
     const std::string g = file("cw.txt", "0 0 0 10 10 10 10 0\n2 2 2 8 8 8 8 2\n");
-    EXPECT_EQ(json::parse(polyvol("area --json " + g).out)["area"].get<double>(), -64.0 - 72.0);
-    EXPECT_EQ(json::parse(polyvol("area --orient --json " + g).out)["area"].get<double>(), 64.0);
+    EXPECT_EQ(json::parse(polyvol("area --json " + g).out)[0]["area"].get<double>(), -64.0 - 72.0);
+    EXPECT_EQ(json::parse(polyvol("area --orient --json " + g).out)[0]["area"].get<double>(), 64.0);
     const CliRun t = polyvol("area " + f);
     EXPECT_NE(t.out.find("area        64"), std::string::npos) << t.out;
 }

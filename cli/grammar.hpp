@@ -1,0 +1,28 @@
+// One grammar for every command: numbers that say "not a number", and
+// mistyped commands and options answered with the nearest real one.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace polyvol::cli {
+
+// A finite number > 0 ("not a number: abc", "must be > 0: -1").
+CLI::Validator positive_number();
+// A whole number in [lo, hi] ("not a whole number: 2.5", "must be from 3 to 1048576: 2").
+CLI::Validator whole_number(long long lo, long long hi);
+
+// The candidate nearest to `word` by edit distance, if it is near enough to
+// be a typing slip (at most a third of the word's letters, and 2 at least);
+// else "".
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates);
+
+// Before CLI11 parses: `polyvol help [COMMAND]` prints the help, and an
+// unknown command or an unknown long option of the chosen command gets a
+// "did you mean". Returns the exit code when it answered (0 for help, 1 for
+// a mistake), or -1 to let the parse go on.
+int answer_before_parse(CLI::App& app, int argc, char** argv);
+
+}  // namespace polyvol::cli
