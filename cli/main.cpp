@@ -13,6 +13,7 @@
 // for the request; with several files the highest of theirs, every file still
 // reported. Results go to stdout, warnings and progress to stderr.
 #include <algorithm>
+#include <chrono>
 #include <iostream>
 #include <map>
 #include <string>
@@ -26,6 +27,7 @@
 #include "implicit_command.hpp"
 #include "overlap_command.hpp"
 #include "report.hpp"
+#include "units.hpp"
 #include "worker_warm_up.hpp"
 
 namespace {
@@ -39,7 +41,9 @@ struct Common {
     bool allow_open = false;
     std::string method = "cone";
     std::string accuracy = "correctly-rounded";
-    double density = 1.0;
+    std::string density = "1";
+    std::string units, to;  // --units, --to
+    double scale = 1;       // --scale
     bool stream = false;  // volume --stream: JSON from the streaming path too
     bool volume_only = false;  // volume --volume-only
     bool solid = false;        // volume/measure --solid: the full overlap and self-crossing check
@@ -47,6 +51,10 @@ struct Common {
     bool keep_signed = false;  // --signed: an inside-out surface's signed sums, not turned outward
     std::string format = "table";  // measure --format table|urdf|sdf
     double weld_tolerance = 0;     // --weld-tolerance
+    int digits = 0;                // --digits
+    bool verbose = false;          // --verbose
+    bool csv = false;              // --csv
+    CLI::Option* density_option = nullptr;
 };
 
 const char* const kWeldHelp =
@@ -60,7 +68,7 @@ const char* const kOrientHelp =
 void add_measure_options(CLI::App* cmd, Common& c) {
     cmd->add_option("files", c.files, "Mesh files (STL, OBJ, OFF, PLY, 3MF, AMF, optionally .gz); - reads stdin")
         ->required();
-    cmd->add_flag("--json", c.json, "Print JSON (an array with one object per file)");
+    auto* json = cmd->add_flag("--json", c.json, "Print JSON (an array with one object per file)");
     cmd->add_option("--method", c.method,
                     "Volume formula: cone (det/6 per triangle), prism (projected area x mean height), "
                     "pyramid (per polygon face), vtnb (Franklin's vertex-edge-face formula)")
@@ -72,9 +80,36 @@ void add_measure_options(CLI::App* cmd, Common& c) {
                     "bound; also spelled bounded)")
         ->check(CLI::IsMember({"correctly-rounded", "fast", "exact", "bounded"}))
         ->capture_default_str();
-    cmd->add_option("--density", c.density, "Density: scales mass, moments and inertia")
-        ->check(positive_number())
-        ->capture_default_str();
+    c.density_option =
+        cmd->add_option("--density", c.density,
+                        "Density: scales mass, moments and inertia; a number (mass per output unit³), or with a "
+                        "unit, 7850kg/m3 or 7.85g/cm3: the mass in kg and the inertia in kg·(output unit)², lengths "
+                        "in metres unless --to says otherwise (the coordinates' unit must be known: --units, or a "
+                        "3MF or AMF file's own)")
+            ->check(CLI::Validator(
+                [](std::string& v) -> std::string {
+                    if (parse_density(v)) return "";
+                    // Why not: the number (as the other options say it), else the unit.
+                    std::string number = v.substr(0, v.find_first_not_of("0123456789+-.eE"));
+                    if (number.empty()) return "not a number: " + v;
+                    if (const std::string why = positive_number()(number); !why.empty()) return why;
+                    return "unknown density unit '" + v.substr(number.size()) + "' (kg/m3 or g/cm3)";
+                },
+                "D[kg/m3|g/cm3]"))
+            ->capture_default_str();
+    const std::vector<std::string> units{"micron", "um", "mm", "cm", "m", "in", "ft"};
+    cmd->add_option("--units", c.units,
+                    "The coordinates' length unit (mm, cm, m, in, ft, micron); a 3MF or AMF file states its own")
+        ->check(CLI::IsMember(units));
+    cmd->add_option("--to", c.to, "Print lengths, areas, volumes and moments in this unit")->check(CLI::IsMember(units));
+    cmd->add_option("--scale", c.scale, "Multiply every coordinate by this first (after --units)")
+        ->check(positive_number());
+    cmd->add_option("--digits", c.digits,
+                    "At most this many significant digits in the table (default: the digits each figure's guarantee "
+                    "supports; JSON and CSV always give every digit)")
+        ->check(whole_number(1, 17));
+    cmd->add_flag("--verbose", c.verbose, "The guarantees in full below the table");
+    cmd->add_flag("--csv", c.csv, "Print CSV for spreadsheets (one row per file, every digit)")->excludes(json);
     cmd->add_flag("--allow-open", c.allow_open,
                   "Measure surfaces with unbalanced edges anyway (the result then depends on the origin)");
     cmd->add_flag("--orient", c.orient, kOrientHelp);
@@ -90,12 +125,26 @@ Request make_request(const Common& c, bool need_mass) {
         {"cone", Method::cone}, {"prism", Method::prism}, {"pyramid", Method::pyramid}, {"vtnb", Method::vtnb}};
     r.measure.method = methods.at(c.method);
     r.measure.accuracy = c.accuracy == "fast" || c.accuracy == "bounded" ? Accuracy::fast : Accuracy::correctly_rounded;
-    r.measure.density = c.density;
+    // A density with a unit is converted to kg per output unit³ (metres by default).
+    const Density d = *parse_density(c.density);
+    r.measure.density = d.value;
+    if (d.si) {
+        const LengthUnit out = *length_unit(c.to.empty() ? "m" : c.to);
+        const double metres = static_cast<double>(out.metre_num) / static_cast<double>(out.metre_den);
+        r.density_kg_m3 = d.kg_per_m3;
+        r.measure.density = d.kg_per_m3 * (metres * metres * metres);
+    }
+    r.units = c.units;
+    r.to = c.to;
+    r.scale = c.scale;
     r.allow_open = c.allow_open;
     r.need_mass = need_mass;
     r.orient = c.orient;
     r.keep_signed = c.keep_signed;
     r.weld_tolerance = c.weld_tolerance;
+    r.digits = c.digits;
+    r.verbose = c.verbose;
+    r.density_given = c.density_option && c.density_option->count() > 0;
     return r;
 }
 
@@ -103,11 +152,14 @@ enum class Command { volume, measure, check };
 
 int run(Command command, const Common& c) {
     Request request = make_request(c, command != Command::check);
+    request.metres_when_known = c.format != "table";
     // Binary STL through the streaming path: the table always, JSON only with
     // --stream (the streaming path has no second moments, inertia, edge
     // length or components: README).
+    // Streaming gives the file's own figures: no weld, orientation, units or scale.
     request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid && !c.orient &&
-                     c.weld_tolerance == 0;
+                     c.weld_tolerance == 0 && c.units.empty() && c.to.empty() && c.scale == 1 &&
+                     request.density_kg_m3 == 0;
     request.self_check_always = command == Command::check || c.solid;
     request.volume_only = command == Command::volume && c.volume_only;
     request.table_only = command == Command::volume && (!c.json || request.volume_only);
@@ -126,16 +178,21 @@ int run(Command command, const Common& c) {
     }
     std::vector<FileResult> results;
     int code = Exit::ok;
-    const bool progress = inputs.size() > 1;
+    // Progress on stderr only once the run has taken more than a second.
+    const auto start = std::chrono::steady_clock::now();
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         const auto& [file, member] = inputs[i];
-        if (progress && !c.json)
+        if (inputs.size() > 1 && std::chrono::steady_clock::now() - start > std::chrono::seconds(1))
             std::cerr << "[" << (i + 1) << "/" << inputs.size() << "] " << file << (member.empty() ? "" : ":" + member) << "\n";
         results.push_back(process_file(file, request, member));
         const FileResult& r = results.back();
         code = std::max(code, r.exit_code);
         if (!r.error.empty()) std::cerr << "polyvol: " << r.error << "\n";
         if (!r.warning.empty()) std::cerr << "polyvol: warning: " << r.warning << "\n";
+    }
+    if (c.csv && command != Command::check) {
+        std::cout << csv_table(results, request, command == Command::measure);
+        return code;
     }
     if (c.json) {
         nlohmann::json out = nlohmann::json::array();

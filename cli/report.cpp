@@ -1,14 +1,18 @@
 #include "report.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
+#include <span>
 #include <sstream>
 
 #include "polyvol/chain.hpp"
+#include "units.hpp"
 
 namespace polyvol::cli {
 namespace {
@@ -23,13 +27,13 @@ std::string point_text(double x, double y, double z) {
 
 // Symmetric {xx,yy,zz,xy,yz,zx} -> 3x3 rows.
 nlohmann::json matrix3(const std::array<double, 6>& s) {
-    auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v + 0.0) : nlohmann::json(nullptr); };  // no -0
     return nlohmann::json::array({{num(s[0]), num(s[3]), num(s[5])},
                                   {num(s[3]), num(s[1]), num(s[4])},
                                   {num(s[5]), num(s[4]), num(s[2])}});
 }
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v + 0.0) : nlohmann::json(nullptr); }  // no -0
 
 // The surface closes when points within a tolerance below 1e-9 of its size
 // (its box's diagonal) are merged: the largest power of ten at most that,
@@ -104,6 +108,37 @@ std::string shortest(double v) {
     char buf[64];
     auto res = std::to_chars(buf, buf + sizeof buf, v);
     return std::string(buf, res.ptr);
+}
+
+std::string number_text(double v, double abs_error, int digits) {
+    v += 0.0;  // no "-0"
+    if (!std::isfinite(v) || v == 0 || (abs_error == 0 && digits <= 0)) return shortest(v);
+    int significant = 17;
+    if (abs_error > 0 && std::isfinite(abs_error))
+        significant = static_cast<int>(std::floor(std::log10(std::fabs(v))) - std::floor(std::log10(abs_error))) + 1;
+    if (digits > 0) significant = std::min(significant, digits);
+    significant = std::clamp(significant, 1, 17);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*g", significant, v);
+    // As many digits as the shortest round trip at most (%g may add noise digits).
+    const std::string s = shortest(v);
+    return std::strlen(buf) > s.size() && significant >= 17 ? s : std::string(buf);
+}
+
+// mass = density × volume: the density as typed is within 2^-53 of its
+// double, and the product is rounded once more, so the mass of the decimal
+// density is within 2^-52 of the printed one (plus the volume's error).
+// It is shown as the shortest decimal within that bound of the printed
+// double (7.85 × 12 is 94.2, not 94.19999999999999).
+std::string mass_text(double mass, double volume_error_times_density, int digits) {
+    const double error = volume_error_times_density + std::fabs(mass) * 0x1p-52;
+    if (!std::isfinite(mass) || mass == 0 || !std::isfinite(error)) return number_text(mass, error, digits);
+    for (int d = 1; d < 17 && (digits <= 0 || d < digits); ++d) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.*g", d, mass);
+        if (std::fabs(std::strtod(buf, nullptr) - mass) <= error) return buf;
+    }
+    return number_text(mass, error, digits);
 }
 
 // The streaming path for a binary STL (Request::stream); nothing when the
@@ -261,6 +296,75 @@ std::string self_crossing_line(const FileResult& r) {
                                 : "");
 }
 
+// The units of the figures for this file (Request's units, to, scale):
+// sets r's length_unit, mass_unit, length_factor; returns why they cannot be
+// given ("" when they can).
+std::string plan_units(FileResult& r, const Request& q, double& length_error) {
+    std::optional<LengthUnit> from;
+    const std::string& declared = r.loaded->unit;
+    if (!q.units.empty()) {
+        from = length_unit(q.units);
+        r.units_source = "--units";
+        if (!declared.empty() && declared != from->name)
+            r.warning += (r.warning.empty() ? "" : "; ") + r.file + ": the file declares its unit as " + declared +
+                         "; --units " + q.units + " is used instead";
+    } else if (!declared.empty()) {
+        from = length_unit(declared);
+        r.units_source = "declared by the file";
+    }
+    const std::string to = !q.to.empty()                               ? q.to
+                           : q.density_kg_m3 > 0 || (q.metres_when_known && from) ? "m"
+                           : from                                             ? from->name
+                                                                              : "";
+    if (!to.empty() && !from)
+        return std::string("its length unit is not known (") + std::string(format_name(r.loaded->format)) +
+               " files do not state one): --units gives it (mm, cm, m, in, ft or micron)";
+    const LengthFactor f = from ? length_factor(*from, *length_unit(to), q.scale) : scale_only(q.scale);
+    r.length_factor = f.factor;
+    length_error = f.relative_error;
+    r.length_unit = to;
+    r.mass_unit = q.density_kg_m3 > 0 ? "kg" : "";
+    return "";
+}
+
+// " mm³": the figures' length unit to a power ("" when it is not known).
+std::string unit_power(const std::string& unit, int degree) {
+    static const char* const kPowers[] = {"", "", "²", "³", "⁴", "⁵"};
+    return unit.empty() ? "" : unit + kPowers[degree];
+}
+std::string unit_suffix(const FileResult& r, int degree) {
+    return r.length_unit.empty() ? "" : " " + unit_power(r.length_unit, degree);
+}
+// The unit of a density-scaled quantity of length degree k: "kg·m²" (mass
+// in kg: k - 3 left), or "mm⁵" times the density.
+std::string mass_unit_suffix(const FileResult& r, int degree) {
+    if (!r.mass_unit.empty()) return " " + r.mass_unit + (degree > 3 ? "·" + unit_power(r.length_unit, degree - 3) : "");
+    return r.length_unit.empty() ? "" : " (density × " + unit_power(r.length_unit, degree) + ")";
+}
+
+// The density as typed: "7850 kg/m³", or the plain number.
+std::string density_text(const Request& q) {
+    return q.density_kg_m3 > 0 ? shortest(q.density_kg_m3) + " kg/m³" : shortest(q.measure.density);
+}
+
+// Where the units came from and what the figures are in.
+std::string units_sentence(const FileResult& r) {
+    std::string s = r.loaded && !r.loaded->unit.empty() ? "the file declares " + r.loaded->unit : "";
+    if (r.units_source == "--units") s += (s.empty() ? "" : "; ") + std::string("coordinates in the unit --units gives");
+    if (r.length_factor != 1) s += (s.empty() ? "" : "; ") + std::string("every coordinate × ") + shortest(r.length_factor);
+    if (!r.length_unit.empty()) s += (s.empty() ? "" : "; ") + std::string("lengths in ") + r.length_unit;
+    if (!r.mass_unit.empty()) s += ", mass in " + r.mass_unit;
+    return s;
+}
+
+// The box of the faces' vertices in the units of the figures (each bound
+// times the length factor, rounded once more when it is not 1).
+std::array<double, 6> bounds_in_units(const FileResult& r) {
+    std::array<double, 6> b = face_bounds(r.loaded->mesh.view());
+    for (double& x : b) x *= r.length_factor;
+    return b;
+}
+
 // Whether a file the mesh readers refused is one `polyvol ndim` reads.
 bool reads_as_chain(const std::string& file) {
     try {
@@ -293,6 +397,12 @@ FileResult process_file(const std::string& file, const Request& request, const s
     }
     r.seconds_read = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
+    double length_error = 0;
+    if (const std::string why = plan_units(r, request, length_error); !why.empty()) {
+        r.exit_code = Exit::invalid;
+        r.error = path + ": " + why;
+        return r;
+    }
     if (request.weld_tolerance > 0) {
         try {
             r.welded = weld_within(r.loaded->mesh, request.weld_tolerance);
@@ -414,6 +524,12 @@ FileResult process_file(const std::string& file, const Request& request, const s
     if (r.mass && r.loaded->coordinate_error > 0)
         widen_for_coordinate_error(view, r.loaded->coordinate_error, request.measure.density, closed,
                                    r.solid && r.solid->status == BooleanStatus::ok && solid_differs(*r.solid), *r.mass);
+    // In the units asked for: every figure times its power of the length factor.
+    const double density_error = request.density_kg_m3 > 0 ? 4 * 0x1p-53 : 0.0;  // typed, × 1000, × (m per unit)³
+    if (r.mass && (r.length_factor != 1 || length_error > 0 || density_error > 0)) {
+        scale_mass_properties(*r.mass, r.length_factor, length_error, density_error);
+        if (r.solid) r.solid->winding_volume *= r.length_factor * r.length_factor * r.length_factor;
+    }
     r.seconds_measure = seconds_since(t0);
     return r;
 }
@@ -560,6 +676,9 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
     }
     if (r.mass) {
         const auto& m = *r.mass;
+        j["unit"] = r.length_unit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.length_unit);
+        j["mass_unit"] = r.mass_unit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.mass_unit);
+        j["length_factor"] = r.length_factor;
         j["accuracy"] = m.volume_correctly_rounded ? "correctly-rounded" : "error-bound";
         j["volume"] = number(m.volume);
         j["volume_error_bound"] = m.volume_error_bound;
@@ -583,7 +702,7 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["area_relative_error"] = m.area_relative_error;
         j["centroid"] = {number(m.centroid[0]), number(m.centroid[1]), number(m.centroid[2])};
         if (r.loaded) {
-            const std::array<double, 6> b = face_bounds(r.loaded->mesh.view());
+            const std::array<double, 6> b = bounds_in_units(r);
             j["bounds"] = {number(b[0]), number(b[1]), number(b[2]), number(b[3]), number(b[4]), number(b[5])};
             j["size"] = {number(b[3] - b[0]), number(b[4] - b[1]), number(b[5] - b[2])};
         }
@@ -614,35 +733,56 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     // Column widths from the content, so long paths keep the columns aligned.
     std::size_t name_w = 4;
     for (const auto& r : results) name_w = std::max(name_w, r.file.size());
-    auto pad = [](std::string s, std::size_t w) {
-        if (s.size() < w) s.append(w - s.size(), ' ');
+    auto pad = [](std::string s, std::size_t w) {  // w characters (UTF-8: "±", "³" are one each)
+        std::size_t n = 0;
+        for (char c : s) n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+        if (n < w) s.append(w - n, ' ');
         return s;
     };
     const bool all = !request.volume_only;  // area and centroid columns
+    const bool mass = request.density_given;
+    const int digits = request.digits;
     std::ostringstream out;
+    // Units in the header when every measured file has the same.
+    std::string unit, mass_unit;
+    bool same_units = true;
+    for (const auto& r : results)
+        if (r.mass || r.streamed) {
+            if (unit.empty() && mass_unit.empty()) unit = r.length_unit, mass_unit = r.mass_unit;
+            same_units = same_units && r.length_unit == unit && r.mass_unit == mass_unit;
+        }
+    if (!same_units) unit.clear(), mass_unit.clear();
+    const auto in = [](const std::string& u) { return u.empty() ? std::string() : " (" + u + ")"; };
     out << pad("file", name_w) << "  " << pad("triangles", 10) << "  ";
+    if (mass) out << pad("mass" + in(mass_unit), 24) << "  ";
     if (all)
-        out << pad("volume", 24) << "  " << pad("area", 24) << "  centroid\n";
+        out << pad("volume" + in(unit_power(unit, 3)), 24) << "  " << pad("area" + in(unit_power(unit, 2)), 24)
+            << "  centroid" << in(unit) << "\n";
     else
-        out << "volume\n";
+        out << "volume" << in(unit_power(unit, 3)) << "\n";
     bool any_rounded = false, any_bound = false, any_fingerprint = false, any_checked = false;
-    std::string streamed_notes, loaded_notes, overlap_notes;
+    std::string streamed_notes, loaded_notes, overlap_notes, notes;
+    const auto centroid_text = [&](const std::array<double, 3>& c, double error) {
+        return "(" + number_text(c[0], error, digits) + ", " + number_text(c[1], error, digits) + ", " +
+               number_text(c[2], error, digits) + ")";
+    };
     for (const auto& r : results) {
         any_fingerprint = any_fingerprint || r.streamed || r.closed_by_fingerprint;
-        if (r.welded)
-            loaded_notes += "  " + r.file + ": " + weld_sentence(*r.welded, r.weld_tolerance) + "\n";
-        if (r.oriented && r.oriented->orientable) loaded_notes += "  " + r.file + ": " + orient_sentence(*r.oriented) + "\n";
+        if (r.welded) notes += "  " + r.file + ": " + weld_sentence(*r.welded, r.weld_tolerance) + "\n";
+        if (r.oriented && r.oriented->orientable) notes += "  " + r.file + ": " + orient_sentence(*r.oriented) + "\n";
         if (r.streamed) {
             const SoupResult& s = *r.streamed;
             any_rounded = true;
             out << pad(r.file, name_w) << "  " << pad(std::to_string(s.triangles), 10) << "  ";
+            if (mass) out << pad(mass_text(request.measure.density * s.volume, 0, digits), 24) << "  ";
             if (!all) {
-                out << shortest(s.volume) << "\n";
+                out << number_text(s.volume, 0, digits) << "\n";
                 streamed_notes += "  " + r.file + "\n";
                 continue;
             }
-            out << pad(shortest(s.volume), 24) << "  " << pad(shortest(s.area), 24) << "  "
-                << point_text(s.centroid[0], s.centroid[1], s.centroid[2]) << "\n";
+            out << pad(number_text(s.volume, 0, digits), 24) << "  "
+                << pad(number_text(s.area, s.area * s.area_relative_error, digits), 24) << "  "
+                << centroid_text(s.centroid, s.centroid_error_bound) << "\n";
             streamed_notes += "  " + r.file + ": area relative error <= " + shortest(s.area_relative_error) +
                               "; centroid within +-" + shortest(s.centroid_error_bound) + " per coordinate\n";
             continue;
@@ -650,46 +790,74 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         const std::string tris = r.loaded ? std::to_string(r.loaded->mesh.view().triangle_count()) : "-";
         out << pad(r.file, name_w) << "  " << pad(tris, 10) << "  ";
         if (!r.mass) {
-            out << (r.exit_code == Exit::invalid ? "open surface: not measured" : "unreadable") << "\n";
+            out << (r.exit_code == Exit::unreadable ? "unreadable"
+                    : r.topology && !r.topology->closed_2_cycle ? "open surface: not measured"
+                                                                  : "not measured") << "\n";
             continue;
         }
         const auto& m = *r.mass;
         const bool overlap = r.solid && solid_differs(*r.solid);
         any_checked = any_checked || r.overlap_checked;
         (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
-        const std::string vol =
-            shortest(m.volume) + (m.volume_correctly_rounded ? "" : " ±" + shortest(m.volume_error_bound));
+        const double volume_error = m.volume_correctly_rounded ? 0 : m.volume_error_bound;
+        const std::string vol = number_text(m.volume, volume_error, digits) +
+                                (m.volume_correctly_rounded ? "" : " ±" + number_text(m.volume_error_bound, 0, 2));
+        if (mass) out << pad(mass_text(m.mass, request.measure.density * volume_error, digits), 24) << "  ";
         if (overlap)
             overlap_notes += "  " + r.file + ": " + overlap_sentence(r) + (all ? "; its centroid is the solid's, its area the shells' sum" : "") + "\n";
         if (!all) {
             out << vol << "\n";
             continue;
         }
-        out << pad(vol, 24) << "  " << pad(shortest(m.area), 24) << "  "
-            << point_text(m.centroid[0], m.centroid[1], m.centroid[2]) << "\n";
+        const double centroid_error =
+            m.moments_correctly_rounded
+                ? 0
+                : m.moments_relative_error *
+                      std::max({std::fabs(m.centroid[0]), std::fabs(m.centroid[1]), std::fabs(m.centroid[2])});
+        out << pad(vol, 24) << "  " << pad(number_text(m.area, m.area * m.area_relative_error, digits), 24) << "  "
+            << centroid_text(m.centroid, centroid_error) << "\n";
         loaded_notes += "  " + r.file + ": area relative error <= " + shortest(m.area_relative_error) + "; centroid " +
                         (m.moments_correctly_rounded
                              ? std::string("correctly rounded")
                              : "within " + shortest(m.moments_relative_error) + " of its largest coordinate's magnitude") +
                         "\n";
     }
-    out << "method: " << method_name(request.measure.method) << ". ";
-    if (any_rounded) out << "Volumes without ± are correctly rounded: the exact volume of the coordinates as read, rounded once. ";
-    if (any_bound) out << "± is a rigorous absolute error bound. ";
-    if (all) out << "Area and centroid: their guarantees below; inertia: `polyvol measure`.";
-    out << "\n";
-    out << loaded_notes;
-    if (any_fingerprint)
-        out << "Closed 2-cycle checked by a randomized edge fingerprint (an open surface passes with probability "
-               "< 2^-113); a file it finds open, or cannot decide (e.g. a NaN or infinite coordinate), is analysed in full "
-               "and its unbalanced edges reported.\n";
-    if (!streamed_notes.empty())
-        out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded; shells not checked "
-               "for overlap: --solid checks):\n"
-            << streamed_notes;
-    if (any_checked)
-        out << "Shells checked for overlap with one another; a shell crossing itself looked for in files up to "
-            << kSelfCheckTriangles << " triangles (--solid: in every file).\n";
+    std::vector<std::string> footer;
+    if (any_rounded)
+        footer.emplace_back(request.verbose ? "Volumes without ± are correctly rounded: the exact volume of the "
+                                              "coordinates as read, rounded once"
+                                            : "Volumes without ± are correctly rounded");
+    if (any_bound) footer.emplace_back("± is a rigorous absolute error bound");
+    if (mass) footer.push_back("mass = density " + density_text(request) + " × volume");
+
+    if (all)
+        footer.emplace_back(request.verbose ? "area and centroid: their guarantees below; inertia: `polyvol measure`"
+                                            : "other figures show the digits their bounds support (--verbose: the "
+                                              "guarantees in full)");
+    if (!footer.empty()) footer[0][0] = static_cast<char>(std::toupper(static_cast<unsigned char>(footer[0][0])));
+    out << "method: " << method_name(request.measure.method) << ".";
+    for (std::size_t i = 0; i < footer.size(); ++i) out << (i == 0 ? " " : "; ") << footer[i];
+    out << (footer.empty() ? "\n" : ".\n");
+    if (!same_units)
+        for (const auto& r : results)
+            if ((r.mass || r.streamed) && !r.length_unit.empty())
+                out << "  " << r.file << ": lengths in " << r.length_unit
+                    << (r.mass_unit.empty() ? "" : ", mass in " + r.mass_unit) << "\n";
+    out << notes;
+    if (request.verbose) {
+        out << loaded_notes;
+        if (any_fingerprint)
+            out << "Closed 2-cycle checked by a randomized edge fingerprint (an open surface passes with probability "
+                   "< 2^-113); a file it finds open, or cannot decide (e.g. a NaN or infinite coordinate), is analysed "
+                   "in full and its unbalanced edges reported.\n";
+        if (!streamed_notes.empty())
+            out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded; shells not "
+                   "checked for overlap: --solid checks):\n"
+                << streamed_notes;
+        if (any_checked)
+            out << "Shells checked for overlap with one another; a shell crossing itself looked for in files up to "
+                << kSelfCheckTriangles << " triangles (--solid: in every file).\n";
+    }
     out << overlap_notes;
     return out.str();
 }
@@ -701,55 +869,85 @@ std::string measure_report(const FileResult& r, const Request& request) {
     out << r.file << "  (" << format_name(l.format) << ", " << l.encoding << (l.gzip ? ", gzip" : "")
         << "; " << l.vertices_in_file << " vertices, " << l.mesh.face_count() << " faces, "
         << l.mesh.view().triangle_count() << " triangles)\n";
-    out << "  method          " << method_name(request.measure.method) << ", density " << shortest(request.measure.density) << "\n";
+    out << "  method          " << method_name(request.measure.method) << ", density " << density_text(request) << "\n";
     if (r.welded) out << "  welded          " << weld_sentence(*r.welded, r.weld_tolerance) << "\n";
+    if (!r.units_source.empty() || r.length_factor != 1) out << "  units           " << units_sentence(r) << "\n";
     if (r.oriented) out << "  orientation     " << orient_sentence(*r.oriented) << "\n";
     if (r.turned_outward)
         out << "  orientation     inside out: " << r.turned_outward->components << " shell(s) turned outward, "
             << r.turned_outward->flipped << " faces reversed (--signed keeps the signed sums)\n";
     const bool overlap = r.solid && solid_differs(*r.solid);
+    // Each figure shows the digits its guarantee supports (--digits caps them).
+    const int digits = request.digits;
+    const double volume_error = m.volume_correctly_rounded ? 0 : m.volume_error_bound;
+    const auto largest = [](std::span<const double> v) {
+        double x = 0;
+        for (double e : v) x = std::max(x, std::fabs(e));
+        return x;
+    };
+    // An absolute error for a moment quantity: its relative bound times its largest entry.
+    const auto moments_error = [&](std::span<const double> v) {
+        return m.moments_correctly_rounded ? 0.0 : m.moments_relative_error * largest(v);
+    };
+    const std::string volume_text = number_text(m.volume, volume_error, digits);
     if (overlap) {
-        out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m)
+        out << "  volume          " << volume_text << unit_suffix(r, 3) << "   [" << volume_guarantee(m)
             << "; the solid where the winding number is >= 1]\n";
         out << "  shells          " << overlap_sentence(r) << "\n";
         out << "  note            mass, centroid, moments and inertia are the solid's; surface area and edge length "
                "are the shells' sums (an overlap counts once per shell covering it)\n";
     } else {
-        out << "  volume          " << shortest(m.volume) << "   [" << volume_guarantee(m) << "]\n";
+        out << "  volume          " << volume_text << unit_suffix(r, 3) << "   [" << volume_guarantee(m) << "]\n";
     }
     if (r.overlap_checked) out << "  overlap         shells checked against one another\n";
     out << "  self-crossing   " << self_crossing_line(r) << "\n";
-    out << "  mass            " << shortest(m.mass) << "\n";
-    out << "  surface area    " << shortest(m.area) << "   [relative error <= " << shortest(m.area_relative_error) << "]\n";
-    out << "  edge length     " << shortest(m.edge_length) << "   [relative error <= " << shortest(m.edge_length_relative_error) << "]\n";
-    out << "  centroid        " << point_text(m.centroid[0], m.centroid[1], m.centroid[2]) << "\n";
+    out << "  mass            " << mass_text(m.mass, request.measure.density * volume_error, digits)
+        << mass_unit_suffix(r, 3) << "\n";
+    out << "  surface area    " << number_text(m.area, m.area * m.area_relative_error, digits) << unit_suffix(r, 2)
+        << "   [relative error <= " << number_text(m.area_relative_error, 0, 2) << "]\n";
+    out << "  edge length     " << number_text(m.edge_length, m.edge_length * m.edge_length_relative_error, digits)
+        << unit_suffix(r, 1) << "   [relative error <= " << number_text(m.edge_length_relative_error, 0, 2) << "]\n";
+    const double centroid_error = moments_error(m.centroid);
+    out << "  centroid        (" << number_text(m.centroid[0], centroid_error, digits) << ", "
+        << number_text(m.centroid[1], centroid_error, digits) << ", " << number_text(m.centroid[2], centroid_error, digits)
+        << ")" << unit_suffix(r, 1) << "\n";
     if (r.loaded) {
-        const std::array<double, 6> b = face_bounds(r.loaded->mesh.view());
-        out << "  bounds          " << point_text(b[0], b[1], b[2]) << " to " << point_text(b[3], b[4], b[5])
+        const std::array<double, 6> b = bounds_in_units(r);
+        out << "  bounds          " << point_text(b[0], b[1], b[2]) << " to " << point_text(b[3], b[4], b[5]) << unit_suffix(r, 1)
             << "; size " << shortest(b[3] - b[0]) << " x " << shortest(b[4] - b[1]) << " x " << shortest(b[5] - b[2])
-            << " (differences rounded once)\n";
+            << (r.length_factor == 1 ? " (differences rounded once)\n" : " (converted, then rounded)\n");
     }
+    // A symmetric tensor {xx, yy, zz, xy, yz, zx} with labelled rows and columns.
     auto tensor = [&](const char* title, const std::array<double, 6>& s) {
+        const double error = moments_error(s);
         char line[256];
-        out << "  " << title << "\n";
+        out << "  " << title;
+        if (!r.length_unit.empty()) out << " [" << mass_unit_suffix(r, 5).substr(1) << "]";
+        out << "\n";
+        std::snprintf(line, sizeof line, "      %24s %24s %24s\n", "x", "y", "z");
+        out << line;
         const double rows[3][3] = {{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}};
-        for (const auto& row : rows) {
-            std::snprintf(line, sizeof line, "    %24s %24s %24s\n", shortest(row[0]).c_str(), shortest(row[1]).c_str(),
-                          shortest(row[2]).c_str());
+        for (int i = 0; i < 3; ++i) {
+            std::snprintf(line, sizeof line, "    %c %24s %24s %24s\n", "xyz"[i],
+                          number_text(rows[i][0], error, digits).c_str(), number_text(rows[i][1], error, digits).c_str(),
+                          number_text(rows[i][2], error, digits).c_str());
             out << line;
         }
     };
-    tensor("second moments about the origin (density × ∫ x_i x_j):", m.second_moments);
-    tensor("inertia tensor about the origin:", m.inertia_origin);
-    tensor("inertia tensor about the centroid:", m.inertia_centroid);
+    tensor("second moments about the origin (density × ∫ x_i x_j)", m.second_moments);
+    tensor("inertia tensor about the origin", m.inertia_origin);
+    tensor("inertia tensor about the centroid", m.inertia_centroid);
     if (std::isfinite(m.inertia_centroid[0])) {
         const PrincipalInertia p = principal_of(m);
-        out << "  principal moments " << shortest(p.moments[0]) << ", " << shortest(p.moments[1]) << ", "
-            << shortest(p.moments[2]) << "   [each within " << shortest(p.moment_error) << "]\n";
+        out << "  principal moments " << number_text(p.moments[0], p.moment_error, digits) << ", "
+            << number_text(p.moments[1], p.moment_error, digits) << ", " << number_text(p.moments[2], p.moment_error, digits)
+            << mass_unit_suffix(r, 5) << "   [each within " << number_text(p.moment_error, 0, 2) << "]\n";
         for (std::size_t k = 0; k < 3; ++k) {
-            out << "  principal axis " << k + 1 << "  " << point_text(p.axes[k][0], p.axes[k][1], p.axes[k][2]);
+            const double e = std::isfinite(p.axis_angle[k]) ? p.axis_angle[k] : 0;
+            out << "  principal axis " << k + 1 << "  (" << number_text(p.axes[k][0], e, digits) << ", "
+                << number_text(p.axes[k][1], e, digits) << ", " << number_text(p.axes[k][2], e, digits) << ")";
             if (std::isfinite(p.axis_angle[k]))
-                out << "   [within " << shortest(p.axis_angle[k]) << " rad]\n";
+                out << "   [within " << number_text(p.axis_angle[k], 0, 2) << " rad]\n";
             else
                 out << "   [not determined: equal moments]\n";
         }
@@ -769,7 +967,10 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
     const auto& i = m.inertia_centroid;  // {xx, yy, zz, xy, yz, zx}
     std::ostringstream out;
     auto shortest = [](double x) { return polyvol::cli::shortest(x + 0.0); };  // no -0
-    out << "<!-- " << r.file << ": units as in the file, density " << shortest(request.measure.density) << "; "
+    const std::string units = r.length_unit.empty() ? std::string("units as in the file")
+                                                    : "lengths in " + r.length_unit +
+                                                          (r.mass_unit.empty() ? "" : ", mass in " + r.mass_unit);
+    out << "<!-- " << r.file << ": " << units << ", density " << shortest(request.measure.density) << "; "
         << (m.moments_correctly_rounded ? std::string("correctly rounded")
                                         : "relative error <= " + shortest(m.moments_relative_error))
         << " -->\n";
@@ -786,6 +987,53 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
             << "  <inertia ixx=\"" << shortest(i[0]) << "\" ixy=\"" << shortest(i[3]) << "\" ixz=\"" << shortest(i[5])
             << "\" iyy=\"" << shortest(i[1]) << "\" iyz=\"" << shortest(i[4]) << "\" izz=\"" << shortest(i[2])
             << "\"/>\n</inertial>\n";
+    }
+    return out.str();
+}
+
+std::string csv_table(const std::vector<FileResult>& results, const Request& request, bool inertia) {
+    // RFC 4180: a field with a comma, quote or line break is quoted, quotes doubled.
+    const auto field = [](const std::string& f) {
+        if (f.find_first_of(",\"\r\n") == std::string::npos) return f;
+        std::string q = "\"";
+        for (char c : f) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+        return q + "\"";
+    };
+    const auto num = [](double v) { return std::isfinite(v) ? shortest(v + 0.0) : std::string(); };
+    std::ostringstream out;
+    out << "file,exit_code,triangles,volume,volume_error_bound,mass,area,area_relative_error,centroid_x,centroid_y,"
+           "centroid_z,centroid_error_bound";
+    if (inertia) out << ",ixx,iyy,izz,ixy,iyz,izx,inertia_error_bound,edge_length,edge_length_relative_error";
+    out << "\r\n";
+    for (const FileResult& r : results) {
+        out << field(r.file) << "," << r.exit_code << ",";
+        if (r.streamed) {
+            const SoupResult& s = *r.streamed;
+            out << s.triangles << "," << num(s.volume) << ",0," << num(request.measure.density * s.volume) << ","
+                << num(s.area) << "," << num(s.area_relative_error) << "," << num(s.centroid[0]) << ","
+                << num(s.centroid[1]) << "," << num(s.centroid[2]) << "," << num(s.centroid_error_bound);
+            if (inertia) out << ",,,,,,,,,";
+        } else if (r.mass) {
+            const MassProperties& m = *r.mass;
+            const double c = std::max({std::fabs(m.centroid[0]), std::fabs(m.centroid[1]), std::fabs(m.centroid[2])});
+            out << r.loaded->mesh.view().triangle_count() << "," << num(m.volume) << ","
+                << num(m.volume_correctly_rounded ? 0.0 : m.volume_error_bound) << "," << num(m.mass) << ","
+                << num(m.area) << "," << num(m.area_relative_error) << "," << num(m.centroid[0]) << ","
+                << num(m.centroid[1]) << "," << num(m.centroid[2]) << ","
+                << num(m.moments_correctly_rounded ? 0.0 : m.moments_relative_error * c);
+            if (inertia) {
+                const auto& i = m.inertia_centroid;
+                double largest = 0;
+                for (double e : i) largest = std::max(largest, std::fabs(e));
+                for (double e : i) out << "," << num(e);
+                out << "," << num(m.moments_correctly_rounded ? 0.0 : m.moments_relative_error * largest) << ","
+                    << num(m.edge_length) << "," << num(m.edge_length_relative_error);
+            }
+        } else {
+            out << (r.loaded ? std::to_string(r.loaded->mesh.view().triangle_count()) : std::string()) << ",,,,,,,,,";
+            if (inertia) out << ",,,,,,,,,";
+        }
+        out << "\r\n";
     }
     return out.str();
 }

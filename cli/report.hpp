@@ -57,6 +57,11 @@ struct FileResult {
     // Request::weld_tolerance: what merging the points within it did.
     std::optional<ToleranceWeld> welded;
     double weld_tolerance = 0;
+    // The units the figures are in: lengths in `length_unit` ("" when not
+    // known: the file's own), mass in `mass_unit` ("kg", or "" for density ×
+    // volume); `length_factor` multiplied every coordinate (1: none).
+    std::string length_unit, mass_unit, units_source;
+    double length_factor = 1;
     // A surface that is not closed but would close when points within a
     // tolerance below 1e-9 of its size were merged: that tolerance (else 0).
     double closes_at_tolerance = 0;
@@ -106,6 +111,23 @@ struct Request {
     // --weld-tolerance: points within it merged (weld_within) before
     // anything is analysed or measured; 0: only equal coordinates are one point.
     double weld_tolerance = 0;
+    // Tables: --digits (at most this many significant digits; 0: those the
+    // guarantee supports), --verbose (the guarantees in full), and a mass
+    // column when --density was given.
+    int digits = 0;
+    bool verbose = false;
+    bool density_given = false;
+    // Units. The coordinates' unit: `units` (--units), else the file's own
+    // (3MF, AMF), else unknown. The figures are printed in `to` (--to; with a
+    // density in kg/m³, metres by default; else the coordinates' unit), every
+    // coordinate times `scale` (--scale) first. A density with a unit
+    // (density_kg_m3 > 0) gives the mass in kg: the density used is then
+    // kg per `to`³.
+    std::string units, to;
+    double scale = 1;
+    double density_kg_m3 = 0;
+    // URDF and SDF want SI: metres by default when the coordinates' unit is known.
+    bool metres_when_known = false;
 };
 
 // Reads, analyses and measures one file; never throws.
@@ -120,6 +142,11 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
 
 // Shortest decimal that reads back as the same double ("nan", "inf" spelled out).
 std::string shortest(double v);
+// v as the tables show it: the digits its guarantee supports, down to the
+// leading digit of abs_error (abs_error 0: correctly rounded, every digit of
+// the shortest round trip), at most `digits` significant ones when digits > 0;
+// never "-0".
+std::string number_text(double v, double abs_error, int digits);
 
 nlohmann::json to_json(const FileResult& r, const Request& request);
 
@@ -128,6 +155,10 @@ nlohmann::json to_json(const FileResult& r, const Request& request);
 std::string volume_table(const std::vector<FileResult>& results, const Request& request);
 std::string measure_report(const FileResult& r, const Request& request);
 std::string check_report(const FileResult& r);
+// --csv: one row per file (RFC 4180, a header row first), every number in
+// full (shortest round trip), empty where a file has none; `inertia` adds
+// the tensor about the centroid, its bound and the edge length (measure).
+std::string csv_table(const std::vector<FileResult>& results, const Request& request, bool inertia);
 
 // A sentence stating the guarantee of the printed volume.
 std::string volume_guarantee(const MassProperties& m);

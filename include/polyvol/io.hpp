@@ -77,7 +77,17 @@ struct LoadedMesh {
     // of their corners (n · ((b − a) × (c − a)) < 0 in double; zero normals
     // never count). Other formats: 0.
     std::size_t facet_normals_against_winding = 0;
+    // The length unit the file declares: "micron", "mm", "cm", "m", "in" or
+    // "ft" (3MF and AMF: their unit attribute, millimetre when absent); ""
+    // when the format has none (STL, OBJ, OFF, PLY) or the value is not one
+    // of those. Coordinates are never scaled by it.
+    std::string unit;
 };
+
+// The short name ("mm", ...) of a unit as 3MF or AMF spell it ("millimeter",
+// "micron", "micrometer", "centimeter", "meter", "inch", "foot", "feet"), or
+// "" for anything else.
+std::string unit_short_name(std::string_view declared);
 
 // Reads a file; "-" reads standard input. Throws ReadError (a zip archive
 // of several meshes, not a 3MF or AMF package, included: see below).

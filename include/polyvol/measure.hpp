@@ -149,6 +149,18 @@ struct PrincipalInertia {
 };
 PrincipalInertia principal_inertia(const std::array<double, 6>& tensor, double relative_error);
 
+// The figures of the mesh with every coordinate multiplied by length_factor
+// (a change of unit, or a scale), from those of the mesh as read: each
+// quantity times its power of the factor, with its guarantee widened for the
+// rounding of that product. length_error bounds the factor's relative error
+// against the one meant (0.001 for mm to m is not a double; 0 for an exact
+// factor), density_error the density's (a density converted between units),
+// which touches the mass and the moments. A power of two with both errors 0
+// scales exactly and keeps every guarantee. Derivation: docs/numerics.md,
+// "Units and scale".
+void scale_mass_properties(MassProperties& m, double length_factor, double length_error = 0,
+                           double density_error = 0);
+
 // How far the measures of a closed mesh can move when every coordinate moves
 // by at most delta (coordinates a reader computed, say: io.hpp's
 // LoadedMesh::coordinate_error). Absolute bounds, density 1: on |ΔV|, on

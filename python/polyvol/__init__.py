@@ -146,7 +146,7 @@ def load_bytes(data, name="memory"):
 
 
 def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounded", allow_open=False, solid=False,
-                 orient=False, signed=False, weld_tolerance=0.0):
+                 orient=False, signed=False, weld_tolerance=0.0, units=None, to=None, scale=1.0):
     """Everything `polyvol measure --json FILE` reports for one file, as a dict
     with its keys (the CLI's own code computes it): format and counts,
     topology and shells, the mass properties with their guarantees (of the
@@ -156,11 +156,15 @@ def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounde
     orient=True winds the faces consistently and outward first (--orient).
     A shell that is inside out is turned outward (turned_outward_faces) unless
     signed=True (--signed). weld_tolerance > 0 merges the points within it
-    first (--weld-tolerance; the report says what moved)."""
+    first (--weld-tolerance; the report says what moved). units gives the
+    coordinates' unit ("mm", "cm", "m", "in", "ft", "micron"; 3MF and AMF
+    files state theirs), to the unit of the figures, scale multiplies every
+    coordinate first (--units, --to, --scale); a conversion widens the
+    guarantees by its rounding (keys unit, length_factor)."""
     import json
     report = json.loads(_core.measure_file_json(os.fsencode(path), method, accuracy, float(density),
                                                 bool(allow_open), bool(solid), bool(orient), bool(signed),
-                                                float(weld_tolerance)))
+                                                float(weld_tolerance), units or "", to or "", float(scale)))
     report["file"] = os.fsdecode(path)
     return report
 

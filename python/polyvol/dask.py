@@ -32,13 +32,14 @@ COLUMNS = (
     "edge_length", "edge_length_relative_error", "overlap_checked", "winding_volume", "overlapping_shells",
     "crossing_pairs", "self_crossing_checked", "self_crossing_pairs", "self_crossing_example",
     "self_crossing_resolved", "turned_outward_faces", "principal_moments", "principal_axes",
-    "principal_moment_error", "principal_axis_angle_bound", "bounds", "size",
+    "principal_moment_error", "principal_axis_angle_bound", "bounds", "size", "unit", "mass_unit",
+    "length_factor", "weld_tolerance", "welded_points_moved", "weld_largest_move",
 )
 
 
 # Column types: numbers as float64 (NaN where a file has none), counts as
 # nullable integers, the rest (text, flags, lists) as objects.
-FLOATS = ("density", "volume", "volume_error_bound", "mass", "area", "area_relative_error",
+FLOATS = ("density", "length_factor", "volume", "volume_error_bound", "mass", "area", "area_relative_error",
           "moments_relative_error", "edge_length", "edge_length_relative_error", "winding_volume",
           "principal_moment_error")
 COUNTS = ("vertices", "faces", "triangles", "vertices_welded", "edges", "boundary_edges", "holes",

@@ -11,6 +11,7 @@
 #include "polyvol/io.hpp"
 #include "polyvol/simplicial.hpp"
 #include "report.hpp"
+#include "units.hpp"
 
 namespace polyvol::python {
 
@@ -110,9 +111,15 @@ void bind_io(py::module_& m) {
     m.def(
         "measure_file_json",
         [](const std::string& path, const std::string& method, const std::string& accuracy, double density,
-           bool allow_open, bool solid, bool orient, bool keep_signed, double weld_tolerance) {
+           bool allow_open, bool solid, bool orient, bool keep_signed, double weld_tolerance, const std::string& units,
+           const std::string& to, double scale) {
             cli::Request request;
             request.weld_tolerance = weld_tolerance;
+            if ((!units.empty() && !cli::length_unit(units)) || (!to.empty() && !cli::length_unit(to)))
+                throw py::value_error("units are mm, cm, m, in, ft or micron");
+            request.units = units;
+            request.to = to;
+            request.scale = scale;
             request.orient = orient;
             request.keep_signed = keep_signed;
             request.measure.method = parse_method(method);
@@ -130,7 +137,8 @@ void bind_io(py::module_& m) {
             return text;
         },
         py::arg("path"), py::arg("method"), py::arg("accuracy"), py::arg("density"), py::arg("allow_open"),
-        py::arg("solid"), py::arg("orient"), py::arg("keep_signed") = false, py::arg("weld_tolerance") = 0.0);
+        py::arg("solid"), py::arg("orient"), py::arg("keep_signed") = false, py::arg("weld_tolerance") = 0.0, py::arg("units") = "",
+        py::arg("to") = "", py::arg("scale") = 1.0);
 
     // A copy of the mesh wound consistently and outward (orient_mesh), and what that did.
     m.def(

@@ -9,9 +9,9 @@
 // <texture>, <edge> (curved triangles are read as flat ones). Element names are
 // matched by local name (any namespace prefix).
 //
-// Units: the unit attribute of <amf> is reported as a note ("amf-unit(<unit>)")
-// when it is given and is not millimeter (the default); coordinates are never
-// scaled.
+// Units: the unit attribute of <amf> is read into LoadedMesh::unit
+// (millimeter when absent) and reported as a note ("amf-unit(<unit>)") when
+// it is given and is not millimeter; coordinates are never scaled.
 //
 // Notes: "amf-zip-compressed", "amf-multiple-volumes" (a mesh with more than
 // one volume), "amf-multiple-objects(n)" (n > 1 objects), "amf-constellation-ignored".
@@ -105,6 +105,7 @@ public:
         if (objects > 1) out.notes.push_back("amf-multiple-objects(" + std::to_string(objects) + ")");
         if (constellation) out.notes.emplace_back("amf-constellation-ignored");
         if (!unit.empty() && unit != "millimeter") out.notes.push_back("amf-unit(" + unit + ")");
+        out.unit = unit_short_name(unit.empty() ? "millimeter" : unit);
     }
 
 private:

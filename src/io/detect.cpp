@@ -25,6 +25,7 @@
 #include <span>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include <fcntl.h>
@@ -40,6 +41,15 @@
 #include "io/text.hpp"
 
 namespace polyvol {
+
+std::string unit_short_name(std::string_view declared) {
+    static constexpr std::pair<std::string_view, std::string_view> kNames[] = {
+        {"micron", "micron"}, {"micrometer", "micron"}, {"millimeter", "mm"}, {"centimeter", "cm"},
+        {"meter", "m"},       {"inch", "in"},           {"foot", "ft"},       {"feet", "ft"}};
+    for (const auto& [name, short_name] : kNames)
+        if (declared == name) return std::string(short_name);
+    return "";
+}
 
 std::string_view format_name(Format f) {
     switch (f) {

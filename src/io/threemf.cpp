@@ -26,9 +26,9 @@
 // difference (each level's Dot2 bound, and the earlier levels' through |M|).
 // Identity transforms leave coordinates untouched.
 //
-// Units: the model's unit attribute is read and reported as a note
-// ("3mf-unit(<unit>)") when it is not the default millimeter; coordinates are
-// never scaled.
+// Units: the model's unit attribute is read into LoadedMesh::unit (millimeter
+// when absent) and reported as a note ("3mf-unit(<unit>)") when it is not the
+// default millimeter; coordinates are never scaled.
 //
 // Notes: "3mf-transform" when an instantiated item or component carries a
 // transform attribute, "3mf-components" when an instantiated object has
@@ -172,6 +172,7 @@ public:
         if (!zip_) out_.notes.emplace_back("3mf-bare-xml-not-zip");
         if (!root.unit.empty() && root.unit != "millimeter")
             out_.notes.push_back("3mf-unit(" + root.unit + ")");
+        out_.unit = unit_short_name(root.unit.empty() ? "millimeter" : root.unit);
 
         const pugi::xml_node model = root.doc.document_element();
         std::vector<pugi::xml_node> items;

@@ -83,19 +83,19 @@ TEST(Cli, BundledSampleMeasuresExactly) {
 }
 
 TEST(Cli, TableStatesTheGuarantee) {
-    const CliRun r = polyvol("volume " + corpus("stl-models/unitCube.ascii.stl"));
+    const CliRun r = polyvol("volume --verbose " + corpus("stl-models/unitCube.ascii.stl"));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("correctly rounded"), std::string::npos) << r.out;
     // Area and centroid carry theirs too, per file: the values, not a pointer elsewhere.
     EXPECT_NE(r.out.find("unitCube.ascii.stl: area relative error <= "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("; centroid correctly rounded"), std::string::npos) << r.out;
-    const CliRun fast = polyvol("volume --accuracy fast " + corpus("stl-models/unitCube.ascii.stl"));
+    const CliRun fast = polyvol("volume --verbose --accuracy fast " + corpus("stl-models/unitCube.ascii.stl"));
     ASSERT_EQ(fast.code, 0);
     EXPECT_NE(fast.out.find("±"), std::string::npos) << fast.out;
     EXPECT_NE(fast.out.find("; centroid within "), std::string::npos) << fast.out;
     EXPECT_NE(fast.out.find(" of its largest coordinate's magnitude"), std::string::npos) << fast.out;
     // --volume-only prints neither column, nor their notes.
-    const CliRun vo = polyvol("volume --volume-only " + corpus("stl-models/unitCube.ascii.stl"));
+    const CliRun vo = polyvol("volume --verbose --volume-only " + corpus("stl-models/unitCube.ascii.stl"));
     ASSERT_EQ(vo.code, 0);
     EXPECT_EQ(vo.out.find("area relative error"), std::string::npos) << vo.out;
 }
@@ -129,7 +129,7 @@ TEST(Cli, TableChecksClosednessByFingerprintAndNamesTheEdgesOfOpenSurfaces) {
         if (e.value("format", "") == "stl" && e.value("encoding", "") == "binary_le") continue;
         const std::string rel = e["path"].get<std::string>();
         SCOPED_TRACE(rel);
-        const CliRun r = polyvol("volume '" + (kCorpus / rel).string() + "'");
+        const CliRun r = polyvol("volume --verbose '" + (kCorpus / rel).string() + "'");
         if (e["topology"]["closed_2_cycle"].get<bool>()) {
             ++closed;
             EXPECT_EQ(r.code, 0) << r.err;
@@ -146,7 +146,7 @@ TEST(Cli, TableChecksClosednessByFingerprintAndNamesTheEdgesOfOpenSurfaces) {
     EXPECT_GE(open, 5);
     // A binary STL measured by another method than cone is loaded, not
     // streamed: the same check on the loaded mesh.
-    const CliRun torus = polyvol("volume --method prism " + corpus("prusa-slicer/torus.stl"));
+    const CliRun torus = polyvol("volume --verbose --method prism " + corpus("prusa-slicer/torus.stl"));
     EXPECT_EQ(torus.code, 0) << torus.err;
     EXPECT_NE(torus.out.find("Closed 2-cycle checked by a randomized edge fingerprint"), std::string::npos);
     EXPECT_EQ(torus.out.find("Streamed binary STL"), std::string::npos);

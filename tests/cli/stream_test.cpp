@@ -68,7 +68,7 @@ TEST(CliStream, EveryClosedBinaryStlStreamsToTheManifestVolume) {
 
 TEST(CliStream, TableStreamsAndStatesTheGuarantees) {
     const fs::path torus = kCorpus / "meshes/prusa-slicer/torus.stl";
-    const CliRun r = polyvol("volume " + quoted(torus));
+    const CliRun r = polyvol("volume --verbose " + quoted(torus));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("Streamed binary STL"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("correctly rounded"), std::string::npos);
@@ -92,16 +92,16 @@ TEST(CliStream, OpenSurfaceInTheTableIsCheckedInFull) {
     EXPECT_NE(r.err.find("unbalanced edge"), std::string::npos) << r.err;
     EXPECT_NE(r.out.find("open surface"), std::string::npos) << r.out;
     // --allow-open measures it anyway, through the full path.
-    const CliRun allowed = polyvol("volume --allow-open " + quoted(kCorpus / "meshes/stl-models/bunny.bin.stl"));
+    const CliRun allowed = polyvol("volume --verbose --allow-open " + quoted(kCorpus / "meshes/stl-models/bunny.bin.stl"));
     EXPECT_EQ(allowed.code, 0) << allowed.err;
     EXPECT_EQ(allowed.out.find("Streamed binary STL"), std::string::npos);
 }
 
 TEST(CliStream, OtherMethodsAndFormatsUseTheFullPath) {
-    const CliRun prism = polyvol("volume --method prism " + quoted(kCorpus / "meshes/prusa-slicer/torus.stl"));
+    const CliRun prism = polyvol("volume --verbose --method prism " + quoted(kCorpus / "meshes/prusa-slicer/torus.stl"));
     EXPECT_EQ(prism.code, 0);
     EXPECT_EQ(prism.out.find("Streamed binary STL"), std::string::npos);
-    const CliRun ascii = polyvol("volume " + quoted(kCorpus / "meshes/stl-models/unitCube.ascii.stl"));
+    const CliRun ascii = polyvol("volume --verbose " + quoted(kCorpus / "meshes/stl-models/unitCube.ascii.stl"));
     EXPECT_EQ(ascii.code, 0);
     EXPECT_EQ(ascii.out.find("Streamed binary STL"), std::string::npos);
 }
@@ -166,7 +166,7 @@ TEST(CliStream, VolumeOnlyGivesTheManifestVolumeOnEveryPath) {
 TEST(CliStream, VolumeOnlyTable) {
     const fs::path torus = kCorpus / "meshes/prusa-slicer/torus.stl";
     const fs::path cube = kCorpus / "meshes/stl-models/unitCube.ascii.stl";
-    const CliRun r = polyvol("volume --volume-only " + quoted(torus) + " " + quoted(cube));
+    const CliRun r = polyvol("volume --verbose --volume-only " + quoted(torus) + " " + quoted(cube));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("volume"), std::string::npos);
     EXPECT_EQ(r.out.find("area"), std::string::npos) << r.out;

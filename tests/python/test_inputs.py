@@ -246,3 +246,14 @@ def test_measure_file_welds_within_a_tolerance():
     report = polyvol.measure_file(data / "near_box.obj", weld_tolerance=1e-12)
     assert report["welded_points_moved"] == 16
     assert report["volume"] == polyvol.measure_file(data / "box.obj")["volume"]
+
+
+def test_measure_file_converts_units():
+    data = pathlib.Path(__file__).resolve().parents[1] / "data" / "units"
+    inch = polyvol.measure_file(data / "tetra_inch.3mf")
+    assert inch["unit"] == "in" and inch["volume"] == 4 / 3
+    mm = polyvol.measure_file(data / "tetra_inch.3mf", to="mm")
+    assert mm["unit"] == "mm" and mm["length_factor"] == 25.4
+    assert abs(mm["volume"] - 4 / 3 * 16387.064) <= mm["volume_error_bound"] + 1e-11
+    with pytest.raises(ValueError):
+        polyvol.measure_file(data / "tetra_inch.3mf", to="furlong")

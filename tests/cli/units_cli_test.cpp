@@ -1,0 +1,93 @@
+// Units (issue #21): a 3MF or AMF file's declared unit is read and shown;
+// --units gives a mesh's, --to converts the figures, --scale scales the
+// coordinates, and a density in kg/m3 or g/cm3 gives the mass in kg. Every
+// converted figure carries a bound that holds (exact for a power-of-two
+// scale).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/run_cli.hpp"
+
+namespace {
+
+using cli_test::run_polyvol;
+using nlohmann::json;
+
+std::string data(const std::string& dir, const std::string& name) {
+    return "'" + std::string(POLYVOL_TEST_DATA) + "/" + dir + "/" + name + "'";
+}
+const std::string kInch3mf = data("units", "tetra_inch.3mf");  // volume 4/3 in³
+const std::string kMeterAmf = data("units", "tetra_meter.amf");  // volume 4/3 m³
+const std::string kBox = data("weld", "box.obj");  // [0, 0.3]^3, no unit
+
+json first(const std::string& args) {
+    const auto r = run_polyvol(args);
+    EXPECT_EQ(r.code, 0) << args << "\n" << r.err;
+    return json::parse(r.out)[0];
+}
+
+TEST(UnitsCli, DeclaredUnitsAreReadAndShown) {
+    const json inch = first("measure --json " + kInch3mf);
+    EXPECT_EQ(inch["unit"], "in");
+    EXPECT_EQ(inch["volume"], 4.0 / 3.0);
+    EXPECT_EQ(inch["accuracy"], "correctly-rounded");  // no conversion asked
+    EXPECT_EQ(first("measure --json " + kMeterAmf)["unit"], "m");
+    const auto table = run_polyvol("measure " + kInch3mf);
+    EXPECT_NE(table.out.find("the file declares in"), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find(" in³"), std::string::npos) << table.out;
+}
+
+TEST(UnitsCli, ConvertedFiguresCarryATrueBound) {
+    const json mm = first("measure --json --to mm " + kInch3mf);
+    EXPECT_EQ(mm["unit"], "mm");
+    EXPECT_EQ(mm["length_factor"], 25.4);
+    EXPECT_EQ(mm["accuracy"], "error-bound");
+    const long double exact = 4.0L / 3.0L * 16387.064L;  // 1 in³ = 16387.064 mm³
+    const double v = mm["volume"].get<double>(), bound = mm["volume_error_bound"].get<double>();
+    EXPECT_LE(std::fabs(static_cast<long double>(v) - exact), bound);
+    EXPECT_LT(bound, 1e-14 * v);
+    EXPECT_DOUBLE_EQ(mm["centroid"][0].get<double>(), 12.7);
+    const auto table = run_polyvol("volume --to mm " + kInch3mf + " " + kMeterAmf);
+    EXPECT_NE(table.out.find("volume (mm³)"), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("1333333333.33333"), std::string::npos) << table.out;
+}
+
+TEST(UnitsCli, ScaleOfAPowerOfTwoStaysCorrectlyRounded) {
+    const json two = first("volume --json --scale 2 " + kBox);
+    const json one = first("volume --json " + kBox);
+    EXPECT_EQ(two["volume"].get<double>(), 8 * one["volume"].get<double>());
+    EXPECT_EQ(two["accuracy"], "correctly-rounded");
+    const json tenth = first("volume --json --scale 0.1 " + kBox);
+    EXPECT_EQ(tenth["accuracy"], "error-bound");
+    EXPECT_GT(tenth["volume_error_bound"].get<double>(), 0.0);
+}
+
+TEST(UnitsCli, UnknownUnitIsNotGuessed) {
+    const auto r = run_polyvol("volume --to m " + kBox);
+    EXPECT_EQ(r.code, 3);
+    EXPECT_NE(r.err.find("its length unit is not known"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--units"), std::string::npos) << r.err;
+    EXPECT_EQ(run_polyvol("volume --units furlong " + kBox).code, 1);
+    EXPECT_EQ(run_polyvol("volume --density 7850kg/l " + kBox).code, 1);
+}
+
+TEST(UnitsCli, DensityWithAUnitGivesKilograms) {
+    // 0.3 mm box of steel: 0.027 mm³ = 2.7e-11 m³, 7850 kg/m³
+    const json steel = first("measure --json --units mm --density 7850kg/m3 " + kBox);
+    EXPECT_EQ(steel["unit"], "m");
+    EXPECT_EQ(steel["mass_unit"], "kg");
+    EXPECT_NEAR(steel["mass"].get<double>(), 2.1195e-7, 1e-21);
+    EXPECT_NEAR(steel["inertia"][0][0].get<double>(), 2.1195e-7 * 2 * 0.0003 * 0.0003 / 12, 1e-27);  // m (b² + c²)/12
+    const json grams = first("measure --json --units mm --density 7.85g/cm3 " + kBox);
+    EXPECT_EQ(grams["mass"], steel["mass"]);
+    // the URDF inertial element is in metres and kilograms when the unit is known
+    const auto urdf = run_polyvol("measure --format urdf --density 1000kg/m3 " + kInch3mf);
+    EXPECT_NE(urdf.out.find("lengths in m, mass in kg"), std::string::npos) << urdf.out;
+    EXPECT_NE(urdf.out.find("xyz=\"0.0127 0.0127 0.0127\""), std::string::npos) << urdf.out;
+}
+
+}  // namespace
