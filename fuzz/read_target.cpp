@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "io/chunks.hpp"
+#include "io/readers.hpp"
 #include "polyvol/chain.hpp"
 #include "polyvol/io.hpp"
 
@@ -71,6 +72,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, std::size_t size) {
     if (kReader == "3mf") read_mesh(data, "f.3mf", Format::threemf);
     if (kReader == "amf") read_mesh(data, "f.amf", Format::amf);
     if (kReader == "gzip") read_mesh(data, "f.gz", Format::unknown);
+    if (kReader == "archive") {  // bzip2 and tar (plain or compressed): the whole file, then each member
+        read_mesh(data, "f.tar", Format::unknown);
+        try {
+            for (const std::string& m : io::tar_members(data, "f.tar"))
+                read_mesh(io::tar_member(data, "f.tar", m, io::decompression_limit(data.size())), "f.tar:" + m,
+                          Format::unknown);
+        } catch (const ReadError&) {
+        }
+    }
     try {
         if (kReader == "chain" || kReader == "qhull") (void)read_chain_memory(data, "f.chain");
         if (kReader == "polygons") (void)read_polygons_memory(data, "f.txt");

@@ -5,6 +5,7 @@
 // a hint for the few cases content cannot decide (an empty file, an OFF file
 // without its header line):
 //   gzip magic 1f 8b        -> decompressed (zlib), then detected again
+//   bzip2 magic "BZh"       -> decompressed (libbz2), then detected again
 //   zip magic "PK\3\4"      -> 3MF (has 3D/3dmodel.model) or zipped AMF
 //   "ply" line              -> PLY (ascii, binary_little_endian, binary_big_endian)
 //   XML with root <amf>     -> AMF; root <model> -> 3MF model part as bare XML
@@ -93,9 +94,10 @@ std::string unit_short_name(std::string_view declared);
 // of several meshes, not a 3MF or AMF package, included: see below).
 LoadedMesh read_mesh_file(const std::string& path);
 
-// A zip archive of plain meshes (not a 3MF package, no *.amf member): the
-// members that are meshes by their extension (stl, obj, off, ply, 3mf, each
-// also .gz), in archive order; empty for any other file.
+// An archive of plain meshes — a zip (not a 3MF package, no *.amf member)
+// or a tar (plain, .tar.gz/.tgz, .tar.bz2/.tbz2): the members that are
+// meshes by their extension (stl, obj, off, ply, 3mf, amf, each also .gz or
+// .bz2), in archive order; empty for any other file.
 std::vector<std::string> mesh_archive_members(const std::string& path);
 // One member of such an archive, read as a file of its own named
 // "PATH:MEMBER" (the archive's decompression limits apply). Throws ReadError.

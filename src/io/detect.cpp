@@ -2,6 +2,8 @@
 // read_mesh_memory. Detection is by content, in this order (io.hpp):
 //   empty                   -> an empty OBJ when the hint says OBJ, else an error
 //   gzip magic 1f 8b        -> gunzip, detect again ("gzip-compressed")
+//   bzip2 magic "BZh"       -> bunzip2, detect again ("bzip2-compressed")
+//   tar ("ustar" at 257)    -> an error naming its meshes (each is measured as ARCHIVE:MEMBER)
 //   zip magic PK 3 4        -> 3MF when the archive names 3D/3dmodel.model, else AMF
 //   UTF-16 byte-order mark  -> converted to UTF-8, detect again ("utf16-be-bom")
 //   "ply" line              -> PLY
@@ -72,7 +74,7 @@ Format format_from_extension(std::string_view path) {
         if (dot == std::string_view::npos || dot == 0) return Format::unknown;
         const std::string_view ext = file.substr(dot + 1);
         using io::text::iequals;
-        if (iequals(ext, "gz")) {
+        if (iequals(ext, "gz") || iequals(ext, "bz2")) {
             file = file.substr(0, dot);
             continue;
         }
@@ -250,6 +252,22 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth, u
         m.gzip = true;
         return with_note_first(std::move(m), "gzip-compressed");
     }
+    if (io::is_bzip2(data)) {
+        if (depth >= 3) throw ReadError::whole_file(name, "compressed data nested too deeply");
+        const std::vector<std::byte> inner = io::bunzip2(data, name, limit);
+        LoadedMesh m = detect(inner, name, hint, depth + 1, limit - std::min<uint64_t>(limit, inner.size()));
+        return with_note_first(std::move(m), "bzip2-compressed");
+    }
+    if (io::is_tar(data)) {  // a tar of meshes is not one mesh: say what it holds
+        const std::vector<std::string> meshes = io::tar_members(data, name);
+        std::string list;
+        for (std::size_t i = 0; i < meshes.size() && i < 3; ++i) list += (i ? ", " : "") + meshes[i];
+        if (meshes.size() > 3) list += ", ...";
+        throw ReadError::whole_file(name, "a tar archive of " + std::to_string(meshes.size()) + " mesh file" +
+                                              (meshes.size() == 1 ? "" : "s") + (list.empty() ? "" : " (" + list + ")") +
+                                              ": each is a mesh of its own (`polyvol volume` measures each as "
+                                              "ARCHIVE:MEMBER)");
+    }
     if (io::is_zip(data)) {
         if (contains(data, "3D/3dmodel.model")) return io::read_3mf_zip(data, name);
         if (hint == Format::threemf) return io::read_3mf_zip(data, name);
@@ -426,23 +444,40 @@ private:
 
 }  // namespace
 
+namespace {
+
+// Whether the first bytes of the file at path may start an archive of
+// meshes: zip, or a tar (plain, or compressed by gzip or bzip2).
+bool may_be_archive(const std::string& path) {
+    std::byte head[512] = {};
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return false;
+    const ssize_t n = ::pread(fd, head, sizeof head, 0);
+    ::close(fd);
+    if (n < 6) return false;
+    const Bytes h(head, static_cast<std::size_t>(n));
+    return io::is_zip(h) || io::is_gzip(h) || io::is_bzip2(h) || io::is_tar(h);
+}
+
+}  // namespace
+
 std::vector<std::string> mesh_archive_members(const std::string& path) {
-    {  // the zip magic first: other files are not read
-        std::byte head[4] = {};
-        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-        if (fd < 0) return {};
-        const ssize_t n = ::pread(fd, head, sizeof head, 0);
-        ::close(fd);
-        if (n != static_cast<ssize_t>(sizeof head) || !io::is_zip(std::span<const std::byte>(head, sizeof head))) return {};
-    }
+    if (!may_be_archive(path)) return {};  // other files are not read
     const FileBytes file(path);
-    if (!file.read() || !io::is_zip(file.bytes()) || contains(file.bytes(), "3D/3dmodel.model")) return {};
-    return mesh_members(file.bytes(), path);
+    if (!file.read()) return {};
+    if (io::is_zip(file.bytes()))
+        return contains(file.bytes(), "3D/3dmodel.model") ? std::vector<std::string>{} : mesh_members(file.bytes(), path);
+    return io::tar_members(file.bytes(), path);
 }
 
 LoadedMesh read_archive_member(const std::string& path, const std::string& member) {
     const FileBytes file(path);
     if (!file.read()) throw ReadError::whole_file(path, "cannot read the archive");
+    if (!io::is_zip(file.bytes())) {
+        const std::vector<std::byte> bytes =
+            io::tar_member(file.bytes(), path, member, io::decompression_limit(file.bytes().size()));
+        return read_mesh_memory(bytes, path + ":" + member, Format::unknown);
+    }
     io::ZipArchive zip(file.bytes(), path);
     const std::vector<std::byte> bytes = zip.read(member);
     return read_mesh_memory(bytes, path + ":" + member, Format::unknown);

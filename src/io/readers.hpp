@@ -48,4 +48,18 @@ uint64_t decompression_limit(std::size_t compressed_bytes);
 // ReadError on corrupt data, and before producing more than max_bytes.
 std::vector<std::byte> gunzip(Bytes data, const std::string& name, uint64_t max_bytes);
 
+// archive.cpp: bzip2 streams ("BZh1".."BZh9", libbz2) and tar archives
+// ("ustar" at byte 257, with a valid header checksum).
+bool is_bzip2(Bytes head);
+bool is_tar(Bytes data);
+// The decompressed bytes of a bzip2 stream (concatenated streams too), at
+// most `limit`. Throws ReadError on corrupt or truncated data.
+std::vector<std::byte> bunzip2(Bytes data, const std::string& name, uint64_t limit);
+// A tar archive's regular files that are meshes by their extension, in
+// archive order (the tar plain, or gzip or bzip2 compressed); empty when it
+// is not a tar.
+std::vector<std::string> tar_members(Bytes data, const std::string& name);
+// One member's bytes (the archive's decompression at most `limit`). Throws ReadError.
+std::vector<std::byte> tar_member(Bytes data, const std::string& name, const std::string& member, uint64_t limit);
+
 }  // namespace polyvol::io

@@ -160,6 +160,42 @@ TEST(JsonKeys, AZipOfMeshesIsItsMembers) {
     EXPECT_NE(table.out.find("two_meshes.zip:sub/tet.off"), std::string::npos) << table.out;
 }
 
+// Tar archives, plain or compressed by gzip or bzip2, are their members as a
+// zip is; a long member name (a pax header) is read whole; a bzip2 stream
+// of one mesh is that mesh (tests/data/archives/make.py).
+TEST(JsonKeys, TarArchivesAndBzip2AreReadAsZipsAndGzipAre) {
+    const std::string dir = std::string(POLYVOL_TEST_DATA) + "/archives/";
+    for (const char* name : {"two_meshes.tar.gz", "two_meshes.tgz", "two_meshes.tar.bz2"}) {
+        SCOPED_TRACE(name);
+        const auto r = cli_test::run_polyvol("volume --json '" + dir + name + "'");
+        ASSERT_EQ(r.code, 0) << r.err;
+        const json all = json::parse(r.out);
+        ASSERT_EQ(all.size(), 2u);
+        EXPECT_EQ(all[0]["file"], dir + name + ":cube.obj");
+        EXPECT_EQ(all[0]["volume"], 8.0);
+        EXPECT_EQ(all[1]["file"], dir + name + ":sub/tet.off");
+        EXPECT_EQ(all[1]["volume"], 4.5);
+    }
+    const json long_name = json::parse(cli_test::run_polyvol("volume --json '" + dir + "long_name.tar'").out);
+    ASSERT_EQ(long_name.size(), 1u);
+    EXPECT_EQ(long_name[0]["file"], dir + "long_name.tar:" + std::string(60, 'd') + "/" + std::string(60, 'e') + "/cube.obj");
+    EXPECT_EQ(long_name[0]["volume"], 8.0);
+    const json bz = json::parse(cli_test::run_polyvol("measure --json '" + dir + "cube.obj.bz2'").out)[0];
+    EXPECT_EQ(bz["volume"], 8.0);
+    EXPECT_EQ(bz["notes"][0], "bzip2-compressed");
+    // A truncated archive is an error with the archive's name, not a crash.
+    const fs::path cut = scratch("cut.tar.bz2", "");
+    {
+        std::ifstream in(dir + "two_meshes.tar.bz2", std::ios::binary);
+        const std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::ofstream(cut, std::ios::binary) << all.substr(0, all.size() / 2);
+    }
+    const auto bad = cli_test::run_polyvol("volume '" + cut.string() + "'");
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_NE(bad.err.find("truncated bzip2 data"), std::string::npos) << bad.err;
+    fs::remove(cut);
+}
+
 // Inside out (issue #21): a closed shell facing inward and inside nothing is
 // turned outward by default, and said so; --signed keeps the signed sums.
 // A cavity (an inward shell inside a solid one) stays a cavity.

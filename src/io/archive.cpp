@@ -1,0 +1,202 @@
+// Tar archives and bzip2 streams: a mesh.stl.bz2, and tar archives of meshes,
+// plain or compressed (.tar, .tar.gz, .tgz, .tar.bz2, .tbz2).
+//
+// bzip2 is libbz2's. A tar is read here: POSIX ustar headers of 512 bytes
+// (name at 0, size in octal at 124, checksum at 148, type at 156, name
+// prefix at 345), with GNU long names (type 'L') and pax headers (type 'x',
+// their "path" record); each member's data follows its header, padded to
+// 512. (libarchive reads them too, but loading it and the libraries it
+// pulls in costs 1.3 ms at every start of the command, for every file.)
+// Every header's checksum is verified and every size is checked against the
+// bytes present; decompressed bytes count against the caller's limit.
+#include <bzlib.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/readers.hpp"
+#include "polyvol/io.hpp"
+
+namespace polyvol::io {
+namespace {
+
+bool starts_with(Bytes data, std::string_view magic) {
+    return data.size() >= magic.size() && std::memcmp(data.data(), magic.data(), magic.size()) == 0;
+}
+
+std::string_view field(Bytes block, std::size_t at, std::size_t len) {
+    const char* p = reinterpret_cast<const char*>(block.data()) + at;
+    return {p, static_cast<std::size_t>(std::find(p, p + len, '\0') - p)};
+}
+
+// A numeric header field: octal digits (blanks around), or base-256 when the
+// first byte has its high bit set (GNU, for sizes of 8 GiB and more).
+std::optional<uint64_t> number(Bytes block, std::size_t at, std::size_t len) {
+    const auto* b = reinterpret_cast<const unsigned char*>(block.data()) + at;
+    uint64_t v = 0;
+    if (b[0] & 0x80) {
+        for (std::size_t i = 1; i < len; ++i) {
+            if (v >> 55) return std::nullopt;
+            v = v << 8 | b[i];
+        }
+        return (b[0] & 0x7F) == 0 ? std::optional(v) : std::nullopt;
+    }
+    std::size_t i = 0;
+    while (i < len && b[i] == ' ') ++i;
+    bool digits = false;
+    for (; i < len && b[i] >= '0' && b[i] <= '7'; ++i, digits = true) {
+        if (v >> 60) return std::nullopt;
+        v = v * 8 + (b[i] - '0');
+    }
+    for (; i < len; ++i)
+        if (b[i] != ' ' && b[i] != '\0') return std::nullopt;
+    return digits ? std::optional(v) : std::nullopt;
+}
+
+// The header's checksum: the sum of its bytes with the checksum field as blanks.
+bool checksum_ok(Bytes block) {
+    const std::optional<uint64_t> want = number(block, 148, 8);
+    uint64_t sum = 0;
+    for (std::size_t i = 0; i < 512; ++i)
+        sum += i >= 148 && i < 156 ? ' ' : static_cast<unsigned char>(block[i]);
+    return want && *want == sum;
+}
+
+struct TarEntry {
+    std::string path;
+    std::size_t offset = 0, size = 0;  // the data
+};
+
+// The regular files of a tar, in order. Throws ReadError on a bad header or
+// data past the end.
+std::vector<TarEntry> tar_entries(Bytes data, const std::string& name) {
+    std::vector<TarEntry> entries;
+    std::string long_name;  // from a GNU 'L' or a pax 'x' header, for the next entry
+    for (std::size_t at = 0; at + 512 <= data.size();) {
+        const Bytes h = data.subspan(at, 512);
+        if (std::all_of(h.begin(), h.end(), [](std::byte b) { return b == std::byte{0}; })) break;  // the end
+        if (!checksum_ok(h)) throw ReadError::at_byte(name, at, "tar: a header's checksum does not match");
+        const std::optional<uint64_t> size = number(h, 124, 12);
+        if (!size) throw ReadError::at_byte(name, at + 124, "tar: a header's size is not a number");
+        if (*size > data.size() - at - 512)
+            throw ReadError::at_byte(name, at, "tar: a member of " + std::to_string(*size) + " bytes runs past the end");
+        const auto type = static_cast<char>(h[156]);
+        const std::size_t begin = at + 512;
+        const std::string_view content(reinterpret_cast<const char*>(data.data()) + begin, *size);
+        if (type == 'L') {
+            long_name.assign(content.substr(0, content.find('\0')));
+        } else if (type == 'x') {  // pax: records "LEN key=value\n"
+            for (std::size_t p = 0; p < content.size();) {
+                const std::size_t space = content.find(' ', p);
+                if (space == std::string_view::npos) break;
+                const std::size_t len = static_cast<std::size_t>(std::strtoull(std::string(content.substr(p, space - p)).c_str(), nullptr, 10));
+                if (len == 0 || p + len > content.size()) break;
+                const std::string_view record = content.substr(space + 1, p + len - space - 2);  // without "\n"
+                if (record.substr(0, 5) == "path=") long_name.assign(record.substr(5));
+                p += len;
+            }
+        } else {
+            if (type == '0' || type == '\0') {
+                std::string path = long_name;
+                if (path.empty()) {
+                    const std::string_view prefix = starts_with(h.subspan(257), "ustar") ? field(h, 345, 155) : "";
+                    path = (prefix.empty() ? "" : std::string(prefix) + "/") + std::string(field(h, 0, 100));
+                }
+                entries.push_back({std::move(path), begin, static_cast<std::size_t>(*size)});
+            }
+            long_name.clear();
+        }
+        at = begin + (static_cast<std::size_t>(*size) + 511) / 512 * 512;
+    }
+    return entries;
+}
+
+// The data made plain: a tar as it is, or after gunzip or bunzip2.
+std::vector<std::byte> plain(Bytes data, const std::string& name, uint64_t limit) {
+    if (is_gzip(data)) return gunzip(data, name, limit);
+    if (is_bzip2(data)) return bunzip2(data, name, limit);
+    return {data.begin(), data.end()};
+}
+
+}  // namespace
+
+bool is_bzip2(Bytes head) {
+    return starts_with(head, "BZh") && head.size() > 3 && head[3] >= std::byte{'1'} && head[3] <= std::byte{'9'};
+}
+bool is_tar(Bytes data) { return data.size() >= 512 && starts_with(data.subspan(257), "ustar") && checksum_ok(data.first(512)); }
+
+std::vector<std::byte> bunzip2(Bytes data, const std::string& name, uint64_t limit) {
+    const auto too_big = [&] {
+        return ReadError::whole_file(name, "bzip2 data expands beyond the decompression limit of " +
+                                               std::to_string(limit) + " bytes: refusing it (a bomb?)");
+    };
+    struct Stream {
+        bz_stream bz{};
+        bool ok = false;
+        Stream() { ok = BZ2_bzDecompressInit(&bz, 0, 0) == BZ_OK; }
+        ~Stream() {
+            if (ok) BZ2_bzDecompressEnd(&bz);
+        }
+    };
+    std::vector<std::byte> out;
+    std::size_t produced = 0, consumed = 0;
+    while (consumed < data.size()) {  // one stream after another (pbzip2 writes several)
+        Stream s;
+        if (!s.ok) throw ReadError::whole_file(name, "cannot initialise libbz2");
+        for (;;) {
+            if (produced == out.size()) {  // grow, up to one byte past the limit (to see it passed)
+                const uint64_t room = limit + 1 - std::min<uint64_t>(limit + 1, produced);
+                if (room == 0) throw too_big();
+                out.resize(produced + static_cast<std::size_t>(
+                                          std::min<uint64_t>(room, std::clamp<std::size_t>(produced, 1 << 16, 64 << 20))));
+            }
+            const std::size_t in_now = std::min<std::size_t>(data.size() - consumed, 1u << 30);
+            const std::size_t out_now = std::min<std::size_t>(out.size() - produced, 1u << 30);
+            s.bz.next_in = const_cast<char*>(reinterpret_cast<const char*>(data.data() + consumed));
+            s.bz.avail_in = static_cast<unsigned>(in_now);
+            s.bz.next_out = reinterpret_cast<char*>(out.data() + produced);
+            s.bz.avail_out = static_cast<unsigned>(out_now);
+            const int status = BZ2_bzDecompress(&s.bz);
+            consumed += in_now - s.bz.avail_in;
+            produced += out_now - s.bz.avail_out;
+            if (produced > limit) throw too_big();
+            if (status == BZ_STREAM_END) break;
+            if (status != BZ_OK)
+                throw ReadError::at_byte(name, consumed, "corrupt bzip2 data (libbz2 error " + std::to_string(status) + ")");
+            if (consumed == data.size() && s.bz.avail_out != 0)
+                throw ReadError::at_byte(name, consumed, "truncated bzip2 data (the compressed stream ends early)");
+        }
+        if (consumed < data.size() && !is_bzip2(data.subspan(consumed))) break;  // trailing bytes are ignored, as gzip's
+    }
+    out.resize(produced);
+    return out;
+}
+
+std::vector<std::string> tar_members(Bytes data, const std::string& name) {
+    try {
+        const std::vector<std::byte> tar = plain(data, name, decompression_limit(data.size()));
+        if (!is_tar(tar)) return {};
+        std::vector<std::string> meshes;
+        for (const TarEntry& e : tar_entries(tar, name))
+            if (format_from_extension(e.path) != Format::unknown) meshes.push_back(e.path);
+        return meshes;
+    } catch (const ReadError&) {
+        return {};  // not a readable tar: read_mesh_file says why
+    }
+}
+
+std::vector<std::byte> tar_member(Bytes data, const std::string& name, const std::string& member, uint64_t limit) {
+    const std::vector<std::byte> tar = plain(data, name, limit);
+    if (!is_tar(tar)) throw ReadError::whole_file(name, "not a tar archive");
+    for (const TarEntry& e : tar_entries(tar, name))
+        if (e.path == member) return {tar.begin() + static_cast<std::ptrdiff_t>(e.offset),
+                                      tar.begin() + static_cast<std::ptrdiff_t>(e.offset + e.size)};
+    throw ReadError::whole_file(name, "the archive has no member " + member);
+}
+
+}  // namespace polyvol::io
