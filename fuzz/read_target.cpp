@@ -72,6 +72,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, std::size_t size) {
     if (kReader == "3mf") read_mesh(data, "f.3mf", Format::threemf);
     if (kReader == "amf") read_mesh(data, "f.amf", Format::amf);
     if (kReader == "gzip") read_mesh(data, "f.gz", Format::unknown);
+    if (kReader == "gltf") read_mesh(data, "<stdin>", Format::gltf);  // as standard input: no buffer files read
     if (kReader == "archive") {  // bzip2 and tar (plain or compressed): the whole file, then each member
         read_mesh(data, "f.tar", Format::unknown);
         try {

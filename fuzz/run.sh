@@ -14,7 +14,7 @@ seconds=${2:-60}
 shift $(( $# > 2 ? 2 : $# ))
 targets=("$@")
 RUNS=${RUNS:-}
-[ ${#targets[@]} -eq 0 ] && targets=(stl obj off ply 3mf amf gzip archive chain qhull polygons pipeline grid)
+[ ${#targets[@]} -eq 0 ] && targets=(stl obj off ply 3mf amf gzip archive gltf chain qhull polygons pipeline grid)
 mkdir -p "$build/fuzz-artifacts" "$build/fuzz-logs"
 
 dict_of() {

@@ -9,6 +9,8 @@
 //   zip magic "PK\3\4"      -> 3MF (has 3D/3dmodel.model) or zipped AMF
 //   "ply" line              -> PLY (ascii, binary_little_endian, binary_big_endian)
 //   XML with root <amf>     -> AMF; root <model> -> 3MF model part as bare XML
+//   "glTF" magic, or JSON with "asset" -> glTF 2.0 (.glb, or .gltf with its buffers
+//                              beside it: read only from the file's directory)
 //   size == 84 + 50 * n     -> binary STL (n from bytes 80..83), even when the
 //                              header starts with "solid"
 //   "solid"                 -> ASCII STL (several solid blocks allowed)
@@ -35,9 +37,9 @@
 
 namespace polyvol {
 
-enum class Format { unknown, stl, obj, off, ply, threemf, amf };
+enum class Format { unknown, stl, obj, off, ply, threemf, amf, gltf };
 
-// "stl", "obj", "off", "ply", "3mf", "amf", "unknown".
+// "stl", "obj", "off", "ply", "3mf", "amf", "gltf", "unknown".
 std::string_view format_name(Format f);
 // Format suggested by a path's extension (".gz" is looked through), or unknown.
 Format format_from_extension(std::string_view path);
@@ -63,6 +65,14 @@ struct ReadError : std::runtime_error {
 // order of their first corner (exactly welded(soup) of the facets' corners).
 // Welding only merges equal values, so every exact and correctly rounded
 // result is that of the soup. The other formats' vertices are kept as listed.
+// A named part of a file: a run of consecutive faces (3MF build items and
+// glTF mesh instances).
+struct MeshPart {
+    std::string name;
+    std::size_t first_face = 0, faces = 0;
+    double coordinate_error = 0;  // LoadedMesh::coordinate_error for this part's vertices
+};
+
 struct LoadedMesh {
     Mesh mesh;
     std::size_t vertices_in_file = 0;  // as the file lists them (STL: per facet corner; else mesh.vertex_count())
@@ -83,6 +93,10 @@ struct LoadedMesh {
     // when the format has none (STL, OBJ, OFF, PLY) or the value is not one
     // of those. Coordinates are never scaled by it.
     std::string unit;
+    // The file's parts, in order: 3MF build items (the object's name
+    // attribute, else "object ID"), glTF mesh instances (the node's name,
+    // else the mesh's, else "node N"). Empty for formats without parts.
+    std::vector<MeshPart> parts;
 };
 
 // The short name ("mm", ...) of a unit as 3MF or AMF spell it ("millimeter",

@@ -33,7 +33,7 @@ COLUMNS = (
     "crossing_pairs", "self_crossing_checked", "self_crossing_pairs", "self_crossing_example",
     "self_crossing_resolved", "turned_outward_faces", "principal_moments", "principal_axes",
     "principal_moment_error", "principal_axis_angle_bound", "bounds", "size", "unit", "mass_unit",
-    "length_factor", "weld_tolerance", "welded_points_moved", "weld_largest_move",
+    "length_factor", "weld_tolerance", "welded_points_moved", "weld_largest_move", "parts",
 )
 
 

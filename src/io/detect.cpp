@@ -61,6 +61,7 @@ std::string_view format_name(Format f) {
         case Format::ply: return "ply";
         case Format::threemf: return "3mf";
         case Format::amf: return "amf";
+        case Format::gltf: return "gltf";
         case Format::unknown: break;
     }
     return "unknown";
@@ -84,6 +85,7 @@ Format format_from_extension(std::string_view path) {
         if (iequals(ext, "ply")) return Format::ply;
         if (iequals(ext, "3mf")) return Format::threemf;
         if (iequals(ext, "amf")) return Format::amf;
+        if (iequals(ext, "gltf") || iequals(ext, "glb")) return Format::gltf;
         return Format::unknown;
     }
 }
@@ -228,6 +230,13 @@ std::vector<std::string> mesh_members(Bytes data, const std::string& name) {
     return meshes;
 }
 
+// glTF JSON: an object (after blanks) naming its "asset" near the start.
+bool looks_like_gltf(std::string_view s) {
+    std::size_t i = 0;
+    while (i < s.size() && text::is_space(s[i])) ++i;
+    return i < s.size() && s[i] == '{' && s.substr(i, 1 << 16).find("\"asset\"") != std::string_view::npos;
+}
+
 LoadedMesh with_note_first(LoadedMesh m, std::string note) {
     m.notes.insert(m.notes.begin(), std::move(note));
     return m;
@@ -283,6 +292,7 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth, u
         }
         return io::read_amf_zip(data, name);
     }
+    if (io::is_glb(data)) return io::read_gltf(data, name);
     const bool binary_stl = is_binary_stl(data);
     if (!binary_stl && depth < 3) {
         if (starts_with(data, "\xfe\xff") || starts_with(data, "\xff\xfe")) {
@@ -304,6 +314,7 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth, u
                                                   "> is neither AMF (<amf>) nor 3MF (<model>)");
         }
     }
+    if (!binary_stl && looks_like_gltf(s)) return io::read_gltf(data, name);
     if (binary_stl || is_ascii_stl(s)) return io::read_stl(data, name);
     if (is_off(s)) return io::read_off(data, name);
     if (looks_like_obj(s)) return io::read_obj(data, name);
@@ -314,6 +325,7 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth, u
         case Format::ply: return io::read_ply(data, name);
         case Format::threemf: return io::read_3mf_zip(data, name);
         case Format::amf: return io::read_amf_xml(data, name);
+        case Format::gltf: return io::read_gltf(data, name);
         case Format::unknown: break;
     }
     throw ReadError::whole_file(

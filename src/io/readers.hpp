@@ -48,6 +48,11 @@ uint64_t decompression_limit(std::size_t compressed_bytes);
 // ReadError on corrupt data, and before producing more than max_bytes.
 std::vector<std::byte> gunzip(Bytes data, const std::string& name, uint64_t max_bytes);
 
+// gltf.cpp: glTF 2.0, JSON (.gltf, its buffers beside it) or binary (.glb,
+// magic "glTF"); external buffers are read relative to name's directory.
+bool is_glb(Bytes head);
+LoadedMesh read_gltf(Bytes data, const std::string& name);
+
 // archive.cpp: bzip2 streams ("BZh1".."BZh9", libbz2) and tar archives
 // ("ustar" at byte 257, with a valid header checksum).
 bool is_bzip2(Bytes head);

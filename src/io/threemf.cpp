@@ -184,7 +184,9 @@ public:
         if (items.empty()) {
             for (uint64_t id : root.order) {
                 const Object& o = root.objects.at(id);
+                const std::size_t first = out_.mesh.face_count();
                 if (o.has_mesh) emit(root, o, o.node);
+                add_part(o.node, id, first);
             }
         } else {
             for (pugi::xml_node item : items) {
@@ -194,7 +196,10 @@ public:
                     transform_seen_ = true;
                     if (ref.transform != kIdentity) chain_.push_back(ref.transform);
                 }
+                const std::size_t first = out_.mesh.face_count();
                 instantiate(target, ref.objectid, root, item, 0);
+                const auto object = target.objects.find(ref.objectid);
+                add_part(object != target.objects.end() ? object->second.node : pugi::xml_node(), ref.objectid, first);
                 if (ref.has_transform && ref.transform != kIdentity) chain_.pop_back();
             }
         }
@@ -204,6 +209,15 @@ public:
     }
 
 private:
+    // The faces since `first` as a part named by the object's name attribute.
+    void add_part(pugi::xml_node object, uint64_t id, std::size_t first) {
+        const std::size_t faces = out_.mesh.face_count() - first;
+        if (faces == 0) return;
+        const std::string name = object ? object.attribute("name").value() : "";
+        out_.parts.push_back({name.empty() ? "object " + std::to_string(id) : name, first, faces, part_error_});
+        part_error_ = 0;
+    }
+
     [[noreturn]] void fail(const Part& p, pugi::xml_node n, std::string msg) const {
         if (!p.entry.empty()) msg += " (zip entry '" + p.entry + "')";
         const std::ptrdiff_t off = n ? n.offset_debug() : -1;
@@ -438,6 +452,7 @@ private:
                     ez = fz;
                 }
                 out_.coordinate_error = std::max({out_.coordinate_error, ex, ey, ez});
+                part_error_ = std::max({part_error_, ex, ey, ez});
                 if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
                     fail(p, ref, "a transformed vertex overflows the double range");
                 pos.push_back(x);
@@ -460,6 +475,7 @@ private:
     uint64_t emitted_elements_ = 0;
     bool transform_seen_ = false;
     bool components_seen_ = false;
+    double part_error_ = 0;  // the coordinate error of the part being read (LoadedMesh::parts)
     LoadedMesh out_;
 };
 
