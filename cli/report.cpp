@@ -365,6 +365,56 @@ std::array<double, 6> bounds_in_units(const FileResult& r) {
     return b;
 }
 
+// The figures of a set of faces of the file (their own surface's sums):
+// volume, area, first moments and centroid, widened for computed coordinates.
+MassProperties figures_of(const MeshView& view, const std::vector<uint32_t>& faces, const Request& q, double delta) {
+    std::vector<uint32_t> offsets{0}, indices;
+    offsets.reserve(faces.size() + 1);
+    for (uint32_t f : faces) {
+        const std::size_t b = view.face_begin(f), n = view.face_size(f);
+        indices.insert(indices.end(), view.indices.begin() + static_cast<std::ptrdiff_t>(b),
+                       view.indices.begin() + static_cast<std::ptrdiff_t>(b + n));
+        offsets.push_back(static_cast<uint32_t>(indices.size()));
+    }
+    const MeshView piece{view.positions, offsets, indices};
+    MeasureOptions o = q.measure;
+    o.second_moments = false;
+    o.edge_length = false;
+    MassProperties m = mass_properties(piece, o);
+    if (delta > 0) widen_for_coordinate_error(piece, delta, o.density, false, false, m);
+    return m;
+}
+
+// Each shell's (the first kMaxPieces) and each named part's figures.
+void piece_figures(FileResult& r, const Request& q, const MeshView& view) {
+    const TopologyReport& t = *r.topology;
+    const double delta = r.loaded->coordinate_error;
+    if (t.shells.size() > 1 && !t.face_shell.empty()) {
+        const std::size_t n = std::min(t.shells.size(), kMaxPieces);
+        std::vector<std::vector<uint32_t>> faces(n);
+        for (uint32_t f = 0; f < t.face_shell.size(); ++f)
+            if (t.face_shell[f] < n) faces[t.face_shell[f]].push_back(f);
+        for (std::size_t s = 0; s < n; ++s)
+            r.shell_figures.push_back({"shell " + std::to_string(s + 1), faces[s].size(), figures_of(view, faces[s], q, delta)});
+    }
+    for (const MeshPart& p : r.loaded->parts) {
+        std::vector<uint32_t> faces(p.faces);
+        for (std::size_t i = 0; i < p.faces; ++i) faces[i] = static_cast<uint32_t>(p.first_face + i);
+        r.part_figures.push_back({p.name, p.faces, figures_of(view, faces, q, p.coordinate_error)});
+    }
+}
+
+// A piece's figures in the JSON: each with its bound.
+nlohmann::json piece_json(const MassProperties& m) {
+    const double c = std::max({std::fabs(m.centroid[0]), std::fabs(m.centroid[1]), std::fabs(m.centroid[2])});
+    return {{"volume", number(m.volume)},
+            {"volume_error_bound", m.volume_correctly_rounded ? 0.0 : m.volume_error_bound},
+            {"area", number(m.area)},
+            {"area_relative_error", m.area_relative_error},
+            {"centroid", {number(m.centroid[0]), number(m.centroid[1]), number(m.centroid[2])}},
+            {"centroid_error_bound", number(m.moments_correctly_rounded ? 0.0 : m.moments_relative_error * c)}};
+}
+
 // Whether a file the mesh readers refused is one `polyvol ndim` reads.
 bool reads_as_chain(const std::string& file) {
     try {
@@ -425,7 +475,9 @@ FileResult process_file(const std::string& file, const Request& request, const s
     const MeshView view = r.loaded->mesh.view();
     r.closed_by_fingerprint =
         request.closedness_by_fingerprint && fingerprint_closedness(view) == Closedness::closed;
-    if (!r.closed_by_fingerprint) r.topology = analyze_topology(view, TopologyOptions{.shells = !request.table_only});
+    const bool pieces = request.need_mass && !request.table_only;  // per-shell and per-part figures
+    if (!r.closed_by_fingerprint)
+        r.topology = analyze_topology(view, TopologyOptions{.shells = !request.table_only, .face_shells = pieces});
     if (r.topology && !r.topology->closed_2_cycle && !request.allow_open) r.closes_at_tolerance = closing_tolerance(view);
     if (request.need_mass) {
         if (!r.closed_by_fingerprint && !r.topology->closed_2_cycle) {
@@ -524,10 +576,13 @@ FileResult process_file(const std::string& file, const Request& request, const s
     if (r.mass && r.loaded->coordinate_error > 0)
         widen_for_coordinate_error(view, r.loaded->coordinate_error, request.measure.density, closed,
                                    r.solid && r.solid->status == BooleanStatus::ok && solid_differs(*r.solid), *r.mass);
+    if (r.mass && pieces && r.topology) piece_figures(r, request, view);
     // In the units asked for: every figure times its power of the length factor.
     const double density_error = request.density_kg_m3 > 0 ? 4 * 0x1p-53 : 0.0;  // typed, × 1000, × (m per unit)³
     if (r.mass && (r.length_factor != 1 || length_error > 0 || density_error > 0)) {
         scale_mass_properties(*r.mass, r.length_factor, length_error, density_error);
+        for (auto* list : {&r.shell_figures, &r.part_figures})
+            for (FileResult::Piece& p : *list) scale_mass_properties(p.m, r.length_factor, length_error, density_error);
         if (r.solid) r.solid->winding_volume *= r.length_factor * r.length_factor * r.length_factor;
     }
     r.seconds_measure = seconds_since(t0);
@@ -658,6 +713,7 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
                                            ? std::string("crossing")
                                            : std::string(shell_role_name(s.role))}};
             sj["genus"] = s.genus ? nlohmann::json(*s.genus) : nlohmann::json(nullptr);
+            if (const std::size_t i = shells.size(); i < r.shell_figures.size()) sj.update(piece_json(r.shell_figures[i].m));
             shells.push_back(std::move(sj));
         }
         j["shells"] = std::move(shells);
@@ -722,6 +778,15 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         }
         j["edge_length"] = number(m.edge_length);
         j["edge_length_relative_error"] = m.edge_length_relative_error;
+        if (r.loaded && !r.loaded->parts.empty()) {
+            nlohmann::json parts = nlohmann::json::array();
+            for (const FileResult::Piece& p : r.part_figures) {
+                nlohmann::json pj{{"name", p.name}, {"faces", p.faces}};
+                pj.update(piece_json(p.m));
+                parts.push_back(std::move(pj));
+            }
+            j["parts"] = std::move(parts);
+        }
     }
     if (!r.warning.empty()) j["warning"] = r.warning;
     if (!r.error.empty()) j["error"] = r.error;
@@ -917,6 +982,25 @@ std::string measure_report(const FileResult& r, const Request& request) {
             << "; size " << shortest(b[3] - b[0]) << " x " << shortest(b[4] - b[1]) << " x " << shortest(b[5] - b[2])
             << (r.length_factor == 1 ? " (differences rounded once)\n" : " (converted, then rounded)\n");
     }
+    // Each part's and shell's own figures (their surfaces' sums), at most 20 of each.
+    const auto pieces = [&](const char* what, const std::vector<FileResult::Piece>& list) {
+        for (std::size_t i = 0; i < list.size() && i < 20; ++i) {
+            const MassProperties& p = list[i].m;
+            const double c = p.moments_correctly_rounded ? 0.0
+                                                         : p.moments_relative_error * std::max({std::fabs(p.centroid[0]),
+                                                                                                std::fabs(p.centroid[1]),
+                                                                                                std::fabs(p.centroid[2])});
+            out << "  " << what << (*what ? " " : "") << list[i].name << ": volume "
+                << number_text(p.volume, p.volume_correctly_rounded ? 0 : p.volume_error_bound, digits) << unit_suffix(r, 3)
+                << ", area " << number_text(p.area, p.area * p.area_relative_error, digits) << unit_suffix(r, 2)
+                << ", centroid (" << number_text(p.centroid[0], c, digits) << ", " << number_text(p.centroid[1], c, digits)
+                << ", " << number_text(p.centroid[2], c, digits) << ")" << unit_suffix(r, 1) << ", " << list[i].faces
+                << " faces\n";
+        }
+        if (list.size() > 20) out << "  ... " << list.size() - 20 << " more (--json lists them)\n";
+    };
+    if (r.part_figures.size() > 1) pieces("part", r.part_figures);
+    if (r.shell_figures.size() > 1) pieces("", r.shell_figures);  // named "shell k"
     // A symmetric tensor {xx, yy, zz, xy, yz, zx} with labelled rows and columns.
     auto tensor = [&](const char* title, const std::array<double, 6>& s) {
         const double error = moments_error(s);

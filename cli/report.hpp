@@ -62,10 +62,23 @@ struct FileResult {
     // volume); `length_factor` multiplied every coordinate (1: none).
     std::string length_unit, mass_unit, units_source;
     double length_factor = 1;
+    // measure and --json: each shell's (in the order of topology's shells,
+    // the first kMaxPieces) and each named part's own figures (their
+    // surfaces' sums: volume, area, centroid with their bounds), in the units
+    // of the figures.
+    struct Piece {
+        std::string name;
+        std::size_t faces = 0;
+        MassProperties m;
+    };
+    std::vector<Piece> shell_figures, part_figures;
     // A surface that is not closed but would close when points within a
     // tolerance below 1e-9 of its size were merged: that tolerance (else 0).
     double closes_at_tolerance = 0;
 };
+
+// Per-shell figures are given for at most this many shells (the largest).
+inline constexpr std::size_t kMaxPieces = 1000;
 
 // Files up to this many fan triangles are checked for a surface crossing
 // itself by default: about 0.1 s (docs/benchmarks.md, "SelfCrossings":
