@@ -86,9 +86,11 @@ std::optional<Slice> parse_slice(const std::string& s) {
 }
 
 // The picture of one slice: fractions of the union (or the single body) in
-// the cells the plane passes through. Columns run along the first remaining
-// axis, rows along the second, upwards.
-void write_slice_png(const std::string& path, const GridAxes& g, std::span<const double> occupancy, Slice slice) {
+// the cells the plane passes through, in world coordinates: columns along
+// the first remaining axis, rows along the second, upwards; titled with the
+// file(s) and the slice.
+void write_slice_png(const std::string& path, const GridAxes& g, std::span<const double> occupancy, Slice slice,
+                     const std::string& what) {
     const std::vector<double>* axes[3] = {&g.x, &g.y, &g.z};
     const std::vector<double>& c = *axes[slice.axis];
     if (!slice.given) slice.value = 0.5 * (c.front() + c.back());
@@ -98,16 +100,25 @@ void write_slice_png(const std::string& path, const GridAxes& g, std::span<const
     const std::size_t n[3] = {g.nx(), g.ny(), g.nz()};
     const std::size_t w = n[a], h = n[b];
     std::vector<double> field(w * h);
-    for (std::size_t row = 0; row < h; ++row)
-        for (std::size_t col = 0; col < w; ++col) {
+    for (std::size_t j = 0; j < h; ++j)
+        for (std::size_t i = 0; i < w; ++i) {
             std::size_t idx[3];
             idx[slice.axis] = s;
-            idx[a] = col;
-            idx[b] = h - 1 - row;
-            field[row * w + col] = occupancy[g.cell(idx[0], idx[1], idx[2])] / g.cell_volume(idx[0], idx[1], idx[2]);
+            idx[a] = i;
+            idx[b] = j;
+            field[j * w + i] = occupancy[g.cell(idx[0], idx[1], idx[2])] / g.cell_volume(idx[0], idx[1], idx[2]);
         }
-    const int scale = static_cast<int>(std::clamp<std::size_t>(768 / std::max(w, h), 1, 16));
-    write_png_field(path, field, w, h, 0.0, 1.0, scale);
+    const char* names = "xyz";
+    FieldPicture p;
+    p.values = field;
+    p.columns = *axes[a];
+    p.rows = *axes[b];
+    p.title = what + ": " + names[slice.axis] + " = " + shortest(slice.value) + " (cells " + shortest(c[s]) + " to " +
+              shortest(c[s + 1]) + ")";
+    p.column_label = std::string(1, names[a]);
+    p.row_label = std::string(1, names[b]);
+    p.value_label = "fraction";
+    write_png_picture(path, p);
 }
 
 nlohmann::json summary_json(const std::vector<std::string>& files, const std::vector<double>& mesh_volumes,
@@ -449,7 +460,9 @@ int run_grid_command(const GridArgs& a) {
         if (!a.png.empty()) {
             std::span<const double> occupancy = nb > 1 ? std::span<const double>(union_volumes)
                                                        : std::span<const double>(volumes);
-            write_slice_png(a.png, g, occupancy, *slice);
+            std::string what = std::filesystem::path(a.files[0]).filename().string();
+            if (nb > 1) what = "union of " + std::to_string(nb) + " bodies (" + what + ", ...)";
+            write_slice_png(a.png, g, occupancy, *slice, what);
         }
         if (!a.centroids.empty()) {
             std::vector<double> c(moments.size());
@@ -503,7 +516,7 @@ int run_grid_command(const GridArgs& a) {
                 if (!intersection_volumes.empty()) arrays.push_back({"intersection_" + what, intersection_volumes, 1});
                 contact.resize(cells);
                 for (std::size_t c = 0; c < cells; ++c) contact[c] = static_cast<double>(cls[c]);
-                arrays.push_back({"cell_class", contact, 1});  // 0 empty, 1 full, 2 cut, 3 contact
+                arrays.push_back({"cell_class", contact, 1, true});  // UInt8: 0 empty, 1 full, 2 cut, 3 contact
             }
             if (!a.surface.empty())
                 for (std::size_t b = 0; b < surfaces; ++b) {

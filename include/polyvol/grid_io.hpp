@@ -25,11 +25,12 @@ struct CellArray {
     std::string name;
     std::span<const double> values;  // cells * components, polyvol's order (above)
     int components = 1;
+    bool integer = false;            // written as UInt8 (values 0 .. 255: cell classes), else Float64
 };
 
 // VTK XML ImageData: planes x, y, z (nx + 1, ... values) must be uniformly
 // spaced (Origin = first planes, Spacing = (last - first) / n); opens in
-// ParaView. Values are written as ASCII decimals that read back exactly.
+// ParaView. The arrays are VTK's binary appended form (raw), exact.
 void write_vti(const std::string& path, std::span<const double> x, std::span<const double> y,
                std::span<const double> z, std::span<const CellArray> arrays);
 
@@ -37,11 +38,17 @@ void write_vti(const std::string& path, std::span<const double> x, std::span<con
 void write_vtr(const std::string& path, std::span<const double> x, std::span<const double> y,
                std::span<const double> z, std::span<const CellArray> arrays);
 
-// A PNG picture of a 2D field: values[row * width + col], row 0 at the top,
-// each value drawn as scale × scale pixels in the viridis colour map
-// (perceptually uniform), lo -> dark blue, hi -> yellow, clamped; NaN is
-// drawn grey.
-void write_png_field(const std::string& path, std::span<const double> values, std::size_t width,
-                     std::size_t height, double lo, double hi, int scale = 1);
+// A PNG figure of a 2D field as people open it: the field in world
+// coordinates (its aspect ratio kept, within 640 pixels), in the viridis
+// colour map (perceptually uniform; lo dark blue, hi yellow, clamped; NaN
+// grey), axes with labelled ticks, a colour bar from lo to hi, and a title.
+struct FieldPicture {
+    std::span<const double> values;   // values[j * (columns.size() - 1) + i]: column i, row j (j = 0 at the bottom)
+    std::span<const double> columns;  // the planes between the columns, increasing (world coordinates)
+    std::span<const double> rows;     // the planes between the rows, increasing upwards
+    double lo = 0, hi = 1;
+    std::string title, column_label, row_label, value_label;
+};
+void write_png_picture(const std::string& path, const FieldPicture& picture);
 
 }  // namespace polyvol

@@ -86,6 +86,8 @@ class Grid:
             arrays.append(("union_volume", np.ascontiguousarray(self.union).reshape(-1), 1))
         if self.intersection is not None:
             arrays.append(("intersection_volume", np.ascontiguousarray(self.intersection).reshape(-1), 1))
+        if self.cell_class is not None:  # written as UInt8, as the CLI writes it
+            arrays.append(("cell_class", np.ascontiguousarray(self.cell_class, dtype=np.float64).reshape(-1), 1))
         _core.write_vtk(str(path), *self.edges, arrays, _uniform(self.edges) and not str(path).endswith(".vtr"))
 
     def to_dict(self):

@@ -96,7 +96,8 @@ void bind_io(py::module_& m) {
         [](const std::string& path, const Doubles& x, const Doubles& y, const Doubles& z,
            const std::vector<std::tuple<std::string, Doubles, int>>& arrays, bool image) {
             std::vector<CellArray> cells;
-            for (const auto& [name, values, components] : arrays) cells.push_back({name, span_of(values), components});
+            for (const auto& [name, values, components] : arrays)
+                cells.push_back({name, span_of(values), components, name == "cell_class"});  // UInt8 in the file
             py::gil_scoped_release release;
             if (image)
                 write_vti(path, span_of(x), span_of(y), span_of(z), cells);

@@ -90,11 +90,67 @@ def test_writers(tmp_path):
     g.to_npy(tmp_path / "u.npy", "union")
     assert np.array_equal(np.load(tmp_path / "u.npy"), g.union)
     g.to_vti(tmp_path / "g.vti")
-    text = (tmp_path / "g.vti").read_text()
-    assert "<ImageData" in text and 'Name="union_volume"' in text and 'Name="volume_1"' in text
+    head = (tmp_path / "g.vti").read_bytes()[:4096]
+    assert b"<ImageData" in head and b'Name="union_volume"' in head and b'Name="volume_1"' in head
     edges = [np.array([0, 0.1, 0.5, 1.0]), np.linspace(0, 1, 3), np.linspace(0, 1, 3)]
     polyvol.grid(box(), edges=edges).to_vti(tmp_path / "g.vtr")
-    assert "<RectilinearGrid" in (tmp_path / "g.vtr").read_text()
+    assert b"<RectilinearGrid" in (tmp_path / "g.vtr").read_bytes()[:4096]
+
+
+def _vtk_cells(reader, path):
+    """The cell arrays VTK's own reader finds in a file, as (nx, ny, nz) arrays in polyvol's order."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    reader.SetFileName(str(path))
+    reader.Update()
+    out = reader.GetOutput()
+    dims = [d - 1 for d in out.GetDimensions()]
+    cells = out.GetCellData()
+    arrays = {}
+    for i in range(cells.GetNumberOfArrays()):
+        a = cells.GetArray(i)
+        v = vtk_to_numpy(a)
+        # VTK has x fastest: reshape (nz, ny, nx[, c]) and put x first
+        v = v.reshape(dims[::-1] + ([a.GetNumberOfComponents()] if a.GetNumberOfComponents() > 1 else []))
+        arrays[a.GetName()] = np.moveaxis(v, [0, 1, 2], [2, 1, 0])
+    return arrays
+
+
+def test_vtk_reads_the_vti_and_vtr_files(tmp_path):
+    vtk_xml = pytest.importorskip("vtkmodules.vtkIOXML")  # python3-vtk9 (README's setup)
+    g = polyvol.grid([box(), box((0.5, 0.5, 0.5), (1.5, 1.5, 1.5))], dims=(4, 5, 6))
+    g.to_vti(tmp_path / "g.vti")
+    cells = _vtk_cells(vtk_xml.vtkXMLImageDataReader(), tmp_path / "g.vti")
+    assert np.array_equal(cells["union_volume"], g.union)
+    assert np.array_equal(cells["volume_0"], g.volumes[0])
+    assert cells["cell_class"].dtype == np.uint8 and np.array_equal(cells["cell_class"], g.cell_class)
+    edges = [np.array([0, 0.1, 0.5, 1.0]), np.linspace(0, 1, 3), np.linspace(0, 1, 4)]
+    r = polyvol.grid(box(), edges=edges)
+    r.to_vti(tmp_path / "g.vtr")
+    cells = _vtk_cells(vtk_xml.vtkXMLRectilinearGridReader(), tmp_path / "g.vtr")
+    assert np.array_equal(cells["volume"], r.volumes)
+
+
+def test_vtk_reads_the_png_slice(tmp_path):
+    vtk_io = pytest.importorskip("vtkmodules.vtkIOImage")
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    mesh = tmp_path / "box.off"
+    v, f = box((0, 0, 0), (2, 1, 1))
+    mesh.write_text(f"OFF\n{len(v)} {len(f)} 0\n" + "".join(f"{a} {b} {c}\n" for a, b, c in v)
+                    + "".join(f"3 {a} {b} {c}\n" for a, b, c in f))
+    png = tmp_path / "slice.png"
+    out = subprocess.run([CLI, "grid", str(mesh), "--dims", "12", "6", "4", "--bounds", "-0.5", "-0.25", "-0.5", "2.5",
+                          "1.25", "1.5", "--png", str(png)], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    reader = vtk_io.vtkPNGReader()
+    reader.SetFileName(str(png))
+    reader.Update()
+    w, h, _ = reader.GetOutput().GetDimensions()
+    assert (w, h) == (640 + 90 + 120, 320 + 44 + 64)  # the box's 2:1 aspect kept, with margins
+    pixels = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars()).reshape(h, w, -1)
+    # inside the box the fraction is 1: viridis' yellow; the margins are white; the labels black
+    assert tuple(pixels[h - 1 - (44 + 160), 90 + 320][:3]) == (253, 231, 37)
+    assert tuple(pixels[h - 1 - 5, 5][:3]) == (255, 255, 255)
+    assert (pixels[..., :3] == 0).all(axis=-1).sum() > 500
 
 
 def test_summary_has_the_cli_keys_and_numbers(tmp_path):
