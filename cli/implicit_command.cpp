@@ -12,6 +12,10 @@
 #include "grammar.hpp"
 #include "memory.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -20,6 +24,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -66,25 +71,41 @@ bool parse_point(const std::string& text, std::vector<double>& out) {
     return true;
 }
 
-// Binary STL of a 3D chain (triangles counter-clockwise seen from outside).
+// Binary STL of a 3D chain (triangles counter-clockwise seen from outside),
+// in float32 as STL holds it. A triangle two of whose corners are the same
+// point in the file (a crossing at a lattice vertex where F is 0, met from
+// several edges; or two points float32 cannot tell apart) is left out: it
+// has no area and, using its third edge once each way, adds nothing to the
+// 2-cycle, so the file stays closed (docs/implicit.md, "The written surface").
 bool write_stl(const std::string& path, const Chain& chain) {
     std::ofstream out(path, std::ios::binary);
     if (!out) return false;
+    std::vector<std::array<float, 12>> records;
+    records.reserve(chain.simplex_count());
+    for (std::size_t s = 0; s < chain.simplex_count(); ++s) {
+        std::array<float, 12> r{};
+        float* v = r.data() + 3;
+        for (int i = 0; i < 3; ++i)
+            for (int k = 0; k < 3; ++k)
+                v[3 * i + k] = static_cast<float>(chain.coordinates[3 * chain.simplices[3 * s + i] + k]);
+        const auto same = [&](int i, int j) {
+            return v[3 * i] == v[3 * j] && v[3 * i + 1] == v[3 * j + 1] && v[3 * i + 2] == v[3 * j + 2];
+        };
+        if (same(0, 1) || same(1, 2) || same(0, 2)) continue;
+        const double a[3] = {double(v[3]) - v[0], double(v[4]) - v[1], double(v[5]) - v[2]};
+        const double b[3] = {double(v[6]) - v[0], double(v[7]) - v[1], double(v[8]) - v[2]};
+        const double nrm[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+        const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        for (int k = 0; k < 3; ++k) r[static_cast<std::size_t>(k)] = len > 0 ? static_cast<float>(nrm[k] / len) : 0.0f;
+        records.push_back(r);
+    }
     char header[80] = "polyvol implicit: PL surface";
     out.write(header, sizeof header);
-    const auto count = static_cast<uint32_t>(chain.simplex_count());
+    const auto count = static_cast<uint32_t>(records.size());
     out.write(reinterpret_cast<const char*>(&count), 4);
-    for (std::size_t s = 0; s < chain.simplex_count(); ++s) {
-        float v[4][3];
-        for (int i = 0; i < 3; ++i)
-            for (int k = 0; k < 3; ++k) v[i + 1][k] = static_cast<float>(chain.coordinates[3 * chain.simplices[3 * s + i] + k]);
-        const double a[3] = {double(v[2][0]) - v[1][0], double(v[2][1]) - v[1][1], double(v[2][2]) - v[1][2]};
-        const double b[3] = {double(v[3][0]) - v[1][0], double(v[3][1]) - v[1][1], double(v[3][2]) - v[1][2]};
-        double nrm[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-        const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-        for (int k = 0; k < 3; ++k) v[0][k] = len > 0 ? static_cast<float>(nrm[k] / len) : 0.0f;
-        out.write(reinterpret_cast<const char*>(v), sizeof v);
-        const uint16_t attribute = 0;
+    const uint16_t attribute = 0;
+    for (const auto& r : records) {
+        out.write(reinterpret_cast<const char*>(r.data()), 48);
         out.write(reinterpret_cast<const char*>(&attribute), 2);
     }
     return static_cast<bool>(out);
@@ -105,20 +126,44 @@ nlohmann::json pass_json(const ImplicitPass& p) {
 }
 
 // The shortest text that reads back as x.
-std::string number(double x) {
-    char buf[64];
-    for (int digits = 15; digits <= 17; ++digits) {
-        std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-        if (std::strtod(buf, nullptr) == x) break;
-    }
-    return buf;
-}
+std::string number(double x) { return shortest(x); }
 
 std::string short_number(double x) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.3g", x);
     return buf;
 }
+
+// Progress on stderr for a lattice that takes more than a second or two:
+// the estimate up front (from the 2h lattice), then a bar on a terminal.
+class ProgressBar {
+public:
+    void operator()(const ImplicitProgress& p) {
+        if (p.pass != 1) return;
+        if (p.evaluations == 0) {
+            if (p.expected_seconds > 2)
+                std::cerr << "polyvol implicit: the lattice at h: about " << short_number(p.expected_evaluations)
+                          << " vertices to evaluate, about " << short_number(p.expected_seconds)
+                          << " s (estimated from the 2h lattice)\n";
+            bar_ = p.expected_seconds > 1 && ::isatty(2);
+            return;
+        }
+        if (!bar_ || !(p.expected_evaluations > 0)) return;
+        const double f = std::min(0.99, static_cast<double>(p.evaluations) / p.expected_evaluations);
+        const int filled = static_cast<int>(40 * f);
+        std::cerr << "\r[" << std::string(static_cast<std::size_t>(filled), '#')
+                  << std::string(static_cast<std::size_t>(40 - filled), ' ') << "] " << static_cast<int>(100 * f) << "%"
+                  << std::flush;
+        drawn_ = true;
+    }
+    ~ProgressBar() {
+        if (drawn_) std::cerr << "\r" << std::string(48, ' ') << "\r" << std::flush;
+    }
+
+private:
+    bool bar_ = false, drawn_ = false;
+};
+
 
 }  // namespace
 
@@ -221,6 +266,8 @@ int run_implicit_command(const ImplicitArgs& a) {
     ImplicitVolume r;
     try {
         const ImplicitFunction f = parse_implicit_expression(a.expression, dimension);
+        ProgressBar bar;
+        o.progress = [&bar](const ImplicitProgress& p) { bar(p); };
         r = implicit_volume(f, o);
     } catch (const ExpressionError& e) {
         std::cerr << "polyvol: " << e.what();
@@ -274,11 +321,15 @@ int run_implicit_command(const ImplicitArgs& a) {
     for (std::size_t k = 0; k < r.fine.cells.size(); ++k) std::cout << (k ? " x " : " ") << r.fine.cells[k];
     std::cout << " cells)\n";
     if (estimate) {
-        std::cout << "volume              " << number(r.volume) << "  (Richardson extrapolation from h and 2h)\n";
-        std::cout << "error estimate      " << short_number(r.error_estimate)
-                  << "  (|V(h) - V(2h)| / 3: the estimated error of the PL volume at h)\n";
-        std::cout << "volume of PL solid  " << number(r.fine.volume) << " at h, " << number(r.coarse->volume)
-                  << " at 2h\n";
+        // Each number beside its estimate, with the digits the estimate leaves.
+        const std::string e = number_text(r.error_estimate, 0, 2);
+        std::cout << "volume              " << number_text(r.volume, r.error_estimate, 0) << " ± " << e
+                  << "  (Richardson extrapolation from h and 2h; ± is |V(h) - V(2h)| / 3, the estimated error of "
+                     "V(h), which also bounds the extrapolation's while V(h) converges as h^2)\n";
+        std::cout << "PL volume at h      " << number_text(r.fine.volume, r.error_estimate, 0) << " ± " << e
+                  << "  (the piecewise-linear solid's, V(h))\n";
+        std::cout << "PL volume at 2h     " << number_text(r.coarse->volume, 4 * r.error_estimate, 0) << " ± "
+                  << number_text(4 * r.error_estimate, 0, 2) << "  (V(2h): 4 times the error at h)\n";
     } else {
         std::cout << "volume              " << number(r.volume) << "  (the PL solid at h; no error estimate)\n";
     }

@@ -129,6 +129,17 @@ enum class BoxRule {
     error,  // a lattice vertex on the box boundary with F <= 0 throws ImplicitError
 };
 
+// Where a long computation is: called from the calling thread at the start
+// of each pass and every 2^18 evaluations of F within it.
+struct ImplicitProgress {
+    int pass = 0;                      // 0: the 2h lattice (the estimate's), 1: the lattice at h
+    std::size_t evaluations = 0;       // so far in this pass
+    // Pass 1 after the 2h pass: its evaluations and time scaled to h (the
+    // seeding scan's as they were, the surface's times 2^(n-1)); else 0 (unknown).
+    double expected_evaluations = 0;
+    double expected_seconds = 0;
+};
+
 struct ImplicitOptions {
     // n, 2 <= n <= kImplicitMaxDimension.
     int dimension = 3;
@@ -170,6 +181,8 @@ struct ImplicitOptions {
     // estimated from it (2^(n-1) times its evaluations) before it starts;
     // either pass stops when its evaluations pass the limit.
     std::size_t max_memory_bytes = 0;
+    // Progress, for a caller that shows it (the library never prints); empty: none.
+    std::function<void(const ImplicitProgress&)> progress;
 };
 
 // Measured peak memory per evaluated lattice vertex (values, visited cubes,

@@ -65,10 +65,17 @@ std::size_t max_evaluations(const ImplicitOptions& o) {
 }
 
 void run_pass(const ImplicitBatchFunction& f, bool lookahead, const ImplicitOptions& o, const Box& b,
-              std::span<const int32_t> cells, ImplicitPass& pass, Chain* chain) {
+              std::span<const int32_t> cells, ImplicitPass& pass, Chain* chain, ImplicitProgress progress = {}) {
     const auto t0 = Clock::now();
     const implicit::Lattice lattice(o.dimension, b.lo, b.hi, cells);
     implicit::Sampler sampler(lattice, f, o.box_rule, lookahead, max_evaluations(o));
+    if (o.progress) {
+        o.progress(progress);
+        sampler.on_evaluations([&](std::size_t n) {
+            progress.evaluations = n;
+            o.progress(progress);
+        });
+    }
     std::optional<implicit::ConeSum> cone;
     if (!chain) cone.emplace(lattice);
     implicit::SurfaceBuilder builder(lattice, sampler, o.max_boundary_simplices, cone ? &*cone : nullptr);
@@ -107,13 +114,14 @@ void measure_pass(const Chain& chain, const ImplicitOptions& o, ImplicitPass& pa
 // One pass measured: streamed unless the chain is wanted (kept) or the prism
 // formula is asked for (chain_volume only).
 void volume_pass(const ImplicitBatchFunction& f, bool lookahead, const ImplicitOptions& o, const Box& b,
-                 std::span<const int32_t> cells, ImplicitPass& pass, std::optional<Chain>* kept) {
+                 std::span<const int32_t> cells, ImplicitPass& pass, std::optional<Chain>* kept,
+                 const ImplicitProgress& progress) {
     if (!kept && o.formula == SimplexFormula::cone) {
-        run_pass(f, lookahead, o, b, cells, pass, nullptr);
+        run_pass(f, lookahead, o, b, cells, pass, nullptr, progress);
         return;
     }
     Chain chain;
-    run_pass(f, lookahead, o, b, cells, pass, &chain);
+    run_pass(f, lookahead, o, b, cells, pass, &chain, progress);
     measure_pass(chain, o, pass);
     if (kept) *kept = std::move(chain);
 }
@@ -180,7 +188,7 @@ ImplicitVolume volume_with(const ImplicitBatchFunction& f, bool lookahead, const
     if (options.error_estimate) {
         std::vector<int32_t> half(cells);
         for (auto& c : half) c /= 2;  // even, so spacing exactly 2 h_k
-        volume_pass(f, lookahead, options, b, half, coarse, nullptr);
+        volume_pass(f, lookahead, options, b, half, coarse, nullptr, ImplicitProgress{});
         const double estimate = std::ldexp(static_cast<double>(coarse.function_evaluations), options.dimension - 1);
         const std::size_t most = max_evaluations(options);
         if (most != 0 && estimate > static_cast<double>(most))
@@ -194,7 +202,19 @@ ImplicitVolume volume_with(const ImplicitBatchFunction& f, bool lookahead, const
                                     " times as many at h), more than the memory limit allows; a larger h, a smaller "
                                     "box, or a higher limit");
     }
-    volume_pass(f, lookahead, options, b, cells, r.fine, options.keep_chain ? &r.chain : nullptr);
+    ImplicitProgress fine{.pass = 1};
+    if (options.error_estimate) {
+        // The seeding scan's (coarse_cells + 1)^n evaluations are the same at
+        // h; the surface's vertices scale as h^-(n-1).
+        const int scan_cells = options.coarse_cells == 0 ? default_coarse_cells(options.dimension) : options.coarse_cells;
+        double scan = 1;
+        for (const int32_t c : cells) scan *= std::max(0, std::min(scan_cells, c / 2)) + 1;
+        const double coarse_evaluations = static_cast<double>(coarse.function_evaluations);
+        scan = scan_cells < 0 ? 0.0 : std::min(scan, coarse_evaluations);
+        fine.expected_evaluations = scan + std::ldexp(coarse_evaluations - scan, options.dimension - 1);
+        fine.expected_seconds = coarse_evaluations > 0 ? coarse.seconds * fine.expected_evaluations / coarse_evaluations : 0;
+    }
+    volume_pass(f, lookahead, options, b, cells, r.fine, options.keep_chain ? &r.chain : nullptr, fine);
     r.clipped = r.fine.box_vertices_inside > 0;
     if (options.error_estimate) {
         const Richardson e = richardson(r.fine.volume, coarse.volume);

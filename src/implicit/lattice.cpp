@@ -73,6 +73,10 @@ Sampler::Sampler(const Lattice& lattice, const ImplicitBatchFunction& f, BoxRule
 
 void Sampler::count(std::size_t evaluations) {
     evaluations_ += evaluations;
+    if (tick_ && evaluations_ >= next_tick_) {
+        tick_(evaluations_);
+        next_tick_ = evaluations_ + (std::size_t{1} << 18);
+    }
     if (max_evaluations_ != 0 && evaluations_ > max_evaluations_)
         throw ImplicitError(ImplicitError::Code::too_large, {},
                             "implicit: the lattice needs more memory than allowed: over " +

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <cstdint>
 #include <vector>
 
@@ -117,6 +118,8 @@ public:
     // Sign rule: positive iff F > 0 (0 counts as negative).
     bool positive(const Index& v) { return value(v) > 0; }
     std::size_t evaluations() const { return evaluations_; }
+    // Called with the evaluations so far every 2^18 of them.
+    void on_evaluations(std::function<void(std::size_t)> tick) { tick_ = std::move(tick); }
     std::size_t box_vertices_inside() const { return box_inside_; }
     // Vertices on the box boundary with F <= 0, in the order met (each once):
     // the seeds of the face walks.
@@ -128,6 +131,8 @@ private:
     BoxRule rule_;
     bool lookahead_;
     std::size_t max_evaluations_;
+    std::function<void(std::size_t)> tick_;
+    std::size_t next_tick_ = std::size_t{1} << 18;
     void count(std::size_t evaluations);
     FlatMap<double> values_;
     FlatMap<double> prefetched_;  // evaluated, taken into values_ when first asked for

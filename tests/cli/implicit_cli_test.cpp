@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/run_cli.hpp"
+#include "report.hpp"
 
 namespace {
 
@@ -65,8 +66,18 @@ TEST(ImplicitCli, TableAndDimensionFromTheExpression) {
     const CliResult r = polyvol("implicit 'x1^2 + x2^2 + x3^2 + x4^2 - 1' --box 0:1.2 --h 0.2");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("dimension           4"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("error estimate"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("boundary simplices"), std::string::npos) << r.out;
+    // Each volume beside its own estimate, with the digits the estimate leaves
+    // (the JSON holds every digit).
+    const json j = json::parse(polyvol("implicit 'x1^2 + x2^2 + x3^2 + x4^2 - 1' --bounds 0:1.2 --h 0.2 --json").out);
+    const double e = j["error_estimate"].get<double>();
+    ASSERT_GT(e, 1e-3);
+    EXPECT_NE(r.out.find("volume              " + polyvol::cli::number_text(j["volume"].get<double>(), e, 0) + " ± "),
+              std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("PL volume at h      " + polyvol::cli::number_text(j["volume_pl"].get<double>(), e, 0) + " ± "),
+              std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("PL volume at 2h     "), std::string::npos) << r.out;
+    EXPECT_LT(polyvol::cli::number_text(j["volume"].get<double>(), e, 0).size(), 8u);  // not 17 digits
     EXPECT_NE(r.err.find("clipped"), std::string::npos) << r.err;  // the orthant: clipped, with a warning
 }
 
@@ -115,12 +126,29 @@ TEST(ImplicitCli, StlIsTheSurface) {
     const fs::path stl = fs::temp_directory_path() / ("polyvol_implicit_" + std::to_string(::getpid()) + ".stl");
     const CliResult r = polyvol("implicit 'x^2 + y^2 + z^2 - 1' --box -1.5:1.5 --h 0.1 --json --stl '" + stl.string() + "'");
     ASSERT_EQ(r.code, 0) << r.err;
+    // Every boundary simplex but those with two corners at one point (left out).
     const auto triangles = json::parse(r.out)["boundary_simplices"].get<std::uintmax_t>();
-    EXPECT_EQ(fs::file_size(stl), 84 + 50 * triangles);
+    const json check = json::parse(polyvol("check --json '" + stl.string() + "'").out)[0];
+    EXPECT_EQ(fs::file_size(stl), 84 + 50 * check["triangles"].get<std::uintmax_t>());
+    EXPECT_LE(check["triangles"].get<std::uintmax_t>(), triangles);
+    EXPECT_GT(check["triangles"].get<std::uintmax_t>(), triangles * 95 / 100);  // 264 of 11280 dropped at h = 0.1
+    // A closed 2-cycle, edge-manifold; what zero-area triangles remain have three distinct collinear corners.
+    EXPECT_EQ(check["closed_2_cycle"], true);
+    EXPECT_EQ(check["nonmanifold_edges"], 0);
+    EXPECT_LT(check["degenerate_triangles"].get<int>(), 100);
     // The STL measures like the PL solid it came from.
     const CliResult m = polyvol("volume --json '" + stl.string() + "'");
     EXPECT_EQ(m.code, 0) << m.err;
     EXPECT_NEAR(json::parse(m.out)[0]["volume"].get<double>(), json::parse(r.out)["volume_pl"].get<double>(), 1e-5);
+    // The torus of the issue (88 non-manifold edges and 128 zero-area triangles before): clean, genus 1.
+    const CliResult t = polyvol("implicit '(sqrt(x^2+y^2) - 1)^2 + z^2 - 0.16' --bounds -1.5:1.5,-1.5:1.5,-0.5:0.5 "
+                                "--h 0.05 -o '" + stl.string() + "'");
+    ASSERT_EQ(t.code, 0) << t.err;
+    const json torus = json::parse(polyvol("check --json '" + stl.string() + "'").out)[0];
+    EXPECT_EQ(torus["nonmanifold_edges"], 0);
+    EXPECT_EQ(torus["degenerate_triangles"], 0);
+    EXPECT_EQ(torus["components"], 1);
+    EXPECT_EQ(torus["shells"][0]["genus"], 1);
     fs::remove(stl);
 }
 

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <span>
@@ -132,6 +133,32 @@ TEST(ImplicitVolume, UnitBall3) {
     const ImplicitVolume r = implicit_volume(unit_ball, box_options(3, -1.25, 1.25, 1.0 / 16));
     EXPECT_NEAR(r.volume, ball_volume(3), 1e-3 * ball_volume(3));
     EXPECT_LE(std::fabs(r.volume - ball_volume(3)), r.error_estimate);
+}
+
+// Progress: each pass announced at its start, then its evaluations so far,
+// increasing; the fine pass does about what it expects (the seeding scan's
+// evaluations as at 2h, the surface's 2^(n-1) times as many).
+TEST(ImplicitVolume, ProgressReportsEachPass) {
+    ImplicitOptions o = box_options(3, -1.25, 1.25, 1.0 / 64);
+    std::vector<ImplicitProgress> seen;
+    o.progress = [&](const ImplicitProgress& p) { seen.push_back(p); };
+    const ImplicitVolume r = implicit_volume(unit_ball, o);
+    ASSERT_GE(seen.size(), 3u);
+    EXPECT_EQ(seen.front().pass, 0);
+    EXPECT_EQ(seen.front().evaluations, 0u);
+    std::size_t starts = 0;
+    for (std::size_t i = 0; i < seen.size(); ++i) {
+        if (seen[i].evaluations == 0) {
+            ++starts;
+            continue;
+        }
+        EXPECT_EQ(seen[i].pass, seen[i - 1].pass);
+        EXPECT_GT(seen[i].evaluations, seen[i - 1].evaluations);
+    }
+    EXPECT_EQ(starts, 2u);
+    const ImplicitProgress& fine = *std::find_if(seen.begin(), seen.end(), [](const ImplicitProgress& p) { return p.pass == 1; });
+    EXPECT_GT(fine.expected_evaluations, static_cast<double>(r.coarse->function_evaluations));
+    EXPECT_NEAR(static_cast<double>(r.fine.function_evaluations), fine.expected_evaluations, 0.2 * fine.expected_evaluations);
 }
 
 TEST(ImplicitVolume, UnitBall4Orthant) {
