@@ -322,14 +322,13 @@ int run_implicit_command(const ImplicitArgs& a) {
     std::cout << " cells)\n";
     if (estimate) {
         // Each number beside its estimate, with the digits the estimate leaves.
-        const std::string e = number_text(r.error_estimate, 0, 2);
-        std::cout << "volume              " << number_text(r.volume, r.error_estimate, 0) << " ± " << e
+        std::cout << "volume              " << plus_minus(r.volume, r.error_estimate, 0)
                   << "  (Richardson extrapolation from h and 2h; ± is |V(h) - V(2h)| / 3, the estimated error of "
                      "V(h), which also bounds the extrapolation's while V(h) converges as h^2)\n";
-        std::cout << "PL volume at h      " << number_text(r.fine.volume, r.error_estimate, 0) << " ± " << e
+        std::cout << "PL volume at h      " << plus_minus(r.fine.volume, r.error_estimate, 0)
                   << "  (the piecewise-linear solid's, V(h))\n";
-        std::cout << "PL volume at 2h     " << number_text(r.coarse->volume, 4 * r.error_estimate, 0) << " ± "
-                  << number_text(4 * r.error_estimate, 0, 2) << "  (V(2h): 4 times the error at h)\n";
+        std::cout << "PL volume at 2h     " << plus_minus(r.coarse->volume, 4 * r.error_estimate, 0)
+                  << "  (V(2h): 4 times the error at h)\n";
     } else {
         std::cout << "volume              " << number(r.volume) << "  (the PL solid at h; no error estimate)\n";
     }

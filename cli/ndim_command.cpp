@@ -150,17 +150,25 @@ std::string report_text(const std::string& file, const std::string& what, const 
       << "\n";
     if (!v) return s.str();
     const std::string name = r.dimension == 2 ? "area" : "volume";
-    s << (name == "area" ? "area        " : "volume      ") << shortest(v->volume);
+    s << (name == "area" ? "area        " : "volume      ");
     if (v->volume_correctly_rounded) {
-        s << "  (correctly rounded: the exact " << name << " of the coordinates as read, rounded once)\n";
-    } else {
-        s << " ± " << shortest(v->volume_error_bound) << "  (rigorous absolute error bound)\n";
+        s << shortest(v->volume) << "  (correctly rounded: the exact " << name << " of the coordinates as read, rounded once)\n";
+    } else {  // the digits the bound supports, ± covering the display's rounding too (the JSON has every digit)
+        s << plus_minus(v->volume, v->volume_error_bound, 0) << "  (rigorous absolute error bound)\n";
     }
-    s << "centroid    " << point_text(v->centroid);
+    s << "centroid    ";
     if (v->centroid_correctly_rounded) {
-        s << "  (each coordinate correctly rounded)\n";
+        s << point_text(v->centroid) << "  (each coordinate correctly rounded)\n";
     } else {
-        s << " ± " << shortest(v->centroid_error_bound) << "\n";
+        const double e = v->centroid_error_bound;
+        double worst = e;
+        std::string text = "(";
+        for (std::size_t i = 0; i < v->centroid.size(); ++i) {
+            const std::string c = number_text(v->centroid[i], e, 0);
+            worst = std::max(worst, e + std::fabs(std::strtod(c.c_str(), nullptr) - v->centroid[i]));
+            text += (i ? ", " : "") + c;
+        }
+        s << text << ") ±" << bound_text(worst) << " each\n";
     }
     if (v->accuracy == ChainAccuracy::bounded) {
         const ChainStats& st = v->stats;

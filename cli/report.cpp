@@ -110,19 +110,44 @@ std::string shortest(double v) {
     return std::string(buf, res.ptr);
 }
 
+std::string bound_text(double e) {
+    if (!(e > 0) || !std::isfinite(e)) return shortest(e);
+    const double step = std::pow(10.0, std::floor(std::log10(e)) - 1);
+    char buf[32];
+    for (double r = std::ceil(e / step) * step;; r += step) {
+        std::snprintf(buf, sizeof buf, "%.2g", r);
+        if (std::strtod(buf, nullptr) >= e) return buf;
+    }
+}
+
+std::string plus_minus(double v, double e, int digits) {
+    const std::string shown = number_text(v, e, digits);
+    return shown + " ±" + bound_text(e + std::fabs(std::strtod(shown.c_str(), nullptr) - v));
+}
+
+std::string shortest_within(double v, double abs_error) {
+    v += 0.0;
+    if (!std::isfinite(v) || v == 0 || !(abs_error > 0) || !std::isfinite(abs_error)) return shortest(v);
+    for (int d = 1; d < 17; ++d) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.*g", d, v);
+        if (std::fabs(std::strtod(buf, nullptr) - v) <= abs_error) return buf;
+    }
+    return shortest(v);
+}
+
 std::string number_text(double v, double abs_error, int digits) {
     v += 0.0;  // no "-0"
-    if (!std::isfinite(v) || v == 0 || (abs_error == 0 && digits <= 0)) return shortest(v);
-    int significant = 17;
-    if (abs_error > 0 && std::isfinite(abs_error))
-        significant = static_cast<int>(std::floor(std::log10(std::fabs(v))) - std::floor(std::log10(abs_error))) + 1;
-    if (digits > 0) significant = std::min(significant, digits);
-    significant = std::clamp(significant, 1, 17);
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", significant, v);
-    // As many digits as the shortest round trip at most (%g may add noise digits).
-    const std::string s = shortest(v);
-    return std::strlen(buf) > s.size() && significant >= 17 ? s : std::string(buf);
+    if (!std::isfinite(v) || v == 0) return shortest(v);
+    // The shortest decimal within half the bound (at most the digits down to
+    // the bound's leading one), or every digit when the value is correctly rounded.
+    std::string s = abs_error > 0 && std::isfinite(abs_error) ? shortest_within(v, abs_error / 2) : shortest(v);
+    if (digits > 0) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+        if (std::strlen(buf) < s.size()) s = buf;
+    }
+    return s;
 }
 
 // mass = density × volume: the density as typed is within 2^-53 of its
@@ -132,13 +157,8 @@ std::string number_text(double v, double abs_error, int digits) {
 // double (7.85 × 12 is 94.2, not 94.19999999999999).
 std::string mass_text(double mass, double volume_error_times_density, int digits) {
     const double error = volume_error_times_density + std::fabs(mass) * 0x1p-52;
-    if (!std::isfinite(mass) || mass == 0 || !std::isfinite(error)) return number_text(mass, error, digits);
-    for (int d = 1; d < 17 && (digits <= 0 || d < digits); ++d) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%.*g", d, mass);
-        if (std::fabs(std::strtod(buf, nullptr) - mass) <= error) return buf;
-    }
-    return number_text(mass, error, digits);
+    const std::string s = shortest_within(mass, error);
+    return digits > 0 ? number_text(std::strtod(s.c_str(), nullptr), error, digits) : s;
 }
 
 // The streaming path for a binary STL (Request::stream); nothing when the
@@ -625,7 +645,7 @@ std::string overlap_sentence(const FileResult& r) {
 
 std::string volume_guarantee(const MassProperties& m) {
     if (m.volume_correctly_rounded) return "correctly rounded (the exact volume of the coordinates as read, rounded once)";
-    return "error bound " + shortest(m.volume_error_bound) + " (absolute)";
+    return "error bound " + shortest(m.volume_error_bound) + " (absolute) for the value in full (JSON)";
 }
 
 nlohmann::json to_json(const FileResult& r, const Request& request) {
@@ -865,8 +885,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         any_checked = any_checked || r.overlap_checked;
         (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
         const double volume_error = m.volume_correctly_rounded ? 0 : m.volume_error_bound;
-        const std::string vol = number_text(m.volume, volume_error, digits) +
-                                (m.volume_correctly_rounded ? "" : " ±" + number_text(m.volume_error_bound, 0, 2));
+        const std::string vol = m.volume_correctly_rounded ? number_text(m.volume, 0, digits)
+                                                           : plus_minus(m.volume, m.volume_error_bound, digits);
         if (mass) out << pad(mass_text(m.mass, request.measure.density * volume_error, digits), 24) << "  ";
         if (overlap)
             overlap_notes += "  " + r.file + ": " + overlap_sentence(r) + (all ? "; its centroid is the solid's, its area the shells' sum" : "") + "\n";
@@ -897,8 +917,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
 
     if (all)
         footer.emplace_back(request.verbose ? "area and centroid: their guarantees below; inertia: `polyvol measure`"
-                                            : "other figures show the digits their bounds support (--verbose: the "
-                                              "guarantees in full)");
+                                            : "other figures are shown to within half their bounds (--verbose: "
+                                              "the bounds)");
     if (!footer.empty()) footer[0][0] = static_cast<char>(std::toupper(static_cast<unsigned char>(footer[0][0])));
     out << "method: " << method_name(request.measure.method) << ".";
     for (std::size_t i = 0; i < footer.size(); ++i) out << (i == 0 ? " " : "; ") << footer[i];
@@ -954,7 +974,8 @@ std::string measure_report(const FileResult& r, const Request& request) {
     const auto moments_error = [&](std::span<const double> v) {
         return m.moments_correctly_rounded ? 0.0 : m.moments_relative_error * largest(v);
     };
-    const std::string volume_text = number_text(m.volume, volume_error, digits);
+    const std::string volume_text =
+        m.volume_correctly_rounded ? number_text(m.volume, 0, digits) : plus_minus(m.volume, volume_error, digits);
     if (overlap) {
         out << "  volume          " << volume_text << unit_suffix(r, 3) << "   [" << volume_guarantee(m)
             << "; the solid where the winding number is >= 1]\n";
@@ -1050,27 +1071,39 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
     const auto& c = m.centroid;
     const auto& i = m.inertia_centroid;  // {xx, yy, zz, xy, yz, zx}
     std::ostringstream out;
-    auto shortest = [](double x) { return polyvol::cli::shortest(x + 0.0); };  // no -0
+    // Each value the shortest decimal within its bound (mass, centroid and
+    // inertia each relative to the largest entry of its own array), so the
+    // printed value is within twice the bound of the exact one.
+    const double rel = m.moments_correctly_rounded ? 0.0 : m.moments_relative_error;
+    const auto largest = [](std::span<const double> a) {
+        double x = 0;
+        for (double e : a) x = std::max(x, std::fabs(e));
+        return x;
+    };
+    const double c_err = rel * largest(c), i_err = rel * largest(i), m_err = rel * std::fabs(m.mass);
+    const auto cs = [&](double x) { return shortest_within(x, c_err); };
+    const auto is = [&](double x) { return shortest_within(x, i_err); };
     const std::string units = r.length_unit.empty() ? std::string("units as in the file")
                                                     : "lengths in " + r.length_unit +
                                                           (r.mass_unit.empty() ? "" : ", mass in " + r.mass_unit);
-    out << "<!-- " << r.file << ": " << units << ", density " << shortest(request.measure.density) << "; "
-        << (m.moments_correctly_rounded ? std::string("correctly rounded")
-                                        : "relative error <= " + shortest(m.moments_relative_error))
+    out << "<!-- " << r.file << ": " << units << ", density " << density_text(request) << "; "
+        << (m.moments_correctly_rounded
+                ? std::string("correctly rounded")
+                : "each value within " + number_text(2 * rel, 0, 2) + " of the largest in its quantity")
         << " -->\n";
+    const std::string mass = shortest_within(m.mass, m_err);
     if (sdf) {
-        out << "<inertial>\n  <pose>" << shortest(c[0]) << " " << shortest(c[1]) << " " << shortest(c[2])
-            << " 0 0 0</pose>\n  <mass>" << shortest(m.mass) << "</mass>\n  <inertia>\n"
-            << "    <ixx>" << shortest(i[0]) << "</ixx>\n    <ixy>" << shortest(i[3]) << "</ixy>\n"
-            << "    <ixz>" << shortest(i[5]) << "</ixz>\n    <iyy>" << shortest(i[1]) << "</iyy>\n"
-            << "    <iyz>" << shortest(i[4]) << "</iyz>\n    <izz>" << shortest(i[2]) << "</izz>\n"
+        out << "<inertial>\n  <pose>" << cs(c[0]) << " " << cs(c[1]) << " " << cs(c[2]) << " 0 0 0</pose>\n  <mass>"
+            << mass << "</mass>\n  <inertia>\n"
+            << "    <ixx>" << is(i[0]) << "</ixx>\n    <ixy>" << is(i[3]) << "</ixy>\n"
+            << "    <ixz>" << is(i[5]) << "</ixz>\n    <iyy>" << is(i[1]) << "</iyy>\n"
+            << "    <iyz>" << is(i[4]) << "</iyz>\n    <izz>" << is(i[2]) << "</izz>\n"
             << "  </inertia>\n</inertial>\n";
     } else {
-        out << "<inertial>\n  <origin xyz=\"" << shortest(c[0]) << " " << shortest(c[1]) << " " << shortest(c[2])
-            << "\" rpy=\"0 0 0\"/>\n  <mass value=\"" << shortest(m.mass) << "\"/>\n"
-            << "  <inertia ixx=\"" << shortest(i[0]) << "\" ixy=\"" << shortest(i[3]) << "\" ixz=\"" << shortest(i[5])
-            << "\" iyy=\"" << shortest(i[1]) << "\" iyz=\"" << shortest(i[4]) << "\" izz=\"" << shortest(i[2])
-            << "\"/>\n</inertial>\n";
+        out << "<inertial>\n  <origin xyz=\"" << cs(c[0]) << " " << cs(c[1]) << " " << cs(c[2])
+            << "\" rpy=\"0 0 0\"/>\n  <mass value=\"" << mass << "\"/>\n"
+            << "  <inertia ixx=\"" << is(i[0]) << "\" ixy=\"" << is(i[3]) << "\" ixz=\"" << is(i[5])
+            << "\" iyy=\"" << is(i[1]) << "\" iyz=\"" << is(i[4]) << "\" izz=\"" << is(i[2]) << "\"/>\n</inertial>\n";
     }
     return out.str();
 }

@@ -160,6 +160,13 @@ std::string shortest(double v);
 // the shortest round trip), at most `digits` significant ones when digits > 0;
 // never "-0".
 std::string number_text(double v, double abs_error, int digits);
+// The shortest decimal within abs_error of v (v's own shortest when 0).
+std::string shortest_within(double v, double abs_error);
+// "V ±E": v as number_text shows it, and E >= e plus the display's rounding,
+// rounded up to two digits, so that the printed interval holds the exact value.
+std::string plus_minus(double v, double e, int digits);
+// e rounded up to two significant digits.
+std::string bound_text(double e);
 
 nlohmann::json to_json(const FileResult& r, const Request& request);
 

@@ -72,9 +72,9 @@ TEST(ImplicitCli, TableAndDimensionFromTheExpression) {
     const json j = json::parse(polyvol("implicit 'x1^2 + x2^2 + x3^2 + x4^2 - 1' --bounds 0:1.2 --h 0.2 --json").out);
     const double e = j["error_estimate"].get<double>();
     ASSERT_GT(e, 1e-3);
-    EXPECT_NE(r.out.find("volume              " + polyvol::cli::number_text(j["volume"].get<double>(), e, 0) + " ± "),
+    EXPECT_NE(r.out.find("volume              " + polyvol::cli::plus_minus(j["volume"].get<double>(), e, 0)),
               std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("PL volume at h      " + polyvol::cli::number_text(j["volume_pl"].get<double>(), e, 0) + " ± "),
+    EXPECT_NE(r.out.find("PL volume at h      " + polyvol::cli::plus_minus(j["volume_pl"].get<double>(), e, 0)),
               std::string::npos) << r.out;
     EXPECT_NE(r.out.find("PL volume at 2h     "), std::string::npos) << r.out;
     EXPECT_LT(polyvol::cli::number_text(j["volume"].get<double>(), e, 0).size(), 8u);  // not 17 digits
