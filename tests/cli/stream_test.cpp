@@ -190,4 +190,36 @@ TEST(CliStream, VolumeOnlyTable) {
     EXPECT_EQ(json::parse(prism.out)[0]["volume"].get<double>(), 1791.8163324528632);
 }
 
+// One file, one set of numbers (issue #21): a box centred at 1e6 was shown
+// by the streamed table as 1000000.0000016685 ±0.043 and by the loaded JSON
+// as 1e+06. The table now shows each figure to within half its bound, so
+// both routes read the same.
+TEST(CliStream, TheTableAndTheJsonShowTheSameNumbers) {
+    const fs::path p = fs::temp_directory_path() / ("polyvol_stream_1e6_" + std::to_string(::getpid()) + ".stl");
+    {
+        std::ofstream out(p, std::ios::binary);
+        out << std::string(80, ' ');
+        const float lo[3] = {1e6f - 1, 1e6f - 2, 1e6f - 3}, hi[3] = {1e6f + 1, 1e6f + 2, 1e6f + 3};
+        const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+        const uint32_t n = 12;
+        out.write(reinterpret_cast<const char*>(&n), 4);
+        for (const auto& q : quads)
+            for (const auto& t : {std::array<int, 3>{q[0], q[1], q[2]}, std::array<int, 3>{q[0], q[2], q[3]}}) {
+                float rec[12] = {0, 0, 0};
+                for (int c = 0; c < 3; ++c)
+                    for (int k = 0; k < 3; ++k) rec[3 + 3 * c + k] = (t[static_cast<std::size_t>(c)] >> k & 1) ? hi[k] : lo[k];
+                out.write(reinterpret_cast<const char*>(rec), 48);
+                out.write("\0\0", 2);
+            }
+    }
+    const CliRun table = polyvol("volume " + quoted(p));
+    ASSERT_EQ(table.code, 0) << table.err;
+    const json loaded = json::parse(polyvol("volume --json " + quoted(p)).out)[0];
+    EXPECT_EQ(loaded["centroid"], json::array({1e6, 1e6, 1e6}));
+    EXPECT_EQ(loaded["volume"], 48.0);
+    EXPECT_NE(table.out.find("48                        "), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("(1e+06, 1e+06, 1e+06)"), std::string::npos) << table.out;  // streamed, as loaded
+    fs::remove(p);
+}
+
 }  // namespace
