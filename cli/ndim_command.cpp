@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "polyvol/chain.hpp"
+#include "polyvol/chain_io.hpp"
 #include "polyvol/simplicial.hpp"
 #include "read_input.hpp"
 #include "report.hpp"

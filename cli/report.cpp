@@ -11,7 +11,7 @@
 #include <span>
 #include <sstream>
 
-#include "polyvol/chain.hpp"
+#include "polyvol/chain_io.hpp"
 #include "units.hpp"
 
 namespace polyvol::cli {

@@ -15,7 +15,7 @@
 
 #include "io/chunks.hpp"
 #include "io/readers.hpp"
-#include "polyvol/chain.hpp"
+#include "polyvol/chain_io.hpp"
 #include "polyvol/io.hpp"
 
 namespace {

@@ -33,9 +33,9 @@
 //            for n = 3 a facet of more than 3 vertices (no Qt) is fanned from
 //            its first vertex;
 //   polygon — one loop per line: x0 y0 x1 y1 ... ; '#' comment lines.
-// Readers throw ReadError (io.hpp) with the file, the 1-based line and what was
-// expected, and never allocate from a count before checking it against the
-// size of the input.
+// The readers (chain_io.hpp) throw ReadError (io.hpp) with the file, the
+// 1-based line and what was expected, and never allocate from a count before
+// checking it against the size of the input.
 #pragma once
 
 #include <cstddef>
@@ -43,8 +43,6 @@
 #include <span>
 #include <string>
 #include <vector>
-
-#include "polyvol/io.hpp"
 
 namespace polyvol {
 
@@ -100,33 +98,5 @@ struct Polygons {
         loop_offsets.push_back(static_cast<uint32_t>(indices.size()));
     }
 };
-
-enum class ChainFormat { chain, qhull };
-
-// "chain", "qhull".
-std::string_view chain_format_name(ChainFormat f);
-
-struct LoadedChain {
-    Chain chain;
-    ChainFormat format = ChainFormat::chain;
-    // qhull input: facets whose listed order was reversed to face outward, and
-    // facets the interior point could not orient (flat ones: their
-    // determinant is within rounding of zero) — these keep qhull's order;
-    // orient_chain (simplicial.hpp) orients them by their neighbours.
-    std::size_t facets_reoriented = 0;
-    std::size_t facets_undecided = 0;
-    std::size_t qhull_facets = 0;          // facets as listed (before fanning, n = 3 only)
-    std::vector<std::string> notes;        // e.g. "qhull-fanned-facets(6)"
-};
-
-// Reads a .chain file or qhull's OFF output, chosen by content: after
-// comments, a first line of three integers is .chain, of one integer qhull.
-// "-" reads standard input; gzip-compressed input is decompressed first.
-LoadedChain read_chain_file(const std::string& path);
-LoadedChain read_chain_memory(std::span<const std::byte> data, const std::string& name);
-
-// Reads the polygon text format (one loop per line).
-Polygons read_polygons_file(const std::string& path);
-Polygons read_polygons_memory(std::span<const std::byte> data, const std::string& name);
 
 }  // namespace polyvol

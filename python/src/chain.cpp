@@ -7,7 +7,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "polyvol/chain.hpp"
+#include "polyvol/chain_io.hpp"
 #include "polyvol/implicit.hpp"
 #include "polyvol/simplicial.hpp"
 

@@ -17,7 +17,7 @@
 
 #include "io/readers.hpp"
 #include "io/text.hpp"
-#include "polyvol/chain.hpp"
+#include "polyvol/chain_io.hpp"
 
 namespace polyvol {
 

@@ -13,7 +13,7 @@
 #include <random>
 #include <string>
 
-#include "polyvol/chain.hpp"
+#include "polyvol/chain_io.hpp"
 #include "polyvol/simplicial.hpp"
 
 using namespace polyvol;
