@@ -178,9 +178,9 @@ std::optional<FileResult> stream_binary_stl(const std::string& path, bool volume
     SoupAccumulator acc(SoupWants{.closedness = true, .moments_and_area = !volume_only});
     try {
         do {
-            file->for_each_window([&](std::span<const std::byte> records, uint64_t first) {
-                acc.add(stl_records(records), first);
-            });
+            file->for_each_window(
+                [&](std::span<const std::byte> records, uint64_t first) { acc.add(stl_records(records), first); },
+                StlStreamOptions{.alignment = SoupAccumulator::kBlockTriangles});
         } while (acc.next_pass());
     } catch (const ReadError& e) {
         r.exit_code = Exit::unreadable;

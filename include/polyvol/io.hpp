@@ -142,9 +142,10 @@ struct BinaryStlProbe {
 BinaryStlProbe probe_binary_stl(const std::string& path);
 
 struct StlStreamOptions {
-    // Bytes per window; rounded down to a whole number of 32 records (1600
-    // bytes), at least one such group. Windows start at triangle indices that
-    // are multiples of 32 (what polyvol::SoupAccumulator needs).
+    // Bytes per window; rounded down to a whole number of `alignment` records,
+    // at least one such group. Windows start at triangle indices that are
+    // multiples of `alignment`: the caller's block size, e.g.
+    // SoupAccumulator::kBlockTriangles (soup.hpp) for the accumulator.
     std::size_t window_bytes = 50 * 4096;
     // Read and call back on several threads at once (oneTBB). The callback
     // must then be thread-safe; windows arrive in no particular order.
@@ -161,6 +162,8 @@ struct StlStreamOptions {
     // docs/benchmarks.md.)
     bool map = false;
     std::size_t slab_bytes = std::size_t{4} << 20;
+    // Windows start at multiples of this many records (see window_bytes).
+    std::size_t alignment = 1;
 };
 
 // records: whole 50-byte records; first_triangle: index of the first one.

@@ -128,6 +128,9 @@ struct SoupResult {
 
 class SoupAccumulator {
 public:
+    // Triangles per block: every window fed to add() starts at a multiple
+    // (StlStreamOptions::alignment when streaming a file into it).
+    static constexpr std::size_t kBlockTriangles = 32;
     // Keys from std::random_device.
     explicit SoupAccumulator(SoupWants wants = {});
     // Keys derived from seed (reproducible fingerprints, for tests).

@@ -36,6 +36,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,7 +48,6 @@ namespace polyvol {
 namespace {
 
 constexpr uint64_t kRecord = 50;
-constexpr uint64_t kGroup = 32;  // records per alignment group
 constexpr uint64_t kHugeUnit = uint64_t{2} << 20;  // bytes dropped at once (see for_each_mapped_window)
 
 struct Fd {
@@ -247,8 +247,10 @@ void BinaryStlFile::for_each_window(const StlWindowFn& fn, const StlStreamOption
     const uint64_t n = p.triangles;
     if (n == 0) return;
     (void)::posix_fadvise(fd_, 0, 0, POSIX_FADV_SEQUENTIAL);
-    const uint64_t groups = std::max<uint64_t>(1, options.window_bytes / (kRecord * kGroup));
-    const uint64_t per_window = groups * kGroup;  // records
+    const uint64_t group = std::max<uint64_t>(1, options.alignment);  // records per alignment group
+    if (group > (uint64_t{1} << 32)) throw std::invalid_argument("StlStreamOptions::alignment beyond 2^32 records");
+    const uint64_t groups = std::max<uint64_t>(1, options.window_bytes / (kRecord * group));
+    const uint64_t per_window = groups * group;  // records
     if (options.map && for_each_mapped_window(fd_, p.file_bytes, n, per_window, fn, options)) return;
 
     const uint64_t windows = (n + per_window - 1) / per_window;

@@ -98,6 +98,7 @@ using exact::two_sum;
 namespace cone = measure::cone;
 
 constexpr int kB = cone::kBlockTriangles;  // triangles per block (32)
+static_assert(SoupAccumulator::kBlockTriangles == kB);
 using measure::fingerprint::fold;
 using measure::fingerprint::kP;
 using measure::fingerprint::mum;

@@ -1,6 +1,6 @@
 // Streaming binary STL (polyvol/io.hpp: BinaryStlFile, probe_binary_stl, for_each_stl_window):
 // detection as read_mesh_file decides it, windows that cover every record
-// once at multiples of 32, and errors with the byte offset.
+// once at multiples of the alignment asked for, and errors with the byte offset.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -62,7 +62,7 @@ std::vector<std::byte> collect(const std::string& path, const StlStreamOptions& 
     for_each_stl_window(
         path,
         [&](std::span<const std::byte> records, uint64_t first) {
-            EXPECT_EQ(first % 32, 0u);
+            EXPECT_EQ(first % std::max<std::size_t>(1, options.alignment), 0u);
             EXPECT_EQ(records.size() % 50, 0u);
             std::lock_guard<std::mutex> lock(m);
             std::memcpy(out.data() + 50 * first, records.data(), records.size());
@@ -109,7 +109,8 @@ TEST(StlStream, WindowsCoverALargerFileExactlyOnce) {
                 // Slabs of one window, of a few windows (not a whole number
                 // of pages, so neighbours share pages), and the default.
                 for (std::size_t slab : {std::size_t{0}, std::size_t{3 * 4096 + 100}, std::size_t{4} << 20})
-                    EXPECT_EQ(collect(f.path.string(), {w, parallel, map, slab}), want);
+                    for (std::size_t align : {std::size_t{1}, std::size_t{32}, std::size_t{1000}})  // 32: the soup's blocks
+                        EXPECT_EQ(collect(f.path.string(), {w, parallel, map, slab, align}), want);
 }
 
 // Resident file pages of this process, in bytes: RssFile + RssShmem in
