@@ -43,7 +43,7 @@ struct Common {
     std::string accuracy = "correctly-rounded";
     std::string density = "1";
     std::string units, to;  // --units, --to
-    double scale = 1;       // --scale
+    std::string scale = "1";  // --scale (its text: whether it is exact)
     bool stream = false;  // volume --stream: JSON from the streaming path too
     bool volume_only = false;  // volume --volume-only
     bool solid = false;        // volume/measure --solid: the full overlap and self-crossing check
@@ -136,7 +136,8 @@ Request make_request(const Common& c, bool need_mass) {
     }
     r.units = c.units;
     r.to = c.to;
-    r.scale = c.scale;
+    r.scale = std::stod(c.scale);  // checked by positive_number()
+    r.scale_typed_exactly = typed_exactly(c.scale, r.scale);
     r.allow_open = c.allow_open;
     r.need_mass = need_mass;
     r.orient = c.orient;
@@ -158,7 +159,8 @@ int run(Command command, const Common& c) {
     // length or components: README).
     // Streaming gives the file's own figures: no weld, orientation, units or scale.
     request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid && !c.orient &&
-                     c.weld_tolerance == 0 && c.units.empty() && c.to.empty() && c.scale == 1 &&
+                     c.weld_tolerance == 0 && c.units.empty() && c.to.empty() && request.scale == 1 &&
+                     request.scale_typed_exactly &&
                      request.density_kg_m3 == 0;
     request.self_check_always = command == Command::check || c.solid;
     request.volume_only = command == Command::volume && c.volume_only;

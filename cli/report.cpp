@@ -111,8 +111,8 @@ std::string shortest(double v) {
 }
 
 std::string bound_text(double e) {
-    if (!(e > 0) || !std::isfinite(e)) return shortest(e);
     const double step = std::pow(10.0, std::floor(std::log10(e)) - 1);
+    if (!(e > 0) || !std::isfinite(e) || !(step > 0) || !std::isfinite(step)) return shortest(e);  // subnormal: as is
     char buf[32];
     for (double r = std::ceil(e / step) * step;; r += step) {
         std::snprintf(buf, sizeof buf, "%.2g", r);
@@ -339,7 +339,8 @@ std::string plan_units(FileResult& r, const Request& q, double& length_error) {
     if (!to.empty() && !from)
         return std::string("its length unit is not known (") + std::string(format_name(r.loaded->format)) +
                " files do not state one): --units gives it (mm, cm, m, in, ft or micron)";
-    const LengthFactor f = from ? length_factor(*from, *length_unit(to), q.scale) : scale_only(q.scale);
+    const LengthFactor f = from ? length_factor(*from, *length_unit(to), q.scale, q.scale_typed_exactly)
+                                : scale_only(q.scale, q.scale_typed_exactly);
     r.length_factor = f.factor;
     length_error = f.relative_error;
     r.length_unit = to;
@@ -990,9 +991,9 @@ std::string measure_report(const FileResult& r, const Request& request) {
     out << "  mass            " << mass_text(m.mass, request.measure.density * volume_error, digits)
         << mass_unit_suffix(r, 3) << "\n";
     out << "  surface area    " << number_text(m.area, m.area * m.area_relative_error, digits) << unit_suffix(r, 2)
-        << "   [relative error <= " << number_text(m.area_relative_error, 0, 2) << "]\n";
+        << "   [relative error <= " << bound_text(m.area_relative_error) << "]\n";
     out << "  edge length     " << number_text(m.edge_length, m.edge_length * m.edge_length_relative_error, digits)
-        << unit_suffix(r, 1) << "   [relative error <= " << number_text(m.edge_length_relative_error, 0, 2) << "]\n";
+        << unit_suffix(r, 1) << "   [relative error <= " << bound_text(m.edge_length_relative_error) << "]\n";
     const double centroid_error = moments_error(m.centroid);
     out << "  centroid        (" << number_text(m.centroid[0], centroid_error, digits) << ", "
         << number_text(m.centroid[1], centroid_error, digits) << ", " << number_text(m.centroid[2], centroid_error, digits)
@@ -1046,13 +1047,13 @@ std::string measure_report(const FileResult& r, const Request& request) {
         const PrincipalInertia p = principal_of(m);
         out << "  principal moments " << number_text(p.moments[0], p.moment_error, digits) << ", "
             << number_text(p.moments[1], p.moment_error, digits) << ", " << number_text(p.moments[2], p.moment_error, digits)
-            << mass_unit_suffix(r, 5) << "   [each within " << number_text(p.moment_error, 0, 2) << "]\n";
+            << mass_unit_suffix(r, 5) << "   [each within " << bound_text(p.moment_error) << "]\n";
         for (std::size_t k = 0; k < 3; ++k) {
             const double e = std::isfinite(p.axis_angle[k]) ? p.axis_angle[k] : 0;
             out << "  principal axis " << k + 1 << "  (" << number_text(p.axes[k][0], e, digits) << ", "
                 << number_text(p.axes[k][1], e, digits) << ", " << number_text(p.axes[k][2], e, digits) << ")";
             if (std::isfinite(p.axis_angle[k]))
-                out << "   [within " << number_text(p.axis_angle[k], 0, 2) << " rad]\n";
+                out << "   [within " << bound_text(p.axis_angle[k]) << " rad]\n";
             else
                 out << "   [not determined: equal moments]\n";
         }
@@ -1089,7 +1090,7 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
     out << "<!-- " << r.file << ": " << units << ", density " << density_text(request) << "; "
         << (m.moments_correctly_rounded
                 ? std::string("correctly rounded")
-                : "each value within " + number_text(2 * rel, 0, 2) + " of the largest in its quantity")
+                : "each value within " + bound_text(2 * rel) + " of the largest in its quantity")
         << " -->\n";
     const std::string mass = shortest_within(m.mass, m_err);
     if (sdf) {

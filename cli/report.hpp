@@ -138,6 +138,7 @@ struct Request {
     // kg per `to`³.
     std::string units, to;
     double scale = 1;
+    bool scale_typed_exactly = true;  // the scale's text is its double's own decimal
     double density_kg_m3 = 0;
     // URDF and SDF want SI: metres by default when the coordinates' unit is known.
     bool metres_when_known = false;

@@ -9,8 +9,10 @@ namespace {
 
 constexpr double kU = 0x1p-53;
 
-// x is exactly a double the decimal text meant when it is an integer below
-// 2^53 or a power of two: --scale 2, 10, 0.5 are exact, 0.1 is not.
+// x is exactly the double the decimal text meant when it is an integer below
+// 2^53 or a power of two: --scale 2, 10, 0.5 are exact, 0.1 is not. (A text
+// with more digits than the double keeps, "1.0000000000000001", is caught by
+// the caller: scale_only's text.)
 bool exact_decimal(double x) {
     int e = 0;
     return (x == std::floor(x) && std::fabs(x) < 0x1p53) || std::frexp(x, &e) == 0.5;
@@ -28,14 +30,27 @@ std::optional<LengthUnit> length_unit(std::string_view name) {
     return std::nullopt;
 }
 
-LengthFactor scale_only(double scale) { return {scale, exact_decimal(scale) ? 0.0 : kU}; }
+LengthFactor scale_only(double scale, bool scale_typed_exactly) {
+    return {scale, exact_decimal(scale) && scale_typed_exactly ? 0.0 : kU};
+}
 
-LengthFactor length_factor(const LengthUnit& from, const LengthUnit& to, double scale) {
+bool typed_exactly(const std::string& text, double value) {
+    std::string t = !text.empty() && text[0] == '+' ? text.substr(1) : text;
+    if (t.find('.') != std::string::npos && t.find_first_of("eE") == std::string::npos) {
+        while (!t.empty() && t.back() == '0') t.pop_back();
+        if (!t.empty() && t.back() == '.') t.pop_back();
+    }
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, value);
+    return t == std::string(buf, r.ptr);
+}
+
+LengthFactor length_factor(const LengthUnit& from, const LengthUnit& to, double scale, bool scale_typed_exactly) {
     // from / to = (from_num to_den) / (from_den to_num): integers far below 2^53.
     const long long p = from.metre_num * to.metre_den, q = from.metre_den * to.metre_num;
     const double ratio = static_cast<double>(p) / static_cast<double>(q);
     const bool ratio_exact = p % q == 0;
-    LengthFactor f = scale_only(scale);
+    LengthFactor f = scale_only(scale, scale_typed_exactly);
     f.relative_error += ratio_exact ? 0.0 : kU;
     const bool product_exact = ratio == 1 || scale == 1;
     f.factor = ratio * scale;

@@ -25,8 +25,13 @@ struct LengthFactor {
     double factor = 1;
     double relative_error = 0;
 };
-LengthFactor length_factor(const LengthUnit& from, const LengthUnit& to, double scale);
-LengthFactor scale_only(double scale);
+// scale_typed_exactly: the scale's text is the double's own decimal (not
+// "1.0000000000000001", which reads as 1).
+LengthFactor length_factor(const LengthUnit& from, const LengthUnit& to, double scale, bool scale_typed_exactly = true);
+LengthFactor scale_only(double scale, bool scale_typed_exactly = true);
+// Whether the text of a number is the shortest decimal of its double (after
+// a leading '+' and trailing zeros of a fraction): "2", "2.50", not "1.0000000000000001".
+bool typed_exactly(const std::string& text, double value);
 
 // --density: a number, optionally followed by kg/m3 or g/cm3 (also kg/m^3,
 // kg/m³, g/cm^3, g/cm³): then `si` is set and `kg_per_m3` holds it.

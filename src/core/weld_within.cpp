@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -33,11 +34,17 @@ struct CellHash {
     }
 };
 
-// floor(x / tolerance), saturated to ±2^62 (far points then share a cell
-// and are compared by their distance, which keeps them apart).
+// floor(x / tolerance). Where |x| / tolerance >= 2^53, the doubles next to
+// x are more than the tolerance apart, so only equal coordinates can be
+// within it: such a coordinate gets a cell of its own beyond ±2^62, from its
+// bits (two values may share one; their distance still tells them apart).
 int64_t cell_index(double x, double tolerance) {
-    constexpr double limit = 4611686018427387904.0;  // 2^62
-    return static_cast<int64_t>(std::clamp(std::floor(x / tolerance), -limit, limit));
+    const double q = std::floor(x / tolerance);
+    if (std::fabs(q) < 0x1p53) return static_cast<int64_t>(q);
+    uint64_t bits = 0;
+    std::memcpy(&bits, &x, sizeof bits);
+    const auto own = static_cast<int64_t>((uint64_t{1} << 62) + (bits & ((uint64_t{1} << 61) - 1)));
+    return x < 0 ? -own : own;
 }
 
 // The comparisons past which a tolerance is called too coarse: about a

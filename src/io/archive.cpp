@@ -95,7 +95,8 @@ std::vector<TarEntry> tar_entries(Bytes data, const std::string& name) {
                 const std::size_t space = content.find(' ', p);
                 if (space == std::string_view::npos) break;
                 const std::size_t len = static_cast<std::size_t>(std::strtoull(std::string(content.substr(p, space - p)).c_str(), nullptr, 10));
-                if (len == 0 || p + len > content.size()) break;
+                // a record holds at least its length, a blank and a newline, and no more than what is left
+                if (len > content.size() - p || len < space - p + 2) break;
                 const std::string_view record = content.substr(space + 1, p + len - space - 2);  // without "\n"
                 if (record.substr(0, 5) == "path=") long_name.assign(record.substr(5));
                 p += len;
@@ -104,7 +105,9 @@ std::vector<TarEntry> tar_entries(Bytes data, const std::string& name) {
             if (type == '0' || type == '\0') {
                 std::string path = long_name;
                 if (path.empty()) {
-                    const std::string_view prefix = starts_with(h.subspan(257), "ustar") ? field(h, 345, 155) : "";
+                    // POSIX ustar ("ustar\0") has the name prefix at 345; GNU's "ustar  " has times there
+                    const std::string_view prefix =
+                        starts_with(h.subspan(257), std::string_view("ustar\0", 6)) ? field(h, 345, 155) : "";
                     path = (prefix.empty() ? "" : std::string(prefix) + "/") + std::string(field(h, 0, 100));
                 }
                 entries.push_back({std::move(path), begin, static_cast<std::size_t>(*size)});

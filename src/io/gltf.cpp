@@ -32,6 +32,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
+#include <system_error>
 #include <vector>
 
 #include "io/readers.hpp"
@@ -42,27 +44,36 @@ namespace {
 
 constexpr double kU = 0x1p-53;
 
-// An affine map x -> A x + t (A row-major), and a bound on its entries'
-// magnitudes and errors: abs[i] >= |A_ij| or |t_i| plus the error of the
-// computed entry, entry by entry (the same layout).
+// An affine map x -> A x + t (A row-major, rows (a_i0 a_i1 a_i2 t_i)), with
+// entrywise bounds: abs >= the magnitudes of the exact entries and of the
+// computed ones, err >= |computed - exact| from the inputs' own errors (a
+// quaternion's rotation). The roundings of the products are the γ term of
+// the point bound (`levels` of them), apart from err.
 struct Affine {
-    std::array<double, 12> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};  // rows (a00 a01 a02 t0), ...
+    std::array<double, 12> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     std::array<double, 12> abs{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-    int levels = 0;  // roundings that went into m: each level's product
-    bool identity() const { return m == Affine{}.m; }
+    std::array<double, 12> err{};
+    int levels = 0;  // products rounded into m
+    // Exactly the identity, nothing rounded on the way.
+    bool exact_identity() const { return m == Affine{}.m && levels == 0; }
 };
 
+// p ∘ l: entries Σ_k p_ik l_kj (+ p_i3 for the translation); its err is the
+// first-order propagation |p| err_l + err_p |l| + err_p err_l.
 Affine compose(const Affine& p, const Affine& l) {
     Affine r;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 4; ++j) {
-            double v = j == 3 ? p.m[4 * i + 3] : 0, a = j == 3 ? p.abs[4 * i + 3] : 0;
+            const bool t = j == 3;
+            double v = t ? p.m[4 * i + 3] : 0, a = t ? p.abs[4 * i + 3] : 0, e = t ? p.err[4 * i + 3] : 0;
             for (int k = 0; k < 3; ++k) {
                 v += p.m[4 * i + k] * l.m[4 * k + j];
                 a += p.abs[4 * i + k] * l.abs[4 * k + j];
+                e += p.abs[4 * i + k] * l.err[4 * k + j] + p.err[4 * i + k] * (l.abs[4 * k + j] + l.err[4 * k + j]);
             }
             r.m[4 * i + j] = v;
             r.abs[4 * i + j] = a;
+            r.err[4 * i + j] = e * (1 + 8 * kU);
         }
     r.levels = p.levels + l.levels + 1;
     return r;
@@ -96,6 +107,7 @@ Affine local(const tinygltf::Node& n) {
         for (int j = 0; j < 3; ++j) {
             a.m[4 * i + j] = R[3 * i + j] * S[j];
             a.abs[4 * i + j] = (std::fabs(R[3 * i + j]) + rerr) * std::fabs(S[j]) * (1 + kU);
+            a.err[4 * i + j] = rerr * std::fabs(S[j]) * (1 + kU);
         }
         a.m[4 * i + 3] = n.translation.size() == 3 ? n.translation[i] : 0;
         a.abs[4 * i + 3] = std::fabs(a.m[4 * i + 3]);
@@ -108,7 +120,10 @@ Affine local(const tinygltf::Node& n) {
 struct Files {
     std::filesystem::path base;
 };
-bool file_exists(const std::string& path, void*) { return std::filesystem::is_regular_file(path); }
+bool file_exists(const std::string& path, void*) {
+    std::error_code ec;  // a name too long, a loop of links: not there
+    return std::filesystem::is_regular_file(path, ec);
+}
 std::string expand_path(const std::string& path, void*) { return path; }
 bool read_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     const auto* files = static_cast<const Files*>(user);
@@ -139,20 +154,32 @@ bool ignore_image(tinygltf::Image*, const int, std::string*, std::string*, int, 
 
 class Reader {
 public:
-    Reader(const tinygltf::Model& model, const std::string& name) : model_(model), name_(name) {}
+    // budget: the most vertices (and triangles) the whole scene may have.
+    Reader(const tinygltf::Model& model, const std::string& name, std::size_t budget)
+        : model_(model), name_(name), budget_(budget) {}
+    std::size_t budget() const { return budget_; }
 
     // The bytes of element i of an accessor: its buffer view's, checked
     // against the buffer, or nullptr for an accessor without a view (zeros).
     const unsigned char* element(const tinygltf::Accessor& a, std::size_t i, std::size_t size) const {
         if (a.bufferView < 0) return nullptr;
-        const tinygltf::BufferView& v = view(a.bufferView);
+        const tinygltf::BufferView& v = view(a.bufferView);  // checked against its buffer (check_views)
         const std::size_t stride = v.byteStride ? v.byteStride : size;
-        const tinygltf::Buffer& b = buffer(v.buffer);
-        const std::size_t at = v.byteOffset + a.byteOffset + i * stride;
-        if (a.byteOffset > v.byteLength || i * stride > v.byteLength || a.byteOffset + i * stride + size > v.byteLength ||
-            at + size > b.data.size())
-            fail("an accessor reads past the end of its buffer");
-        return b.data.data() + at;
+        // a.byteOffset + i * stride + size <= v.byteLength, without overflow
+        if (a.byteOffset > v.byteLength || size > v.byteLength - a.byteOffset ||
+            i > (v.byteLength - a.byteOffset - size) / std::max<std::size_t>(stride, 1))
+            fail("an accessor reads past the end of its buffer view");
+        return buffer(v.buffer).data.data() + v.byteOffset + a.byteOffset + i * stride;
+    }
+
+    // Every buffer view within its buffer, with a stride the spec allows.
+    void check_views() const {
+        for (const tinygltf::BufferView& v : model_.bufferViews) {
+            const tinygltf::Buffer& b = buffer(v.buffer);
+            if (v.byteOffset > b.data.size() || v.byteLength > b.data.size() - v.byteOffset)
+                fail("a buffer view runs past the end of its buffer");
+            if (v.byteStride != 0 && (v.byteStride < 4 || v.byteStride > 252)) fail("a buffer view's byteStride is not 4 .. 252");
+        }
     }
 
     // Component c of element i as a double (normalized integers mapped as the spec says).
@@ -193,7 +220,8 @@ public:
             ct == TINYGLTF_COMPONENT_TYPE_DOUBLE || size <= 0)
             fail("POSITION has a component type the spec does not allow (" + std::to_string(ct) + ")");
         rounded = a.normalized && ct != TINYGLTF_COMPONENT_TYPE_FLOAT;
-        if (a.count > std::size_t{1} << 32) fail("too many vertices");
+        if (a.bufferView < 0 && !a.sparse.isSparse) fail("a POSITION accessor without data (no buffer view, not sparse)");
+        if (a.count > budget_) fail("a POSITION accessor of " + std::to_string(a.count) + " vertices, more than this file can hold");
         std::vector<double> out(3 * a.count, 0.0);
         if (a.bufferView >= 0) check_count(a, 3 * static_cast<std::size_t>(size));
         for (std::size_t i = 0; i < a.count; ++i)
@@ -208,6 +236,10 @@ public:
             val.bufferView = a.sparse.values.bufferView;
             val.byteOffset = static_cast<std::size_t>(std::max(0, a.sparse.values.byteOffset));
             const int isize = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(idx.componentType));
+            if (idx.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                idx.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                idx.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                fail("sparse indices are not unsigned bytes, shorts or ints");
             if (isize <= 0 || idx.bufferView < 0 || val.bufferView < 0) fail("a sparse accessor without its indices or values");
             for (int s = 0; s < a.sparse.count; ++s) {
                 const std::size_t i = index_at(element(idx, static_cast<std::size_t>(s), static_cast<std::size_t>(isize)), idx.componentType);
@@ -280,6 +312,7 @@ private:
 
     const tinygltf::Model& model_;
     const std::string& name_;
+    std::size_t budget_;
 };
 
 bool compressed_by(const tinygltf::Model& m, const std::string& ext) {
@@ -292,7 +325,43 @@ bool compressed_by(const tinygltf::Model& m, const std::string& ext) {
 
 bool is_glb(Bytes head) { return head.size() >= 4 && std::memcmp(head.data(), "glTF", 4) == 0; }
 
+// The deepest nesting of arrays and objects in JSON text (outside strings):
+// tinygltf parses it recursively, so a document nested thousands deep would
+// overflow the stack.
+std::size_t json_depth(std::string_view text) {
+    std::size_t depth = 0, deepest = 0;
+    bool in_string = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (c == '\\') ++i;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+LoadedMesh read_gltf_checked(Bytes data, const std::string& name);
+
 LoadedMesh read_gltf(Bytes data, const std::string& name) {
+    try {
+        return read_gltf_checked(data, name);
+    } catch (const ReadError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw;
+    } catch (const std::exception& e) {  // tinygltf's and the file system's own
+        throw ReadError::whole_file(name, std::string("glTF: ") + e.what());
+    }
+}
+
+LoadedMesh read_gltf_checked(Bytes data, const std::string& name) {
     tinygltf::TinyGLTF loader;
     Files files;
     const std::filesystem::path p(name);
@@ -305,6 +374,16 @@ LoadedMesh read_gltf(Bytes data, const std::string& name) {
     const bool glb = is_glb(data);
     if (data.size() > UINT32_MAX) throw ReadError::whole_file(name, "glTF: larger than 4 GiB");
     const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+    {
+        // The JSON: all of a .gltf, a .glb's first chunk (its length at byte 12).
+        std::string_view json(reinterpret_cast<const char*>(bytes), data.size());
+        if (glb && data.size() >= 20) {
+            uint32_t length = 0;
+            std::memcpy(&length, bytes + 12, 4);
+            json = json.substr(20, std::min<std::size_t>(length, data.size() - 20));
+        }
+        if (json_depth(json) > 200) throw ReadError::whole_file(name, "glTF: JSON nested more than 200 levels deep");
+    }
     const bool ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes, static_cast<unsigned>(data.size()),
                                                       files.base.string())
                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes),
@@ -322,7 +401,11 @@ LoadedMesh read_gltf(Bytes data, const std::string& name) {
     out.format = Format::gltf;
     out.encoding = glb ? "glb" : "json";
     out.unit = "m";
-    const Reader reader(model, name);
+    // The whole scene's vertices and triangles, instances included: at most
+    // 2^22 plus 64 per byte of the file (a mesh instanced many times is
+    // legitimate; a kilobyte that instances itself into billions is not).
+    const Reader reader(model, name, (std::size_t{1} << 22) + 64 * data.size());
+    reader.check_views();
     std::size_t skipped = 0;
     bool transformed = false;
     Mesh& mesh = out.mesh;
@@ -341,9 +424,10 @@ LoadedMesh read_gltf(Bytes data, const std::string& name) {
             bool rounded = false;
             const std::vector<double> xyz = reader.positions(pos->second, rounded);
             const std::size_t n = xyz.size() / 3;
-            if (mesh.vertex_count() + n > std::size_t{UINT32_MAX} - 1) reader.fail("too many vertices");
+            if (mesh.vertex_count() + n > std::min<std::size_t>(reader.budget(), UINT32_MAX - 1))
+                reader.fail("the scene's instances add up to more vertices than this file can hold");
             const auto base = static_cast<uint32_t>(mesh.vertex_count());
-            const bool identity = world.identity();
+            const bool identity = world.exact_identity();
             transformed = transformed || !identity;
             const double scale = (4 * (world.levels + 1 + (rounded ? 1 : 0))) * kU * 1.01;
             for (std::size_t v = 0; v < n; ++v) {
@@ -359,13 +443,17 @@ LoadedMesh read_gltf(Bytes data, const std::string& name) {
                 for (int i = 0; i < 3; ++i) {
                     const double* m = &world.m[4 * i];
                     const double* a = &world.abs[4 * i];
+                    const double* e = &world.err[4 * i];
                     r[i] = m[0] * q[0] + m[1] * q[1] + m[2] * q[2] + m[3];
                     const double size = a[0] * std::fabs(q[0]) + a[1] * std::fabs(q[1]) + a[2] * std::fabs(q[2]) + a[3];
-                    out.coordinate_error = std::max(out.coordinate_error, scale * size);
+                    const double entries = e[0] * std::fabs(q[0]) + e[1] * std::fabs(q[1]) + e[2] * std::fabs(q[2]) + e[3];
+                    out.coordinate_error = std::max(out.coordinate_error, (scale * size + entries) * (1 + 8 * kU));
                 }
                 mesh.add_vertex(r[0], r[1], r[2]);
             }
             const std::vector<uint32_t> idx = reader.indices(prim.indices, n);
+            if (mesh.indices.size() / 3 + idx.size() > reader.budget())
+                reader.fail("the scene's instances add up to more triangles than this file can hold");
             if (mode == TINYGLTF_MODE_TRIANGLES) {
                 for (std::size_t t = 0; t + 2 < idx.size(); t += 3) mesh.add_triangle(base + idx[t], base + idx[t + 1], base + idx[t + 2]);
             } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
@@ -389,15 +477,16 @@ LoadedMesh read_gltf(Bytes data, const std::string& name) {
         if (static_cast<std::size_t>(scene) >= model.scenes.size()) reader.fail("the default scene does not exist");
         std::vector<char> on_path(model.nodes.size(), 0);
         std::size_t visits = 0;
-        const auto visit = [&](const auto& self, int node, const Affine& parent) -> void {
+        const auto visit = [&](const auto& self, int node, const Affine& parent, int depth) -> void {
             if (node < 0 || static_cast<std::size_t>(node) >= model.nodes.size()) reader.fail("a node index out of range");
+            if (depth > 1000) reader.fail("the node hierarchy is more than 1000 levels deep");
             if (on_path[static_cast<std::size_t>(node)]) reader.fail("the node hierarchy has a cycle");
             if (++visits > (std::size_t{1} << 24)) reader.fail("more than 2^24 node instances");
             const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(node)];
             Affine world;
             try {
                 const Affine own = local(n);
-                world = own.identity() && own.levels == 0 ? parent : parent.identity() && parent.levels == 0 ? own : compose(parent, own);
+                world = own.exact_identity() ? parent : parent.exact_identity() ? own : compose(parent, own);
             } catch (const std::invalid_argument& e) {
                 reader.fail(e.what());
             }
@@ -414,10 +503,10 @@ LoadedMesh read_gltf(Bytes data, const std::string& name) {
                     out.parts.push_back({!n.name.empty() ? n.name : !mesh_name.empty() ? mesh_name : "node " + std::to_string(node),
                                          first, mesh.face_count() - first, own});
             }
-            for (int child : n.children) self(self, child, world);
+            for (int child : n.children) self(self, child, world, depth + 1);
             on_path[static_cast<std::size_t>(node)] = 0;
         };
-        for (int root : model.scenes[static_cast<std::size_t>(scene)].nodes) visit(visit, root, Affine{});
+        for (int root : model.scenes[static_cast<std::size_t>(scene)].nodes) visit(visit, root, Affine{}, 0);
     }
     if (transformed) out.notes.emplace_back("gltf-transform");
     if (skipped) out.notes.push_back("gltf-non-triangle-primitives-skipped(" + std::to_string(skipped) + ")");

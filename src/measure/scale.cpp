@@ -27,7 +27,9 @@ constexpr double kRoundUp = 1 + 0x1p-20;  // covers the rounding of the bounds t
 void scale_mass_properties(MassProperties& m, double length_factor, double length_error, double density_error) {
     const double L = length_factor;
     const double u = 0x1p-53;
-    const bool exact = is_power_of_two(L) && length_error == 0 && density_error == 0;
+    // Exact for a power of two within 2^±64 (no quantity of degree 5 leaves
+    // the normal range for a mesh of sane size; the results are checked below).
+    bool exact = is_power_of_two(L) && std::fabs(std::log2(L)) <= 64 && length_error == 0 && density_error == 0;
     const auto power = [&](int k) {
         double f = 1;
         for (int i = 0; i < k; ++i) f *= L;
@@ -58,6 +60,18 @@ void scale_mass_properties(MassProperties& m, double length_factor, double lengt
     for (double& x : m.second_moments) x *= L5;
     for (double& x : m.inertia_origin) x *= L5;
     for (double& x : m.inertia_centroid) x *= L5;
+    // A result pushed out of the normal range (or a huge L) has no guarantee left.
+    const auto normal = [](double x) { return x == 0 || std::isnormal(x) || std::isnan(x); };
+    bool in_range = normal(m.volume) && normal(m.area) && normal(m.mass);
+    for (const auto* a : {&m.second_moments, &m.inertia_origin, &m.inertia_centroid})
+        for (double x : *a) in_range = in_range && normal(x);
+    for (double x : m.first_moments) in_range = in_range && normal(x);
+    if (!in_range) {
+        const double inf = std::numeric_limits<double>::infinity();
+        m.volume_correctly_rounded = m.moments_correctly_rounded = false;
+        m.volume_error_bound = m.area_relative_error = m.edge_length_relative_error = m.moments_relative_error = inf;
+        return;
+    }
     if (!exact) {
         // One bound for every moment array, relative to its largest entry: the worst degree (5).
         const double r0 = m.moments_correctly_rounded ? u : m.moments_relative_error;

@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/run_cli.hpp"
+#include "report.hpp"
 
 namespace {
 
@@ -18,6 +21,8 @@ const std::string kBox = "'" + std::string(POLYVOL_TEST_DATA) + "/weld/box.obj'"
 const std::string kTetra = "'" + std::string(POLYVOL_TEST_DATA) + "/grammar/tetra.obj'";
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+nlohmann::json json_of(const std::string& args) { return nlohmann::json::parse(run_polyvol(args).out)[0]; }
 
 std::vector<std::string> split(const std::string& line, char sep) {
     std::vector<std::string> f;
@@ -75,6 +80,19 @@ TEST(NumbersCli, CsvHasAHeaderAndARowPerFile) {
     EXPECT_EQ(tet[5], "0.3333333333333333");  // mass = 2 × volume
     EXPECT_EQ(split(lines[3], ',')[1], "2");
     EXPECT_EQ(run_polyvol("volume --csv --json " + kTetra).code, 1);
+}
+
+// Printed bounds round up, and a subnormal one is printed as it is.
+TEST(NumbersCli, BoundsRoundUp) {
+    EXPECT_EQ(polyvol::cli::bound_text(3.33e-16), "3.4e-16");
+    EXPECT_EQ(polyvol::cli::bound_text(0.0125), "0.013");
+    EXPECT_EQ(polyvol::cli::bound_text(5e-324), "5e-324");
+    EXPECT_EQ(polyvol::cli::plus_minus(2.0, 0.25, 0), "2 ±0.25");
+}
+
+TEST(NumbersCli, AScaleTypedWithMoreDigitsThanItsDoubleIsNotExact) {
+    EXPECT_EQ(json_of("volume --json --scale 1.0000000000000001 " + kBox)["accuracy"], "error-bound");
+    EXPECT_EQ(json_of("volume --json --scale 2.0 " + kBox)["accuracy"], "correctly-rounded");
 }
 
 }  // namespace

@@ -47,4 +47,15 @@ TEST(WeldWithin, NeighbouringCellsAndNaN) {
     EXPECT_THROW(polyvol::weld_within(m, std::numeric_limits<double>::infinity()), std::invalid_argument);
 }
 
+// A tolerance far below the coordinates' spacing (1e-17 at 100: the
+// doubles there are 1.4e-14 apart) merges only equal points, at once.
+TEST(WeldWithin, ATinyToleranceMergesOnlyEqualPoints) {
+    Mesh m;
+    for (int i = 0; i < 200000; ++i) m.add_vertex(100 + i * 0x1p-40, 100, 100);
+    m.add_vertex(100, 100, 100);  // equal to the first
+    const polyvol::ToleranceWeld w = polyvol::weld_within(m, 1e-17);
+    EXPECT_EQ(w.moved, 0u);
+    EXPECT_EQ(m.vertex_count(), 200000u);
+}
+
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <bzlib.h>
 
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -81,6 +82,20 @@ TEST(Tar, MembersAndBadHeaders) {
     // a wrong checksum: not a tar at all
     tar[0] = std::byte{'b'};
     EXPECT_FALSE(polyvol::io::is_tar(tar));
+    EXPECT_TRUE(polyvol::io::tar_members(tar, "t.tar").empty());
+}
+
+// A pax record whose length would wrap the reader's position around (a
+// review found it looping forever): the header is skipped, promptly.
+TEST(Tar, APaxRecordLongerThanItsHeaderIsNotFollowed) {
+    const std::string records = "6 a=b\n18446744073709551610 x\n";
+    std::vector<std::byte> tar = tar_of("PaxHeader", records);
+    tar[156] = std::byte{'x'};
+    // recompute the checksum for the new type
+    std::memset(reinterpret_cast<char*>(tar.data()) + 148, ' ', 8);
+    unsigned sum = 0;
+    for (int i = 0; i < 512; ++i) sum += static_cast<unsigned char>(tar[static_cast<std::size_t>(i)]);
+    std::snprintf(reinterpret_cast<char*>(tar.data()) + 148, 8, "%06o", sum);
     EXPECT_TRUE(polyvol::io::tar_members(tar, "t.tar").empty());
 }
 
