@@ -1,4 +1,4 @@
-#include "overlap_command.hpp"
+#include "commands/overlap.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -7,7 +7,7 @@
 // chain. Exit codes: 0 ok, 1 usage, 2 an expression that does not parse, 3 F
 // is NaN at a lattice vertex / the solid reaches the box with --box-rule
 // error / the lattice is too large.
-#include "implicit_command.hpp"
+#include "commands/implicit.hpp"
 
 #include "grammar.hpp"
 #include "memory.hpp"

@@ -2,7 +2,7 @@
 // print (a report for people, or a JSON array of one object per file). Exit codes as the rest of the
 // command: 0 ok, 1 usage, 2 unreadable input, 3 a chain with unmatched faces
 // (its volume would depend on the origin) unless --allow-open.
-#include "ndim_command.hpp"
+#include "commands/ndim.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 //             intersection's volume per cell (exact in every cell)
 //   OUT.json  the summary only (as --json prints it)
 // Progress goes to stderr when the computation takes more than a second.
-#include "grid_command.hpp"
+#include "commands/grid.hpp"
 #include "grammar.hpp"
 
 #include <algorithm>

@@ -1,0 +1,223 @@
+// `polyvol volume`, `measure` and `check` (commands/measure.hpp).
+#include "commands/measure.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "grammar.hpp"
+#include "report.hpp"
+#include "units.hpp"
+
+namespace polyvol::cli {
+namespace {
+
+
+
+const char* const kWeldHelp =
+    "Merge points within this distance of one another (transitively) before anything else, for exports whose "
+    "coordinates differ in the last digits; the report says so, and the figures are the welded mesh's";
+
+const char* const kOrientHelp =
+    "Orient the faces first: consistently within each shell (a walk over the faces), and outward, cavities "
+    "inward by nesting; reports the faces flipped, then measures the oriented mesh";
+
+void add_measure_options(CLI::App* cmd, MeasureCommandOptions& c) {
+    cmd->add_option("files", c.files,
+                    "Mesh files (STL, OBJ, OFF, PLY, 3MF, AMF, glTF; .gz or .bz2; zip and tar archives of them); "
+                    "- reads stdin")
+        ->required();
+    auto* json = cmd->add_flag("--json", c.json, "Print JSON (an array with one object per file)");
+    cmd->add_option("--method", c.method,
+                    "Volume formula: cone (det/6 per triangle), prism (projected area x mean height), "
+                    "pyramid (per polygon face), vtnb (Franklin's vertex-edge-face formula)")
+        ->check(CLI::IsMember({"cone", "prism", "pyramid", "vtnb"}))
+        ->capture_default_str();
+    cmd->add_option("--formula", c.method, "")->check(CLI::IsMember({"cone", "prism", "pyramid", "vtnb"}))->group("");
+    cmd->add_option("--accuracy", c.accuracy,
+                    "correctly-rounded (exact value rounded once; also spelled exact) or fast (double, with an error "
+                    "bound; also spelled bounded)")
+        ->check(CLI::IsMember({"correctly-rounded", "fast", "exact", "bounded"}))
+        ->capture_default_str();
+    c.density_option =
+        cmd->add_option("--density", c.density,
+                        "Density: scales mass, moments and inertia; a number (mass per output unit³), or with a "
+                        "unit, 7850kg/m3 or 7.85g/cm3: the mass in kg and the inertia in kg·(output unit)², lengths "
+                        "in metres unless --to says otherwise (the coordinates' unit must be known: --units, or a "
+                        "3MF or AMF file's own)")
+            ->check(CLI::Validator(
+                [](std::string& v) -> std::string {
+                    if (parse_density(v)) return "";
+                    // Why not: the number (as the other options say it), else the unit.
+                    std::string number = v.substr(0, v.find_first_not_of("0123456789+-.eE"));
+                    if (number.empty()) return "not a number: " + v;
+                    if (const std::string why = positive_number()(number); !why.empty()) return why;
+                    return "unknown density unit '" + v.substr(number.size()) + "' (kg/m3 or g/cm3)";
+                },
+                "D[kg/m3|g/cm3]"))
+            ->capture_default_str();
+    const std::vector<std::string> units{"micron", "um", "mm", "cm", "m", "in", "ft"};
+    cmd->add_option("--units", c.units,
+                    "The coordinates' length unit (mm, cm, m, in, ft, micron); a 3MF or AMF file states its own")
+        ->check(CLI::IsMember(units));
+    cmd->add_option("--to", c.to, "Print lengths, areas, volumes and moments in this unit")->check(CLI::IsMember(units));
+    cmd->add_option("--scale", c.scale, "Multiply every coordinate by this first (after --units)")
+        ->check(positive_number());
+    cmd->add_option("--digits", c.digits,
+                    "At most this many significant digits in the table (default: the digits each figure's guarantee "
+                    "supports; JSON and CSV always give every digit)")
+        ->check(whole_number(1, 17));
+    cmd->add_flag("--verbose", c.verbose, "The guarantees in full below the table");
+    cmd->add_flag("--csv", c.csv, "Print CSV for spreadsheets (one row per file, every digit)")->excludes(json);
+    cmd->add_flag("--allow-open", c.allow_open,
+                  "Measure surfaces with unbalanced edges anyway (the result then depends on the origin)");
+    cmd->add_flag("--orient", c.orient, kOrientHelp);
+    cmd->add_option("--weld-tolerance", c.weld_tolerance, kWeldHelp)->check(positive_number());
+    cmd->add_flag("--signed", c.keep_signed,
+                  "Keep the signed sums of a surface that is inside out (negative volume, mass and inertia); by "
+                  "default its shells are turned outward, and the report says so");
+}
+
+Request make_request(const MeasureCommandOptions& c, bool need_mass) {
+    Request r;
+    static const std::map<std::string, Method> methods{
+        {"cone", Method::cone}, {"prism", Method::prism}, {"pyramid", Method::pyramid}, {"vtnb", Method::vtnb}};
+    r.measure.method = methods.at(c.method);
+    r.measure.accuracy = c.accuracy == "fast" || c.accuracy == "bounded" ? Accuracy::fast : Accuracy::correctly_rounded;
+    // A density with a unit is converted to kg per output unit³ (metres by default).
+    const Density d = *parse_density(c.density);
+    r.measure.density = d.value;
+    if (d.si) {
+        const LengthUnit out = *length_unit(c.to.empty() ? "m" : c.to);
+        const double metres = static_cast<double>(out.metre_num) / static_cast<double>(out.metre_den);
+        r.density_kg_m3 = d.kg_per_m3;
+        r.measure.density = d.kg_per_m3 * (metres * metres * metres);
+    }
+    r.units = c.units;
+    r.to = c.to;
+    r.scale = std::stod(c.scale);  // checked by positive_number()
+    r.scale_typed_exactly = typed_exactly(c.scale, r.scale);
+    r.allow_open = c.allow_open;
+    r.need_mass = need_mass;
+    r.orient = c.orient;
+    r.keep_signed = c.keep_signed;
+    r.weld_tolerance = c.weld_tolerance;
+    r.digits = c.digits;
+    r.verbose = c.verbose;
+    r.density_given = c.density_option && c.density_option->count() > 0;
+    return r;
+}
+
+enum class Command { volume, measure, check };
+
+int run(Command command, const MeasureCommandOptions& c) {
+    Request request = make_request(c, command != Command::check);
+    request.metres_when_known = c.format != "table";
+    // Binary STL through the streaming path: the table always, JSON only with
+    // --stream (the streaming path has no second moments, inertia, edge
+    // length or components: README).
+    // Streaming gives the file's own figures: no weld, orientation, units or scale.
+    request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid && !c.orient &&
+                     c.weld_tolerance == 0 && c.units.empty() && c.to.empty() && request.scale == 1 &&
+                     request.scale_typed_exactly &&
+                     request.density_kg_m3 == 0;
+    request.self_check_always = command == Command::check || c.solid;
+    request.volume_only = command == Command::volume && c.volume_only;
+    request.table_only = command == Command::volume && (!c.json || request.volume_only);
+    request.closedness_by_fingerprint = command == Command::volume && !c.json;
+    if (request.table_only) {
+        request.measure.second_moments = false;
+        request.measure.edge_length = false;
+    }
+    // A zip archive of plain meshes (not a 3MF or AMF package) is its members,
+    // each measured as a file of its own, "ARCHIVE:MEMBER".
+    std::vector<std::pair<std::string, std::string>> inputs;  // (file, member)
+    for (const std::string& f : c.files) {
+        const std::vector<std::string> members = f == "-" ? std::vector<std::string>{} : mesh_archive_members(f);
+        if (members.empty()) inputs.emplace_back(f, "");
+        for (const std::string& m : members) inputs.emplace_back(f, m);
+    }
+    std::vector<FileResult> results;
+    int code = Exit::ok;
+    // Progress on stderr only once the run has taken more than a second.
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const auto& [file, member] = inputs[i];
+        if (inputs.size() > 1 && std::chrono::steady_clock::now() - start > std::chrono::seconds(1))
+            std::cerr << "[" << (i + 1) << "/" << inputs.size() << "] " << file << (member.empty() ? "" : ":" + member) << "\n";
+        results.push_back(process_file(file, request, member));
+        const FileResult& r = results.back();
+        code = std::max(code, r.exit_code);
+        if (!r.error.empty()) std::cerr << "polyvol: " << r.error << "\n";
+        if (!r.warning.empty()) std::cerr << "polyvol: warning: " << r.warning << "\n";
+    }
+    if (c.csv && command != Command::check) {
+        std::cout << csv_table(results, request, command == Command::measure);
+        return code;
+    }
+    if (c.json) {
+        nlohmann::json out = nlohmann::json::array();
+        for (const auto& r : results) out.push_back(to_json(r, request));
+        std::cout << out.dump(2) << "\n";
+        return code;
+    }
+    switch (command) {
+        case Command::volume: std::cout << volume_table(results, request); break;
+        case Command::measure:
+            for (const auto& r : results)
+                if (r.mass)
+                    std::cout << (c.format == "table" ? measure_report(r, request)
+                                                      : inertial_element(r, request, c.format == "sdf"));
+            break;
+        case Command::check:
+            for (const auto& r : results)
+                if (r.topology) std::cout << check_report(r);
+            break;
+    }
+    return code;
+}
+
+}  // namespace
+
+void add_measure_commands(CLI::App& app, MeasureCommands& c) {
+    c.volume = app.add_subcommand("volume", "Volume, area and centroid, one row per file");
+    add_measure_options(c.volume, c.volume_opts);
+    c.volume->add_flag("--stream", c.volume_opts.stream,
+                     "With --json: measure binary STL by streaming it too (constant memory; only the keys the "
+                     "streaming path computes). The table always streams binary STL.");
+    c.volume->add_flag("--volume-only", c.volume_opts.volume_only,
+                     "Only the volume with its guarantee (and the closedness check), in the table and the JSON: "
+                     "the fastest path, e.g. a third less work per triangle for a streamed binary STL");
+    const char* solid_help =
+        "The full check: shells overlapping one another (where they do, the volume is the solid's: winding number "
+        ">= 1) in a binary STL too (loaded instead of streamed), and a surface crossing itself within a shell in "
+        "files of any size (by default up to 250000 triangles; it is reported, not resolved)";
+    c.volume->add_flag("--solid", c.volume_opts.solid, solid_help);
+    c.measure = app.add_subcommand("measure", "All mass properties (volume, area, edge length, centroid, "
+                                                  "second moments, inertia) with their guarantees");
+    add_measure_options(c.measure, c.measure_opts);
+    c.measure->add_flag("--solid", c.measure_opts.solid, solid_help);
+    c.measure->add_option("--format", c.measure_opts.format,
+                        "table (the report), or urdf / sdf: each file's <inertial> element (mass, origin at the "
+                        "centroid, the inertia about it), in the file's units scaled by --density")
+        ->check(CLI::IsMember({"table", "urdf", "sdf"}))
+        ->capture_default_str();
+    c.check = app.add_subcommand("check", "Topology report: boundary, non-manifold, misoriented and "
+                                              "unbalanced edges, shells and how they nest");
+    c.check->add_option("files", c.check_opts.files, "Mesh files; - reads stdin")->required();
+    c.check->add_flag("--json", c.check_opts.json, "Print JSON");
+    c.check->add_flag("--orient", c.check_opts.orient, kOrientHelp);
+    c.check->add_option("--weld-tolerance", c.check_opts.weld_tolerance, kWeldHelp)->check(positive_number());
+}
+
+int run_measure_commands(const MeasureCommands& c) {
+    if (c.volume && *c.volume) return run(Command::volume, c.volume_opts);
+    if (c.measure && *c.measure) return run(Command::measure, c.measure_opts);
+    if (c.check && *c.check) return run(Command::check, c.check_opts);
+    return -1;
+}
+
+}  // namespace polyvol::cli
