@@ -3,7 +3,11 @@ two_parts.3mf, a 3MF with two named objects as two build items: "block", the
 box [0, 2] x [0, 3] x [0, 4] (volume 24, area 52, centroid (1, 1.5, 2)), and
 "pin", the unit corner tetrahedron placed at (10, 0, 0) by its item's
 transform (volume 1/6, centroid (10.25, 0.25, 0.25))."""
-import zipfile
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from package_3mf import write_3mf  # noqa: E402
 
 BOX = [(x, y, z) for z in (0, 4) for y in (0, 3) for x in (0, 2)]
 QUADS = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
@@ -23,13 +27,4 @@ model = ('<?xml version="1.0" encoding="UTF-8"?>\n'
          + obj(1, "block", BOX, BOX_T) + obj(2, "pin", TET, TET_T)
          + '</resources>\n<build><item objectid="1"/><item objectid="2" transform="1 0 0 0 1 0 0 0 1 10 0 0"/></build>\n'
          '</model>\n')
-with zipfile.ZipFile("two_parts.3mf", "w", zipfile.ZIP_DEFLATED) as z:
-    z.writestr("[Content_Types].xml",
-               '<?xml version="1.0" encoding="UTF-8"?>\n<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
-               '<Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
-               '<Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>\n')
-    z.writestr("_rels/.rels",
-               '<?xml version="1.0" encoding="UTF-8"?>\n<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
-               '<Relationship Target="/3D/3dmodel.model" Id="rel0" '
-               'Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>\n')
-    z.writestr("3D/3dmodel.model", model)
+write_3mf("two_parts.3mf", model)

@@ -2,7 +2,11 @@
 directory with python3): the unit corner tetrahedron scaled by 2 (volume 4/3
 in the file's unit) as a 3MF whose model says unit="inch", and as an AMF
 whose root says unit="meter"."""
-import zipfile
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from package_3mf import write_3mf  # noqa: E402
 
 V = [(0, 0, 0), (2, 0, 0), (0, 2, 0), (0, 0, 2)]
 T = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
@@ -14,16 +18,7 @@ model = ('<?xml version="1.0" encoding="UTF-8"?>\n'
          + '</vertices><triangles>\n'
          + "".join(f'<triangle v1="{a}" v2="{b}" v3="{c}"/>\n' for a, b, c in T)
          + '</triangles></mesh></object></resources>\n<build><item objectid="1"/></build>\n</model>\n')
-with zipfile.ZipFile("tetra_inch.3mf", "w", zipfile.ZIP_DEFLATED) as z:
-    z.writestr("[Content_Types].xml",
-               '<?xml version="1.0" encoding="UTF-8"?>\n<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
-               '<Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
-               '<Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>\n')
-    z.writestr("_rels/.rels",
-               '<?xml version="1.0" encoding="UTF-8"?>\n<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
-               '<Relationship Target="/3D/3dmodel.model" Id="rel0" '
-               'Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>\n')
-    z.writestr("3D/3dmodel.model", model)
+write_3mf("tetra_inch.3mf", model)
 
 amf = ('<?xml version="1.0" encoding="UTF-8"?>\n<amf unit="meter">\n<object id="0"><mesh><vertices>\n'
        + "".join(f'<vertex><coordinates><x>{x}</x><y>{y}</y><z>{z}</z></coordinates></vertex>\n' for x, y, z in V)
