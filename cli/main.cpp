@@ -14,12 +14,8 @@
 // Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid
 // for the request; with several files the highest of theirs, every file still
 // reported. Results go to stdout, warnings and progress to stderr.
-#include <algorithm>
-#include <chrono>
 #include <iostream>
-#include <map>
-#include <string>
-#include <vector>
+#include <new>
 
 #include <CLI/CLI.hpp>
 

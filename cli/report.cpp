@@ -21,6 +21,17 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// An absolute bound on each entry of one of m's moment quantities (the
+// centroid, the first or second moments, an inertia tensor): its relative
+// bound times the largest entry's magnitude; 0 when they are correctly
+// rounded (each is then the exact value rounded once).
+double moments_bound(const MassProperties& m, std::span<const double> entries) {
+    if (m.moments_correctly_rounded) return 0;
+    double largest = 0;
+    for (double e : entries) largest = std::max(largest, std::fabs(e));
+    return m.moments_relative_error * largest;
+}
+
 std::string point_text(double x, double y, double z) {
     return "(" + shortest(x) + ", " + shortest(y) + ", " + shortest(z) + ")";
 }
@@ -427,13 +438,12 @@ void piece_figures(FileResult& r, const Request& q, const MeshView& view) {
 
 // A piece's figures in the JSON: each with its bound.
 nlohmann::json piece_json(const MassProperties& m) {
-    const double c = std::max({std::fabs(m.centroid[0]), std::fabs(m.centroid[1]), std::fabs(m.centroid[2])});
     return {{"volume", number(m.volume)},
             {"volume_error_bound", m.volume_correctly_rounded ? 0.0 : m.volume_error_bound},
             {"area", number(m.area)},
             {"area_relative_error", m.area_relative_error},
             {"centroid", {number(m.centroid[0]), number(m.centroid[1]), number(m.centroid[2])}},
-            {"centroid_error_bound", number(m.moments_correctly_rounded ? 0.0 : m.moments_relative_error * c)}};
+            {"centroid_error_bound", number(moments_bound(m, m.centroid))}};
 }
 
 // Whether a file the mesh readers refused is one `polyvol ndim` reads.
@@ -895,11 +905,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
             out << vol << "\n";
             continue;
         }
-        const double centroid_error =
-            m.moments_correctly_rounded
-                ? 0
-                : m.moments_relative_error *
-                      std::max({std::fabs(m.centroid[0]), std::fabs(m.centroid[1]), std::fabs(m.centroid[2])});
+        const double centroid_error = moments_bound(m, m.centroid);
         out << pad(vol, 24) << "  " << pad(number_text(m.area, m.area * m.area_relative_error, digits), 24) << "  "
             << centroid_text(m.centroid, centroid_error) << "\n";
         loaded_notes += "  " + r.file + ": area relative error <= " + shortest(m.area_relative_error) + "; centroid " +
@@ -966,15 +972,6 @@ std::string measure_report(const FileResult& r, const Request& request) {
     // Each figure shows the digits its guarantee supports (--digits caps them).
     const int digits = request.digits;
     const double volume_error = m.volume_correctly_rounded ? 0 : m.volume_error_bound;
-    const auto largest = [](std::span<const double> v) {
-        double x = 0;
-        for (double e : v) x = std::max(x, std::fabs(e));
-        return x;
-    };
-    // An absolute error for a moment quantity: its relative bound times its largest entry.
-    const auto moments_error = [&](std::span<const double> v) {
-        return m.moments_correctly_rounded ? 0.0 : m.moments_relative_error * largest(v);
-    };
     const std::string volume_text =
         m.volume_correctly_rounded ? number_text(m.volume, 0, digits) : plus_minus(m.volume, volume_error, digits);
     if (overlap) {
@@ -994,7 +991,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
         << "   [relative error <= " << bound_text(m.area_relative_error) << "]\n";
     out << "  edge length     " << number_text(m.edge_length, m.edge_length * m.edge_length_relative_error, digits)
         << unit_suffix(r, 1) << "   [relative error <= " << bound_text(m.edge_length_relative_error) << "]\n";
-    const double centroid_error = moments_error(m.centroid);
+    const double centroid_error = moments_bound(m, m.centroid);
     out << "  centroid        (" << number_text(m.centroid[0], centroid_error, digits) << ", "
         << number_text(m.centroid[1], centroid_error, digits) << ", " << number_text(m.centroid[2], centroid_error, digits)
         << ")" << unit_suffix(r, 1) << "\n";
@@ -1008,10 +1005,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     const auto pieces = [&](const char* what, const std::vector<FileResult::Piece>& list) {
         for (std::size_t i = 0; i < list.size() && i < 20; ++i) {
             const MassProperties& p = list[i].m;
-            const double c = p.moments_correctly_rounded ? 0.0
-                                                         : p.moments_relative_error * std::max({std::fabs(p.centroid[0]),
-                                                                                                std::fabs(p.centroid[1]),
-                                                                                                std::fabs(p.centroid[2])});
+            const double c = moments_bound(p, p.centroid);
             out << "  " << what << (*what ? " " : "") << list[i].name << ": volume "
                 << number_text(p.volume, p.volume_correctly_rounded ? 0 : p.volume_error_bound, digits) << unit_suffix(r, 3)
                 << ", area " << number_text(p.area, p.area * p.area_relative_error, digits) << unit_suffix(r, 2)
@@ -1025,7 +1019,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     if (r.shell_figures.size() > 1) pieces("", r.shell_figures);  // named "shell k"
     // A symmetric tensor {xx, yy, zz, xy, yz, zx} with labelled rows and columns.
     auto tensor = [&](const char* title, const std::array<double, 6>& s) {
-        const double error = moments_error(s);
+        const double error = moments_bound(m, s);
         char line[256];
         out << "  " << title;
         if (!r.length_unit.empty()) out << " [" << mass_unit_suffix(r, 5).substr(1) << "]";
@@ -1076,12 +1070,7 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
     // inertia each relative to the largest entry of its own array), so the
     // printed value is within twice the bound of the exact one.
     const double rel = m.moments_correctly_rounded ? 0.0 : m.moments_relative_error;
-    const auto largest = [](std::span<const double> a) {
-        double x = 0;
-        for (double e : a) x = std::max(x, std::fabs(e));
-        return x;
-    };
-    const double c_err = rel * largest(c), i_err = rel * largest(i), m_err = rel * std::fabs(m.mass);
+    const double c_err = moments_bound(m, c), i_err = moments_bound(m, i), m_err = rel * std::fabs(m.mass);
     const auto cs = [&](double x) { return shortest_within(x, c_err); };
     const auto is = [&](double x) { return shortest_within(x, i_err); };
     const std::string units = r.length_unit.empty() ? std::string("units as in the file")
@@ -1133,18 +1122,14 @@ std::string csv_table(const std::vector<FileResult>& results, const Request& req
             if (inertia) out << ",,,,,,,,,";
         } else if (r.mass) {
             const MassProperties& m = *r.mass;
-            const double c = std::max({std::fabs(m.centroid[0]), std::fabs(m.centroid[1]), std::fabs(m.centroid[2])});
             out << r.loaded->mesh.view().triangle_count() << "," << num(m.volume) << ","
                 << num(m.volume_correctly_rounded ? 0.0 : m.volume_error_bound) << "," << num(m.mass) << ","
                 << num(m.area) << "," << num(m.area_relative_error) << "," << num(m.centroid[0]) << ","
                 << num(m.centroid[1]) << "," << num(m.centroid[2]) << ","
-                << num(m.moments_correctly_rounded ? 0.0 : m.moments_relative_error * c);
+                << num(moments_bound(m, m.centroid));
             if (inertia) {
-                const auto& i = m.inertia_centroid;
-                double largest = 0;
-                for (double e : i) largest = std::max(largest, std::fabs(e));
-                for (double e : i) out << "," << num(e);
-                out << "," << num(m.moments_correctly_rounded ? 0.0 : m.moments_relative_error * largest) << ","
+                for (double e : m.inertia_centroid) out << "," << num(e);
+                out << "," << num(moments_bound(m, m.inertia_centroid)) << ","
                     << num(m.edge_length) << "," << num(m.edge_length_relative_error);
             }
         } else {

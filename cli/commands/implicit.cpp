@@ -125,9 +125,6 @@ nlohmann::json pass_json(const ImplicitPass& p) {
             {"seconds", p.seconds}};
 }
 
-// The shortest text that reads back as x.
-std::string number(double x) { return shortest(x); }
-
 std::string short_number(double x) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.3g", x);
@@ -317,7 +314,7 @@ int run_implicit_command(const ImplicitArgs& a) {
         return Exit::ok;
     }
     std::cout << "dimension           " << r.dimension << "\n";
-    std::cout << "h                   " << number(r.h) << "  (lattice";
+    std::cout << "h                   " << shortest(r.h) << "  (lattice";
     for (std::size_t k = 0; k < r.fine.cells.size(); ++k) std::cout << (k ? " x " : " ") << r.fine.cells[k];
     std::cout << " cells)\n";
     if (estimate) {
@@ -330,7 +327,7 @@ int run_implicit_command(const ImplicitArgs& a) {
         std::cout << "PL volume at 2h     " << plus_minus(r.coarse->volume, 4 * r.error_estimate, 0)
                   << "  (V(2h): 4 times the error at h)\n";
     } else {
-        std::cout << "volume              " << number(r.volume) << "  (the PL solid at h; no error estimate)\n";
+        std::cout << "volume              " << shortest(r.volume) << "  (the PL solid at h; no error estimate)\n";
     }
     std::cout << "boundary simplices  " << r.fine.boundary_simplices << "  (" << r.fine.crossed_simplices
               << " crossed " << r.dimension << "-simplices, " << r.fine.face_simplices << " in the box faces)\n";
