@@ -535,7 +535,11 @@ FileResult process_file(const std::string& file, const Request& request, const s
         (r.mass->volume < 0 || (!request.table_only ? r.topology && r.topology->inside_out_shells > 0
                                                     : several_parts && some_part_negative(view)))) {
         OrientResult o;
-        const TopologyReport shells = analyze_topology(view, TopologyOptions{.shells = true, .face_shells = true});
+        // Each face's shell: the topology's own when it has them (measure, --json).
+        std::optional<TopologyReport> own;
+        if (!r.topology || r.topology->face_shell.empty())
+            own = analyze_topology(view, TopologyOptions{.shells = true, .face_shells = true});
+        const TopologyReport& shells = own ? *own : *r.topology;
         for (std::size_t f = 0; f < view.face_count(); ++f) {
             const uint32_t sh = shells.face_shell[f];
             if (sh == TopologyReport::kNoShell || shells.shells[sh].role != ShellRole::inside_out) continue;
@@ -546,7 +550,8 @@ FileResult process_file(const std::string& file, const Request& request, const s
         o.components = shells.inside_out_shells;
         if (o.flipped > 0) {
             r.turned_outward = o;
-            if (r.topology) r.topology = analyze_topology(view, TopologyOptions{.shells = !request.table_only});
+            if (r.topology)
+                r.topology = analyze_topology(view, TopologyOptions{.shells = !request.table_only, .face_shells = pieces});
             r.mass = request.volume_only ? volume_only_properties(view, request.measure)
                                          : mass_properties(view, request.measure);
             r.warning += (r.warning.empty() ? "" : "; ") + path + ": inside out: " + std::to_string(o.components) +

@@ -244,6 +244,12 @@ TEST(JsonKeys, InsideOutShellsAreTurnedOutward) {
     const json m = run("measure --json '" + inward + "'");
     EXPECT_EQ(m["mass"], 8.0);
     EXPECT_GT(m["inertia"][0][0].get<double>(), 0);
+    // Each shell's own figures are those of the turned mesh too.
+    const json shells = run("measure --json '" + mixed + "'")["shells"];
+    ASSERT_EQ(shells.size(), 2u);
+    EXPECT_EQ(shells[0]["volume"], 8.0);
+    EXPECT_EQ(shells[1]["volume"], 1.0);
+    EXPECT_EQ(shells[1]["centroid"], json::array({5.5, 5.5, 5.5}));
 }
 
 // Principal moments and axes (measure, with their bounds): the box 1 x 2 x 3,
