@@ -870,6 +870,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     for (const auto& r : results) {
         any_fingerprint = any_fingerprint || r.streamed || r.closed_by_fingerprint;
         if (r.welded) notes += "  " + r.file + ": " + weld_sentence(*r.welded, r.weld_tolerance) + "\n";
+        if (r.loaded && r.loaded->mesh.view().triangle_count() == 0)
+            notes += "  " + r.file + ": no faces (a point cloud, or an empty file?): nothing to measure\n";
         if (r.oriented && r.oriented->orientable) notes += "  " + r.file + ": " + orient_sentence(*r.oriented) + "\n";
         if (r.streamed) {
             const SoupResult& s = *r.streamed;
