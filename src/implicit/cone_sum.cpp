@@ -11,6 +11,7 @@
 
 #include <tbb/task_arena.h>
 
+#include "core/simd.hpp"
 #include "implicit/surface.hpp"
 
 // Vec values cross no call boundary (lane_abs and eliminate are always
@@ -153,15 +154,8 @@ __attribute__((target("avx2"))) void eliminate_avx2(Batch<N>& b) {
     std::memcpy(b.bound, &bound, sizeof(Vec));
 }
 
-std::atomic<bool> g_avx2_allowed{true};
-
-bool use_avx2() {
-    static const bool available = [] {
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx2") != 0;
-    }();
-    return available && g_avx2_allowed.load(std::memory_order_relaxed);
-}
+// simd::level: the library's one CPU detection.
+bool use_avx2() { return simd::level() >= simd::Level::avx2; }
 #endif
 
 // Runs the batch's kernel (lanes past count repeat lane 0 and are ignored).
@@ -244,14 +238,6 @@ ConeTotals reduce_records(const std::vector<PieceRecord>& records, const Lattice
 }
 
 }  // namespace
-
-void allow_avx2_for_testing(bool allowed) {
-#if defined(__x86_64__) && defined(__GNUC__)
-    g_avx2_allowed.store(allowed, std::memory_order_relaxed);
-#else
-    (void)allowed;
-#endif
-}
 
 ConeSum::ConeSum(const Lattice& lattice) : lattice_(lattice), block_size_(2048) {
     for (int k = 0; k < lattice.n; ++k) apex_[k] = lattice.lo[k];

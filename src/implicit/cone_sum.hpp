@@ -112,8 +112,4 @@ private:
     double volume_ = 0, bound_ = 0;
 };
 
-// Tests: false makes the determinants take the portable path even where
-// AVX2 is present (they must give the same bits); true restores the default.
-void allow_avx2_for_testing(bool allowed);
-
 }  // namespace polyvol::implicit

@@ -15,8 +15,8 @@
 //                the pairs of 4 blocks into one; the rest: 4 lanes), the
 //                results added to a superaccumulator. Returns the exact sum
 //                of those approximations and a rigorous bound on its
-//                distance to the exact sum (see cone.cpp for the error
-//                analysis).
+//                distance to the exact sum (the error analysis is in
+//                docs/numerics.md, "The cone rule's kernels").
 //   exact      — each term as an exact expansion (Shewchuk) added to the
 //                superaccumulator: the exact sum.
 //   gmp        — big-integer arithmetic: the exact sum for any finite
@@ -63,7 +63,7 @@ struct ConeSums {
 // Filtered sums (needs Range::safe for the bound to hold).
 ConeSums filtered_sums(const MeshView& mesh, int count, Precision precision);
 
-// The two forms of the double-double volume term (cone.cpp):
+// The two forms of the double-double volume term (cone_terms-inl.h):
 //   translated — det = a · ((b - a) × (c - a)): its error bound grows with
 //                |a| |b - a| |c - a|, so it decides also far from the origin;
 //   origin     — det = a · (b × c), about 40% fewer operations: its bound is
@@ -89,7 +89,7 @@ VolumeForm likely_volume_form(const MeshView& mesh);
 // each vertex is read about twice or more (at least two indices per vertex)
 // every position is checked first, as cheaper; otherwise, or when one is
 // out of range, the pass checks the coordinates it reads. Below AVX-512
-// (the CPU's or cap_kernel_level's; the level is read once per call), where
+// (the CPU's or simd::limit_to's; read once per call), where
 // the pass cannot check, safe is coordinate_range(mesh) == Range::safe
 // instead: stricter, and the caller's exact fallback gives the same
 // results. When safe is false the sums are meaningless. The translated form
@@ -136,14 +136,5 @@ double filtered_bound(int k, Precision precision, double magnitude);
 // Adds the exact terms of one block to acc[k] for every k with bit k of mask
 // set (the kernel of exact_sums; needs Range::safe).
 void exact_block_sums(const TriangleBlock& b, uint32_t mask, exact::ExactSum* acc);
-
-// For tests: use the baseline kernels (no FMA: Dekker's two_prod) even on a
-// CPU with AVX2 + FMA (on), or the best the CPU has again (off).
-void force_baseline_kernels(bool on);
-
-// For tests: the highest instruction-set level the kernels may use
-// (0: baseline, 1: AVX2 + FMA, 2: AVX-512; capped by the CPU). Every level
-// gives the same bits.
-void cap_kernel_level(int level);
 
 }  // namespace polyvol::measure::cone

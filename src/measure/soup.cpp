@@ -75,6 +75,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/simd.hpp"
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "measure/cone.hpp"
@@ -82,7 +83,6 @@
 #include "measure/soup_testing.hpp"
 
 #if defined(__x86_64__) && defined(__GNUC__)
-#include <cpuid.h>
 #include <immintrin.h>
 #define POLYVOL_SOUP_X86 1
 #else
@@ -338,27 +338,12 @@ uint32_t pass1_portable(const std::byte* base, std::size_t stride, int n, const 
 #if POLYVOL_SOUP_X86
 // ---- x86 kernels: AVX2 + FMA + AES-NI, and AVX-512 + IFMA + VAES where present ----
 
-// Instruction sets, decided once: 0 portable, 1 AVX2 + FMA + AES-NI,
-// 2 that and AVX-512 (F, VL, DQ, BW, IFMA) + VAES.
-std::atomic<int> g_level_cap{-1};
-
+// Instruction sets (simd::level, the library's one CPU detection): 0
+// portable, 1 AVX2 + FMA + AES-NI, 2 that and AVX-512 (F, VL, DQ, BW, IFMA)
+// + VAES.
 int isa_level() {
-    static const int level = [] {
-        __builtin_cpu_init();
-        if (!(__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("aes")))
-            return 0;
-        // IFMA and VAES from CPUID leaf 7 (EBX bit 21, ECX bit 9): clang's
-        // __builtin_cpu_supports does not know "vaes".
-        unsigned a = 0, b = 0, c = 0, d = 0;
-        const bool leaf7 = __get_cpuid_count(7, 0, &a, &b, &c, &d) != 0;
-        const bool ifma = leaf7 && (b >> 21 & 1) != 0, vaes = leaf7 && (c >> 9 & 1) != 0;
-        if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") && ifma && vaes)
-            return 2;
-        return 1;
-    }();
-    const int cap = g_level_cap.load(std::memory_order_relaxed);
-    return cap >= 0 && cap < level ? cap : level;
+    if (simd::has_avx512_ifma_vaes()) return 2;
+    return simd::level() >= simd::Level::avx2 ? 1 : 0;
 }
 
 // Loads a block from the records (base: first coordinate of triangle 0) into
@@ -905,13 +890,6 @@ double up(double x) { return std::nextafter(x, kInf); }
 
 }  // namespace
 
-void measure::cap_soup_kernels(int max_level) {
-#if POLYVOL_SOUP_X86
-    g_level_cap.store(max_level, std::memory_order_relaxed);
-#else
-    (void)max_level;
-#endif
-}
 
 namespace {
 std::atomic<measure::SoupPass1Sums*> g_pass1_record{nullptr};  // record_soup_pass1

@@ -5,11 +5,6 @@
 
 namespace polyvol::measure {
 
-// Caps the pass-1 kernels used (when the CPU has more): 0 portable, 1 AVX2 +
-// FMA + AES-NI, 2 AVX-512 + VAES; -1 removes the cap. So tests can compare
-// every path on one machine. Not for use while a SoupAccumulator is fed.
-void cap_soup_kernels(int max_level);
-
 // Pass 1's exact sums over all blocks, before any bound or rounding: the
 // blocks' volume pairs (6 V) and magnitudes (6 M_b^3 n_b), first moments
 // (24 ∫x_i) and their magnitudes, 2 A and Σ X.

@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "core/simd.hpp"
 #include "implicit/cone_sum.hpp"
 #include "implicit/kuhn.hpp"
 #include "polyvol/implicit.hpp"
@@ -487,9 +488,9 @@ TEST(ImplicitSurface, StreamedVolumeHasTheSameBitsWithAndWithoutAvx2) {
         ImplicitOptions o = box_options(n, n <= 6 ? -0.5 : 0.0, 1.6, h[n - 2]);
         o.error_estimate = false;
         const ImplicitVolume fast = implicit_volume(tilted_ellipsoid, o);
-        implicit::allow_avx2_for_testing(false);
+        polyvol::simd::limit_to(polyvol::simd::Level::sse4);
         const ImplicitVolume portable = implicit_volume(tilted_ellipsoid, o);
-        implicit::allow_avx2_for_testing(true);
+        polyvol::simd::limit_to(polyvol::simd::Level::avx512);
         EXPECT_GT(fast.fine.boundary_simplices, 1000u) << n;
         EXPECT_EQ(fast.fine.volume, portable.fine.volume) << n;
         EXPECT_EQ(fast.fine.rounding_error_bound, portable.fine.rounding_error_bound) << n;

@@ -1,5 +1,6 @@
 // Tests of the cone rule's sums (src/measure/cone.hpp) against an
 // independent GMP computation: filtered bounds hold, exact sums are exact.
+#include "common/kernel_levels.hpp"
 #include "measure/cone.hpp"
 
 #include <gtest/gtest.h>
@@ -132,7 +133,7 @@ TEST(Cone, SplitOfTheWorkDoesNotMatter) {
 }
 
 TEST(Cone, BaselineKernelsWithoutFma) {
-    force_baseline_kernels(true);
+    polyvol::test::cap_kernel_level(0);
     for (const Mesh& m : test_meshes()) {
         const auto ref = fx::reference_sums(m.view());
         const ConeSums s = filtered_sums(m.view(), kSumCount, Precision::double_double);
@@ -142,5 +143,5 @@ TEST(Cone, BaselineKernelsWithoutFma) {
         exact_sums(m.view(), (1u << kSumCount) - 1, e);
         for (int k = 0; k < kSumCount; ++k) EXPECT_EQ(as_mpq(e.sum[k]), ref[static_cast<std::size_t>(k)]);
     }
-    force_baseline_kernels(false);
+    polyvol::test::cap_kernel_level(2);
 }

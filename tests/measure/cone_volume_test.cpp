@@ -16,6 +16,7 @@
 #include <random>
 #include <vector>
 
+#include "common/kernel_levels.hpp"
 #include "common/shapes.hpp"
 #include "cone_fixtures.hpp"
 #include "exact/rational.hpp"
@@ -38,20 +39,9 @@ bool same(double a, double b) {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Whether the CPU runs the AVX-512 kernels (cone.cpp's condition).
-bool cpu_has_avx512() {
-#if defined(__x86_64__) && defined(__GNUC__)
-    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-           __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#else
-    return false;
-#endif
-}
-
-// Restores the best kernels when a test ends (also on a failed assertion).
-struct LevelGuard {
-    ~LevelGuard() { cap_kernel_level(2); }
-};
+using polyvol::test::cap_kernel_level;
+using polyvol::test::cpu_has_avx512;
+using polyvol::test::LevelGuard;
 
 // Meshes with every shape of work: partial blocks, several parallel tasks,
 // polygon faces, the last vertex used early and late (the AVX2 gather leaves

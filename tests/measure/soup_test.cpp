@@ -22,6 +22,7 @@
 #include "common/files.hpp"
 #include "common/manifest.hpp"
 #include "exact/exact_sum.hpp"
+#include "common/kernel_levels.hpp"
 #include "measure/soup_testing.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
@@ -260,11 +261,11 @@ TEST(Soup, EveryKernelLevelGivesTheSameBits) {
     inputs.push_back(records_of(sphere(40, 70, 2, 0.5)));  // also a block count that is not a multiple of 4
     inputs.push_back(records_of(sphere(7, 5, 1, 0)));
     for (const auto& rec : inputs) {
-        measure::cap_soup_kernels(-1);
+        polyvol::test::cap_kernel_level(-1);
         const Recorded best = recorded(stl_records(rec), 3);
         for (int level : {0, 1, 2}) {
             SCOPED_TRACE(level);
-            measure::cap_soup_kernels(level);
+            polyvol::test::cap_kernel_level(level);
             const Recorded s = recorded(stl_records(rec), 3);
             expect_same(best.result, s.result);
             expect_same_pass1(best.pass1, s.pass1);
@@ -275,7 +276,7 @@ TEST(Soup, EveryKernelLevelGivesTheSameBits) {
             }
         }
     }
-    measure::cap_soup_kernels(-1);
+    polyvol::test::cap_kernel_level(-1);
 }
 
 // Random triangles with repeated coordinates, ±0.0, subnormals and large
@@ -303,11 +304,11 @@ TEST(Soup, EveryKernelLevelGivesTheSameBitsForEveryBlockTail) {
             SCOPED_TRACE(testing::Message() << "stride " << stride << ", " << n << " triangles");
             const auto rec = random_records(n, stride, offset, static_cast<unsigned>(n));
             const Float32Triangles t{rec.data(), n, stride, offset};
-            measure::cap_soup_kernels(-1);
+            polyvol::test::cap_kernel_level(-1);
             const Recorded best = recorded(t, 17);
             for (int level : {0, 1, 2}) {
                 SCOPED_TRACE(level);
-                measure::cap_soup_kernels(level);
+                polyvol::test::cap_kernel_level(level);
                 const Recorded s = recorded(t, 17);
                 expect_same(best.result, s.result);
                 expect_wants_agree(t, s, 17);
@@ -319,7 +320,7 @@ TEST(Soup, EveryKernelLevelGivesTheSameBitsForEveryBlockTail) {
             }
         }
     }
-    measure::cap_soup_kernels(-1);
+    polyvol::test::cap_kernel_level(-1);
 }
 
 TEST(Soup, EveryKernelLevelFlagsEveryNonFiniteCoordinate) {
@@ -338,7 +339,7 @@ TEST(Soup, EveryKernelLevelFlagsEveryNonFiniteCoordinate) {
         auto tri = closed;
         tri.insert(tri.end(), closed.begin(), closed.begin() + static_cast<long>(9 * c.tail));
         for (int level : {0, 1, 2}) {
-            measure::cap_soup_kernels(level);
+            polyvol::test::cap_kernel_level(level);
             for (std::size_t t : c.where) {
                 for (int k = 0; k < 9; ++k) {
                     for (float b : bad) {
@@ -361,7 +362,7 @@ TEST(Soup, EveryKernelLevelFlagsEveryNonFiniteCoordinate) {
             }
         }
     }
-    measure::cap_soup_kernels(-1);
+    polyvol::test::cap_kernel_level(-1);
 }
 
 #if defined(__linux__)
@@ -381,13 +382,13 @@ TEST(Soup, NoKernelReadsPastTheCoordinates) {
             const Float32Triangles t{data, n, stride, offset};
             for (int level : {0, 1, 2}) {
                 SCOPED_TRACE(testing::Message() << "stride " << stride << ", " << n << " triangles, level " << level);
-                measure::cap_soup_kernels(level);
+                polyvol::test::cap_kernel_level(level);
                 EXPECT_EQ(soup_properties(t, 3).triangles, n);
                 EXPECT_EQ(soup_properties(t, 3, SoupWants{false, false}).triangles, n);
             }
         }
     }
-    measure::cap_soup_kernels(-1);
+    polyvol::test::cap_kernel_level(-1);
     munmap(map, 3 * page);
 }
 #endif
