@@ -6,10 +6,17 @@
 
 namespace polyvol::test {
 
-// 0: scalar (no FMA: Dekker's two_prod), 1: up to AVX2 + FMA, 2 (or -1):
-// the CPU's best. Process-wide (simd::limit_to).
+// The levels the tests run, each capped by the CPU: 0 scalar (no FMA:
+// Dekker's two_prod; the portable hash), 1 up to SSE4, 2 up to AVX2 + FMA
+// (AES-NI), 3 the CPU's best (AVX-512 with IFMA and VAES where it has them).
+inline constexpr int kLevels[] = {0, 1, 2, 3};
+
+// Caps the kernels at a level (-1: the CPU's best). Process-wide (simd::limit_to).
 inline void cap_kernel_level(int level) {
-    simd::limit_to(level == 0 ? simd::Level::scalar : level == 1 ? simd::Level::avx2 : simd::Level::avx512);
+    simd::limit_to(level == 0   ? simd::Level::scalar
+                   : level == 1 ? simd::Level::sse4
+                   : level == 2 ? simd::Level::avx2
+                                : simd::Level::avx512);
 }
 
 // Whether the CPU runs the AVX-512 kernels.

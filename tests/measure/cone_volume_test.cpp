@@ -147,13 +147,13 @@ TEST(ConeVolume, BoundHoldsAndSameBitsOnEveryLevelAndThreadCount) {
     LevelGuard guard;
     for (const Mesh& m : meshes()) {
         const mpq_class ref = fx::reference_sums(m.view())[kV];
-        cap_kernel_level(2);
+        cap_kernel_level(-1);
         const Volume best = volume_of(m.view());
         EXPECT_TRUE(best.safe);
         EXPECT_EQ(best.triangles, m.view().triangle_count());
         EXPECT_LE(abs(best.sum - ref), q(best.bound));
         EXPECT_EQ(coordinate_range(m.view()), Range::safe);
-        for (int level : {0, 1, 2}) {
+        for (int level : polyvol::test::kLevels) {
             cap_kernel_level(level);
             for (int threads : {1, 2, 3}) {
                 tbb::global_control gc(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
@@ -176,7 +176,7 @@ TEST(ConeVolume, OriginFormBoundHoldsAndSameBitsOnEveryLevelAndThreadCount) {
     LevelGuard guard;
     for (const Mesh& m : meshes()) {
         const mpq_class ref = fx::reference_sums(m.view())[kV];
-        cap_kernel_level(2);
+        cap_kernel_level(-1);
         const Volume best = volume_of(m.view(), VolumeForm::origin);
         const Volume translated = volume_of(m.view(), VolumeForm::translated);
         EXPECT_TRUE(best.safe);
@@ -187,7 +187,7 @@ TEST(ConeVolume, OriginFormBoundHoldsAndSameBitsOnEveryLevelAndThreadCount) {
         if (m.positions[0] > 1e5 && m.positions[0] < 1e20) {
             EXPECT_GT(best.bound, 100 * translated.bound);
         }
-        for (int level : {0, 1, 2}) {
+        for (int level : polyvol::test::kLevels) {
             cap_kernel_level(level);
             for (int threads : {1, 3}) {
                 tbb::global_control gc(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
@@ -233,7 +233,7 @@ TEST(ConeVolume, AWrongGuessFallsBackToTheTranslatedForm) {
     // what the fallback in signed_volume relies on before any exact work.
     const Volume translated = volume_of(spread.view(), VolumeForm::translated);
     EXPECT_LT(q(translated.bound), abs(ref) * std::ldexp(1.0, -60));
-    for (int level : {0, 1, 2}) {
+    for (int level : polyvol::test::kLevels) {
         cap_kernel_level(level);
         EXPECT_PRED2(same, signed_volume(spread.view()), rnd(ref / 6)) << "level " << level;
     }
@@ -253,7 +253,7 @@ TEST(ConeVolume, BlockKernelIsThePassOnOneBlock) {
             for (int v = 0; v < 3; ++v)
                 for (int k = 0; k < 3; ++k)
                     b.c[3 * v + k][i] = m.positions[3 * std::size_t{m.indices[3 * static_cast<std::size_t>(i) + v]} + k];
-        for (int level : {0, 1, 2}) {
+        for (int level : polyvol::test::kLevels) {
             cap_kernel_level(level);
             exact::ExactSum sum, magnitude;
             filtered_volume_block(b, sum, magnitude);
@@ -327,7 +327,7 @@ TEST(ConeVolume, RangeCheckIsRangeSafeOnTheReferencedCoordinates) {
                 const std::size_t f = face_of[slot / 3];
                 const std::optional<mpq_class> changed = det_sum(m.view(), f, f + 1);
                 const double volume = changed ? rnd((total - face_det[f] + *changed) / 6) : kNaN;
-                for (int level : {0, 1, 2}) {
+                for (int level : polyvol::test::kLevels) {
                     cap_kernel_level(level);
                     SCOPED_TRACE(testing::Message()
                                  << "layout " << layout << ", x = " << x << ", slot " << slot << ", level " << level);
@@ -337,11 +337,11 @@ TEST(ConeVolume, RangeCheckIsRangeSafeOnTheReferencedCoordinates) {
             }
         }
     }
-    cap_kernel_level(2);
+    cap_kernel_level(-1);
     EXPECT_TRUE(volume_of(fx::box(0, 0, 0, 0x1p190, 0x1p-160, 1).view()).safe);
     EXPECT_FALSE(volume_of(fx::box(0, 0, 0, 0x1p191, 1, 1).view()).safe);
     EXPECT_FALSE(volume_of(fx::box(0, 0, 0, 0x1p-161, 1, 1).view()).safe);
-    if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512: the fused range check (level 2) did not run";
+    if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512: the fused range check (level 3) did not run";
 }
 
 TEST(ConeVolume, OutsideTheSafeRangeOnAUsedVertexIsStillExact) {
@@ -362,7 +362,7 @@ TEST(ConeVolume, OutsideTheSafeRangeOnAUsedVertexIsStillExact) {
     for (const Mesh& m : ms) {
         ASSERT_EQ(coordinate_range(m.view()), Range::unsafe);
         const double expect = rnd(fx::reference_sums(m.view())[kV] / 6);
-        for (int level : {0, 1, 2}) {
+        for (int level : polyvol::test::kLevels) {
             cap_kernel_level(level);
             EXPECT_FALSE(volume_of(m.view()).safe);
             EXPECT_PRED2(same, signed_volume(m.view()), expect) << "level " << level;
@@ -386,7 +386,7 @@ TEST(ConeVolume, UnusedVerticesDoNotMatter) {
     const Mesh clean = fx::random_sphere(rng, 5, 1.0, {1e6, 1e6, 1e6});
     const double expect = rnd(fx::reference_sums(clean.view())[kV] / 6);
     ASSERT_PRED2(same, signed_volume(clean.view()), expect);
-    cap_kernel_level(2);
+    cap_kernel_level(-1);
     const Volume ref = volume_of(clean.view());
     const Volume ref_origin = volume_of(clean.view(), VolumeForm::origin);
     for (double bad : {kNaN, kInf, 1e300, 1e-300}) {
@@ -399,10 +399,10 @@ TEST(ConeVolume, UnusedVerticesDoNotMatter) {
         for (uint32_t i : clean.indices) mid.indices.push_back(i >= 7 ? i + 1 : i);
         for (const Mesh* mm : {&m, &mid}) {
             EXPECT_NE(coordinate_range(mm->view()), Range::safe);
-            for (int level : {0, 1, 2}) {
+            for (int level : polyvol::test::kLevels) {
                 cap_kernel_level(level);
                 const Volume v = volume_of(mm->view());
-                EXPECT_EQ(v.safe, level == 2 && cpu_has_avx512()) << "bad " << bad << ", level " << level;
+                EXPECT_EQ(v.safe, level == 3 && cpu_has_avx512()) << "bad " << bad << ", level " << level;
                 if (v.safe) {
                     EXPECT_EQ(v.sum, ref.sum);
                     EXPECT_EQ(v.bound, ref.bound);
@@ -419,7 +419,7 @@ TEST(ConeVolume, UnusedVerticesDoNotMatter) {
             }
         }
     }
-    if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512: the fused range check (level 2) did not run";
+    if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512: the fused range check (level 3) did not run";
 }
 
 TEST(ConeVolume, WeldingASoupChangesNoVolume) {

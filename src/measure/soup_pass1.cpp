@@ -1,0 +1,709 @@
+// measure/soup_pass1.cpp — pass 1 of the streamed soup (polyvol/soup.hpp)
+// over a group of up to 4 blocks of 32 float32 triangle records, compiled
+// once per instruction set (Highway's foreach_target) and chosen by its
+// dispatch. Per triangle (a, b, c):
+//   6 V      det = a · (b × c) in double-double (h + lo), summed by Sum2 in
+//            8 lanes (lane j: triangles j mod 8), the lanes running on
+//            across the group's blocks;
+//   24 ∫x_i  d (a_i + b_i + c_i), d = fl(h + lo), with Σ |d| for its bound;
+//   2 A      |(b - a) × (c - a)|, with Σ X (the cross products' products);
+//   closed   the Vandermonde product of its vertices' hashes (mod p),
+//            summed: the fingerprint of soup.hpp.
+// The arithmetic is written once in Highway operations on rows of
+// coordinates. Where the rows come from depends on the target (scalar
+// loads; AVX2: 8 x 8 transposes of the records into a block of doubles;
+// AVX-512: the same transposes in registers), and so does the hash (a
+// portable multiply-xor; AES-NI; with AVX-512 IFMA and VAES, fused into the
+// loop). Every target gives the same sums, bit for bit; the fingerprint
+// differs between the portable hash and AES. The error analysis is in
+// docs/numerics.md, "The streamed soup".
+#include "core/hwy_targets.hpp"  // before Highway
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "measure/soup_pass1.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+
+#include <hwy/highway.h>
+
+#include "core/simd.hpp"
+#include "measure/cone_terms-inl.h"
+#include "measure/soup_pass1.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#if HWY_ARCH_X86
+#include <immintrin.h>
+#endif
+
+// GCC 12's AVX-512 intrinsics pass an undefined vector as the unused merge
+// operand, which -W(maybe-)uninitialized reports falsely.
+#if !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#pragma GCC diagnostic ignored "-Wuninitialized"
+
+HWY_BEFORE_NAMESPACE();
+namespace polyvol::measure::soup::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+namespace {
+
+using cone::HWY_NAMESPACE::D;
+using cone::HWY_NAMESPACE::kN;
+using cone::HWY_NAMESPACE::two_prod;
+using cone::HWY_NAMESPACE::two_sum;
+using cone::HWY_NAMESPACE::V;
+using fingerprint::kP;
+using fingerprint::mum;
+using fingerprint::reduce;
+using fingerprint::vandermonde;
+
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
+#define POLYVOL_SOUP_AVX2 1
+#else
+#define POLYVOL_SOUP_AVX2 0
+#endif
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+#define POLYVOL_SOUP_AVX512 1
+// Functions that use IFMA and VAES beside the target's own extensions (the
+// whole list: clang's target attribute replaces the target's, GCC's adds).
+#define POLYVOL_IFMA_ATTR __attribute__((target(HWY_TARGET_STR ",avx512ifma,vaes")))
+#define POLYVOL_IFMA_INLINE POLYVOL_IFMA_ATTR __attribute__((always_inline)) inline
+#else
+#define POLYVOL_SOUP_AVX512 0
+#endif
+
+constexpr int kSumLanes = 8;            // the volume's Sum2 lanes
+constexpr int kQ = kSumLanes / kN;      // vectors per set of 8 triangles
+constexpr int kSets = kB / kSumLanes;   // sets of 8 triangles per block
+constexpr uint32_t kNonFinite = 0x7F800000u;  // |coordinate| patterns from here: NaN or infinity
+
+// ---- the arithmetic, on rows --------------------------------------------------
+
+// Rows of a set of 8 triangles: c[3 v + k][q] holds coordinate k of vertex
+// v of triangles q kN .. q kN + kN - 1 of the set.
+struct SetRows {
+    V c[9][kQ];
+};
+
+// A block's lanes: the volume's Sum2 (S, E); the plain sums (kMA).
+struct BlockLanes {
+    V S[kQ], E[kQ];
+    V M[3][kQ], AD[kQ], X[kQ], T[kQ];
+};
+
+// Set g of a block into its lanes (the error analysis: docs/numerics.md).
+template <bool kMA>
+HWY_INLINE void add_set(int g, const SetRows& r, BlockLanes& s) {
+    for (int q = 0; q < kQ; ++q) {
+        const V ax = r.c[0][q], ay = r.c[1][q], az = r.c[2][q];
+        const V bx = r.c[3][q], by = r.c[4][q], bz = r.c[5][q];
+        const V cx = r.c[6][q], cy = r.c[7][q], cz = r.c[8][q];
+        // b × c: the products are exact (float32 significands).
+        V n0, t0, n1, t1, n2, t2;
+        two_sum(by * cz, hn::Neg(bz * cy), n0, t0);
+        two_sum(bz * cx, hn::Neg(bx * cz), n1, t1);
+        two_sum(bx * cy, hn::Neg(by * cx), n2, t2);
+        // a · (b × c) as h + l.
+        V P0, Q0, P1, Q1, P2, Q2;
+        two_prod(ax, n0, P0, Q0);
+        two_prod(ay, n1, P1, Q1);
+        two_prod(az, n2, P2, Q2);
+        V h1, g1, h, g2;
+        two_sum(P0, P1, h1, g1);
+        two_sum(h1, P2, h, g2);
+        const V l = ((g1 + g2) + ((Q0 + Q1) + Q2)) + ((ax * t0 + ay * t1) + az * t2);
+        if (g == 0) {
+            s.S[q] = h;
+            s.E[q] = l;
+        } else {
+            V ns, ne;
+            two_sum(s.S[q], h, ns, ne);
+            s.S[q] = ns;
+            s.E[q] = s.E[q] + (ne + l);
+        }
+        if constexpr (kMA) {
+            // First moments.
+            const V d = h + l;
+            const V ad = hn::Abs(d);
+            const V m0 = d * ((ax + bx) + cx), m1 = d * ((ay + by) + cy), m2 = d * ((az + bz) + cz);
+            // Area: |(b - a) × (c - a)|.
+            const V ux = bx - ax, uy = by - ay, uz = bz - az;
+            const V wx = cx - ax, wy = cy - ay, wz = cz - az;
+            const V p0 = uy * wz, q0 = uz * wy, p1 = uz * wx, q1 = ux * wz, p2 = ux * wy, q2 = uy * wx;
+            const V f0 = p0 - q0, f1 = p1 - q1, f2 = p2 - q2;
+            const V t = hn::Sqrt((f0 * f0 + f1 * f1) + f2 * f2);
+            const V x = ((hn::Abs(p0) + hn::Abs(q0)) + (hn::Abs(p1) + hn::Abs(q1))) + (hn::Abs(p2) + hn::Abs(q2));
+            if (g == 0) {
+                s.M[0][q] = m0, s.M[1][q] = m1, s.M[2][q] = m2;
+                s.AD[q] = ad, s.X[q] = x, s.T[q] = t;
+            } else {
+                s.M[0][q] = s.M[0][q] + m0, s.M[1][q] = s.M[1][q] + m1, s.M[2][q] = s.M[2][q] + m2;
+                s.AD[q] = s.AD[q] + ad, s.X[q] = s.X[q] + x, s.T[q] = s.T[q] + t;
+            }
+        }
+    }
+}
+
+// Σ of 8 lanes, pairwise.
+HWY_INLINE double lane_sum8(const double* a) { return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7])); }
+
+HWY_INLINE double lanes_sum(const V (&v)[kQ]) {
+    alignas(64) double a[kSumLanes];
+    for (int q = 0; q < kQ; ++q) hn::Store(v[q], D(), a + q * kN);
+    return lane_sum8(a);
+}
+
+#if POLYVOL_SOUP_AVX512
+// Σ of each of eight vectors, in lane_sum8's order: {lane_sum8(v[0]), ..., lane_sum8(v[7])}.
+HWY_INLINE __m512d lane_sums8(const __m512d v[8]) {
+    // [a0+a1, b0+b1, a2+a3, b2+b3, a4+a5, b4+b5, a6+a7, b6+b7] for the pairs (a, b).
+    __m512d t[4];
+    for (int j = 0; j < 4; ++j)
+        t[j] = _mm512_add_pd(_mm512_unpacklo_pd(v[2 * j], v[2 * j + 1]), _mm512_unpackhi_pd(v[2 * j], v[2 * j + 1]));
+    // [a0..3, b0..3, a4..7, b4..7, c0..3, d0..3, c4..7, d4..7] for the quadruples (a, b, c, d).
+    __m512d u[2];
+    for (int j = 0; j < 2; ++j)
+        u[j] = _mm512_add_pd(_mm512_shuffle_f64x2(t[2 * j], t[2 * j + 1], 0x88),
+                             _mm512_shuffle_f64x2(t[2 * j], t[2 * j + 1], 0xDD));
+    return _mm512_add_pd(_mm512_shuffle_f64x2(u[0], u[1], 0x88), _mm512_shuffle_f64x2(u[0], u[1], 0xDD));
+}
+
+#endif
+
+// A block's plain sums (each lane_sum8 of its lanes).
+HWY_INLINE void finish_block(const BlockLanes& s, Pass1Block& out) {
+#if POLYVOL_SOUP_AVX512
+    static_assert(kQ == 1);
+    alignas(64) double sums[8];
+    const __m512d lanes[8] = {s.M[0][0].raw, s.M[1][0].raw, s.M[2][0].raw, s.AD[0].raw,
+                              s.X[0].raw,    s.T[0].raw,    s.T[0].raw,    s.T[0].raw};
+    _mm512_store_pd(sums, lane_sums8(lanes));
+    for (int k = 0; k < 3; ++k) out.mom[k] = sums[k];
+    out.abs_d = sums[3];
+    out.cross = sums[4];
+    out.area2 = sums[5];
+#else
+    for (int k = 0; k < 3; ++k) out.mom[k] = lanes_sum(s.M[k]);
+    out.abs_d = lanes_sum(s.AD);
+    out.cross = lanes_sum(s.X);
+    out.area2 = lanes_sum(s.T);
+#endif
+}
+
+// Sum2's lanes (sums s, errors e) into one pair (vs, ve): the sums by
+// two_sum in lane order, their errors and the lanes' in double.
+POLYVOL_INLINE void combine_lanes(const double* s, const double* e, double& vs, double& ve) {
+    vs = s[0];
+    ve = lane_sum8(e);
+    for (int j = 1; j < kSumLanes; ++j) {
+        double ns, ne;
+        two_sum(vs, s[j], ns, ne);
+        vs = ns;
+        ve += ne;
+    }
+}
+
+// The group's Sum2 lanes: each block's (S, E) taken in by Sum2, then the
+// lanes into one pair.
+struct GroupLanes {
+    V GS[kQ], GE[kQ];
+
+    HWY_INLINE void add_block(int b, const BlockLanes& s) {
+        for (int q = 0; q < kQ; ++q) {
+            if (b == 0) {
+                GS[q] = s.S[q];
+                GE[q] = s.E[q];
+            } else {
+                V ns, ne;
+                two_sum(GS[q], s.S[q], ns, ne);
+                GS[q] = ns;
+                GE[q] = GE[q] + (ne + s.E[q]);
+            }
+        }
+    }
+
+    HWY_INLINE void finish(double& vs, double& ve) const {
+        alignas(64) double s[kSumLanes], e[kSumLanes];
+        for (int q = 0; q < kQ; ++q) {
+            hn::Store(GS[q], D(), s + q * kN);
+            hn::Store(GE[q], D(), e + q * kN);
+        }
+        combine_lanes(s, e, vs, ve);
+    }
+};
+
+// Asks for the cache lines of the records kPrefetchAhead bytes past a
+// block's start (bytes: the block's extent). The records stream in from
+// memory (page cache, a mapping) faster with this than with the hardware
+// prefetcher alone: 8M records in memory on one core, 42 -> 38 ms (AMD
+// Zen 4); 4 KB and 16 KB ahead did less. Integer arithmetic: the address
+// may lie past the input, which a prefetch never faults on.
+constexpr std::uintptr_t kPrefetchAhead = 8192;
+
+POLYVOL_INLINE void prefetch_ahead(const std::byte* block, std::size_t bytes) {
+    const std::uintptr_t a = reinterpret_cast<std::uintptr_t>(block) + kPrefetchAhead;
+    for (std::size_t o = 0; o < bytes; o += 64) __builtin_prefetch(reinterpret_cast<const void*>(a + o));
+}
+
+// ---- blocks through a block of doubles (below AVX-512, or without IFMA) -------
+
+// Coordinates of a block as doubles: c[3 v + k][i]; unused slots zero.
+struct Coords {
+    alignas(64) double c[9][kB];
+};
+
+// Words of a block: w[i][3 v + k] is the canonical bit pattern of coordinate
+// k of vertex v of triangle i (-0.0 mapped to +0.0).
+using Words = uint32_t[kB][9];
+
+// A block's records into co (and their canonical words into w): the largest
+// |coordinate| bit pattern.
+HWY_INLINE uint32_t load_block_portable(const std::byte* base, std::size_t stride, int n, Coords& co, Words& w) {
+    uint32_t mx = 0;
+    for (int i = 0; i < n; ++i) {
+        std::memcpy(w[i], base + static_cast<std::size_t>(i) * stride, 36);
+        for (int k = 0; k < 9; ++k) {
+            uint32_t bits = w[i][k];
+            bits = bits == 0x80000000u ? 0u : bits;
+            w[i][k] = bits;
+            mx = std::max(mx, bits & 0x7FFFFFFFu);
+            co.c[k][i] = static_cast<double>(std::bit_cast<float>(bits));
+        }
+    }
+    for (int k = 0; k < 9; ++k)
+        for (int i = n; i < kB; ++i) co.c[k][i] = 0;
+    return mx;
+}
+
+// Portable vertex hash: two multiply-xor rounds (wyhash's mixing) for each
+// 64-bit half; the four 32-bit quarters cut to 31 bits are the four lanes.
+HWY_INLINE void fingerprint_portable(const Words& w, int n, const Keys& key, uint64_t out[kFpLanes]) {
+    uint64_t acc[kFpLanes] = {};
+    for (int i = 0; i < n; ++i) {
+        uint64_t h[3][kFpLanes];
+        for (int v = 0; v < 3; ++v) {
+            const uint64_t w0 = w[i][3 * v] | static_cast<uint64_t>(w[i][3 * v + 1]) << 32;
+            const uint64_t w1 = w[i][3 * v + 2];
+            for (int half = 0; half < 2; ++half) {
+                const uint64_t* k = key.mix[half];
+                const uint64_t x = mum(mum(w0 ^ k[0], w1 ^ k[1]) ^ k[2], w0 ^ k[3]);
+                h[v][2 * half] = x & kP;
+                h[v][2 * half + 1] = (x >> 32) & kP;
+            }
+        }
+        for (int l = 0; l < kFpLanes; ++l) acc[l] += vandermonde(h[0][l], h[1][l], h[2][l]);
+    }
+    for (int l = 0; l < kFpLanes; ++l) out[l] = reduce(acc[l]);
+}
+
+#if POLYVOL_SOUP_AVX2
+// Loads a block from the records (base: first coordinate of triangle 0) into
+// structure of arrays: 8 rows of coordinates 0..7 per 8 triangles, an 8x8
+// transpose, coordinate 8 apart. Returns the largest
+// |coordinate| bit pattern (>= 0x7F800000: NaN or infinity).
+HWY_INLINE uint32_t load_block_avx2(const std::byte* base, std::size_t stride,
+                                                                            int n, Coords& co) {
+    const __m256i absmask = _mm256_set1_epi32(0x7FFFFFFF);
+    __m256i mx = _mm256_setzero_si256();
+    for (int i0 = 0; i0 < kB; i0 += 8) {
+        const int m = std::min(8, n - i0);
+        __m256 row[8];
+        float last[8];
+        for (int j = 0; j < 8; ++j) {
+            if (j < m) {
+                const std::byte* r = base + static_cast<std::size_t>(i0 + j) * stride;
+                row[j] = _mm256_loadu_ps(reinterpret_cast<const float*>(r));
+                std::memcpy(&last[j], r + 32, 4);
+            } else {
+                row[j] = _mm256_setzero_ps();
+                last[j] = 0;
+            }
+        }
+        const __m256 t0 = _mm256_unpacklo_ps(row[0], row[1]), t1 = _mm256_unpackhi_ps(row[0], row[1]);
+        const __m256 t2 = _mm256_unpacklo_ps(row[2], row[3]), t3 = _mm256_unpackhi_ps(row[2], row[3]);
+        const __m256 t4 = _mm256_unpacklo_ps(row[4], row[5]), t5 = _mm256_unpackhi_ps(row[4], row[5]);
+        const __m256 t6 = _mm256_unpacklo_ps(row[6], row[7]), t7 = _mm256_unpackhi_ps(row[6], row[7]);
+        const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+        const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
+        const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xEE);
+        const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xEE);
+        const __m256 col[9] = {_mm256_permute2f128_ps(u0, u4, 0x20), _mm256_permute2f128_ps(u1, u5, 0x20),
+                               _mm256_permute2f128_ps(u2, u6, 0x20), _mm256_permute2f128_ps(u3, u7, 0x20),
+                               _mm256_permute2f128_ps(u0, u4, 0x31), _mm256_permute2f128_ps(u1, u5, 0x31),
+                               _mm256_permute2f128_ps(u2, u6, 0x31), _mm256_permute2f128_ps(u3, u7, 0x31),
+                               _mm256_loadu_ps(last)};
+        for (int k = 0; k < 9; ++k) {
+            // (-0.0 stays: it adds the same exact 0 to every sum as +0.0.)
+            mx = _mm256_max_epu32(mx, _mm256_and_si256(_mm256_castps_si256(col[k]), absmask));
+            _mm256_store_pd(&co.c[k][i0], _mm256_cvtps_pd(_mm256_castps256_ps128(col[k])));
+            _mm256_store_pd(&co.c[k][i0 + 4], _mm256_cvtps_pd(_mm256_extractf128_ps(col[k], 1)));
+        }
+    }
+    __m128i m4 = _mm_max_epu32(_mm256_castsi256_si128(mx), _mm256_extracti128_si256(mx, 1));
+    m4 = _mm_max_epu32(m4, _mm_shuffle_epi32(m4, 0x4E));
+    m4 = _mm_max_epu32(m4, _mm_shuffle_epi32(m4, 0xB1));
+    return static_cast<uint32_t>(_mm_cvtsi128_si32(m4));
+}
+
+// The vertices of triangle r (r: its first coordinate) at bytes [0,12),
+// [12,24), [24,36) as 128-bit values with a zero top word, -0.0 mapped to
+// +0.0; no load leaves [0, 36).
+HWY_INLINE void vertices(const std::byte* r, __m128i& a, __m128i& b, __m128i& c) {
+    const __m128i low96 = _mm_set_epi32(0, -1, -1, -1);
+    const __m128i sign = _mm_set1_epi32(static_cast<int>(0x80000000u));
+    a = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r)), low96);
+    b = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r + 12)), low96);
+    c = _mm_srli_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r + 20)), 4);
+    a = _mm_andnot_si128(_mm_cmpeq_epi32(a, sign), a);
+    b = _mm_andnot_si128(_mm_cmpeq_epi32(b, sign), b);
+    c = _mm_andnot_si128(_mm_cmpeq_epi32(c, sign), c);
+}
+
+// x ≡ fold(x) (mod p) on 64-bit lanes.
+HWY_INLINE __m256i fold4(__m256i x) {
+    return _mm256_add_epi64(_mm256_and_si256(x, _mm256_set1_epi64x(static_cast<long long>(kP))), _mm256_srli_epi64(x, 31));
+}
+
+// Vandermonde products of two triangles at once (one per 128-bit half; four
+// 31-bit lanes each), mod p: differences + p (<= 2p < 2^32), 32 x 32 -> 64-bit
+// products of the even and odd lanes apart, folded mod p.
+HWY_INLINE void vandermonde8(__m256i A, __m256i B, __m256i C, __m256i& even,
+                                                                      __m256i& odd) {
+    const __m256i P = _mm256_set1_epi32(static_cast<int>(kP));
+    const __m256i d1 = _mm256_add_epi32(_mm256_sub_epi32(B, A), P);
+    const __m256i d2 = _mm256_add_epi32(_mm256_sub_epi32(C, A), P);
+    const __m256i d3 = _mm256_add_epi32(_mm256_sub_epi32(C, B), P);
+    __m256i e = fold4(fold4(_mm256_mul_epu32(d1, d2)));  // < 2^31 + 8
+    __m256i o = fold4(fold4(_mm256_mul_epu32(_mm256_srli_epi64(d1, 32), _mm256_srli_epi64(d2, 32))));
+    even = _mm256_add_epi64(even, fold4(_mm256_mul_epu32(e, d3)));  // each < 2^31 + 2^33
+    odd = _mm256_add_epi64(odd, fold4(_mm256_mul_epu32(o, _mm256_srli_epi64(d3, 32))));
+}
+
+HWY_INLINE void finish_lanes(__m256i even, __m256i odd, uint64_t fp[kFpLanes]) {
+    alignas(32) uint64_t ev[4], od[4];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(ev), even);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(od), odd);
+    // 64-bit element j of `even` is lane 2 (j mod 2) of the triangle in half j / 2.
+    fp[0] = reduce(ev[0] + ev[2]);
+    fp[1] = reduce(od[0] + od[2]);
+    fp[2] = reduce(ev[1] + ev[3]);
+    fp[3] = reduce(od[1] + od[3]);
+}
+
+// The fingerprint of a block with AES-NI: each vertex through three AES
+// rounds (after whitening), the four 32-bit words cut to 31 bits as lanes.
+HWY_INLINE void fingerprint_aesni(const std::byte* base, std::size_t stride, int n,
+                                                           const Keys& key, uint64_t fp[kFpLanes]) {
+    const __m128i k0 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[0]));
+    const __m128i k1 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[1]));
+    const __m128i k2 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[2]));
+    const __m128i k3 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[3]));
+    const __m128i P = _mm_set1_epi32(static_cast<int>(kP));
+    __m256i even = _mm256_setzero_si256(), odd = _mm256_setzero_si256();
+    for (int i = 0; i < n; i += 2) {
+        __m128i v[2][3];
+        for (int h = 0; h < 2; ++h) {
+            if (i + h < n) {
+                vertices(base + static_cast<std::size_t>(i + h) * stride, v[h][0], v[h][1], v[h][2]);
+                for (int j = 0; j < 3; ++j) {
+                    __m128i x = _mm_aesenc_si128(_mm_xor_si128(v[h][j], k0), k1);
+                    x = _mm_aesenc_si128(x, k2);
+                    v[h][j] = _mm_and_si128(_mm_aesenc_si128(x, k3), P);
+                }
+            } else {
+                v[h][0] = v[h][1] = v[h][2] = _mm_setzero_si128();  // a degenerate triangle adds 0
+            }
+        }
+        vandermonde8(_mm256_set_m128i(v[1][0], v[0][0]), _mm256_set_m128i(v[1][1], v[0][1]),
+                     _mm256_set_m128i(v[1][2], v[0][2]), even, odd);
+    }
+    finish_lanes(even, odd, fp);
+}
+
+#endif
+
+// Pass 1 for a group, block by block through Coords: rows loaded from it.
+template <bool kFp, bool kMA>
+HWY_INLINE bool group_via_coords(const std::byte* base, std::size_t stride, int n, const Keys& keys, Pass1Group& g) {
+    const D d;
+    for (int l = 0; l < kFpLanes; ++l) g.fp[l] = 0;
+    GroupLanes lanes;
+    for (int b = 0; b * kB < n; ++b) {
+        const int nb = std::min(kB, n - b * kB);
+        const std::byte* const bb = base + static_cast<std::size_t>(b * kB) * stride;
+        prefetch_ahead(bb, kB * stride);
+        Coords co;
+#if POLYVOL_SOUP_AVX2
+        const uint32_t mx = load_block_avx2(bb, stride, nb, co);
+#else
+        Words w;
+        const uint32_t mx = load_block_portable(bb, stride, nb, co, w);
+#endif
+        if (mx >= kNonFinite) return false;
+        g.mx[b] = mx;
+        BlockLanes s;
+        for (int set = 0; set < kSets; ++set) {
+            SetRows r;
+            for (int k = 0; k < 9; ++k)
+                for (int q = 0; q < kQ; ++q) r.c[k][q] = hn::Load(d, &co.c[k][kSumLanes * set + kN * q]);
+            add_set<kMA>(set, r, s);
+        }
+        if constexpr (kMA) finish_block(s, g.block[b]);
+        lanes.add_block(b, s);
+        if constexpr (kFp) {
+            uint64_t fp[kFpLanes];
+#if POLYVOL_SOUP_AVX2
+            fingerprint_aesni(bb, stride, nb, keys, fp);
+#else
+            fingerprint_portable(w, nb, keys, fp);
+#endif
+            for (int l = 0; l < kFpLanes; ++l) g.fp[l] = (g.fp[l] + fp[l]) % kP;
+        }
+    }
+    lanes.finish(g.vs, g.ve);
+    return true;
+}
+
+// ---- AVX-512 with IFMA and VAES: rows and hashes in registers -------------------
+
+#if POLYVOL_SOUP_AVX512
+// x ≡ fold(x) (mod p) on 64-bit lanes.
+POLYVOL_IFMA_INLINE __m512i fold16(__m512i x) {
+    return _mm512_add_epi64(_mm512_and_si512(x, _mm512_set1_epi64(static_cast<long long>(kP))), _mm512_srli_epi64(x, 31));
+}
+
+// A 128-bit round key in all four 128-bit quarters.
+POLYVOL_IFMA_INLINE __m512i key512(const uint64_t k[2]) {
+    return _mm512_broadcast_i32x4(_mm_load_si128(reinterpret_cast<const __m128i*>(k)));
+}
+
+// Vertex v (v = 0, 1, 2) of the four triangles at r[0..3] (first
+// coordinate of each) in the four 128-bit quarters, canonical (top word 0,
+// -0.0 as +0.0) and whitened with k0 (x ^ k0). words: 0x7777 (the three
+// coordinates of each quarter), without the quarters that are to hold the
+// point 0. Vertex 2 is loaded from bytes [20, 36) and shifted: no load
+// leaves [0, 36). Quarters 1..3 come by masked broadcasts from memory, which
+// spare the shuffle unit that inserts would take.
+template <int v>
+POLYVOL_IFMA_INLINE __m512i whitened_vertices(const std::byte* const r[4],
+                                                                                       __mmask16 words, __m512i k0) {
+    constexpr int off = v < 2 ? 12 * v : 20;
+    __m512i x = _mm512_castsi128_si512(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r[0] + off)));
+    x = _mm512_mask_broadcast_i32x4(x, 0x00F0, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[1] + off)));
+    x = _mm512_mask_broadcast_i32x4(x, 0x0F00, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[2] + off)));
+    x = _mm512_mask_broadcast_i32x4(x, 0xF000, _mm_loadu_si128(reinterpret_cast<const __m128i*>(r[3] + off)));
+    if constexpr (v == 2) x = _mm512_bsrli_epi128(x, 4);
+    // Words kept: those in `words`, unless -0.0; the others are 0, whitened: k0.
+    const __mmask16 keep = _mm512_mask_cmpneq_epi32_mask(words, x, _mm512_set1_epi32(static_cast<int>(0x80000000u)));
+    return _mm512_mask_xor_epi32(k0, keep, x, k0);
+}
+
+// The fingerprint with VAES: four triangles per 512-bit vector, four
+// vertices per AES instruction (the same hash values as fingerprint_aesni).
+// The last multiplication of each Vandermonde product uses IFMA's 52-bit
+// multiplies, the product's bits 0..51 and 52..103 summed apart (2^52 ≡ 2^21).
+// Bounds: hashes h <= p; d = h_y + (p - h_x) <= 2p < 2^32; e = fold(d1 d2) <
+// 2^31 + 2^33 < 2^34 (d1 d2 < 2^64); e d3 < 2^66, so its low 52 bits are
+// < 2^52 and its high part < 2^14; over the 32 steps of a group (4 blocks)
+// the sums stay below 2^57 and 2^19, and lo + 2^21 hi < 2^58 per 64-bit element.
+struct Fingerprint512 {
+    __m512i k0, k1, k2, k3;
+    __m512i even_lo, even_hi, odd_lo, odd_hi;
+
+    POLYVOL_IFMA_INLINE explicit Fingerprint512(const Keys& key)
+        : k0(key512(key.aes[0])), k1(key512(key.aes[1])), k2(key512(key.aes[2])), k3(key512(key.aes[3])),
+          even_lo(_mm512_setzero_si512()), even_hi(even_lo), odd_lo(even_lo), odd_hi(even_lo) {}
+
+    // Four triangles (r: their first coordinates; see whitened_vertices for words).
+    POLYVOL_IFMA_INLINE void add4(const std::byte* const r[4],
+                                                                             __mmask16 words) {
+        __m512i w[3] = {whitened_vertices<0>(r, words, k0), whitened_vertices<1>(r, words, k0),
+                        whitened_vertices<2>(r, words, k0)};
+        for (__m512i& x : w) x = _mm512_aesenc_epi128(_mm512_aesenc_epi128(_mm512_aesenc_epi128(x, k1), k2), k3);
+        // The hashes h = w & p, and p - h = ~w & p.
+        const __m512i P = _mm512_set1_epi32(static_cast<int>(kP));
+        const __m512i hb = _mm512_and_si512(w[1], P), hc = _mm512_and_si512(w[2], P);
+        const __m512i na = _mm512_andnot_si512(w[0], P), nb = _mm512_andnot_si512(w[1], P);
+        const __m512i d1 = _mm512_add_epi32(hb, na);
+        const __m512i d2 = _mm512_add_epi32(hc, na);
+        const __m512i d3 = _mm512_add_epi32(hc, nb);
+        // Even and odd 32-bit lanes apart.
+        const __m512i e = fold16(_mm512_mul_epu32(d1, d2));
+        const __m512i o = fold16(_mm512_mul_epu32(_mm512_srli_epi64(d1, 32), _mm512_srli_epi64(d2, 32)));
+        const __m512i d3e = _mm512_and_si512(d3, _mm512_set1_epi64(0xFFFFFFFFll)), d3o = _mm512_srli_epi64(d3, 32);
+        even_lo = _mm512_madd52lo_epu64(even_lo, e, d3e);
+        even_hi = _mm512_madd52hi_epu64(even_hi, e, d3e);
+        odd_lo = _mm512_madd52lo_epu64(odd_lo, o, d3o);
+        odd_hi = _mm512_madd52hi_epu64(odd_hi, o, d3o);
+    }
+
+    POLYVOL_IFMA_INLINE void finish(uint64_t fp[kFpLanes]) const {
+        alignas(64) uint64_t ev[8], od[8];
+        _mm512_store_si512(ev, _mm512_add_epi64(even_lo, _mm512_slli_epi64(even_hi, 21)));
+        _mm512_store_si512(od, _mm512_add_epi64(odd_lo, _mm512_slli_epi64(odd_hi, 21)));
+        // 64-bit element j is lane 2 (j mod 2) (ev) or 2 (j mod 2) + 1 (od) of a triangle.
+        fp[0] = reduce((ev[0] + ev[2]) + (ev[4] + ev[6]));
+        fp[1] = reduce((od[0] + od[2]) + (od[4] + od[6]));
+        fp[2] = reduce((ev[1] + ev[3]) + (ev[5] + ev[7]));
+        fp[3] = reduce((od[1] + od[3]) + (od[5] + od[7]));
+    }
+};
+
+// Floats 4 (imm >> 4) .. + 3 of a's low half and b's low half, widened.
+template <int imm>
+HWY_INLINE __m512d column(__m512 a, __m512 b) {
+    return _mm512_cvtps_pd(_mm256_permute2f128_ps(_mm512_castps512_ps256(a), _mm512_castps512_ps256(b), imm));
+}
+
+// The nine floats at r in words 0..8, the rest zero: a 256-bit load and
+// the ninth float broadcast from memory into word 8 (a load with a blend;
+// from a register the broadcast takes the shuffle unit, which the
+// transposes below keep busy: 5% of the block's time). (A masked 512-bit load, 0x1FF,
+// reads the same words but was 3-4x slower for the whole block on AMD
+// Zen 4 when nothing else touched the records' cache lines first.)
+HWY_INLINE __m512 triangle_row(const std::byte* r) {
+    const __m512 x = _mm512_zextps256_ps512(_mm256_loadu_ps(reinterpret_cast<const float*>(r)));
+    float ninth;
+    std::memcpy(&ninth, r + 32, 4);  // any alignment
+    return _mm512_mask_broadcastss_ps(x, 0x100, _mm_set_ss(ninth));
+}
+
+
+// One block of nb records (kFull: nb == kB) into its lanes s, the
+// fingerprint going on in fpr: each set of 8 triangles' records transposed
+// in registers into its rows, nothing stored in between. Returns the largest
+// |coordinate| bit pattern.
+template <bool kFull, bool kFp, bool kMA>
+POLYVOL_IFMA_INLINE uint32_t block_in_registers(const std::byte* bb, std::size_t stride, int nb, Fingerprint512& fpr,
+                                                BlockLanes& s) {
+    const __m512i col8_index = _mm512_setr_epi32(8, 9, 10, 11, 24, 25, 26, 27, 8, 9, 10, 11, 24, 25, 26, 27);
+    __m512 mx = _mm512_setzero_ps();
+    for (int set = 0; set < kSets; ++set) {
+        const int i0 = kSumLanes * set;
+        // Rows: the nine floats of triangle i0 + j in words 0..8 (zero past nb).
+        __m512 row[8];
+        if constexpr (kFull) {
+            const std::byte* const r0 = bb + static_cast<std::size_t>(i0) * stride;
+            for (int j = 0; j < 8; ++j) row[j] = triangle_row(r0 + static_cast<std::size_t>(j) * stride);
+            for (int q = 0; q < 8 && kFp; q += 4) {
+                const std::byte* const r[4] = {r0 + static_cast<std::size_t>(q) * stride,
+                                               r0 + static_cast<std::size_t>(q + 1) * stride,
+                                               r0 + static_cast<std::size_t>(q + 2) * stride,
+                                               r0 + static_cast<std::size_t>(q + 3) * stride};
+                fpr.add4(r, 0x7777);
+            }
+        } else {
+            for (int j = 0; j < 8; ++j)
+                row[j] = i0 + j < nb ? triangle_row(bb + static_cast<std::size_t>(i0 + j) * stride)
+                                     : _mm512_setzero_ps();
+            // Triangles past nb: all three corners the point 0 (degenerate: adds 0).
+            for (int q = i0; q < std::min(nb, i0 + 8) && kFp; q += 4) {
+                const std::byte* r[4];
+                for (int h = 0; h < 4; ++h) r[h] = bb + static_cast<std::size_t>(std::min(q + h, nb - 1)) * stride;
+                fpr.add4(r, static_cast<__mmask16>(nb - q >= 4 ? 0x7777u : 0x7777u & ((1u << (4 * (nb - q))) - 1)));
+            }
+        }
+        // The largest |coordinate| (range 0xB: the operand of larger
+        // magnitude, its sign cleared; with a NaN operand the result
+        // differs between CPUs: NaN is detected by the volume below).
+        const __m512 m01 = _mm512_range_ps(row[0], row[1], 0xB), m23 = _mm512_range_ps(row[2], row[3], 0xB);
+        const __m512 m45 = _mm512_range_ps(row[4], row[5], 0xB), m67 = _mm512_range_ps(row[6], row[7], 0xB);
+        mx = _mm512_range_ps(mx, _mm512_range_ps(_mm512_range_ps(m01, m23, 0xB), _mm512_range_ps(m45, m67, 0xB), 0xB),
+                             0xB);
+        // Transposed within each 128-bit lane: lane l of u_k holds float 4 l + (k mod 4) of rows 4 (k / 4) .. + 3.
+        const __m512 t0 = _mm512_unpacklo_ps(row[0], row[1]), t1 = _mm512_unpackhi_ps(row[0], row[1]);
+        const __m512 t2 = _mm512_unpacklo_ps(row[2], row[3]), t3 = _mm512_unpackhi_ps(row[2], row[3]);
+        const __m512 t4 = _mm512_unpacklo_ps(row[4], row[5]), t5 = _mm512_unpackhi_ps(row[4], row[5]);
+        const __m512 t6 = _mm512_unpacklo_ps(row[6], row[7]), t7 = _mm512_unpackhi_ps(row[6], row[7]);
+        const __m512 u0 = _mm512_shuffle_ps(t0, t2, 0x44), u1 = _mm512_shuffle_ps(t0, t2, 0xEE);
+        const __m512 u2 = _mm512_shuffle_ps(t1, t3, 0x44), u3 = _mm512_shuffle_ps(t1, t3, 0xEE);
+        const __m512 u4 = _mm512_shuffle_ps(t4, t6, 0x44), u5 = _mm512_shuffle_ps(t4, t6, 0xEE);
+        const __m512 u6 = _mm512_shuffle_ps(t5, t7, 0x44), u7 = _mm512_shuffle_ps(t5, t7, 0xEE);
+        SetRows r;
+        r.c[0][0] = V{column<0x20>(u0, u4)};
+        r.c[1][0] = V{column<0x20>(u1, u5)};
+        r.c[2][0] = V{column<0x20>(u2, u6)};
+        r.c[3][0] = V{column<0x20>(u3, u7)};
+        r.c[4][0] = V{column<0x31>(u0, u4)};
+        r.c[5][0] = V{column<0x31>(u1, u5)};
+        r.c[6][0] = V{column<0x31>(u2, u6)};
+        r.c[7][0] = V{column<0x31>(u3, u7)};
+        r.c[8][0] = V{_mm512_cvtps_pd(_mm512_castps512_ps256(_mm512_permutex2var_ps(u0, col8_index, u4)))};
+        add_set<kMA>(set, r, s);
+    }
+    // Magnitudes' bit patterns order as the magnitudes (infinity above all finite ones).
+    return _mm512_reduce_max_epu32(_mm512_castps_si512(mx));
+}
+
+// Pass 1 for a group with AVX-512, IFMA and VAES (block_in_registers).
+template <bool kFp, bool kMA>
+POLYVOL_IFMA_ATTR bool group_in_registers(const std::byte* base, std::size_t stride, int n, const Keys& key,
+                                          Pass1Group& g) {
+    Fingerprint512 fpr(key);
+    GroupLanes lanes;
+    for (int b = 0; b * kB < n; ++b) {
+        const int nb = std::min(kB, n - b * kB);
+        const std::byte* const bb = base + static_cast<std::size_t>(b * kB) * stride;
+        prefetch_ahead(bb, kB * stride);
+        BlockLanes s;
+        const uint32_t m = nb == kB ? block_in_registers<true, kFp, kMA>(bb, stride, nb, fpr, s)
+                                    : block_in_registers<false, kFp, kMA>(bb, stride, nb, fpr, s);
+        if (m >= kNonFinite) return false;
+        g.mx[b] = m;
+        if constexpr (kMA) finish_block(s, g.block[b]);
+        lanes.add_block(b, s);
+    }
+    lanes.finish(g.vs, g.ve);
+    // A NaN coordinate is a factor of a product in h, which makes vs NaN;
+    // finite coordinates keep vs and ve finite.
+    if (std::isnan(g.vs + g.ve)) return false;
+    if constexpr (kFp) {
+        fpr.finish(g.fp);
+    } else {
+        for (int l = 0; l < kFpLanes; ++l) g.fp[l] = 0;
+    }
+    return true;
+}
+#endif
+
+template <bool kFp, bool kMA>
+HWY_INLINE bool group(const std::byte* base, std::size_t stride, int n, const Keys& keys, Pass1Group& g) {
+#if POLYVOL_SOUP_AVX512
+    if (simd::has_avx512_ifma_vaes()) return group_in_registers<kFp, kMA>(base, stride, n, keys, g);
+#endif
+    return group_via_coords<kFp, kMA>(base, stride, n, keys, g);
+}
+
+}  // namespace
+
+bool RunPass1(const std::byte* base, std::size_t stride, int n, const Keys& keys, bool fingerprint,
+                bool moments_and_area, Pass1Group& g) {
+    if (fingerprint) {
+        return moments_and_area ? group<true, true>(base, stride, n, keys, g) : group<true, false>(base, stride, n, keys, g);
+    }
+    return moments_and_area ? group<false, true>(base, stride, n, keys, g) : group<false, false>(base, stride, n, keys, g);
+}
+
+#undef POLYVOL_SOUP_AVX2
+#undef POLYVOL_SOUP_AVX512
+#undef POLYVOL_IFMA_ATTR
+#undef POLYVOL_IFMA_INLINE
+
+}  // namespace polyvol::measure::soup::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace polyvol::measure::soup {
+
+HWY_EXPORT(RunPass1);
+
+bool pass1_group(const std::byte* base, std::size_t stride, int n, const Keys& keys, bool fingerprint,
+                 bool moments_and_area, Pass1Group& g) {
+    return HWY_DYNAMIC_DISPATCH(RunPass1)(base, stride, n, keys, fingerprint, moments_and_area, g);
+}
+
+}  // namespace polyvol::measure::soup
+#endif  // HWY_ONCE

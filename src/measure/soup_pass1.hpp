@@ -1,0 +1,54 @@
+// measure/soup_pass1.hpp — private: the seam between the streamed soup's
+// driver (soup.cpp: passes, superaccumulators, bounds, the result) and its
+// pass-1 kernel (soup_pass1.cpp: per group of blocks of float32 records, the
+// volume's Sum2 lanes, the first moments, the area and the fingerprint),
+// compiled once per instruction set by Highway and chosen by its dispatch.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "measure/cone.hpp"
+#include "measure/fingerprint.hpp"
+
+namespace polyvol::measure::soup {
+
+constexpr int kB = cone::kBlockTriangles;  // triangles per block (32)
+constexpr int kFpLanes = fingerprint::kLanes;
+
+// Pass 1 works on groups of up to kGroupBlocks consecutive blocks of a task:
+// their volume sums and fingerprints are combined before they go into the
+// superaccumulators (the error analysis in docs/numerics.md, "The streamed
+// soup"), the rest block by block.
+constexpr int kGroupBlocks = 4;
+
+// The fingerprint's keys: AES (whitening, then three round keys) for the
+// targets with AES, and the portable hash's (four per lane half).
+struct Keys {
+    alignas(16) uint64_t aes[4][2];
+    uint64_t mix[2][4];
+};
+
+// Per-block sums of pass 1 beside the volume.
+struct Pass1Block {
+    double mom[3];  // Σ d s_i (24 ∫x_i)
+    double abs_d;   // Σ |d|
+    double area2;   // Σ |n| (2 A)
+    double cross;   // Σ X (the products of the cross products)
+};
+
+struct Pass1Group {
+    Pass1Block block[kGroupBlocks];  // per block: moments and area (kMA)
+    uint32_t mx[kGroupBlocks];       // per block: the largest |coordinate| bit pattern
+    double vs, ve;                   // the group's Sum2 (sum, error) of 6 V
+    uint64_t fp[kFpLanes];           // the group's fingerprint (mod p), or 0
+};
+
+// Pass 1 over n <= kGroupBlocks kB records (base: the first coordinate of
+// the first; stride: bytes between records, >= 36): false when a coordinate
+// is NaN or infinite (then nothing else is set). fingerprint: the
+// fingerprint, else fp = 0; moments_and_area: block[] as well.
+bool pass1_group(const std::byte* base, std::size_t stride, int n, const Keys& keys, bool fingerprint,
+                 bool moments_and_area, Pass1Group& g);
+
+}  // namespace polyvol::measure::soup
