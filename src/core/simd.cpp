@@ -1,11 +1,11 @@
-// core/simd.cpp — the instruction sets the kernels may use, from Highway's
-// CPU detection.
+// core/simd.cpp — the instruction sets the kernels may use: the CPU's, from
+// CPUID (what each of Highway's targets needs, and that the OS saves the
+// registers), capped by limit_to.
 #include "core/simd.hpp"
 
 #include "core/hwy_targets.hpp"  // before Highway
 
 #include <hwy/highway.h>
-#include <hwy/targets.h>
 
 #include <atomic>
 #include <cstdlib>
@@ -19,86 +19,115 @@ namespace polyvol::simd {
 
 namespace {
 
-// The targets at `level` and above, which limit_to(level - 1) removes.
-int64_t targets_above(Level level) {
-    int64_t above = 0;
-    if (level < Level::avx512) above |= HWY_AVX3 | HWY_AVX3_DL;
-    if (level < Level::avx2) above |= HWY_AVX2;
-    if (level < Level::sse4) above |= HWY_SSE4 | HWY_SSSE3 | HWY_NEON | HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128;
-    return above;
+struct Cpu {
+    Level level = Level::scalar;
+    bool ifma_vaes = false;
+};
+
+#if HWY_ARCH_X86
+bool bit(unsigned reg, int b) { return (reg >> b & 1u) != 0; }
+
+// XCR0: which register states the OS saves (0 when it has no XSAVE).
+uint64_t xcr0(bool osxsave) {
+    if (!osxsave) return 0;
+    unsigned lo = 0, hi = 0;
+    __asm__ volatile("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+    return (static_cast<uint64_t>(hi) << 32) | lo;
 }
 
-// hwy::SupportedTargets() runs CPUID on every call (slow, and in a virtual
-// machine a trap to the hypervisor): read once, again after each limit.
-std::atomic<int64_t> g_targets{0};
+// Highway's x86 targets need: SSE4 = SSSE3, SSE4.1, SSE4.2, PCLMUL, AES;
+// AVX2 = that and AVX, AVX2, BMI, BMI2, FMA, F16C (and the OS saving the
+// AVX state); AVX3 = that and AVX-512 F, VL, DQ, BW (and the OS saving the
+// AVX-512 state).
+Cpu detect() {
+    Cpu cpu;
+    unsigned a = 0, b1 = 0, c1 = 0, d1 = 0;
+    if (__get_cpuid(1, &a, &b1, &c1, &d1) == 0) return cpu;
+    unsigned b7 = 0, c7 = 0, d7 = 0;
+    if (__get_cpuid_count(7, 0, &a, &b7, &c7, &d7) == 0) b7 = c7 = 0;
+    const uint64_t xcr = xcr0(bit(c1, 27));
+    const bool sse4 = bit(c1, 9) && bit(c1, 19) && bit(c1, 20) && bit(c1, 1) && bit(c1, 25);
+    const bool avx2 = sse4 && (xcr & 0x6) == 0x6 && bit(c1, 28) && bit(b7, 5) && bit(b7, 3) && bit(b7, 8) &&
+                      bit(c1, 12) && bit(c1, 29);
+    const bool avx512 = avx2 && (xcr & 0xE6) == 0xE6 && bit(b7, 16) && bit(b7, 31) && bit(b7, 17) && bit(b7, 30);
+    cpu.level = avx512 ? Level::avx512 : avx2 ? Level::avx2 : sse4 ? Level::sse4 : Level::scalar;
+    cpu.ifma_vaes = avx512 && bit(b7, 21) && bit(c7, 9);
+    return cpu;
+}
+#elif HWY_ARCH_ARM_A64
+Cpu detect() { return Cpu{Level::sse4, false}; }  // NEON is part of AArch64
+#else
+Cpu detect() { return Cpu{}; }
+#endif
 
-int64_t supported() {
-    int64_t t = g_targets.load(std::memory_order_relaxed);
-    if (t == 0) {
-        t = hwy::SupportedTargets();
-        g_targets.store(t, std::memory_order_relaxed);
+const Cpu& cpu() {
+    static const Cpu c = detect();
+    return c;
+}
+
+// The limit from POLYVOL_MAX_ISA (scalar, sse4, avx2 or avx512), or none.
+int limit_from_environment() {
+    const char* v = std::getenv("POLYVOL_MAX_ISA");
+    const std::string_view name(v == nullptr ? "" : v);
+    const Level l = name == "scalar" ? Level::scalar
+                    : name == "sse4" ? Level::sse4
+                    : name == "avx2" ? Level::avx2
+                                     : Level::avx512;
+    return static_cast<int>(l);
+}
+
+// The limit (limit_to), as a Level's number; set before main.
+std::atomic<int> g_limit{limit_from_environment()};
+
+// The levels compiled in (HWY_TARGETS of core/hwy_targets.hpp).
+bool compiled(Level l) {
+    switch (l) {
+        case Level::scalar: return true;
+#if HWY_ARCH_X86
+        case Level::sse4: return (HWY_TARGETS & HWY_SSE4) != 0;
+        case Level::avx2: return (HWY_TARGETS & HWY_AVX2) != 0;
+        case Level::avx512: return (HWY_TARGETS & HWY_AVX3) != 0;
+#elif HWY_ARCH_ARM_A64
+        case Level::sse4: return (HWY_TARGETS & HWY_NEON) != 0;
+        default: return false;
+#else
+        default: return false;
+#endif
     }
-    return t;
-}
-
-void set_supported_for_test(int64_t targets) {
-    hwy::SetSupportedTargetsForTest(targets);
-    g_targets.store(hwy::SupportedTargets(), std::memory_order_relaxed);
+    return false;
 }
 
 }  // namespace
 
 Level level() {
-    const int64_t t = supported();
-    if (t & (HWY_AVX3 | HWY_AVX3_DL)) return Level::avx512;
-    if (t & HWY_AVX2) return Level::avx2;
-    if (t & (HWY_SSE4 | HWY_NEON | HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128)) return Level::sse4;
-    return Level::scalar;
+    const int limit = g_limit.load(std::memory_order_relaxed);
+    const int has = static_cast<int>(cpu().level);
+    return static_cast<Level>(has < limit ? has : limit);
 }
 
-bool has_avx512_ifma_vaes() {
-#if HWY_ARCH_X86
-    // CPUID leaf 7: IFMA is EBX bit 21, VAES ECX bit 9.
-    static const bool has = [] {
-        unsigned a = 0, b = 0, c = 0, d = 0;
-        return __get_cpuid_count(7, 0, &a, &b, &c, &d) != 0 && (b >> 21 & 1) != 0 && (c >> 9 & 1) != 0;
-    }();
-    return has && level() == Level::avx512;
+bool has_avx512_ifma_vaes() { return cpu().ifma_vaes && level() == Level::avx512; }
+
+void limit_to(Level l) { g_limit.store(static_cast<int>(l), std::memory_order_relaxed); }
+
+std::vector<Level> available_levels() {
+    std::vector<Level> out;
+    for (int l = static_cast<int>(cpu().level); l >= 0; --l)
+        if (compiled(static_cast<Level>(l))) out.push_back(static_cast<Level>(l));
+    return out;
+}
+
+std::string level_name(Level l) {
+    switch (l) {
+        case Level::avx512: return "AVX3";
+        case Level::avx2: return "AVX2";
+#if HWY_ARCH_ARM_A64
+        case Level::sse4: return "NEON";
 #else
-    return false;
+        case Level::sse4: return "SSE4";
 #endif
-}
-
-void limit_to(Level level) {
-    set_supported_for_test(0);  // the CPU's own targets again
-    if (level != Level::avx512) set_supported_for_test(hwy::SupportedTargets() & ~targets_above(level));
-}
-
-void limit_from_environment() {
-    const char* v = std::getenv("POLYVOL_MAX_ISA");
-    if (v == nullptr) return;
-    const std::string_view name(v);
-    if (name == "scalar") limit_to(Level::scalar);
-    if (name == "sse4") limit_to(Level::sse4);
-    if (name == "avx2") limit_to(Level::avx2);
-    if (name == "avx512") limit_to(Level::avx512);
-}
-
-void force_target(int64_t target) {
-    set_supported_for_test(0);
-    if (target != 0) set_supported_for_test(target);
-}
-
-std::vector<int64_t> available_targets() {
-    set_supported_for_test(0);
-    return hwy::SupportedAndGeneratedTargets();
-}
-
-std::string target_name(int64_t target) { return hwy::TargetName(target); }
-
-std::string current_target_name() {
-    const int64_t t = supported() & HWY_TARGETS;
-    return t == 0 ? std::string("none") : hwy::TargetName(t & -t);
+        case Level::scalar: break;
+    }
+    return hwy::TargetName(HWY_STATIC_TARGET);  // SCALAR or EMU128
 }
 
 }  // namespace polyvol::simd

@@ -150,23 +150,17 @@ void Eliminate8(Batch<8>& b) { eliminate_in_lanes<8>(b); }
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include "core/hwy_dispatch.hpp"
+
 namespace polyvol::implicit {
 
-HWY_EXPORT(Eliminate2);
-HWY_EXPORT(Eliminate3);
-HWY_EXPORT(Eliminate4);
-HWY_EXPORT(Eliminate5);
-HWY_EXPORT(Eliminate6);
-HWY_EXPORT(Eliminate7);
-HWY_EXPORT(Eliminate8);
-
-void eliminate_batch(Batch<2>& b) { HWY_DYNAMIC_DISPATCH(Eliminate2)(b); }
-void eliminate_batch(Batch<3>& b) { HWY_DYNAMIC_DISPATCH(Eliminate3)(b); }
-void eliminate_batch(Batch<4>& b) { HWY_DYNAMIC_DISPATCH(Eliminate4)(b); }
-void eliminate_batch(Batch<5>& b) { HWY_DYNAMIC_DISPATCH(Eliminate5)(b); }
-void eliminate_batch(Batch<6>& b) { HWY_DYNAMIC_DISPATCH(Eliminate6)(b); }
-void eliminate_batch(Batch<7>& b) { HWY_DYNAMIC_DISPATCH(Eliminate7)(b); }
-void eliminate_batch(Batch<8>& b) { HWY_DYNAMIC_DISPATCH(Eliminate8)(b); }
+void eliminate_batch(Batch<2>& b) { POLYVOL_DISPATCH(Eliminate2)(b); }
+void eliminate_batch(Batch<3>& b) { POLYVOL_DISPATCH(Eliminate3)(b); }
+void eliminate_batch(Batch<4>& b) { POLYVOL_DISPATCH(Eliminate4)(b); }
+void eliminate_batch(Batch<5>& b) { POLYVOL_DISPATCH(Eliminate5)(b); }
+void eliminate_batch(Batch<6>& b) { POLYVOL_DISPATCH(Eliminate6)(b); }
+void eliminate_batch(Batch<7>& b) { POLYVOL_DISPATCH(Eliminate7)(b); }
+void eliminate_batch(Batch<8>& b) { POLYVOL_DISPATCH(Eliminate8)(b); }
 
 }  // namespace polyvol::implicit
 #endif  // HWY_ONCE

@@ -236,14 +236,13 @@ struct GroupLanes {
 };
 
 // Asks for the cache lines of the records kPrefetchAhead bytes past a
-// block's start (bytes: the block's extent). The records stream in from
-// memory (page cache, a mapping) faster with this than with the hardware
-// prefetcher alone: 8M records in memory on one core, 42 -> 38 ms (AMD
-// Zen 4); 4 KB and 16 KB ahead did less. Integer arithmetic: the address
-// may lie past the input, which a prefetch never faults on.
+// block's start (bytes: the block's extent): the records stream in from
+// memory (page cache, a mapping) sooner than with the hardware prefetcher
+// alone. Integer arithmetic: the address may lie past the input, which a
+// prefetch never faults on.
 constexpr std::uintptr_t kPrefetchAhead = 8192;
 
-POLYVOL_INLINE void prefetch_ahead(const std::byte* block, std::size_t bytes) {
+HWY_INLINE void prefetch_ahead(const std::byte* block, std::size_t bytes) {
     const std::uintptr_t a = reinterpret_cast<std::uintptr_t>(block) + kPrefetchAhead;
     for (std::size_t o = 0; o < bytes; o += 64) __builtin_prefetch(reinterpret_cast<const void*>(a + o));
 }
@@ -561,9 +560,8 @@ HWY_INLINE __m512d column(__m512 a, __m512 b) {
 // The nine floats at r in words 0..8, the rest zero: a 256-bit load and
 // the ninth float broadcast from memory into word 8 (a load with a blend;
 // from a register the broadcast takes the shuffle unit, which the
-// transposes below keep busy: 5% of the block's time). (A masked 512-bit load, 0x1FF,
-// reads the same words but was 3-4x slower for the whole block on AMD
-// Zen 4 when nothing else touched the records' cache lines first.)
+// transposes below keep busy). A masked 512-bit load (0x1FF) reads the same
+// words but stalls when nothing else touched the records' cache lines first.
 HWY_INLINE __m512 triangle_row(const std::byte* r) {
     const __m512 x = _mm512_zextps256_ps512(_mm256_loadu_ps(reinterpret_cast<const float*>(r)));
     float ninth;
@@ -696,13 +694,13 @@ bool RunPass1(const std::byte* base, std::size_t stride, int n, const Keys& keys
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-namespace polyvol::measure::soup {
+#include "core/hwy_dispatch.hpp"
 
-HWY_EXPORT(RunPass1);
+namespace polyvol::measure::soup {
 
 bool pass1_group(const std::byte* base, std::size_t stride, int n, const Keys& keys, bool fingerprint,
                  bool moments_and_area, Pass1Group& g) {
-    return HWY_DYNAMIC_DISPATCH(RunPass1)(base, stride, n, keys, fingerprint, moments_and_area, g);
+    return POLYVOL_DISPATCH(RunPass1)(base, stride, n, keys, fingerprint, moments_and_area, g);
 }
 
 }  // namespace polyvol::measure::soup

@@ -483,21 +483,21 @@ TEST(ImplicitSurface, StreamedVolumeHasTheSameBitsForEveryThreadCount) {
 // this CPU runs: the same operations on every lane, so the same bits as the
 // scalar target's.
 TEST(ImplicitSurface, StreamedVolumeHasTheSameBitsOnEveryTarget) {
-    const std::vector<int64_t> targets = polyvol::simd::available_targets();
+    const std::vector<polyvol::simd::Level> levels = polyvol::simd::available_levels();
     for (int n = 2; n <= 8; ++n) {
         const double h[] = {0.005, 0.05, 0.2, 0.3, 0.6, 0.8, 0.8};
         ImplicitOptions o = box_options(n, n <= 6 ? -0.5 : 0.0, 1.6, h[n - 2]);
         o.error_estimate = false;
-        polyvol::simd::force_target(targets.back());
+        polyvol::simd::limit_to(polyvol::simd::Level::scalar);
         const ImplicitVolume scalar = implicit_volume(tilted_ellipsoid, o);
         EXPECT_GT(scalar.fine.boundary_simplices, 1000u) << n;
-        for (int64_t t : targets) {
-            polyvol::simd::force_target(t);
+        for (polyvol::simd::Level l : levels) {
+            polyvol::simd::limit_to(l);
             const ImplicitVolume v = implicit_volume(tilted_ellipsoid, o);
-            EXPECT_EQ(v.fine.volume, scalar.fine.volume) << n << " " << polyvol::simd::target_name(t);
+            EXPECT_EQ(v.fine.volume, scalar.fine.volume) << n << " " << polyvol::simd::level_name(l);
             EXPECT_EQ(v.fine.rounding_error_bound, scalar.fine.rounding_error_bound) << n;
         }
-        polyvol::simd::force_target(0);
+        polyvol::simd::limit_to(polyvol::simd::Level::avx512);
     }
 }
 
