@@ -157,9 +157,7 @@ struct StlStreamOptions {
     // slab_bytes from the process (in whole 2 MiB units when slabs are at
     // least that long, so that a page cache in large folios is never split),
     // so the resident set stays about threads x slab_bytes; but a file
-    // truncated while mapped ends the process with SIGBUS. (Measured on
-    // 8M cached triangles: pread 0.84x the mapping's time here;
-    // docs/benchmarks.md.)
+    // truncated while mapped ends the process with SIGBUS.
     bool map = false;
     std::size_t slab_bytes = std::size_t{4} << 20;
     // Windows start at multiples of this many records (see window_bytes).

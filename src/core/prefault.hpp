@@ -16,14 +16,10 @@ namespace polyvol::core {
 // Why, and why not transparent huge pages (which an earlier version asked
 // for): a page fault costs the same whether the first write comes from
 // std::vector's zero fill on one core or from the filling pass, so faulting
-// in on every core divides that time by the number of cores. Huge pages were
-// measured to be a bad bet on the reference machine (a Firecracker VM;
-// docs/benchmarks.md, seventh session): once the machine has idled a few
-// seconds, the host has taken back the free 2 MiB blocks, and a first touch
-// of 84 MB in huge pages took 155 ms (0.5 GB/s) against 32-45 ms in 4 KiB
-// pages and 21-23 ms faulted in by two threads. Right after another process
-// freed them they are faster (4.4 ms), so back to back huge pages won by
-// about 15 ms on a 1M-triangle load, and lost 200 ms after an idle pause.
+// in on every core divides that time by the number of cores. Huge pages are
+// a bad bet in a virtual machine whose host takes back free 2 MiB blocks once
+// it idles: a first touch in huge pages is then several times slower than in
+// 4 KiB pages (the figures are in git history of docs/benchmarks.md).
 // Where the system itself gives huge pages (THP "always") this still faults
 // them in, in parallel.
 void prefault(void* data, std::size_t bytes);

@@ -5,8 +5,8 @@
 // (name at 0, size in octal at 124, checksum at 148, type at 156, name
 // prefix at 345), with GNU long names (type 'L') and pax headers (type 'x',
 // their "path" record); each member's data follows its header, padded to
-// 512. (libarchive reads them too, but loading it and the libraries it
-// pulls in costs 1.3 ms at every start of the command, for every file.)
+// 512. (libarchive reads them too, but it loads libxml2, ICU and nettle at
+// every start of the command, for every file: docs/benchmarks.md.)
 // Every header's checksum is verified and every size is checked against the
 // bytes present; decompressed bytes count against the caller's limit.
 #include <bzlib.h>

@@ -76,8 +76,7 @@ bool starts_with_solid(std::string_view s) {
 // with one table of 512 KiB, in the core's L2 (weld_vertices' serial
 // path). Larger blocks leave fewer copies of a point for the weld across
 // blocks: on a 1M-triangle sphere the blocks' points are 1.24 times the
-// mesh's vertices with 8192 triangles a block, 1.12 times with 16384
-// (8M-triangle load about 10% faster).
+// mesh's vertices with 8192 triangles a block, 1.12 times with 16384.
 constexpr std::size_t kBinaryBlock = 16384;
 
 // Vertex ids are uint32 and weld_vertices numbers at most 2^32 - 2

@@ -10,8 +10,8 @@
 // fault maps many pages at once, and pread's copy out of the cache was the
 // largest single cost of `polyvol volume` on an 8M-triangle file
 // (docs/benchmarks.md).
-// Mapping each window on its own was measured slower than either (a new
-// mapping, faults and an unmap with its TLB shootdown per window).
+// Mapping each window on its own costs more than either (a new mapping,
+// faults and an unmap with its TLB shootdown per window).
 // Fallback (options.map = false, or when mmap fails): pread(2) into one
 // buffer per thread, which turns a file shrinking under us into a ReadError
 // instead of SIGBUS. posix_fadvise(SEQUENTIAL) asks for read-ahead when the
