@@ -149,16 +149,17 @@ HWY_INLINE void volume_terms(const V (&a)[3], const V (&b)[3], const V (&c)[3], 
     perm = mm[0];
 }
 
-// A gathered block's volume sums; kCheck: its coordinates into the range
+// A block's volume sums, its rows of kN triangles from rows(i, a, b, c)
+// (triangles i .. i + kN - 1); kCheck: its coordinates into the range
 // check's lanes.
-template <bool kTranslate, bool kCheck>
-HWY_INLINE VolumeSums volume_block(const Block& blk, VU& hi_io, VU& lo_io) {
+template <bool kTranslate, bool kCheck, class Rows>
+HWY_INLINE VolumeSums volume_block_of(Rows&& rows, VU& hi_io, VU& lo_io) {
     VolumeLanes<kTranslate> lanes;
     VU hi = hi_io, lo = lo_io;  // in registers: through the references every step is a load and a store
     for (int g = 0; g < kGroups; ++g) {
         for (int q = 0; q < kQ; ++q) {
             V a[3], b[3], c[3];
-            rows_of_block(blk, kVolLanes * g + kN * q, a, b, c);
+            rows(kVolLanes * g + kN * q, a, b, c);
             if constexpr (kCheck) {
                 for (int k = 0; k < 3; ++k) {
                     extremes_step(a[k], hi, lo);
@@ -176,33 +177,21 @@ HWY_INLINE VolumeSums volume_block(const Block& blk, VU& hi_io, VU& lo_io) {
     return lanes.fold();
 }
 
+// A gathered block's volume sums.
+template <bool kTranslate, bool kCheck>
+HWY_INLINE VolumeSums volume_block(const Block& blk, VU& hi, VU& lo) {
+    return volume_block_of<kTranslate, kCheck>(
+        [&](int i, V(&a)[3], V(&b)[3], V(&c)[3]) HWY_ATTR { rows_of_block(blk, i, a, b, c); }, hi, lo);
+}
+
 #if POLYVOL_ROWS_AVX2
 // A whole block of an all-triangle mesh (t: its 96 indices;
 // block_loads_within holds) from the positions, its rows never stored:
 // the same values and sums as volume_block on the gathered block.
 template <bool kTranslate, bool kCheck>
-HWY_INLINE VolumeSums volume_block_in_registers(const double* pos, const uint32_t* t, VU& hi_io, VU& lo_io) {
-    VolumeLanes<kTranslate> lanes;
-    VU hi = hi_io, lo = lo_io;  // in registers: through the references every step is a load and a store
-    for (int g = 0; g < kGroups; ++g) {
-        for (int q = 0; q < kQ; ++q) {
-            V a[3], b[3], c[3];
-            rows_of_mesh(pos, t + 3 * (kVolLanes * g + kN * q), a, b, c);
-            if constexpr (kCheck) {
-                for (int k = 0; k < 3; ++k) {
-                    extremes_step(a[k], hi, lo);
-                    extremes_step(b[k], hi, lo);
-                    extremes_step(c[k], hi, lo);
-                }
-            }
-            V h, l, m;
-            volume_terms<kTranslate>(a, b, c, h, l, m);
-            lanes.add(g, q, h, l, m);
-        }
-    }
-    hi_io = hi;
-    lo_io = lo;
-    return lanes.fold();
+HWY_INLINE VolumeSums volume_block_in_registers(const double* pos, const uint32_t* t, VU& hi, VU& lo) {
+    return volume_block_of<kTranslate, kCheck>(
+        [&](int i, V(&a)[3], V(&b)[3], V(&c)[3]) HWY_ATTR { rows_of_mesh(pos, t + 3 * i, a, b, c); }, hi, lo);
 }
 #endif
 
