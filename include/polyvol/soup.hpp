@@ -32,7 +32,7 @@
 // (0 < |m_ab| < 2^31 for fewer than 2^31 triangles): the monomial H_a H_b^2
 // has coefficient m_ab ≢ 0, so the polynomial is nonzero, of degree 3. If H
 // behaves as a random function of the point — the 96 bits through three AES
-// rounds (or two multiply-xor rounds without AES-NI) keyed from
+// rounds (or, below the AVX2 kernels, two multiply-xor rounds) keyed from
 // std::random_device at construction, so no input can be chosen against the
 // key — each H value takes any residue with probability <= 2^-30 (31 hash
 // bits, the all-ones pattern being ≡ 0), and the Schwartz–Zippel lemma bounds

@@ -11,6 +11,8 @@
 // its per-target namespaces: POLYVOL_DISPATCH(f)(args...).
 #pragma once
 
+#include "core/hwy_targets.hpp"  // before Highway, where this comes first
+
 #include <hwy/highway.h>
 
 #include "core/simd.hpp"
@@ -37,11 +39,12 @@
 #define POLYVOL_IF_SSE4(FN)
 #endif
 
-// The function FN of the best target compiled at or below simd::level()
-// (the baseline, HWY_STATIC_DISPATCH, always is).
+// The function FN of the best target compiled at or below simd::level();
+// Level::scalar is Highway's scalar fallback (SCALAR or EMU128), compiled
+// whatever the baseline (hwy_targets.hpp).
 #define POLYVOL_DISPATCH(FN)                                        \
     ([] {                                                           \
         [[maybe_unused]] const ::polyvol::simd::Level l = ::polyvol::simd::level(); \
         POLYVOL_IF_AVX3(FN) POLYVOL_IF_AVX2(FN) POLYVOL_IF_SSE4(FN) \
-        return &HWY_STATIC_DISPATCH(FN);                            \
+        return HWY_CHOOSE_FALLBACK(FN);                             \
     }())

@@ -26,9 +26,11 @@ bool has_avx512_ifma_vaes();
 
 // Limits every kernel to `level` and below, process-wide (Level::avx512:
 // no limit). For tests and benchmarks: not while kernels run on other
-// threads. Every level gives the same bits. At start, the environment
-// variable POLYVOL_MAX_ISA (scalar, sse4, avx2) sets it, for benchmarks of
-// one level and for users whose CPU misreports.
+// threads, nor while a SoupAccumulator is fed (its fingerprint's hash is the
+// portable one below AVX2, AES from AVX2 up). Every level gives the same
+// sums and bounds, bit for bit. The environment variable POLYVOL_MAX_ISA
+// (scalar, sse4, avx2) sets it at the first level(), for benchmarks of one
+// level and for users whose CPU misreports.
 void limit_to(Level level);
 
 // The levels compiled into the library that this CPU runs, best first (for

@@ -1,6 +1,7 @@
 // implicit/eliminate.cpp — the determinants of the streaming cone volume
 // with their bounds, compiled once per instruction set (Highway's
-// foreach_target) and chosen at run time by its dispatch.
+// foreach_target) and chosen at run time by the library's dispatch
+// (core/hwy_dispatch.hpp).
 //
 // det(p_1 - O, ..., p_n - O) as det(p_1 - O, p_2 - p_1, ..., p_n - p_1) by
 // Gaussian elimination with partial pivoting, and its bound (cone_sum.hpp),

@@ -89,10 +89,10 @@ VolumeForm likely_volume_form(const MeshView& mesh);
 // each vertex is read about twice or more (at least two indices per vertex)
 // every position is checked first, as cheaper; otherwise, or when one is
 // out of range, the pass checks the coordinates it reads. Below AVX-512
-// (the CPU's or simd::limit_to's; read once per call), where
-// the pass cannot check, safe is coordinate_range(mesh) == Range::safe
-// instead: stricter, and the caller's exact fallback gives the same
-// results. When safe is false the sums are meaningless. The translated form
+// (the CPU's or simd::limit_to's; read once per call), where that check
+// costs more than a pass over the positions, safe is coordinate_range(mesh)
+// == Range::safe instead: stricter, and the caller's exact fallback gives
+// the same results. When safe is false the sums are meaningless. The translated form
 // is filtered_sums(mesh, 1, Precision::double_double) (the same sum and
 // bound).
 ConeSums filtered_volume(const MeshView& mesh, bool& safe, VolumeForm form = VolumeForm::translated);

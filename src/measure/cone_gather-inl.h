@@ -171,7 +171,7 @@ HWY_INLINE void walk_blocks(const MeshView& mesh, std::size_t f0, std::size_t f1
     Block b;
     const double* pos = mesh.positions.data();
     const uint32_t* idx = mesh.indices.data();
-    const auto put = [&](uint32_t va, uint32_t vb, uint32_t vc) {
+    const auto put = [&](uint32_t va, uint32_t vb, uint32_t vc) HWY_ATTR {
         const double* pa = pos + 3 * std::size_t{va};
         const double* pb = pos + 3 * std::size_t{vb};
         const double* pc = pos + 3 * std::size_t{vc};

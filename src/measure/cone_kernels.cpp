@@ -1,6 +1,6 @@
 // measure/cone_kernels.cpp — the cone rule's passes over a face range,
 // compiled once per instruction set (Highway's foreach_target) and chosen at
-// run time by its dispatch: gather the fan triangles of the faces
+// run time by the library's dispatch (core/hwy_dispatch.hpp): gather the fan triangles of the faces
 // (cone_gather-inl.h), form their terms (cone_terms-inl.h: what is summed),
 // and sum them (Sum2 in lanes, then a superaccumulator: how). The error analysis is in docs/numerics.md, "The cone rule's kernels".
 //
@@ -210,7 +210,7 @@ HWY_INLINE void volume_faces_in(const MeshView& mesh, std::size_t f0, std::size_
     std::size_t triangles = 0;
     double gs = 0, ge = 0;
     int grouped = 0;
-    const auto add = [&](const VolumeSums& v, int n) {
+    const auto add = [&](const VolumeSums& v, int n) HWY_ATTR {
         if (grouped == 0) {
             gs = v.s;
             ge = v.e;
@@ -232,7 +232,7 @@ HWY_INLINE void volume_faces_in(const MeshView& mesh, std::size_t f0, std::size_
     const std::size_t nv = mesh.vertex_count();
     walk_blocks(
         mesh, f0, f1,
-        [&](const uint32_t* t) {
+        [&](const uint32_t* t) HWY_ATTR {
 #if POLYVOL_ROWS_AVX2
             if (block_loads_within(nv, t)) {
                 add(volume_block_in_registers<kTranslate, kReferenced>(pos, t, hi, lo), kBlock);
@@ -242,7 +242,7 @@ HWY_INLINE void volume_faces_in(const MeshView& mesh, std::size_t f0, std::size_
             (void)t;
             return false;
         },
-        [&](const Block& b) { add(volume_block<kTranslate, kReferenced>(b, hi, lo), b.n); });
+        [&](const Block& b) HWY_ATTR { add(volume_block<kTranslate, kReferenced>(b, hi, lo), b.n); });
     if (grouped > 0) {
         acc.sum.add(gs);
         acc.sum.add(ge);
@@ -338,7 +338,7 @@ HWY_INLINE void gathered_blocks(const MeshView& mesh, std::size_t f0, std::size_
     Block whole_block;
     walk_blocks(
         mesh, f0, f1,
-        [&](const uint32_t* t) {
+        [&](const uint32_t* t) HWY_ATTR {
             if (!gather_block_in_registers(pos, nv, t, whole_block)) return false;
             fn(whole_block);
             return true;
@@ -348,7 +348,7 @@ HWY_INLINE void gathered_blocks(const MeshView& mesh, std::size_t f0, std::size_
 
 template <int N>
 HWY_INLINE void sums_in(const MeshView& mesh, std::size_t f0, std::size_t f1, bool dd, Accumulator<N>& acc) {
-    gathered_blocks(mesh, f0, f1, [&](const Block& b) {
+    gathered_blocks(mesh, f0, f1, [&](const Block& b) HWY_ATTR {
         acc.triangles += static_cast<std::size_t>(b.n);
         Terms<N> t;
         block_terms<N>(b, dd, t);
@@ -458,7 +458,7 @@ void Sums10(const MeshView& mesh, std::size_t f0, std::size_t f1, bool dd, Accum
 }
 
 void ExactFaces(const MeshView& mesh, std::size_t f0, std::size_t f1, uint32_t mask, Accumulator<kSumCount>& acc) {
-    gathered_blocks(mesh, f0, f1, [&](const Block& b) {
+    gathered_blocks(mesh, f0, f1, [&](const Block& b) HWY_ATTR {
         acc.triangles += static_cast<std::size_t>(b.n);
         exact_block(b, mask, acc.sum);
     });

@@ -2,7 +2,8 @@
 // drivers (cone.cpp: which faces, which precision, the bound) and its
 // kernels (cone_kernels.cpp: per face range, gather the fan triangles into
 // blocks, form the terms, sum them), which are compiled once per
-// instruction set by Highway and chosen at run time by its dispatch.
+// instruction set by Highway and chosen at run time by the library's
+// dispatch (core/hwy_dispatch.hpp).
 #pragma once
 
 #include <algorithm>

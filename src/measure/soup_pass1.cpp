@@ -11,11 +11,12 @@
 //            summed: the fingerprint of soup.hpp.
 // The arithmetic is written once in Highway operations on rows of
 // coordinates. Where the rows come from depends on the target (scalar
-// loads; AVX2: 8 x 8 transposes of the records into a block of doubles;
-// AVX-512: the same transposes in registers), and so does the hash (a
-// portable multiply-xor; AES-NI; with AVX-512 IFMA and VAES, fused into the
-// loop). Every target gives the same sums, bit for bit; the fingerprint
-// differs between the portable hash and AES. The error analysis is in
+// loads; AVX2, and AVX-512 without IFMA or VAES: 8 x 8 transposes of the
+// records into a block of doubles; AVX-512 with IFMA and VAES: the same
+// transposes in registers), and so does the hash (a portable multiply-xor
+// below AVX2; AES-NI; with IFMA and VAES, fused into the loop). Every
+// target gives the same sums, bit for bit; the fingerprint differs between
+// the portable hash and AES. The error analysis is in
 // docs/numerics.md, "The streamed soup".
 #include "core/hwy_targets.hpp"  // before Highway
 

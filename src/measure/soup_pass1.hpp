@@ -2,7 +2,8 @@
 // driver (soup.cpp: passes, superaccumulators, bounds, the result) and its
 // pass-1 kernel (soup_pass1.cpp: per group of blocks of float32 records, the
 // volume's Sum2 lanes, the first moments, the area and the fingerprint),
-// compiled once per instruction set by Highway and chosen by its dispatch.
+// compiled once per instruction set by Highway and chosen at run time by
+// the library's dispatch (core/hwy_dispatch.hpp).
 #pragma once
 
 #include <cstddef>
