@@ -118,10 +118,7 @@ struct VolumeLanes {
             M[q] = kTranslate ? perm : hn::Zero(D());
             return;
         }
-        V ns, ne;
-        two_sum(S[q], h, ns, ne);
-        S[q] = ns;
-        E[q] = E[q] + (ne + lo);
+        sum2_add(S[q], E[q], h, lo);
         if constexpr (kTranslate) M[q] = M[q] + perm;
     }
 

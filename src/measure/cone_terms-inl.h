@@ -44,6 +44,15 @@ HWY_INLINE void two_sum(VT a, VT b, VT& s, VT& e) {
     e = (a - (s - bb)) + (b - bb);
 }
 
+// One step of Sum2 (Ogita–Rump–Oishi) in every lane: the sums S take in h
+// by two_sum, whose errors and the low parts l go into E.
+HWY_INLINE void sum2_add(V& S, V& E, V h, V l) {
+    V ns, ne;
+    two_sum(S, h, ns, ne);
+    S = ns;
+    E = E + (ne + l);
+}
+
 // p + e == a b exactly: e = fma(a, b, -p) where the target has an FMA, else
 // Dekker's product of Veltkamp's 26-bit halves (|a|, |b| < 2^996).
 HWY_INLINE void two_prod(V a, V b, V& p, V& e) {

@@ -53,6 +53,7 @@ namespace {
 
 using cone::HWY_NAMESPACE::D;
 using cone::HWY_NAMESPACE::kN;
+using cone::HWY_NAMESPACE::sum2_add;
 using cone::HWY_NAMESPACE::two_prod;
 using cone::HWY_NAMESPACE::two_sum;
 using cone::HWY_NAMESPACE::V;
@@ -120,10 +121,7 @@ HWY_INLINE void add_set(int g, const SetRows& r, BlockLanes& s) {
             s.S[q] = h;
             s.E[q] = l;
         } else {
-            V ns, ne;
-            two_sum(s.S[q], h, ns, ne);
-            s.S[q] = ns;
-            s.E[q] = s.E[q] + (ne + l);
+            sum2_add(s.S[q], s.E[q], h, l);
         }
         if constexpr (kMA) {
             // First moments.
@@ -218,10 +216,7 @@ struct GroupLanes {
                 GS[q] = s.S[q];
                 GE[q] = s.E[q];
             } else {
-                V ns, ne;
-                two_sum(GS[q], s.S[q], ns, ne);
-                GS[q] = ns;
-                GE[q] = GE[q] + (ne + s.E[q]);
+                sum2_add(GS[q], GE[q], s.S[q], s.E[q]);
             }
         }
     }
