@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "polyvol/chain_io.hpp"
+#include "polyvol/soup.hpp"
 #include "units.hpp"
 
 namespace polyvol::cli {
@@ -172,10 +173,20 @@ std::string mass_text(double mass, double volume_error_times_density, int digits
     return digits > 0 ? number_text(std::strtod(s.c_str(), nullptr), error, digits) : s;
 }
 
-// The streaming path for a binary STL (Request::stream); nothing when the
-// file is not binary STL, cannot be probed, or is not closed (the full path
-// then reports it).
-std::optional<FileResult> stream_binary_stl(const std::string& path, bool volume_only) {
+// Whether process_file streams a binary STL for the request: what it asks
+// for is what streaming computes with the same guarantees (Request::
+// table_only; the cone rule), and nothing asks for the loaded mesh (a weld,
+// orientation, units, a scale, the full overlap and self-crossing check of
+// --solid, an archive member).
+bool streams(const Request& q, const std::string& member) {
+    return q.need_mass && q.table_only && q.measure.method == Method::cone && member.empty() && !q.orient &&
+           q.weld_tolerance == 0 && !q.self_check_always && q.units.empty() && q.to.empty() && q.scale == 1 &&
+           q.scale_typed_exactly && q.density_kg_m3 == 0 && std::isfinite(q.measure.density);
+}
+
+// The streaming route for a binary STL: nothing when the file is not binary
+// STL, cannot be probed, or is not closed (the loaded route then reports it).
+std::optional<FileResult> stream_binary_stl(const std::string& path, const Request& q) {
     std::optional<BinaryStlFile> file;
     try {
         file.emplace(path);
@@ -186,7 +197,11 @@ std::optional<FileResult> stream_binary_stl(const std::string& path, bool volume
     FileResult r;
     r.file = path;
     const auto t0 = std::chrono::steady_clock::now();
-    SoupAccumulator acc(SoupWants{.closedness = true, .moments_and_area = !volume_only});
+    SoupAccumulator acc(
+        SoupWants{.closedness = true,
+                  .moments_and_area = !q.volume_only,
+                  .moments = q.table_moments_bounded ? Accuracy::fast : q.measure.accuracy,
+                  .density = q.measure.density});
     try {
         do {
             file->for_each_window(
@@ -199,7 +214,9 @@ std::optional<FileResult> stream_binary_stl(const std::string& path, bool volume
         return r;
     }
     if (!acc.result().closed) return std::nullopt;
-    r.streamed = acc.result();
+    r.streamed = true;
+    r.triangles = acc.result().triangles;
+    r.mass = acc.result().properties;
     r.seconds_measure = seconds_since(t0);
     return r;
 }
@@ -456,9 +473,9 @@ bool reads_as_chain(const std::string& file) {
 }
 
 FileResult process_file(const std::string& file, const Request& request, const std::string& member) {
-    if (request.stream && request.need_mass && request.measure.method == Method::cone && member.empty())
-        if (auto s = stream_binary_stl(file, request.volume_only))
-            if (request.keep_signed || s->streamed->volume >= 0) return std::move(*s);  // inside out: loaded below
+    if (streams(request, member))
+        if (auto s = stream_binary_stl(file, request))
+            if (request.keep_signed || !s->mass || s->mass->volume >= 0) return std::move(*s);  // inside out: loaded below
     FileResult r;
     r.file = member.empty() ? file : file + ":" + member;
     const std::string& path = r.file;  // the name in every message
@@ -477,6 +494,7 @@ FileResult process_file(const std::string& file, const Request& request, const s
         return r;
     }
     r.seconds_read = seconds_since(t0);
+    r.triangles = r.loaded->mesh.view().triangle_count();
     t0 = std::chrono::steady_clock::now();
     double length_error = 0;
     if (const std::string why = plan_units(r, request, length_error); !why.empty()) {
@@ -667,26 +685,12 @@ std::string volume_guarantee(const MassProperties& m) {
 nlohmann::json to_json(const FileResult& r, const Request& request) {
     nlohmann::json j;
     j["file"] = r.file;
-    if (r.streamed) {  // the keys the streaming path knows (README: --stream)
-        const SoupResult& s = *r.streamed;
+    if (r.streamed) {  // no mesh loaded: what the stream knows of the file
         j["format"] = "stl";
         j["encoding"] = "binary_le";
         j["streamed"] = true;
-        j["triangles"] = s.triangles;
-        j["closed_2_cycle"] = s.closed;
-        j["method"] = "cone";
-        j["accuracy"] = s.volume_correctly_rounded ? "correctly-rounded" : "error-bound";
-        j["volume"] = number(s.volume);
-        j["volume_error_bound"] = 0.0;
-        j["exit_code"] = r.exit_code;
-        if (request.volume_only) return j;
-        j["area"] = number(s.area);
-        j["area_relative_error"] = s.area_relative_error;
-        j["centroid"] = {number(s.centroid[0]), number(s.centroid[1]), number(s.centroid[2])};
-        j["centroid_error_bound"] = number(s.centroid_error_bound);
-        j["first_moments"] = {number(s.first_moments[0]), number(s.first_moments[1]), number(s.first_moments[2])};
-        j["first_moments_error_bound"] = number(s.first_moments_error_bound);
-        return j;
+        j["triangles"] = r.triangles;
+        j["closed_2_cycle"] = true;  // by the fingerprint (else the file is loaded)
     }
     if (r.loaded) {
         const auto& l = *r.loaded;
@@ -710,7 +714,7 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         }
         if (request.need_mass && !request.keep_signed && !request.orient)
             j["turned_outward_faces"] = r.turned_outward ? r.turned_outward->flipped : 0;
-    } else {
+    } else if (!r.streamed) {
         j["format"] = nullptr;
     }
     if (r.topology) {
@@ -848,7 +852,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     std::string unit, mass_unit;
     bool same_units = true;
     for (const auto& r : results)
-        if (r.mass || r.streamed) {
+        if (r.mass) {
             if (unit.empty() && mass_unit.empty()) unit = r.length_unit, mass_unit = r.mass_unit;
             same_units = same_units && r.length_unit == unit && r.mass_unit == mass_unit;
         }
@@ -862,7 +866,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     else
         out << "volume" << in(unit_power(unit, 3)) << "\n";
     bool any_rounded = false, any_bound = false, any_fingerprint = false, any_checked = false;
-    std::string streamed_notes, loaded_notes, overlap_notes, notes;
+    std::string streamed_notes, figure_notes, overlap_notes, notes;
     const auto centroid_text = [&](const std::array<double, 3>& c, double error) {
         return "(" + number_text(c[0], error, digits) + ", " + number_text(c[1], error, digits) + ", " +
                number_text(c[2], error, digits) + ")";
@@ -873,24 +877,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         if (r.loaded && r.loaded->mesh.view().triangle_count() == 0)
             notes += "  " + r.file + ": no faces (a point cloud, or an empty file?): nothing to measure\n";
         if (r.oriented && r.oriented->orientable) notes += "  " + r.file + ": " + orient_sentence(*r.oriented) + "\n";
-        if (r.streamed) {
-            const SoupResult& s = *r.streamed;
-            any_rounded = true;
-            out << pad(r.file, name_w) << "  " << pad(std::to_string(s.triangles), 10) << "  ";
-            if (mass) out << pad(mass_text(request.measure.density * s.volume, 0, digits), 24) << "  ";
-            if (!all) {
-                out << number_text(s.volume, 0, digits) << "\n";
-                streamed_notes += "  " + r.file + "\n";
-                continue;
-            }
-            out << pad(number_text(s.volume, 0, digits), 24) << "  "
-                << pad(number_text(s.area, s.area * s.area_relative_error, digits), 24) << "  "
-                << centroid_text(s.centroid, s.centroid_error_bound) << "\n";
-            streamed_notes += "  " + r.file + ": area relative error <= " + shortest(s.area_relative_error) +
-                              "; centroid within +-" + shortest(s.centroid_error_bound) + " per coordinate\n";
-            continue;
-        }
-        const std::string tris = r.loaded ? std::to_string(r.loaded->mesh.view().triangle_count()) : "-";
+        const std::string tris = r.loaded || r.streamed ? std::to_string(r.triangles) : "-";
+        if (r.streamed) streamed_notes += "  " + r.file + "\n";
         out << pad(r.file, name_w) << "  " << pad(tris, 10) << "  ";
         if (!r.mass) {
             out << (r.exit_code == Exit::unreadable ? "unreadable"
@@ -915,7 +903,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         const double centroid_error = moments_bound(m, m.centroid);
         out << pad(vol, 24) << "  " << pad(number_text(m.area, m.area * m.area_relative_error, digits), 24) << "  "
             << centroid_text(m.centroid, centroid_error) << "\n";
-        loaded_notes += "  " + r.file + ": area relative error <= " + shortest(m.area_relative_error) + "; centroid " +
+        figure_notes += "  " + r.file + ": area relative error <= " + shortest(m.area_relative_error) + "; centroid " +
                         (m.moments_correctly_rounded
                              ? std::string("correctly rounded")
                              : "within " + shortest(m.moments_relative_error) + " of its largest coordinate's magnitude") +
@@ -939,19 +927,19 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     out << (footer.empty() ? "\n" : ".\n");
     if (!same_units)
         for (const auto& r : results)
-            if ((r.mass || r.streamed) && !r.length_unit.empty())
+            if (r.mass && !r.length_unit.empty())
                 out << "  " << r.file << ": lengths in " << r.length_unit
                     << (r.mass_unit.empty() ? "" : ", mass in " + r.mass_unit) << "\n";
     out << notes;
     if (request.verbose) {
-        out << loaded_notes;
+        out << figure_notes;
         if (any_fingerprint)
             out << "Closed 2-cycle checked by a randomized edge fingerprint (an open surface passes with probability "
                    "< 2^-113); a file it finds open, or cannot decide (e.g. a NaN or infinite coordinate), is analysed "
                    "in full and its unbalanced edges reported.\n";
         if (!streamed_notes.empty())
-            out << "Streamed binary STL (constant memory, nothing welded; volume correctly rounded; shells not "
-                   "checked for overlap: --solid checks):\n"
+            out << "Streamed binary STL (constant memory, nothing welded; shells not checked for overlap: --solid "
+                   "checks):\n"
                 << streamed_notes;
         if (any_checked)
             out << "Shells checked for overlap with one another; a shell crossing itself looked for in files up to "
@@ -1105,7 +1093,7 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
     return out.str();
 }
 
-std::string csv_table(const std::vector<FileResult>& results, const Request& request, bool inertia) {
+std::string csv_table(const std::vector<FileResult>& results, bool inertia) {
     // RFC 4180: a field with a comma, quote or line break is quoted, quotes doubled.
     const auto field = [](const std::string& f) {
         if (f.find_first_of(",\"\r\n") == std::string::npos) return f;
@@ -1121,15 +1109,9 @@ std::string csv_table(const std::vector<FileResult>& results, const Request& req
     out << "\r\n";
     for (const FileResult& r : results) {
         out << field(r.file) << "," << r.exit_code << ",";
-        if (r.streamed) {
-            const SoupResult& s = *r.streamed;
-            out << s.triangles << "," << num(s.volume) << ",0," << num(request.measure.density * s.volume) << ","
-                << num(s.area) << "," << num(s.area_relative_error) << "," << num(s.centroid[0]) << ","
-                << num(s.centroid[1]) << "," << num(s.centroid[2]) << "," << num(s.centroid_error_bound);
-            if (inertia) out << ",,,,,,,,,";
-        } else if (r.mass) {
+        if (r.mass) {
             const MassProperties& m = *r.mass;
-            out << r.loaded->mesh.view().triangle_count() << "," << num(m.volume) << ","
+            out << r.triangles << "," << num(m.volume) << ","
                 << num(m.volume_correctly_rounded ? 0.0 : m.volume_error_bound) << "," << num(m.mass) << ","
                 << num(m.area) << "," << num(m.area_relative_error) << "," << num(m.centroid[0]) << ","
                 << num(m.centroid[1]) << "," << num(m.centroid[2]) << ","
@@ -1140,7 +1122,7 @@ std::string csv_table(const std::vector<FileResult>& results, const Request& req
                     << num(m.edge_length) << "," << num(m.edge_length_relative_error);
             }
         } else {
-            out << (r.loaded ? std::to_string(r.loaded->mesh.view().triangle_count()) : std::string()) << ",,,,,,,,,";
+            out << (r.loaded ? std::to_string(r.triangles) : std::string()) << ",,,,,,,,,";
             if (inertia) out << ",,,,,,,,,";
         }
         out << "\r\n";

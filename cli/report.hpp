@@ -12,7 +12,6 @@
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/simplicial.hpp"
-#include "polyvol/soup.hpp"
 #include "polyvol/topology.hpp"
 
 namespace polyvol::cli {
@@ -33,9 +32,11 @@ struct FileResult {
     std::optional<MassProperties> mass;      // when measured
     std::string warning;                     // e.g. the origin dependence with --allow-open
     double seconds_read = 0, seconds_measure = 0;
-    // Set instead of loaded/topology/mass when a binary STL went through the
-    // streaming path (Request::stream): nothing was loaded or welded.
-    std::optional<SoupResult> streamed;
+    // The route process_file chose: a binary STL streamed (polyvol/soup.hpp:
+    // constant memory, nothing loaded or welded; loaded and topology stay
+    // empty) or the file loaded. mass has the same guarantees either way.
+    bool streamed = false;
+    uint64_t triangles = 0;                  // the fan triangles measured (either route)
     // The solid of overlapping shells, or of a shell crossing itself
     // (polyvol/boolean.hpp's solid_volume), computed when the loaded mesh has
     // more than one part or self_crossings found pairs.
@@ -89,20 +90,24 @@ struct Request {
     MeasureOptions measure;
     bool allow_open = false;
     bool need_mass = true;  // false for `check`
-    // `volume`: a binary STL (by the size rule) is measured by streaming it
-    // (polyvol/soup.hpp: constant memory, volume, area, centroid, closedness
-    // fingerprint) when the method is cone; a nonzero fingerprint falls back
-    // to the full path, which names the unbalanced edges.
-    bool stream = false;
-    // `volume`'s table, and --volume-only: only what is printed and the
-    // closedness it needs: topology without shells, no second moments, no
-    // edge length.
+    // `volume`'s table, --volume-only and --stream: only the volume, area,
+    // centroid and the closedness they need: topology without shells, no
+    // second moments, no edge length. process_file then streams a binary STL
+    // (polyvol/soup.hpp: constant memory, the same figures with the same
+    // guarantees) when nothing asks for the loaded mesh (method cone, no
+    // weld, orientation, units or scale, not --solid); a surface the
+    // fingerprint finds open, or inside out, is loaded to be reported.
     bool table_only = false;
     // `volume`'s table: a loaded mesh's closedness by fingerprint_closedness
     // (measure.hpp; the streamed binary STL's check, on the loaded mesh);
     // analyze_topology runs only when it does not say closed, to name the
     // unbalanced edges.
     bool closedness_by_fingerprint = false;
+    // `volume`'s table prints the centroid to the digits its bound supports:
+    // a streamed binary STL's first moments keep pass 1's bound (SoupWants::
+    // moments fast, no exact pass for a part centred on the origin); the
+    // loaded route computes them as `measure` says.
+    bool table_moments_bounded = false;
     // `volume --volume-only`: the volume, its guarantee and the closedness
     // check, nothing else (table and JSON; the JSON keeps the edge counts,
     // not the shells): the streamed pass skips area and first moments, the
@@ -179,7 +184,7 @@ std::string check_report(const FileResult& r);
 // --csv: one row per file (RFC 4180, a header row first), every number in
 // full (shortest round trip), empty where a file has none; `inertia` adds
 // the tensor about the centroid, its bound and the edge length (measure).
-std::string csv_table(const std::vector<FileResult>& results, const Request& request, bool inertia);
+std::string csv_table(const std::vector<FileResult>& results, bool inertia);
 
 // A sentence stating the guarantee of the printed volume.
 std::string volume_guarantee(const MassProperties& m);

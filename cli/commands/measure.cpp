@@ -116,18 +116,12 @@ enum class Command { volume, measure, check };
 int run(Command command, const MeasureCommandOptions& c) {
     Request request = make_request(c, command != Command::check);
     request.metres_when_known = c.format != "table";
-    // Binary STL through the streaming path: the table always, JSON only with
-    // --stream (the streaming path has no second moments, inertia, edge
-    // length or components: README).
-    // Streaming gives the file's own figures: no weld, orientation, units or scale.
-    request.stream = command == Command::volume && (!c.json || c.stream) && !c.solid && !c.orient &&
-                     c.weld_tolerance == 0 && c.units.empty() && c.to.empty() && request.scale == 1 &&
-                     request.scale_typed_exactly &&
-                     request.density_kg_m3 == 0;
     request.self_check_always = command == Command::check || c.solid;
     request.volume_only = command == Command::volume && c.volume_only;
-    request.table_only = command == Command::volume && (!c.json || request.volume_only);
+    // The table's figures (the library streams a binary STL for them when it can).
+    request.table_only = command == Command::volume && (!c.json || request.volume_only || c.stream);
     request.closedness_by_fingerprint = command == Command::volume && !c.json;
+    request.table_moments_bounded = command == Command::volume && !c.json;
     if (request.table_only) {
         request.measure.second_moments = false;
         request.measure.edge_length = false;
@@ -155,7 +149,7 @@ int run(Command command, const MeasureCommandOptions& c) {
         if (!r.warning.empty()) std::cerr << "polyvol: warning: " << r.warning << "\n";
     }
     if (c.csv && command != Command::check) {
-        std::cout << csv_table(results, request, command == Command::measure);
+        std::cout << csv_table(results, command == Command::measure);
         return code;
     }
     if (c.json) {
@@ -186,8 +180,8 @@ void add_measure_commands(CLI::App& app, MeasureCommands& c) {
     c.volume = app.add_subcommand("volume", "Volume, area and centroid, one row per file");
     add_measure_options(c.volume, c.volume_opts);
     c.volume->add_flag("--stream", c.volume_opts.stream,
-                     "With --json: measure binary STL by streaming it too (constant memory; only the keys the "
-                     "streaming path computes). The table always streams binary STL.");
+                     "With --json: only the table's figures (volume, area, centroid, closedness), so that a binary "
+                     "STL is streamed in constant memory, as for the table");
     c.volume->add_flag("--volume-only", c.volume_opts.volume_only,
                      "Only the volume with its guarantee (and the closedness check), in the table and the JSON: "
                      "the fastest path, e.g. a third less work per triangle for a streamed binary STL");

@@ -20,7 +20,7 @@ struct MeasureCommandOptions {
     std::string density = "1";
     std::string units, to;     // --units, --to
     std::string scale = "1";   // --scale (its text: whether it is exact)
-    bool stream = false;       // volume --stream: JSON from the streaming path too
+    bool stream = false;       // volume --stream: the JSON has the table's figures (a binary STL streams)
     bool volume_only = false;  // volume --volume-only
     bool solid = false;        // volume/measure --solid: the full overlap and self-crossing check
     bool orient = false;       // --orient: faces wound consistently and outward before measuring

@@ -9,14 +9,16 @@
 //   (binary STL records: stride 50, offset 12; unaligned is fine)
 // Triangles are counter-clockwise seen from outside; nothing is welded.
 //
-// What is accumulated (same conventions as measure.hpp, density 1):
-//   volume         Σ det(a,b,c)/6, correctly rounded (the exact value of the
-//                  coordinates as read, rounded once to nearest, ties to even);
-//   first moments  Σ det·(a_i+b_i+c_i)/24 with a rigorous absolute bound;
-//   centroid       first moments / volume, with a rigorous absolute bound;
+// What is accumulated (same conventions as measure.hpp), with the
+// guarantees mass_properties gives for the same triangles (Method::cone,
+// Accuracy::correctly_rounded), in its result type:
+//   volume, first moments Σ det·(a_i+b_i+c_i)/24 and centroid: each the exact
+//                  value for the coordinates as read, rounded once to nearest
+//                  (ties to even);
 //   area           Σ |(b-a)×(c-a)|/2 with a rigorous relative bound;
 //   triangles, whether a coordinate is NaN or infinite, and
 //   a closedness fingerprint (below).
+// Second moments, inertia and edge length need the welded mesh: NaN here.
 //
 // Closedness fingerprint. The surface is a closed 2-cycle iff every
 // undirected edge {a,b} (a, b distinct welded points: bit-identical float32
@@ -44,25 +46,28 @@
 // nonzero one is certain proof of an unbalanced edge (its count and an example
 // need the welded topology: polyvol::analyze_topology).
 //
-// Passes. The volume is decided by a filter: pass 1 (float32-exact products,
-// double-double sums, error <= 512 u² Σ 6 M_b³ n_b, M_b the largest |coordinate|
-// of a block of n_b <= 32 triangles — decides unless the mesh is far from the
-// origin compared with its size), pass 2 (measure/cone.cpp's translated
-// double-double kernel), pass 3 (exact). Area, moments, counts and the
-// fingerprint come from pass 1. After feeding every triangle once, call
-// next_pass(): when it returns true, feed the same triangles again (in any
-// windows), then call it again.
+// Passes. The volume and the first moments are decided by a filter: pass 1
+// (float32-exact products, double-double terms and sums, error <= 512 u²
+// Σ 6 M_b³ n_b for the volume and 1024 u² Σ 18 M_b⁴ n_b for the moments,
+// M_b the largest |coordinate| of a block of n_b <= 32 triangles — decides
+// unless the mesh is far from the origin compared with its size, or a
+// result is exactly a rounding boundary such as 0: a centred, symmetric
+// part), pass 2 for the volume alone (measure/cone.cpp's translated
+// double-double kernel), pass 3 for what is still undecided (exact). Area,
+// counts and the fingerprint come from pass 1. After feeding every triangle
+// once, call next_pass(): when it returns true, feed the same triangles
+// again (in any windows), then call it again.
 //
 // Determinism. Blocks are triangles [32 j, 32 j + 32) of the whole input, so
 // every window must start at a triangle index that is a multiple of 32;
-// the moments' and the area's sums across blocks are exact (a
-// superaccumulator), the volume is correctly rounded and the fingerprint is
-// a sum mod p, so the results are bit-identical for any window sizes, any
+// the area's sums across blocks are exact (a superaccumulator), the volume,
+// moments and centroid are correctly rounded and the fingerprint is a sum
+// mod p, so the results are bit-identical for any window sizes, any
 // order of the windows and any number of threads. (Pass 1 sums the volume
-// of up to four neighbouring blocks in double-double first, so its
-// approximation depends a little on the windows: `passes` could differ
-// between two window sizes when 6 V is within the filter's bound, 2^-97
-// Σ 6 M_b^3 n_b, of a rounding boundary; the volume cannot.)
+// and the moments of up to four neighbouring blocks in double-double
+// first, so its approximation depends a little on the windows: `passes`
+// could differ between two window sizes when a result is within the
+// filter's bound of a rounding boundary; the results cannot.)
 //
 // Thread safety: add() may be called concurrently (different windows);
 // next_pass() and result() must not run concurrently with add().
@@ -73,6 +78,8 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+
+#include "polyvol/measure.hpp"
 
 namespace polyvol {
 
@@ -101,29 +108,36 @@ inline Float32Triangles packed_triangles(std::span<const float> xyz) {
 struct SoupWants {
     bool closedness = true;        // the fingerprint (SoupResult::closed)
     bool moments_and_area = true;  // first moments, centroid, area
+    // correctly_rounded: the first moments and centroid are decided, with one
+    // exact pass more when pass 1 cannot (an exactly or nearly cancelling
+    // sum: a part centred on the origin). fast: they are pass 1's, with its
+    // bound (MassProperties::moments_relative_error), never a pass of their
+    // own; the volume is correctly rounded either way.
+    Accuracy moments = Accuracy::correctly_rounded;
+    // Scales the mass and the first moments as MeasureOptions::density does
+    // (each still the exact value rounded once); finite, else the
+    // accumulator's constructor throws std::invalid_argument.
+    double density = 1.0;
 };
 
 struct SoupResult {
     SoupWants computed;            // what was asked for; the figures of what was not are NaN
                                    // (the fingerprint then 0 and closed false)
     uint64_t triangles = 0;
-    bool nonfinite = false;        // some coordinate is NaN or ±inf (then every figure below is NaN)
+    bool nonfinite = false;        // some coordinate is NaN or ±inf (then every figure is NaN)
     // Fingerprint lanes (mod 2^31 - 1); when computed, all zero iff the surface is
     // closed, up to the probability above. Keyed per accumulator, so the values
     // mean nothing else.
     std::array<uint64_t, 4> fingerprint{};
     bool closed = false;           // fingerprint all zero and !nonfinite (false when not computed)
-
-    double volume = 0;             // correctly rounded (when volume_correctly_rounded)
-    bool volume_correctly_rounded = false;
-    int passes = 0;                // passes over the input that the volume needed (1..3)
-
-    std::array<double, 3> first_moments{};  // ∫x, ∫y, ∫z
-    double first_moments_error_bound = 0;   // absolute, each component
-    std::array<double, 3> centroid{};       // NaN when the volume is 0
-    double centroid_error_bound = 0;        // absolute, each component (inf when the volume is 0)
-    double area = 0;
-    double area_relative_error = 0;
+    int passes = 0;                // passes over the input the results needed (1..3)
+    // The figures with their guarantees (measure.hpp; Method::cone, the
+    // accuracy SoupWants::moments asks for, SoupWants::density): volume and
+    // mass (correctly rounded), first moments and centroid (correctly
+    // rounded, or within moments_relative_error; the centroid NaN when the
+    // volume is 0), area with area_relative_error; second moments, inertia
+    // and edge length NaN.
+    MassProperties properties;
 };
 
 class SoupAccumulator {

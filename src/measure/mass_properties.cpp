@@ -3,19 +3,13 @@
 // formulas (measure/methods.hpp), and the guarantees reported with them.
 //
 // From sums to results. The ten sums are known as intervals: the exact sum
-// of the filtered approximations ± a rigorous bound (or a point when exact).
-// Every result is a rational function of the sums:
-//   V = ΣV/6, ∫x_i = ΣM_i/24, ∫x_i x_j = ΣS_ij/120, centroid_i = ΣM_i/(4 ΣV),
-//   central second moment c_ij = ΣS_ij/120 - ΣM_i ΣM_j / (96 ΣV)
-//   (the parallel axis theorem, here in exact rational interval arithmetic:
-//   no cancellation error), inertia xx = c_yy + c_zz, xy = -c_xy, ...
-// evaluated in exact rational interval arithmetic (GMP), a few dozen
-// operations per mesh. For Accuracy::correctly_rounded a result is decided
-// when both ends of its interval round to the same double; the sums that an
-// undecided result depends on are then recomputed exactly (their interval
-// becomes a point) and the results re-evaluated: every result is the exact
-// value rounded once. For Accuracy::fast the results are the point values
-// and the error bounds are the intervals' half-widths (rounded up).
+// of the filtered approximations ± a rigorous bound (or a point when exact),
+// and every result is a rational function of them (measure/cone_results.hpp,
+// a few dozen GMP operations per mesh). For Accuracy::correctly_rounded the
+// sums that an undecided result depends on are recomputed exactly (their
+// interval becomes a point) and the results re-evaluated: every result is
+// the exact value rounded once. For Accuracy::fast the results are the point
+// values and the error bounds are the intervals' half-widths (rounded up).
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -25,6 +19,7 @@
 
 #include "exact/rational.hpp"
 #include "measure/cone.hpp"
+#include "measure/cone_results.hpp"
 #include "measure/methods.hpp"
 #include "polyvol/measure.hpp"
 
@@ -36,136 +31,6 @@ using namespace measure::cone;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// A closed interval of rationals; unbounded when it came from a division by
-// an interval containing 0.
-struct Interval {
-    Rational lo, hi;
-    bool bounded = true;
-};
-
-Interval point(const Rational& x) { return {x, x, true}; }
-
-Interval operator+(const Interval& a, const Interval& b) {
-    return {a.lo + b.lo, a.hi + b.hi, a.bounded && b.bounded};
-}
-Interval operator-(const Interval& a, const Interval& b) {
-    return {a.lo - b.hi, a.hi - b.lo, a.bounded && b.bounded};
-}
-Interval operator-(const Interval& a) { return {-a.hi, -a.lo, a.bounded}; }
-Interval operator*(const Interval& a, const Interval& b) {
-    const Rational p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
-    Interval r{p[0], p[0], a.bounded && b.bounded};
-    for (const Rational& x : p) {
-        if (x < r.lo) r.lo = x;
-        if (r.hi < x) r.hi = x;
-    }
-    return r;
-}
-Interval operator/(const Interval& a, const Interval& b) {
-    if (b.lo.sign() <= 0 && b.hi.sign() >= 0) return {Rational(), Rational(), false};
-    const Rational one(1L);
-    return a * Interval{one / b.hi, one / b.lo, b.bounded};
-}
-Interval operator*(const Interval& a, const Rational& c) { return a * point(c); }
-
-// One result: its interval and the sums it depends on (a bit mask).
-struct Result {
-    Interval iv;
-    uint32_t deps = 0;
-    bool nan = false;  // exactly undefined (centroid of a zero volume)
-};
-
-enum ResultIndex : int {
-    kVolume = 0,
-    kMass,
-    kFirst,                 // 3
-    kCentroid = kFirst + 3,  // 3
-    kSecond = kCentroid + 3,  // 6
-    kInertiaOrigin = kSecond + 6,
-    kInertiaCentroid = kInertiaOrigin + 6,
-    kResultCount = kInertiaCentroid + 6
-};
-
-constexpr uint32_t bit(int k) { return 1u << k; }
-
-// Results from the first `count` sums: volume and mass (1), and the first
-// moments and centroid (kSxx), and the rest (kSumCount).
-constexpr int result_count(int count) { return count == 1 ? 2 : count == kSxx ? int{kSecond} : int{kResultCount}; }
-
-// The results as intervals from the sums' intervals (count == 1: volume and
-// mass only). density: a finite density (mass, moments and inertia scale).
-std::vector<Result> evaluate(const std::array<Interval, kSumCount>& s, int count, const Rational& density) {
-    std::vector<Result> r(static_cast<std::size_t>(result_count(count)));
-    const Rational sixth(1L, 6), r24(1L, 24), r120(1L, 120);
-    r[kVolume] = {s[kV] * sixth, bit(kV)};
-    r[kMass] = {s[kV] * sixth * density, bit(kV)};
-    if (count == 1) return r;
-    const bool v_zero = s[kV].lo.sign() == 0 && s[kV].hi.sign() == 0;
-    const Interval four_v = s[kV] * Rational(4L);
-    const Interval v96 = s[kV] * Rational(96L);
-    for (int i = 0; i < 3; ++i) {
-        r[kFirst + i] = {s[kMx + i] * r24 * density, bit(kMx + i)};
-        if (v_zero) {
-            r[kCentroid + i] = {point(Rational()), bit(kV), true};
-        } else {
-            r[kCentroid + i] = {s[kMx + i] / four_v, bit(kMx + i) | bit(kV)};
-        }
-    }
-    if (count == kSxx) return r;
-    Interval second[6];
-    for (int k = 0; k < 6; ++k) {
-        second[k] = s[kSxx + k] * r120;
-        r[kSecond + k] = {second[k] * density, bit(kSxx + k)};
-    }
-    // Inertia from second moments {xx,yy,zz,xy,yz,zx}.
-    constexpr int A[3] = {1, 0, 0}, B[3] = {2, 2, 1};
-    for (int k = 0; k < 3; ++k) {
-        r[kInertiaOrigin + k] = {(second[A[k]] + second[B[k]]) * density, bit(kSxx + A[k]) | bit(kSxx + B[k])};
-        r[kInertiaOrigin + 3 + k] = {-second[3 + k] * density, bit(kSxx + 3 + k)};
-    }
-    // Central second moments c_ij = S_ij/120 - M_i M_j / (96 ΣV).
-    constexpr int I[6] = {0, 1, 2, 0, 1, 2}, J[6] = {0, 1, 2, 1, 2, 0};
-    Interval central[6];
-    uint32_t central_deps[6];
-    for (int k = 0; k < 6; ++k) {
-        const int i = I[k], j = J[k];
-        if (!v_zero) central[k] = second[k] - (s[kMx + i] * s[kMx + j]) / v96;
-        central_deps[k] = bit(kSxx + k) | bit(kMx + i) | bit(kMx + j) | bit(kV);
-    }
-    for (int k = 0; k < 3; ++k) {
-        if (v_zero) {
-            r[kInertiaCentroid + k] = {point(Rational()), bit(kV), true};
-            r[kInertiaCentroid + 3 + k] = {point(Rational()), bit(kV), true};
-            continue;
-        }
-        r[kInertiaCentroid + k] = {(central[A[k]] + central[B[k]]) * density, central_deps[A[k]] | central_deps[B[k]]};
-        r[kInertiaCentroid + 3 + k] = {-central[3 + k] * density, central_deps[3 + k]};
-    }
-    return r;
-}
-
-// The nearest double to a result, when both ends of its interval agree.
-std::optional<double> decided(const Result& r) {
-    if (r.nan) return kNaN;
-    if (!r.iv.bounded) return std::nullopt;
-    const double lo = r.iv.lo.to_double();
-    const double hi = r.iv.hi.to_double();
-    if (std::bit_cast<uint64_t>(lo) != std::bit_cast<uint64_t>(hi)) return std::nullopt;
-    return lo;
-}
-
-// An upper bound (a double) on max(|x - lo|, |hi - x|).
-double error_bound(const Result& r, double x) {
-    if (r.nan) return 0;
-    if (!r.iv.bounded || !std::isfinite(x)) return kInf;
-    const Rational rx(x);
-    const Rational d1 = rx - r.iv.lo, d2 = r.iv.hi - rx;
-    const Rational& d = d1 < d2 ? d2 : d1;
-    double e = d.to_double();
-    if (Rational(e) < d) e = std::nextafter(e, kInf);
-    return e;
-}
 
 // The cone rule's results with their guarantees.
 struct ConeResults {
@@ -247,15 +112,7 @@ ConeResults cone_results(const MeshView& mesh, int count, Accuracy accuracy, dou
         const bool fast = accuracy == Accuracy::fast;
         ConeSums sums = filtered_sums(mesh, count, fast ? Precision::fast : Precision::double_double);
         auto intervals = [&](bool with_bounds) {
-            for (int k = 0; k < count; ++k) {
-                const Rational c(sums.sum[k]);
-                if (with_bounds && sums.bound[k] > 0) {
-                    const Rational e(sums.bound[k]);
-                    iv[k] = {c - e, c + e, true};
-                } else {
-                    iv[k] = point(c);
-                }
-            }
+            for (int k = 0; k < count; ++k) iv[k] = interval(sums.sum[k], with_bounds ? sums.bound[k] : 0.0);
         };
         intervals(true);
         std::vector<Result> res = evaluate(iv, count, rho);
@@ -268,10 +125,7 @@ ConeResults cone_results(const MeshView& mesh, int count, Accuracy accuracy, dou
                 out.bound[k] = error_bound(res[k], out.value[k]);
             }
         } else {
-            uint32_t need = 0;
-            for (int k = 0; k < results; ++k)
-                if (!decided(res[k])) need |= res[k].deps;
-            if (need != 0) {
+            if (const uint32_t need = undecided_sums(res); need != 0) {
                 exact_sums(mesh, need, sums);
                 intervals(true);
                 res = evaluate(iv, count, rho);

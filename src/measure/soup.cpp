@@ -1,11 +1,13 @@
 // measure/soup.cpp — polyvol/soup.hpp: volume, first moments, area and a
 // closedness fingerprint of float32 triangle records, in constant memory.
 //
-// The passes: pass 1 (soup_pass1.cpp) forms the volume, first moments,
-// area and fingerprint in one read; when its volume does not decide the
-// rounding, pass 2 runs the cone kernels' translated form on each block,
-// and pass 3 the exact sum. The error analysis behind each bound used here
-// is in docs/numerics.md, "The streamed soup".
+// The passes: pass 1 (soup_pass1.cpp) forms the volume and first moments
+// in double-double, the area and the fingerprint in one read; the results
+// are decided as a loaded mesh's are (measure/cone_results.hpp). When the
+// volume alone is undecided, pass 2 runs the cone kernels' translated form
+// on each block; pass 3 sums exactly what is still undecided. The error
+// analysis behind each bound used here is in docs/numerics.md, "The
+// streamed soup".
 #include "polyvol/soup.hpp"
 
 #include <tbb/blocked_range.h>
@@ -24,10 +26,12 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "measure/cone.hpp"
+#include "measure/cone_results.hpp"
 #include "measure/fingerprint.hpp"
 #include "measure/soup_pass1.hpp"
 #include "measure/soup_testing.hpp"
@@ -54,17 +58,16 @@ static_assert(kChunk % kB == 0);
 // ---- per-thread sums ------------------------------------------------------------
 
 struct Partial {
-    ExactSum vol, vol_mag;        // 6 V: the current pass's sum and magnitudes
-    ExactSum mom[3], mom_mag;     // pass 1: 24 ∫x_i and the bound's magnitudes
+    ExactSum sum[cone::kSxx];     // 6 V and 24 ∫x_i (cone::SumIndex): the current pass's sums
+    ExactSum vol_mag, mom_mag;    // pass 1 and 2: the bounds' magnitudes
     ExactSum area2, cross;        // pass 1: 2 A and Σ X
     uint64_t fp[kFpLanes] = {};   // mod p
     uint64_t triangles = 0;
     bool nonfinite = false;
 
     void merge(const Partial& o) {
-        vol.merge(o.vol);
+        for (int k = 0; k < cone::kSxx; ++k) sum[k].merge(o.sum[k]);
         vol_mag.merge(o.vol_mag);
-        for (int k = 0; k < 3; ++k) mom[k].merge(o.mom[k]);
         mom_mag.merge(o.mom_mag);
         area2.merge(o.area2);
         cross.merge(o.cross);
@@ -91,13 +94,26 @@ void measure::record_soup_pass1(SoupPass1Sums* out) { g_pass1_record.store(out, 
 struct SoupAccumulator::State {
     Keys keys{};
     SoupWants wants;
+    measure::soup::Moments moments;  // what pass 1 forms of them
     int pass = 1;
     bool done = false;
     tbb::enumerable_thread_specific<Partial> tls;
     uint64_t pass1_triangles = 0;
+    // The sums as known after the last pass (cone::SumIndex kV, kMx..kMz):
+    // the exact sum of the approximations, and a bound on its distance to
+    // the exact sum (0: exact).
+    ExactSum sum[cone::kSxx];
+    double bound[cone::kSxx] = {};
+    uint32_t exact_mask = 0;  // pass 3: the sums it recomputes exactly
     SoupResult result;
 
-    State(uint64_t seed, SoupWants w) : wants(w) {
+    State(uint64_t seed, SoupWants w)
+        : wants(w),
+          moments(!w.moments_and_area                       ? measure::soup::kNoMoments
+                  : w.moments == Accuracy::correctly_rounded ? measure::soup::kDoubleDouble
+                                                             : measure::soup::kPlain) {
+        if (!std::isfinite(w.density))
+            throw std::invalid_argument("SoupAccumulator: the density is not finite");
         uint64_t s = seed;
         for (auto& k : keys.aes)
             for (auto& x : k) x = measure::fingerprint::splitmix(s);
@@ -111,7 +127,7 @@ struct SoupAccumulator::State {
         p.triangles += static_cast<uint64_t>(n);
         Pass1Group g;
         if (!measure::soup::pass1_group(t.data + first * t.stride + t.offset, t.stride, n, keys, wants.closedness,
-                                        wants.moments_and_area, g)) {
+                                        moments, g)) {
             p.nonfinite = true;  // NaN or infinity: nothing else is meaningful
             return;
         }
@@ -119,21 +135,31 @@ struct SoupAccumulator::State {
             p.fp[l] += g.fp[l];
             if (p.fp[l] >= kP) p.fp[l] -= kP;
         }
-        p.vol.add(g.vs);
-        p.vol.add(g.ve);
-        double magnitude = 0;
+        p.sum[cone::kV].add(g.vs);
+        p.sum[cone::kV].add(g.ve);
+        if (moments == measure::soup::kDoubleDouble)
+            for (int k = 0; k < 3; ++k) {
+                p.sum[cone::kMx + k].add(g.ms[k]);
+                p.sum[cone::kMx + k].add(g.me[k]);
+            }
+        double volume_magnitude = 0, moments_magnitude = 0;
         for (int b = 0; b * kB < n; ++b) {
             const double M = static_cast<double>(std::bit_cast<float>(g.mx[b]));
             const double nb = static_cast<double>(std::min(kB, n - b * kB));
-            magnitude += 6 * (M * M * M) * nb;
-            if (!wants.moments_and_area) continue;
+            volume_magnitude += 6 * (M * M * M) * nb;
+            if (moments == measure::soup::kNoMoments) continue;
             const Pass1Block& r = g.block[b];
-            for (int k = 0; k < 3; ++k) p.mom[k].add(r.mom[k]);
-            p.mom_mag.add(3 * M * r.abs_d + 0x1p-43 * ((M * M) * (M * M)) * nb);
             p.area2.add(r.area2);
             p.cross.add(r.cross);
+            if (moments == measure::soup::kDoubleDouble) {
+                moments_magnitude += 18 * ((M * M) * (M * M)) * nb;
+            } else {
+                for (int k = 0; k < 3; ++k) p.sum[cone::kMx + k].add(r.mom[k]);
+                p.mom_mag.add(3 * M * r.abs_d + 0x1p-43 * ((M * M) * (M * M)) * nb);
+            }
         }
-        p.vol_mag.add(magnitude);
+        p.vol_mag.add(volume_magnitude);
+        if (moments == measure::soup::kDoubleDouble) p.mom_mag.add(moments_magnitude);
     }
 
     // Passes 2 and 3 over one block: triangles [first, first + n) of t, n <= kB.
@@ -150,9 +176,9 @@ struct SoupAccumulator::State {
         b.n = n;
         p.triangles += static_cast<uint64_t>(n);
         if (pass == 2) {
-            cone::filtered_volume_block(b, p.vol, p.vol_mag);
+            cone::filtered_volume_block(b, p.sum[cone::kV], p.vol_mag);
         } else {
-            cone::exact_block_sums(b, 1u << cone::kV, &p.vol);
+            cone::exact_block_sums(b, exact_mask, p.sum);
         }
     }
 
@@ -206,6 +232,44 @@ void SoupAccumulator::add(const Float32Triangles& t, uint64_t first_triangle) {
         tbb::simple_partitioner());
 }
 
+namespace {
+// Every figure NaN but (unless `volume`) the volume's (a NaN or infinite
+// coordinate, or not asked for).
+void set_nan(MassProperties& m, bool volume) {
+    if (volume) m.volume = m.mass = m.volume_error_bound = kNaN;
+    m.first_moments = m.centroid = {kNaN, kNaN, kNaN};
+    m.second_moments = m.inertia_origin = m.inertia_centroid = {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
+    m.area = m.edge_length = kNaN;
+    m.moments_relative_error = m.area_relative_error = m.edge_length_relative_error = kNaN;
+}
+
+// First moments and centroid within a bound, from the sums Σ d s_i ± B
+// (sum[kMx..kMz], bound) and the correctly rounded volume V (m.volume):
+//   F_i = ρ round(Σ_i / 24) within E = B/24 + u |F| (+ u |ρ F| for ρ != 1);
+//   c_i = F_i / V within (E + 1.01 u (|F| + E)) / |V| + u |c|;
+// each relative to its array's largest entry (measure.hpp), rounded up.
+void set_bounded_moments(const ExactSum* sum, const double* bound, double density, MassProperties& m) {
+    const double V = m.volume;
+    double e_first = 0, e_centroid = 0, largest_first = 0, largest_centroid = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double F = sum[cone::kMx + k].round_div(24);
+        const double E = up(up(bound[cone::kMx + k] / 24) + up(kU * std::fabs(F)));
+        m.first_moments[k] = density * F;
+        e_first = std::max(e_first, density == 1 ? E : up(up(density * E) + up(kU * std::fabs(density * F))));
+        largest_first = std::max(largest_first, std::fabs(m.first_moments[k]));
+        m.centroid[k] = V == 0 ? kNaN : F / V;
+        if (V == 0) continue;
+        const double num = up(E + up(1.01 * kU * up(std::fabs(F) + E)));
+        e_centroid = std::max(e_centroid, up(up(num / std::fabs(V)) + up(kU * std::fabs(m.centroid[k]))));
+        largest_centroid = std::max(largest_centroid, std::fabs(m.centroid[k]));
+    }
+    const auto relative = [](double e, double largest) { return e == 0 ? 0.0 : largest > 0 ? up(e / largest) : kInf; };
+    m.moments_correctly_rounded = false;
+    m.moments_relative_error = V == 0 ? kInf : std::max(relative(e_first, largest_first), relative(e_centroid, largest_centroid));
+    m.accuracy = Accuracy::fast;
+}
+}  // namespace
+
 bool SoupAccumulator::next_pass() {
     State& s = *s_;
     if (s.done) return false;
@@ -213,9 +277,13 @@ bool SoupAccumulator::next_pass() {
     for (const Partial& p : s.tls) all.merge(p);
     s.tls.clear();
     SoupResult& r = s.result;
+    MassProperties& m = r.properties;
+    const bool moments = s.wants.moments_and_area;
+    const int count = moments ? int{cone::kSxx} : 1;
     if (s.pass == 1) {
         if (measure::SoupPass1Sums* rec = g_pass1_record.load(std::memory_order_relaxed))
-            *rec = {all.vol, all.vol_mag, {all.mom[0], all.mom[1], all.mom[2]}, all.mom_mag, all.area2, all.cross};
+            *rec = {all.sum[cone::kV],   all.vol_mag, {all.sum[cone::kMx], all.sum[cone::kMy], all.sum[cone::kMz]},
+                    all.mom_mag,         all.area2,   all.cross};
         s.pass1_triangles = all.triangles;
         r.computed = s.wants;
         r.triangles = all.triangles;
@@ -223,75 +291,87 @@ bool SoupAccumulator::next_pass() {
         r.fingerprint = {all.fp[0], all.fp[1], all.fp[2], all.fp[3]};
         r.closed = s.wants.closedness && !all.nonfinite && all.fp[0] == 0 && all.fp[1] == 0 && all.fp[2] == 0 &&
                    all.fp[3] == 0;
-        if (all.nonfinite || !s.wants.moments_and_area) {  // NaN unless computed below
-            r.area = kNaN;
-            r.first_moments = r.centroid = {kNaN, kNaN, kNaN};
-            r.first_moments_error_bound = r.centroid_error_bound = r.area_relative_error = kNaN;
-        }
+        set_nan(m, false);  // second moments, inertia, edge length: never; the rest when computed below
         if (all.nonfinite) {
-            r.volume = kNaN;
+            set_nan(m, true);
             r.passes = 1;
             s.done = true;
             return false;
         }
-        if (s.wants.moments_and_area) {
+        if (moments) {
             // Area.
             const double a2 = all.area2.round();
             const double cross = all.cross.round();
-            r.area = a2 / 2;
-            r.area_relative_error =
+            m.area = a2 / 2;
+            m.area_relative_error =
                 a2 > 0 ? up(up(up(up(15 * kU * a2) + up(5 * kU * cross)) / a2) + kU) : (cross > 0 ? kInf : 0.0);
-            // First moments (the centroid needs the volume: below).
-            const double mom_bound = up(up(16 * kU * up(all.mom_mag.round() * (1 + 0x1p-10))) / 24);
-            double emax = 0;
-            for (int k = 0; k < 3; ++k) {
-                r.first_moments[k] = all.mom[k].round_div(24);
-                emax = std::max(emax, up(mom_bound + up(kU * std::fabs(r.first_moments[k]))));
-            }
-            r.first_moments_error_bound = emax;
         }
-        const double bound = up(512 * kU * kU * up(all.vol_mag.round() * (1 + 0x1p-10)));
-        if (const auto v = exact::decided_round_div(all.vol, bound, 6)) {
-            r.volume = *v;
-        } else {
-            s.pass = 2;
-            return true;
-        }
+        for (int k = 0; k < count; ++k) s.sum[k] = all.sum[k];
+        s.bound[cone::kV] = up(512 * kU * kU * up(all.vol_mag.round() * (1 + 0x1p-10)));
+        // Each Σ d s_i: double-double terms (error <= 532 u² Σ 18 M_b^4 n_b), or
+        // plain ones (error <= 9.01 u Σ (3 M_b Σ|d| + 2^-43 M_b^4 n_b)).
+        const double mom_bound = s.moments == measure::soup::kDoubleDouble
+                                     ? up(1024 * kU * kU * up(all.mom_mag.round() * (1 + 0x1p-10)))
+                                     : up(16 * kU * up(all.mom_mag.round() * (1 + 0x1p-10)));
+        for (int k = cone::kMx; k < count; ++k) s.bound[k] = mom_bound;
     } else {
         if (all.triangles != s.pass1_triangles)
             throw std::logic_error("SoupAccumulator: pass " + std::to_string(s.pass) + " saw " +
                                    std::to_string(all.triangles) + " triangles, pass 1 saw " +
                                    std::to_string(s.pass1_triangles));
-        const double bound =
-            s.pass == 2 ? cone::filtered_bound(cone::kV, cone::Precision::double_double, all.vol_mag.round()) : 0.0;
-        if (const auto v = exact::decided_round_div(all.vol, bound, 6)) {
-            r.volume = *v;
+        if (s.pass == 2) {
+            s.sum[cone::kV] = all.sum[cone::kV];
+            s.bound[cone::kV] = cone::filtered_bound(cone::kV, cone::Precision::double_double, all.vol_mag.round());
         } else {
-            s.pass = 3;  // only from pass 2: the exact sum always decides
-            return true;
+            for (int k = 0; k < count; ++k)
+                if (s.exact_mask & cone::bit(k)) {
+                    s.sum[k] = all.sum[k];
+                    s.bound[k] = 0;
+                }
         }
     }
-    r.volume_correctly_rounded = true;
+    // Decide. Correctly rounded moments (or a mass with a density) as a
+    // loaded mesh's results, in rational intervals; the volume alone, and
+    // bounded moments, in doubles by the superaccumulator.
+    const bool bounded_moments = moments && s.wants.moments == Accuracy::fast;
+    const bool rational = (moments && !bounded_moments) || s.wants.density != 1;
+    const int decided_count = rational && !bounded_moments ? count : 1;
+    std::vector<cone::Result> results;
+    std::optional<double> volume;
+    uint32_t need = 0;
+    if (rational) {
+        std::array<cone::Interval, cone::kSumCount> iv;
+        for (int k = 0; k < decided_count; ++k) iv[k] = cone::interval(s.sum[k], s.bound[k]);
+        results = cone::evaluate(iv, decided_count, exact::Rational(s.wants.density));
+        need = cone::undecided_sums(results);
+    } else {
+        volume = exact::decided_round_div(s.sum[cone::kV], s.bound[cone::kV], 6);
+        need = volume ? 0u : cone::bit(cone::kV);
+    }
+    if (need != 0) {
+        // Pass 2 when only the volume is undecided after pass 1; pass 3 otherwise
+        // (the exact sums always decide).
+        s.pass = s.pass == 1 && need == cone::bit(cone::kV) ? 2 : 3;
+        s.exact_mask = need;
+        return true;
+    }
     r.passes = s.pass;
-    if (!s.wants.moments_and_area) {
-        s.done = true;
-        return false;
-    }
-    // Centroid c_i = F_i / V with F_i ± E (first moments) and V correctly
-    // rounded (|V - V*| <= u |V|): |c - c*| <= (E + 1.01 u (|F| + E)) / |V| + u |c|.
-    const double V = r.volume;
-    double cmax = 0;
-    for (int k = 0; k < 3; ++k) {
-        if (V == 0) {
-            r.centroid[k] = kNaN;
-            continue;
+    m.method = Method::cone;
+    m.accuracy = Accuracy::correctly_rounded;
+    m.volume = rational ? *cone::decided(results[cone::kVolume]) : *volume;
+    m.mass = rational ? *cone::decided(results[cone::kMass]) : m.volume;
+    m.volume_correctly_rounded = true;
+    m.volume_error_bound = 0;
+    if (moments && !bounded_moments) {
+        for (int i = 0; i < 3; ++i) {
+            m.first_moments[i] = *cone::decided(results[cone::kFirst + i]);
+            m.centroid[i] = *cone::decided(results[cone::kCentroid + i]);
         }
-        const double F = r.first_moments[k], E = r.first_moments_error_bound;
-        r.centroid[k] = F / V;
-        const double num = up(E + up(1.01 * kU * up(std::fabs(F) + E)));
-        cmax = std::max(cmax, up(up(num / std::fabs(V)) + up(kU * std::fabs(r.centroid[k]))));
+        m.moments_correctly_rounded = true;
+        m.moments_relative_error = 0x1p-53;
+    } else if (moments) {
+        set_bounded_moments(s.sum, s.bound, s.wants.density, m);
     }
-    r.centroid_error_bound = V == 0 ? kInf : cmax;
     s.done = true;
     return false;
 }
@@ -324,7 +404,7 @@ double soup_volume(const Float32Triangles& t) {
     // No keys are needed without the fingerprint: a fixed seed spares
     // std::random_device.
     SoupAccumulator acc(0, SoupWants{.closedness = false, .moments_and_area = false});
-    return run_all(acc, t).volume;
+    return run_all(acc, t).properties.volume;
 }
 
 }  // namespace polyvol

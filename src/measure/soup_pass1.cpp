@@ -5,7 +5,10 @@
 //   6 V      det = a · (b × c) in double-double (h + lo), summed by Sum2 in
 //            8 lanes (lane j: triangles j mod 8), the lanes running on
 //            across the group's blocks;
-//   24 ∫x_i  d (a_i + b_i + c_i), d = fl(h + lo), with Σ |d| for its bound;
+//   24 ∫x_i  (h + lo)(a_i + b_i + c_i) in double-double, summed by Sum2 in
+//            lanes as the volume is (for correctly rounded moments), or
+//            fl(h + lo) fl(a_i + b_i + c_i) in double, with Σ |d| for its
+//            bound (for moments within a bound);
 //   2 A      |(b - a) × (c - a)|, with Σ X (the cross products' products);
 //   closed   the Vandermonde product of its vertices' hashes (mod p),
 //            summed: the fingerprint of soup.hpp.
@@ -90,14 +93,18 @@ struct SetRows {
     V c[9][kQ];
 };
 
-// A block's lanes: the volume's Sum2 (S, E); the plain sums (kMA).
+// A block's lanes: the Sum2 (S, E) of the volume and (kDoubleDouble) of the
+// first moments (MS, ME); the plain sums of the first moments and Σ |d|
+// (kPlain), and of the area.
 struct BlockLanes {
     V S[kQ], E[kQ];
-    V M[3][kQ], AD[kQ], X[kQ], T[kQ];
+    V MS[3][kQ], ME[3][kQ];
+    V M[3][kQ], AD[kQ];
+    V X[kQ], T[kQ];
 };
 
 // Set g of a block into its lanes (the error analysis: docs/numerics.md).
-template <bool kMA>
+template <Moments kM>
 HWY_INLINE void add_set(int g, const SetRows& r, BlockLanes& s) {
     for (int q = 0; q < kQ; ++q) {
         const V ax = r.c[0][q], ay = r.c[1][q], az = r.c[2][q];
@@ -123,11 +130,38 @@ HWY_INLINE void add_set(int g, const SetRows& r, BlockLanes& s) {
         } else {
             sum2_add(s.S[q], s.E[q], h, l);
         }
-        if constexpr (kMA) {
-            // First moments.
+        if constexpr (kM == kPlain) {
+            // First moments d s_i, d = fl(h + l), s_i = fl(fl(a_i + b_i) + c_i), with Σ |d|.
             const V d = h + l;
             const V ad = hn::Abs(d);
             const V m0 = d * ((ax + bx) + cx), m1 = d * ((ay + by) + cy), m2 = d * ((az + bz) + cz);
+            if (g == 0) {
+                s.M[0][q] = m0, s.M[1][q] = m1, s.M[2][q] = m2, s.AD[q] = ad;
+            } else {
+                s.M[0][q] = s.M[0][q] + m0, s.M[1][q] = s.M[1][q] + m1, s.M[2][q] = s.M[2][q] + m2;
+                s.AD[q] = s.AD[q] + ad;
+            }
+        }
+        if constexpr (kM == kDoubleDouble) {
+            // First moments: s_i = a_i + b_i + c_i as sh + sl (two two_sums),
+            // (h + l)(sh + sl) as P + (Q + (h sl + l sh)).
+            const V a[3] = {ax, ay, az}, b[3] = {bx, by, bz}, c[3] = {cx, cy, cz};
+            for (int i = 0; i < 3; ++i) {
+                V x, ex, sh, es, P, Q;
+                two_sum(a[i], b[i], x, ex);
+                two_sum(x, c[i], sh, es);
+                const V sl = ex + es;
+                two_prod(h, sh, P, Q);
+                const V lo = Q + (h * sl + l * sh);
+                if (g == 0) {
+                    s.MS[i][q] = P;
+                    s.ME[i][q] = lo;
+                } else {
+                    sum2_add(s.MS[i][q], s.ME[i][q], P, lo);
+                }
+            }
+        }
+        if constexpr (kM != kNoMoments) {
             // Area: |(b - a) × (c - a)|.
             const V ux = bx - ax, uy = by - ay, uz = bz - az;
             const V wx = cx - ax, wy = cy - ay, wz = cz - az;
@@ -136,11 +170,9 @@ HWY_INLINE void add_set(int g, const SetRows& r, BlockLanes& s) {
             const V t = hn::Sqrt((f0 * f0 + f1 * f1) + f2 * f2);
             const V x = ((hn::Abs(p0) + hn::Abs(q0)) + (hn::Abs(p1) + hn::Abs(q1))) + (hn::Abs(p2) + hn::Abs(q2));
             if (g == 0) {
-                s.M[0][q] = m0, s.M[1][q] = m1, s.M[2][q] = m2;
-                s.AD[q] = ad, s.X[q] = x, s.T[q] = t;
+                s.X[q] = x, s.T[q] = t;
             } else {
-                s.M[0][q] = s.M[0][q] + m0, s.M[1][q] = s.M[1][q] + m1, s.M[2][q] = s.M[2][q] + m2;
-                s.AD[q] = s.AD[q] + ad, s.X[q] = s.X[q] + x, s.T[q] = s.T[q] + t;
+                s.X[q] = s.X[q] + x, s.T[q] = s.T[q] + t;
             }
         }
     }
@@ -173,23 +205,28 @@ HWY_INLINE __m512d lane_sums8(const __m512d v[8]) {
 #endif
 
 // A block's plain sums (each lane_sum8 of its lanes).
+template <Moments kM>
 HWY_INLINE void finish_block(const BlockLanes& s, Pass1Block& out) {
 #if POLYVOL_SOUP_AVX512
-    static_assert(kQ == 1);
-    alignas(64) double sums[8];
-    const __m512d lanes[8] = {s.M[0][0].raw, s.M[1][0].raw, s.M[2][0].raw, s.AD[0].raw,
-                              s.X[0].raw,    s.T[0].raw,    s.T[0].raw,    s.T[0].raw};
-    _mm512_store_pd(sums, lane_sums8(lanes));
-    for (int k = 0; k < 3; ++k) out.mom[k] = sums[k];
-    out.abs_d = sums[3];
-    out.cross = sums[4];
-    out.area2 = sums[5];
-#else
-    for (int k = 0; k < 3; ++k) out.mom[k] = lanes_sum(s.M[k]);
-    out.abs_d = lanes_sum(s.AD);
+    if constexpr (kM == kPlain) {
+        static_assert(kQ == 1);
+        alignas(64) double sums[8];
+        const __m512d lanes[8] = {s.M[0][0].raw, s.M[1][0].raw, s.M[2][0].raw, s.AD[0].raw,
+                                  s.X[0].raw,    s.T[0].raw,    s.T[0].raw,    s.T[0].raw};
+        _mm512_store_pd(sums, lane_sums8(lanes));
+        for (int k = 0; k < 3; ++k) out.mom[k] = sums[k];
+        out.abs_d = sums[3];
+        out.cross = sums[4];
+        out.area2 = sums[5];
+        return;
+    }
+#endif
     out.cross = lanes_sum(s.X);
     out.area2 = lanes_sum(s.T);
-#endif
+    if constexpr (kM == kPlain) {
+        for (int k = 0; k < 3; ++k) out.mom[k] = lanes_sum(s.M[k]);
+        out.abs_d = lanes_sum(s.AD);
+    }
 }
 
 // Sum2's lanes (sums s, errors e) into one pair (vs, ve): the sums by
@@ -205,18 +242,18 @@ POLYVOL_INLINE void combine_lanes(const double* s, const double* e, double& vs, 
     }
 }
 
-// The group's Sum2 lanes: each block's (S, E) taken in by Sum2, then the
-// lanes into one pair.
-struct GroupLanes {
+// The group's Sum2 lanes of one sum: each block's (S, E) taken in by Sum2,
+// then the lanes into one pair.
+struct GroupSum {
     V GS[kQ], GE[kQ];
 
-    HWY_INLINE void add_block(int b, const BlockLanes& s) {
+    HWY_INLINE void add_block(int b, const V (&S)[kQ], const V (&E)[kQ]) {
         for (int q = 0; q < kQ; ++q) {
             if (b == 0) {
-                GS[q] = s.S[q];
-                GE[q] = s.E[q];
+                GS[q] = S[q];
+                GE[q] = E[q];
             } else {
-                sum2_add(GS[q], GE[q], s.S[q], s.E[q]);
+                sum2_add(GS[q], GE[q], S[q], E[q]);
             }
         }
     }
@@ -228,6 +265,24 @@ struct GroupLanes {
             hn::Store(GE[q], D(), e + q * kN);
         }
         combine_lanes(s, e, vs, ve);
+    }
+};
+
+// The group's lanes: the volume's, and (kDoubleDouble) the first moments'.
+template <Moments kM>
+struct GroupLanes {
+    GroupSum volume, moment[3];
+
+    HWY_INLINE void add_block(int b, const BlockLanes& s) {
+        volume.add_block(b, s.S, s.E);
+        if constexpr (kM == kDoubleDouble)
+            for (int i = 0; i < 3; ++i) moment[i].add_block(b, s.MS[i], s.ME[i]);
+    }
+
+    HWY_INLINE void finish(Pass1Group& g) const {
+        volume.finish(g.vs, g.ve);
+        if constexpr (kM == kDoubleDouble)
+            for (int i = 0; i < 3; ++i) moment[i].finish(g.ms[i], g.me[i]);
     }
 };
 
@@ -421,11 +476,11 @@ HWY_INLINE void fingerprint_aesni(const std::byte* base, std::size_t stride, int
 #endif
 
 // Pass 1 for a group, block by block through Coords: rows loaded from it.
-template <bool kFp, bool kMA>
+template <bool kFp, Moments kM>
 HWY_INLINE bool group_via_coords(const std::byte* base, std::size_t stride, int n, const Keys& keys, Pass1Group& g) {
     const D d;
     for (int l = 0; l < kFpLanes; ++l) g.fp[l] = 0;
-    GroupLanes lanes;
+    GroupLanes<kM> lanes;
     for (int b = 0; b * kB < n; ++b) {
         const int nb = std::min(kB, n - b * kB);
         const std::byte* const bb = base + static_cast<std::size_t>(b * kB) * stride;
@@ -444,9 +499,9 @@ HWY_INLINE bool group_via_coords(const std::byte* base, std::size_t stride, int 
             SetRows r;
             for (int k = 0; k < 9; ++k)
                 for (int q = 0; q < kQ; ++q) r.c[k][q] = hn::Load(d, &co.c[k][kSumLanes * set + kN * q]);
-            add_set<kMA>(set, r, s);
+            add_set<kM>(set, r, s);
         }
-        if constexpr (kMA) finish_block(s, g.block[b]);
+        if constexpr (kM != kNoMoments) finish_block<kM>(s, g.block[b]);
         lanes.add_block(b, s);
         if constexpr (kFp) {
             uint64_t fp[kFpLanes];
@@ -458,7 +513,7 @@ HWY_INLINE bool group_via_coords(const std::byte* base, std::size_t stride, int 
             for (int l = 0; l < kFpLanes; ++l) g.fp[l] = (g.fp[l] + fp[l]) % kP;
         }
     }
-    lanes.finish(g.vs, g.ve);
+    lanes.finish(g);
     return true;
 }
 
@@ -570,7 +625,7 @@ HWY_INLINE __m512 triangle_row(const std::byte* r) {
 // fingerprint going on in fpr: each set of 8 triangles' records transposed
 // in registers into its rows, nothing stored in between. Returns the largest
 // |coordinate| bit pattern.
-template <bool kFull, bool kFp, bool kMA>
+template <bool kFull, bool kFp, Moments kM>
 POLYVOL_IFMA_INLINE uint32_t block_in_registers(const std::byte* bb, std::size_t stride, int nb, Fingerprint512& fpr,
                                                 BlockLanes& s) {
     const __m512i col8_index = _mm512_setr_epi32(8, 9, 10, 11, 24, 25, 26, 27, 8, 9, 10, 11, 24, 25, 26, 27);
@@ -626,31 +681,31 @@ POLYVOL_IFMA_INLINE uint32_t block_in_registers(const std::byte* bb, std::size_t
         r.c[6][0] = V{column<0x31>(u2, u6)};
         r.c[7][0] = V{column<0x31>(u3, u7)};
         r.c[8][0] = V{_mm512_cvtps_pd(_mm512_castps512_ps256(_mm512_permutex2var_ps(u0, col8_index, u4)))};
-        add_set<kMA>(set, r, s);
+        add_set<kM>(set, r, s);
     }
     // Magnitudes' bit patterns order as the magnitudes (infinity above all finite ones).
     return _mm512_reduce_max_epu32(_mm512_castps_si512(mx));
 }
 
 // Pass 1 for a group with AVX-512, IFMA and VAES (block_in_registers).
-template <bool kFp, bool kMA>
+template <bool kFp, Moments kM>
 POLYVOL_IFMA_ATTR bool group_in_registers(const std::byte* base, std::size_t stride, int n, const Keys& key,
                                           Pass1Group& g) {
     Fingerprint512 fpr(key);
-    GroupLanes lanes;
+    GroupLanes<kM> lanes;
     for (int b = 0; b * kB < n; ++b) {
         const int nb = std::min(kB, n - b * kB);
         const std::byte* const bb = base + static_cast<std::size_t>(b * kB) * stride;
         prefetch_ahead(bb, kB * stride);
         BlockLanes s;
-        const uint32_t m = nb == kB ? block_in_registers<true, kFp, kMA>(bb, stride, nb, fpr, s)
-                                    : block_in_registers<false, kFp, kMA>(bb, stride, nb, fpr, s);
+        const uint32_t m = nb == kB ? block_in_registers<true, kFp, kM>(bb, stride, nb, fpr, s)
+                                    : block_in_registers<false, kFp, kM>(bb, stride, nb, fpr, s);
         if (m >= kNonFinite) return false;
         g.mx[b] = m;
-        if constexpr (kMA) finish_block(s, g.block[b]);
+        if constexpr (kM != kNoMoments) finish_block<kM>(s, g.block[b]);
         lanes.add_block(b, s);
     }
-    lanes.finish(g.vs, g.ve);
+    lanes.finish(g);
     // A NaN coordinate is a factor of a product in h, which makes vs NaN;
     // finite coordinates keep vs and ve finite.
     if (std::isnan(g.vs + g.ve)) return false;
@@ -663,22 +718,27 @@ POLYVOL_IFMA_ATTR bool group_in_registers(const std::byte* base, std::size_t str
 }
 #endif
 
-template <bool kFp, bool kMA>
+template <bool kFp, Moments kM>
 HWY_INLINE bool group(const std::byte* base, std::size_t stride, int n, const Keys& keys, Pass1Group& g) {
 #if POLYVOL_SOUP_AVX512
-    if (simd::has_avx512_ifma_vaes()) return group_in_registers<kFp, kMA>(base, stride, n, keys, g);
+    if (simd::has_avx512_ifma_vaes()) return group_in_registers<kFp, kM>(base, stride, n, keys, g);
 #endif
-    return group_via_coords<kFp, kMA>(base, stride, n, keys, g);
+    return group_via_coords<kFp, kM>(base, stride, n, keys, g);
 }
 
 }  // namespace
 
-bool RunPass1(const std::byte* base, std::size_t stride, int n, const Keys& keys, bool fingerprint,
-                bool moments_and_area, Pass1Group& g) {
-    if (fingerprint) {
-        return moments_and_area ? group<true, true>(base, stride, n, keys, g) : group<true, false>(base, stride, n, keys, g);
-    }
-    return moments_and_area ? group<false, true>(base, stride, n, keys, g) : group<false, false>(base, stride, n, keys, g);
+bool RunPass1(const std::byte* base, std::size_t stride, int n, const Keys& keys, bool fingerprint, Moments moments,
+              Pass1Group& g) {
+    const auto with = [&]<bool kFp>() {
+        switch (moments) {
+            case kNoMoments: return group<kFp, kNoMoments>(base, stride, n, keys, g);
+            case kPlain: return group<kFp, kPlain>(base, stride, n, keys, g);
+            case kDoubleDouble: return group<kFp, kDoubleDouble>(base, stride, n, keys, g);
+        }
+        return false;
+    };
+    return fingerprint ? with.template operator()<true>() : with.template operator()<false>();
 }
 
 #undef POLYVOL_SOUP_AVX2
@@ -695,8 +755,8 @@ HWY_AFTER_NAMESPACE();
 namespace polyvol::measure::soup {
 
 bool pass1_group(const std::byte* base, std::size_t stride, int n, const Keys& keys, bool fingerprint,
-                 bool moments_and_area, Pass1Group& g) {
-    return POLYVOL_DISPATCH(RunPass1)(base, stride, n, keys, fingerprint, moments_and_area, g);
+                 Moments moments, Pass1Group& g) {
+    return POLYVOL_DISPATCH(RunPass1)(base, stride, n, keys, fingerprint, moments, g);
 }
 
 }  // namespace polyvol::measure::soup

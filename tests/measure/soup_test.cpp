@@ -91,15 +91,15 @@ void expect_same(const SoupResult& a, const SoupResult& b) {
     EXPECT_EQ(a.triangles, b.triangles);
     EXPECT_EQ(a.closed, b.closed);
     EXPECT_EQ(a.passes, b.passes);
-    EXPECT_EQ(bits(a.volume), bits(b.volume));
-    EXPECT_EQ(bits(a.area), bits(b.area));
-    EXPECT_EQ(bits(a.area_relative_error), bits(b.area_relative_error));
+    EXPECT_EQ(bits(a.properties.volume), bits(b.properties.volume));
+    EXPECT_EQ(bits(a.properties.area), bits(b.properties.area));
+    EXPECT_EQ(bits(a.properties.area_relative_error), bits(b.properties.area_relative_error));
     for (int k = 0; k < 3; ++k) {
-        EXPECT_EQ(bits(a.first_moments[k]), bits(b.first_moments[k]));
-        EXPECT_EQ(bits(a.centroid[k]), bits(b.centroid[k]));
+        EXPECT_EQ(bits(a.properties.first_moments[k]), bits(b.properties.first_moments[k]));
+        EXPECT_EQ(bits(a.properties.centroid[k]), bits(b.properties.centroid[k]));
     }
-    EXPECT_EQ(bits(a.first_moments_error_bound), bits(b.first_moments_error_bound));
-    EXPECT_EQ(bits(a.centroid_error_bound), bits(b.centroid_error_bound));
+    EXPECT_EQ(bits(a.properties.mass), bits(b.properties.mass));
+    EXPECT_EQ(a.properties.moments_correctly_rounded, b.properties.moments_correctly_rounded);
 }
 
 bool same_sum(const exact::ExactSum& a, const exact::ExactSum& b) {
@@ -133,7 +133,7 @@ void expect_same_pass1(const measure::SoupPass1Sums& a, const measure::SoupPass1
 
 // What pass 1 computes besides the volume changes nothing else: for every
 // reduced SoupWants the same pass-1 volume sums (exactly), the same volume
-// and passes, the same fingerprint when it is asked for, NaN for what is not;
+// (in no more passes), the same fingerprint when it is asked for, NaN for what is not;
 // and soup_volume gives the same bits.
 void expect_wants_agree(const Float32Triangles& t, const Recorded& full, uint64_t seed) {
     for (const SoupWants w : {SoupWants{true, false}, SoupWants{false, true}, SoupWants{false, false}}) {
@@ -146,8 +146,13 @@ void expect_wants_agree(const Float32Triangles& t, const Recorded& full, uint64_
         EXPECT_EQ(r.computed.moments_and_area, w.moments_and_area);
         EXPECT_EQ(r.triangles, full.result.triangles);
         EXPECT_EQ(r.nonfinite, full.result.nonfinite);
-        EXPECT_EQ(r.passes, full.result.passes);
-        EXPECT_EQ(bits(r.volume), bits(full.result.volume));
+        // The moments may need a pass that the volume alone does not.
+        if (w.moments_and_area) {
+            EXPECT_EQ(r.passes, full.result.passes);
+        } else {
+            EXPECT_LE(r.passes, full.result.passes);
+        }
+        EXPECT_EQ(bits(r.properties.volume), bits(full.result.properties.volume));
         if (!full.result.nonfinite) {
             EXPECT_TRUE(same_sum(p1.volume, full.pass1.volume)) << "pass-1 volume sum";
             EXPECT_TRUE(same_sum(p1.volume_magnitude, full.pass1.volume_magnitude)) << "pass-1 volume magnitude";
@@ -160,15 +165,15 @@ void expect_wants_agree(const Float32Triangles& t, const Recorded& full, uint64_
             EXPECT_EQ(r.fingerprint, (std::array<uint64_t, 4>{}));  // soup.hpp: 0 when not computed
         }
         if (w.moments_and_area) {
-            EXPECT_EQ(bits(r.area), bits(full.result.area));
-            for (int k = 0; k < 3; ++k) EXPECT_EQ(bits(r.centroid[k]), bits(full.result.centroid[k]));
+            EXPECT_EQ(bits(r.properties.area), bits(full.result.properties.area));
+            for (int k = 0; k < 3; ++k) EXPECT_EQ(bits(r.properties.centroid[k]), bits(full.result.properties.centroid[k]));
         } else {
-            EXPECT_TRUE(std::isnan(r.area));
-            EXPECT_TRUE(std::isnan(r.area_relative_error));
-            for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isnan(r.centroid[k]) && std::isnan(r.first_moments[k]));
+            EXPECT_TRUE(std::isnan(r.properties.area));
+            EXPECT_TRUE(std::isnan(r.properties.area_relative_error));
+            for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isnan(r.properties.centroid[k]) && std::isnan(r.properties.first_moments[k]));
         }
     }
-    EXPECT_EQ(bits(soup_volume(t)), bits(full.result.volume));
+    EXPECT_EQ(bits(soup_volume(t)), bits(full.result.properties.volume));
 }
 
 // Feeds rec in windows of `window` triangles (a multiple of 32), in a shuffled order.
@@ -230,18 +235,24 @@ TEST(Soup, EveryCorpusBinaryStlMatchesTheManifestAndTheFullPath) {
         EXPECT_EQ(s.closed, c.closed);
         EXPECT_FALSE(s.nonfinite);
         // The volume (about the origin, also for open surfaces) is the exact value rounded once.
-        EXPECT_TRUE(s.volume_correctly_rounded);
-        EXPECT_EQ(bits(s.volume), bits(c.volume)) << s.volume << " vs " << c.volume;
+        EXPECT_TRUE(s.properties.volume_correctly_rounded);
+        EXPECT_EQ(bits(s.properties.volume), bits(c.volume)) << s.properties.volume << " vs " << c.volume;
         const LoadedMesh full = read_mesh_file((kCorpus / c.path).string());
         const MassProperties mp = mass_properties(full.mesh.view());
-        EXPECT_EQ(bits(s.volume), bits(mp.volume));
+        EXPECT_EQ(bits(s.properties.volume), bits(mp.volume));
         EXPECT_EQ(s.triangles, full.mesh.face_count());
-        // Area and centroid within their stated bounds of the exact figures.
-        EXPECT_LE(std::fabs(s.area - c.area), s.area_relative_error * c.area);
-        EXPECT_LT(s.area_relative_error, 1e-13);
-        if (c.has_centroid && c.volume != 0) {
-            for (int k = 0; k < 3; ++k)
-                EXPECT_LE(std::fabs(s.centroid[k] - c.centroid[k]), s.centroid_error_bound) << "axis " << k;
+        // The area within its stated bound of the exact figure; the first
+        // moments and the centroid correctly rounded, as the loaded mesh's.
+        EXPECT_LE(std::fabs(s.properties.area - c.area), s.properties.area_relative_error * c.area);
+        EXPECT_LT(s.properties.area_relative_error, 1e-13);
+        EXPECT_TRUE(s.properties.moments_correctly_rounded);
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(bits(s.properties.first_moments[k]), bits(mp.first_moments[k])) << "axis " << k;
+            EXPECT_EQ(bits(s.properties.centroid[k]), bits(mp.centroid[k])) << "axis " << k;
+            if (c.has_centroid && c.volume != 0) {
+                EXPECT_LE(std::fabs(s.properties.centroid[k] - c.centroid[k]),
+                          std::fabs(c.centroid[k]) * 0x1p-52 + 1e-300) << "axis " << k;
+            }
         }
         if (c.closed) ++closed;
         // Another key gives the same verdict.
@@ -312,7 +323,6 @@ TEST(Soup, EveryKernelLevelGivesTheSameBitsForEveryBlockTail) {
                 const Recorded s = recorded(t, 17);
                 expect_same(best.result, s.result);
                 expect_wants_agree(t, s, 17);
-                EXPECT_EQ(bits(s.result.first_moments_error_bound), bits(best.result.first_moments_error_bound));
                 expect_same_pass1(best.pass1, s.pass1);
                 if (level >= 2) {
                     EXPECT_EQ(s.result.fingerprint, best.result.fingerprint);
@@ -350,7 +360,7 @@ TEST(Soup, EveryKernelLevelFlagsEveryNonFiniteCoordinate) {
                         const SoupResult s = soup_properties(stl_records(rec), 2);
                         EXPECT_TRUE(s.nonfinite);
                         EXPECT_FALSE(s.closed);
-                        EXPECT_TRUE(std::isnan(s.volume));
+                        EXPECT_TRUE(std::isnan(s.properties.volume));
                         // Without the area (whose sums detect a NaN in the
                         // AVX-512 kernel), the volume's sums must.
                         const SoupResult v = soup_properties(stl_records(rec), 2, SoupWants{true, false});
@@ -404,7 +414,7 @@ TEST(Soup, WindowSizesAndOrderGiveIdenticalBits) {
         expect_same(whole, s);
         EXPECT_EQ(s.fingerprint, whole.fingerprint);
     }
-    EXPECT_EQ(bits(whole.volume), bits(mass_properties(mesh_of(tri).view()).volume));
+    EXPECT_EQ(bits(whole.properties.volume), bits(mass_properties(mesh_of(tri).view()).volume));
 }
 
 TEST(Soup, FarFromTheOriginIsStillExact) {
@@ -413,14 +423,17 @@ TEST(Soup, FarFromTheOriginIsStillExact) {
     const auto rec = records_of(tri);
     const SoupResult s = soup_properties(stl_records(rec), 5);
     EXPECT_TRUE(s.closed);
-    EXPECT_TRUE(s.volume_correctly_rounded);
+    EXPECT_TRUE(s.properties.volume_correctly_rounded);
     EXPECT_GE(s.passes, 2);  // the float32 filter cannot decide this one
     const MassProperties mp = mass_properties(mesh_of(tri).view());
-    EXPECT_EQ(bits(s.volume), bits(mp.volume));
+    EXPECT_EQ(bits(s.properties.volume), bits(mp.volume));
     EXPECT_EQ(bits(soup_volume(packed_triangles(tri))), bits(mp.volume));
-    EXPECT_GT(s.volume, 3e6);
-    for (int k = 0; k < 3; ++k) EXPECT_LE(std::fabs(s.centroid[k] - mp.centroid[k]), s.centroid_error_bound);
-    EXPECT_LE(std::fabs(s.area - mp.area), s.area_relative_error * mp.area + mp.area_relative_error * mp.area);
+    EXPECT_GT(s.properties.volume, 3e6);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(bits(s.properties.first_moments[k]), bits(mp.first_moments[k]));
+        EXPECT_EQ(bits(s.properties.centroid[k]), bits(mp.centroid[k]));
+    }
+    EXPECT_LE(std::fabs(s.properties.area - mp.area), s.properties.area_relative_error * mp.area + mp.area_relative_error * mp.area);
 }
 
 TEST(Soup, AnExactZeroNeedsTheExactPass) {
@@ -437,18 +450,79 @@ TEST(Soup, AnExactZeroNeedsTheExactPass) {
     const SoupResult s = soup_properties(stl_records(rec), 1);
     EXPECT_TRUE(s.closed);
     EXPECT_EQ(s.passes, 3);
-    EXPECT_EQ(bits(s.volume), bits(0.0));
+    EXPECT_EQ(bits(s.properties.volume), bits(0.0));
     EXPECT_EQ(bits(soup_volume(packed_triangles(both))), bits(0.0));
     EXPECT_EQ(soup_properties(packed_triangles(both), 1, SoupWants{false, false}).passes, 3);
-    EXPECT_TRUE(std::isnan(s.centroid[0]));
+    EXPECT_TRUE(std::isnan(s.properties.centroid[0]));
     // The single tetrahedron: 1/6 in one pass.
     const auto one = records_of(t);
     const SoupResult u = soup_properties(stl_records(one), 1);
     EXPECT_TRUE(u.closed);
     EXPECT_EQ(u.passes, 1);
-    EXPECT_EQ(u.volume, 1.0 / 6);
-    EXPECT_LE(std::fabs(u.area - (1.5 + std::sqrt(3.0) / 2)), 4 * u.area_relative_error * u.area + 1e-15);
-    EXPECT_LE(std::fabs(u.centroid[0] - 0.25), u.centroid_error_bound);
+    EXPECT_EQ(u.properties.volume, 1.0 / 6);
+    EXPECT_LE(std::fabs(u.properties.area - (1.5 + std::sqrt(3.0) / 2)), 4 * u.properties.area_relative_error * u.properties.area + 1e-15);
+    EXPECT_EQ(u.properties.centroid[0], 0.25);
+    EXPECT_EQ(u.properties.first_moments[1], 1.0 / 24);
+}
+
+// A cube centred at the origin: every first moment exactly 0, which no
+// filter decides, so pass 3 sums them exactly; the centroid is then exactly
+// (0, 0, 0), as for the loaded mesh. A density scales the mass and the
+// moments, each still rounded once, as mass_properties does.
+TEST(Soup, CentredPartsGetExactZeroMomentsAndTheDensityScalesOnce) {
+    std::vector<float> tri;
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads)
+        for (const auto& t : {std::array<int, 3>{q[0], q[1], q[2]}, std::array<int, 3>{q[0], q[2], q[3]}})
+            for (int c : t)
+                for (int k = 0; k < 3; ++k) tri.push_back((c >> k & 1) ? 0.5f : -0.5f);
+    const SoupResult s = soup_properties(packed_triangles(tri), 3);
+    EXPECT_TRUE(s.closed);
+    EXPECT_EQ(s.passes, 3);
+    EXPECT_EQ(s.properties.volume, 1.0);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(bits(s.properties.first_moments[k]), bits(0.0));
+        EXPECT_EQ(bits(s.properties.centroid[k]), bits(0.0));
+    }
+    // An off-centre sphere with a density that is not a power of two.
+    const auto sph = sphere(20, 30, 3, 7);
+    MeasureOptions o;
+    o.density = 7.85;
+    o.second_moments = false;
+    const MassProperties mp = mass_properties(mesh_of(sph).view(), o);
+    const SoupResult d = soup_properties(packed_triangles(sph), 3, SoupWants{.density = 7.85});
+    EXPECT_EQ(bits(d.properties.volume), bits(mp.volume));
+    EXPECT_EQ(bits(d.properties.mass), bits(mp.mass));
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(bits(d.properties.first_moments[k]), bits(mp.first_moments[k]));
+        EXPECT_EQ(bits(d.properties.centroid[k]), bits(mp.centroid[k]));
+    }
+    EXPECT_NE(d.properties.mass, d.properties.volume);
+    const SoupResult v = soup_properties(packed_triangles(sph), 3, SoupWants{.moments_and_area = false, .density = 7.85});
+    EXPECT_EQ(bits(v.properties.mass), bits(mp.mass));
+    EXPECT_THROW(SoupAccumulator(SoupWants{.density = std::numeric_limits<double>::infinity()}), std::invalid_argument);
+    // Bounded moments: pass 1's values within its bound, no exact pass for them.
+    const SoupResult f = soup_properties(packed_triangles(sph), 3, SoupWants{.moments = Accuracy::fast, .density = 7.85});
+    EXPECT_EQ(f.passes, 1);
+    EXPECT_FALSE(f.properties.moments_correctly_rounded);
+    EXPECT_GT(f.properties.moments_relative_error, 0.0);
+    EXPECT_LT(f.properties.moments_relative_error, 1e-12);  // pass 1's plain sums
+    EXPECT_EQ(bits(f.properties.mass), bits(mp.mass));
+    // Within the bound of the exact values, so within it plus half an ulp of the correctly rounded ones.
+    double largest_first = 0, largest_centroid = 0;
+    for (int k = 0; k < 3; ++k) {
+        largest_first = std::max(largest_first, std::fabs(f.properties.first_moments[k]));
+        largest_centroid = std::max(largest_centroid, std::fabs(f.properties.centroid[k]));
+    }
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_LE(std::fabs(f.properties.first_moments[k] - mp.first_moments[k]),
+                  f.properties.moments_relative_error * largest_first + std::fabs(mp.first_moments[k]) * 0x1p-53);
+        EXPECT_LE(std::fabs(f.properties.centroid[k] - mp.centroid[k]),
+                  f.properties.moments_relative_error * largest_centroid + std::fabs(mp.centroid[k]) * 0x1p-53);
+    }
+    const SoupResult cube = soup_properties(packed_triangles(tri), 3, SoupWants{.moments = Accuracy::fast});
+    EXPECT_EQ(cube.passes, 1);
+    for (int k = 0; k < 3; ++k) EXPECT_LE(std::fabs(cube.properties.centroid[k]), 1e-15);
 }
 
 TEST(Soup, FingerprintSeesEveryKindOfUnbalancedEdge) {
@@ -497,15 +571,16 @@ TEST(Soup, NonFiniteCoordinatesAreFlagged) {
     SoupResult s = soup_properties(stl_records(records_of(tri)), 1);
     EXPECT_TRUE(s.nonfinite);
     EXPECT_FALSE(s.closed);
-    EXPECT_TRUE(std::isnan(s.volume));
+    EXPECT_TRUE(std::isnan(s.properties.volume));
     tri[40] = std::numeric_limits<float>::infinity();
     s = soup_properties(stl_records(records_of(tri)), 1);
     EXPECT_TRUE(s.nonfinite);
-    EXPECT_TRUE(std::isnan(s.volume));
+    EXPECT_TRUE(std::isnan(s.properties.volume));
 }
 
 TEST(Soup, ContractErrors) {
-    const auto rec = records_of(sphere(6, 8, 1, 0));
+    // (Off the origin: a centred sphere's first moments are exactly 0, which takes the exact pass.)
+    const auto rec = records_of(sphere(6, 8, 1, 2));
     SoupAccumulator acc(1);
     EXPECT_THROW(acc.add(stl_records(rec), 5), std::invalid_argument);
     EXPECT_THROW(acc.add(Float32Triangles{rec.data(), 3, 20, 0}, 0), std::invalid_argument);
@@ -517,7 +592,7 @@ TEST(Soup, ContractErrors) {
     const SoupResult empty = soup_properties(Float32Triangles{}, 1);
     EXPECT_EQ(empty.triangles, 0u);
     EXPECT_TRUE(empty.closed);
-    EXPECT_EQ(empty.volume, 0.0);
+    EXPECT_EQ(empty.properties.volume, 0.0);
     EXPECT_EQ(soup_volume(Float32Triangles{}), 0.0);
 }
 
@@ -527,7 +602,7 @@ TEST(Soup, PackedTrianglesCountWholeTriangles) {
     EXPECT_EQ(packed_triangles(std::span<const float>(tri).first(9 * 5 + 8)).count, 5u);
     EXPECT_EQ(packed_triangles(std::span<const float>(tri).first(9 * 5 + 8)).stride, 36u);
     // The packed triangles and their STL records: the same volume.
-    EXPECT_EQ(bits(soup_volume(packed_triangles(tri))), bits(soup_properties(stl_records(records_of(tri)), 1).volume));
+    EXPECT_EQ(bits(soup_volume(packed_triangles(tri))), bits(soup_properties(stl_records(records_of(tri)), 1).properties.volume));
 }
 
 TEST(Soup, EveryCorpusBinaryStlReadAsPackedTrianglesGivesTheManifestVolume) {
