@@ -109,4 +109,8 @@ struct ToleranceWeld {
 };
 ToleranceWeld weld_within(Mesh& mesh, double tolerance);
 
+// What a one-pass closedness fingerprint says of a surface (topology.hpp's
+// fingerprint_closedness gives it and says what each answer means).
+enum class Closedness { closed, open, undecided };
+
 }  // namespace polyvol

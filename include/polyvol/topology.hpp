@@ -136,4 +136,23 @@ struct TopologyOptions {
 
 TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& options = {});
 
+// Whether the surface is a closed 2-cycle (topology.hpp's closed_2_cycle:
+// every edge between two distinct points used as often in each direction,
+// points compared by their coordinates, -0.0 == +0.0), decided by the
+// randomized fingerprint of soup.hpp over keyed hashes of the fan
+// triangles' corners: one parallel pass, no welding, no edge table (a small
+// fraction of analyze_topology's time). Keys come from std::random_device
+// (the overload with a seed derives them from it, for reproducible tests).
+//   closed     the fingerprint is zero: a closed 2-cycle; an open surface
+//              gets here with probability < 2^-113 over the keys (assuming
+//              the keyed hash behaves as a random function: core/fingerprint.cpp);
+//   open       certainly not a closed 2-cycle (analyze_topology counts and
+//              names its unbalanced edges);
+//   undecided  a vertex some face uses has a NaN or infinite coordinate
+//              (topology never welds NaN vertices), or there are 2^31 - 1
+//              fan triangles or more (beyond the argument): analyze_topology
+//              decides.
+Closedness fingerprint_closedness(const MeshView& mesh);
+Closedness fingerprint_closedness(const MeshView& mesh, uint64_t seed);
+
 }  // namespace polyvol

@@ -17,6 +17,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/fingerprint.hpp"
 #include "exact/rational.hpp"
 #include "measure/cone.hpp"
 #include "measure/cone_results.hpp"
@@ -252,7 +253,7 @@ MassProperties measure_with(const MeshView& mesh, const MeasureOptions& options)
         // Franklin's area and length hold for closed surfaces only; on an
         // open one they are sums about the local origin, not the surface's
         // area and edge length, which the direct sums below then give.
-        if (fingerprint_closedness(mesh) == Closedness::closed) {
+        if (core::fingerprint::mesh_closedness(mesh) == Closedness::closed) {
             area = v.area;
             length = v.length;
             franklin_area = true;

@@ -32,7 +32,7 @@
 #include "exact/exact_sum.hpp"
 #include "measure/cone.hpp"
 #include "measure/cone_results.hpp"
-#include "measure/fingerprint.hpp"
+#include "core/fingerprint.hpp"
 #include "measure/soup_pass1.hpp"
 #include "measure/soup_testing.hpp"
 
@@ -41,7 +41,7 @@ namespace {
 
 using exact::ExactSum;
 namespace cone = measure::cone;
-using measure::fingerprint::kP;
+using core::fingerprint::kP;
 using measure::soup::kB;
 using measure::soup::kFpLanes;
 using measure::soup::kGroupBlocks;
@@ -116,9 +116,9 @@ struct SoupAccumulator::State {
             throw std::invalid_argument("SoupAccumulator: the density is not finite");
         uint64_t s = seed;
         for (auto& k : keys.aes)
-            for (auto& x : k) x = measure::fingerprint::splitmix(s);
+            for (auto& x : k) x = core::fingerprint::splitmix(s);
         for (auto& k : keys.mix)
-            for (auto& x : k) x = measure::fingerprint::splitmix(s) | 1;
+            for (auto& x : k) x = core::fingerprint::splitmix(s) | 1;
     }
 
     // Pass 1 over a group: triangles [first, first + n) of t, n <= kGroupBlocks
@@ -200,9 +200,9 @@ SoupAccumulator::SoupAccumulator(SoupWants wants) {
     // More entropy than one 64-bit seed for the keys themselves.
     s_ = std::make_unique<State>(seed, wants);
     for (auto& k : s_->keys.aes)
-        for (auto& x : k) x ^= measure::fingerprint::random_word(rd);
+        for (auto& x : k) x ^= core::fingerprint::random_word(rd);
     for (auto& k : s_->keys.mix)
-        for (auto& x : k) x ^= measure::fingerprint::random_word(rd);
+        for (auto& x : k) x ^= core::fingerprint::random_word(rd);
 }
 
 SoupAccumulator::SoupAccumulator(uint64_t seed, SoupWants wants) : s_(std::make_unique<State>(seed, wants)) {}

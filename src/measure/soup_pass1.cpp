@@ -30,6 +30,7 @@
 #include <hwy/highway.h>
 
 #include "core/simd.hpp"
+#include "exact/eft.hpp"  // POLYVOL_INLINE
 #include "measure/cone_terms-inl.h"
 #include "measure/soup_pass1.hpp"
 
@@ -60,10 +61,10 @@ using cone::HWY_NAMESPACE::sum2_add;
 using cone::HWY_NAMESPACE::two_prod;
 using cone::HWY_NAMESPACE::two_sum;
 using cone::HWY_NAMESPACE::V;
-using fingerprint::kP;
-using fingerprint::mum;
-using fingerprint::reduce;
-using fingerprint::vandermonde;
+using core::fingerprint::kP;
+using core::fingerprint::mum;
+using core::fingerprint::reduce;
+using core::fingerprint::vandermonde;
 
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
 #define POLYVOL_SOUP_AVX2 1

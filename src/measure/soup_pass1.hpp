@@ -11,12 +11,12 @@
 #include <cstdint>
 
 #include "measure/cone.hpp"
-#include "measure/fingerprint.hpp"
+#include "core/fingerprint.hpp"
 
 namespace polyvol::measure::soup {
 
 constexpr int kB = cone::kBlockTriangles;  // triangles per block (32)
-constexpr int kFpLanes = fingerprint::kLanes;
+constexpr int kFpLanes = core::fingerprint::kLanes;
 
 // Pass 1 works on groups of up to kGroupBlocks consecutive blocks of a task:
 // their volume sums and fingerprints are combined before they go into the

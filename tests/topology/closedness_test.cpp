@@ -1,4 +1,4 @@
-// fingerprint_closedness (polyvol/measure.hpp) against the manifest's
+// fingerprint_closedness (polyvol/topology.hpp) against the manifest's
 // closed_2_cycle on every corpus mesh, on both of its paths (a hash per
 // vertex, a hash per corner), and on surfaces opened or kept closed in every
 // way topology.hpp distinguishes.
@@ -17,6 +17,7 @@
 #include "common/shapes.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
+#include "polyvol/topology.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace {

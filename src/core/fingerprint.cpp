@@ -1,10 +1,10 @@
-// measure/closedness.cpp — fingerprint_closedness (polyvol/measure.hpp):
-// whether a mesh is a closed 2-cycle, by soup.hpp's randomized fingerprint
+// core/fingerprint.cpp — mesh_closedness (core/fingerprint.hpp), behind
+// topology.hpp's fingerprint_closedness: whether a mesh is a closed 2-cycle, by soup.hpp's randomized fingerprint
 // over keyed hashes of its points, without welding or an edge table.
 //
 // Each fan triangle (a, b, c) adds the Vandermonde product
 // (H(b) - H(a)) (H(c) - H(a)) (H(c) - H(b)) mod p = 2^31 - 1, in four lanes
-// (measure/fingerprint.hpp). H depends on a point's coordinates only (their
+// (core/fingerprint.hpp). H depends on a point's coordinates only (their
 // bit patterns, -0.0 as +0.0), so two vertices at one point are one point, as
 // topology's welding makes them, and a polygon's fan sums to its boundary's
 // terms (the diagonals cancel). The sum is zero for every closed 2-cycle and,
@@ -29,13 +29,12 @@
 #include <vector>
 
 #include "core/canonical_bits.hpp"
-#include "measure/fingerprint.hpp"
-#include "polyvol/measure.hpp"
+#include "core/fingerprint.hpp"
 
-namespace polyvol {
+namespace polyvol::core::fingerprint {
 namespace {
 
-namespace fp = measure::fingerprint;
+namespace fp = core::fingerprint;
 constexpr int kLanes = fp::kLanes;
 
 using Hash = std::array<uint32_t, kLanes>;  // a point's lane values, each <= p
@@ -162,11 +161,11 @@ Keys keys_from_seed(uint64_t seed) {
 
 }  // namespace
 
-Closedness fingerprint_closedness(const MeshView& mesh, uint64_t seed) {
+Closedness mesh_closedness(const MeshView& mesh, uint64_t seed) {
     return closedness_with(mesh, keys_from_seed(seed));
 }
 
-Closedness fingerprint_closedness(const MeshView& mesh) {
+Closedness mesh_closedness(const MeshView& mesh) {
     std::random_device rd;
     Keys key = keys_from_seed(fp::random_word(rd));
     for (auto& chain : key.k)
@@ -174,4 +173,4 @@ Closedness fingerprint_closedness(const MeshView& mesh) {
     return closedness_with(mesh, key);
 }
 
-}  // namespace polyvol
+}  // namespace polyvol::core::fingerprint
