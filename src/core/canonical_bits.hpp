@@ -1,7 +1,7 @@
 // Private to the library (core and measure): the bit pattern that stands for
 // a coordinate wherever points are compared as weld_vertices compares them
 // (polyvol/mesh.hpp: bit-identical doubles, -0.0 == +0.0) — the weld's hash
-// and the closedness fingerprint's (measure/closedness.cpp) hash alike.
+// and the closedness fingerprint's (core/fingerprint.cpp) hash alike.
 #pragma once
 
 #include <bit>
