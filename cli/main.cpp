@@ -25,7 +25,7 @@
 #include "commands/ndim.hpp"
 #include "commands/overlap.hpp"
 #include "grammar.hpp"
-#include "report.hpp"
+#include "output/format.hpp"
 #include "worker_warm_up.hpp"
 
 using namespace polyvol::cli;

@@ -29,7 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "polyvol/implicit.hpp"
-#include "report.hpp"
+#include "output/format.hpp"
 
 namespace polyvol::cli {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "grammar.hpp"
-#include "report.hpp"
+#include "output/measure.hpp"
 #include "units.hpp"
 
 namespace polyvol::cli {

@@ -16,7 +16,7 @@
 #include "polyvol/chain_io.hpp"
 #include "polyvol/simplicial.hpp"
 #include "read_input.hpp"
-#include "report.hpp"
+#include "output/format.hpp"
 
 namespace polyvol::cli {
 

@@ -12,7 +12,7 @@
 #include "polyvol/measure.hpp"
 #include "polyvol/topology.hpp"
 #include "read_input.hpp"
-#include "report.hpp"
+#include "output/format.hpp"
 
 namespace polyvol::cli {
 namespace {

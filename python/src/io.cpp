@@ -10,7 +10,7 @@
 #include "polyvol/grid_io.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/simplicial.hpp"
-#include "report.hpp"
+#include "output/measure.hpp"
 #include "units.hpp"
 
 namespace polyvol::python {
@@ -108,7 +108,7 @@ void bind_io(py::module_& m) {
 
     // What `polyvol measure --json FILE` (with --solid: self-crossings looked
     // for at any size) prints for the file, as a JSON text: the CLI's own
-    // report (cli/report.cpp), never throwing (errors are its fields).
+    // report (cli/measure_file.cpp, cli/output/measure.cpp), never throwing (errors are its fields).
     m.def(
         "measure_file_json",
         [](const std::string& path, const std::string& method, const std::string& accuracy, double density,

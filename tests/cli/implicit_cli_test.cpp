@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/run_cli.hpp"
-#include "report.hpp"
+#include "output/format.hpp"
 
 namespace {
 

@@ -1,13 +1,15 @@
-// What the CLI computes for one file, and how it is printed (a table for
-// people, JSON for programs). The library never prints; this is the only
-// place that does.
+// cli/measure_file.hpp — one mesh file read, checked and measured, for
+// `polyvol volume`, `measure` and `check` and for the Python package's
+// measure_file: the route (a binary STL streamed, or the file loaded) is
+// chosen here from what the request asks for, and the result has the same
+// guarantees either way. Never prints; its messages are fields.
 #pragma once
 
 #include <optional>
 #include <string>
+#include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "output/format.hpp"
 #include "polyvol/boolean.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
@@ -15,10 +17,6 @@
 #include "polyvol/topology.hpp"
 
 namespace polyvol::cli {
-
-// Exit codes, stated once: 0 ok, 1 usage, 2 unreadable input, 3 input read
-// but not valid for the request (e.g. an open surface asked for a volume).
-enum Exit : int { ok = 0, usage = 1, unreadable = 2, invalid = 3 };
 
 struct FileResult {
     std::string file;
@@ -154,39 +152,12 @@ struct Request {
 // reported as "FILE:MEMBER"; empty for the file itself.
 FileResult process_file(const std::string& file, const Request& request, const std::string& member = "");
 
-// The <inertial> element of a URDF link (sdf: of an SDF link) for the file:
-// mass, pose at the centroid, the inertia tensor about it (ixy = -∫ρxy, the
-// tensor's own entries, as both formats take them), in the file's units.
-std::string inertial_element(const FileResult& r, const Request& request, bool sdf);
-
-// Shortest decimal that reads back as the same double ("nan", "inf" spelled out).
-std::string shortest(double v);
-// v as the tables show it: the digits its guarantee supports, down to the
-// leading digit of abs_error (abs_error 0: correctly rounded, every digit of
-// the shortest round trip), at most `digits` significant ones when digits > 0;
-// never "-0".
-std::string number_text(double v, double abs_error, int digits);
-// The shortest decimal within abs_error of v (v's own shortest when 0).
-std::string shortest_within(double v, double abs_error);
-// "V ±E": v as number_text shows it, and E >= e plus the display's rounding,
-// rounded up to two digits, so that the printed interval holds the exact value.
-std::string plus_minus(double v, double e, int digits);
-// e rounded up to two significant digits.
-std::string bound_text(double e);
-
-nlohmann::json to_json(const FileResult& r, const Request& request);
-
-// Table for `polyvol volume` (one row per file), and the reports of
-// `polyvol measure` and `polyvol check` for one file.
-std::string volume_table(const std::vector<FileResult>& results, const Request& request);
-std::string measure_report(const FileResult& r, const Request& request);
-std::string check_report(const FileResult& r);
-// --csv: one row per file (RFC 4180, a header row first), every number in
-// full (shortest round trip), empty where a file has none; `inertia` adds
-// the tensor about the centroid, its bound and the edge length (measure).
-std::string csv_table(const std::vector<FileResult>& results, bool inertia);
-
-// A sentence stating the guarantee of the printed volume.
-std::string volume_guarantee(const MassProperties& m);
+// Why a surface is not closed, in words (unbalanced, misoriented edges; an
+// example; the weld tolerance that would close it, when known).
+std::string unbalanced_message(const TopologyReport& t, double closes_at_tolerance = 0);
+// Where a surface crosses itself within a shell, in words.
+std::string self_crossing_sentence(const SelfCrossings& s);
+// Whether the solid differs from the shells' sum (overlap, self-crossing).
+inline bool solid_differs(const SolidVolume& s) { return s.overlapping_shells > 0 || s.shells_crossing_themselves > 0; }
 
 }  // namespace polyvol::cli

@@ -1,0 +1,66 @@
+// cli/output/format.cpp — cli/output/format.hpp.
+#include "output/format.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace polyvol::cli {
+
+std::string shortest(double v) {
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[64];
+    auto res = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, res.ptr);
+}
+
+std::string bound_text(double e) {
+    const double step = std::pow(10.0, std::floor(std::log10(e)) - 1);
+    if (!(e > 0) || !std::isfinite(e) || !(step > 0) || !std::isfinite(step)) return shortest(e);  // subnormal: as is
+    char buf[32];
+    for (double r = std::ceil(e / step) * step;; r += step) {
+        std::snprintf(buf, sizeof buf, "%.2g", r);
+        if (std::strtod(buf, nullptr) >= e) return buf;
+    }
+}
+
+std::string plus_minus(double v, double e, int digits) {
+    const std::string shown = number_text(v, e, digits);
+    return shown + " ±" + bound_text(e + std::fabs(std::strtod(shown.c_str(), nullptr) - v));
+}
+
+std::string shortest_within(double v, double abs_error) {
+    v += 0.0;
+    if (!std::isfinite(v) || v == 0 || !(abs_error > 0) || !std::isfinite(abs_error)) return shortest(v);
+    for (int d = 1; d < 17; ++d) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.*g", d, v);
+        if (std::fabs(std::strtod(buf, nullptr) - v) <= abs_error) return buf;
+    }
+    return shortest(v);
+}
+
+std::string number_text(double v, double abs_error, int digits) {
+    v += 0.0;  // no "-0"
+    if (!std::isfinite(v) || v == 0) return shortest(v);
+    // The shortest decimal within half the bound (at most the digits down to
+    // the bound's leading one), or every digit when the value is correctly rounded.
+    std::string s = abs_error > 0 && std::isfinite(abs_error) ? shortest_within(v, abs_error / 2) : shortest(v);
+    if (digits > 0) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+        if (std::strlen(buf) < s.size()) s = buf;
+    }
+    return s;
+}
+
+nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v + 0.0) : nlohmann::json(nullptr); }  // no -0
+
+std::string point_text(double x, double y, double z) {
+    return "(" + shortest(x) + ", " + shortest(y) + ", " + shortest(z) + ")";
+}
+
+}  // namespace polyvol::cli

@@ -1,0 +1,35 @@
+// cli/output/format.hpp — how every command prints numbers: for people
+// the digits a number's guarantee supports, for programs (JSON, CSV) every
+// digit; and the exit codes, stated once.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace polyvol::cli {
+
+// Exit codes, stated once: 0 ok, 1 usage, 2 unreadable input, 3 input read
+// but not valid for the request (e.g. an open surface asked for a volume).
+enum Exit : int { ok = 0, usage = 1, unreadable = 2, invalid = 3 };
+
+// Shortest decimal that reads back as the same double ("nan", "inf" spelled out).
+std::string shortest(double v);
+// v as the tables show it: the digits its guarantee supports, down to the
+// leading digit of abs_error (abs_error 0: correctly rounded, every digit of
+// the shortest round trip), at most `digits` significant ones when digits > 0;
+// never "-0".
+std::string number_text(double v, double abs_error, int digits);
+// The shortest decimal within abs_error of v (v's own shortest when 0).
+std::string shortest_within(double v, double abs_error);
+// "V ±E": v as number_text shows it, and E >= e plus the display's rounding,
+// rounded up to two digits, so that the printed interval holds the exact value.
+std::string plus_minus(double v, double e, int digits);
+// e rounded up to two significant digits.
+std::string bound_text(double e);
+// A finite number for JSON (never -0), else null.
+nlohmann::json json_number(double v);
+// "(x, y, z)", each coordinate its shortest decimal.
+std::string point_text(double x, double y, double z);
+
+}  // namespace polyvol::cli

@@ -1,0 +1,36 @@
+// cli/output/measure.hpp — what `polyvol volume`, `measure` and `check`
+// print for the files measure_file.hpp measured: a table or report for
+// people, JSON (one schema for every route) and CSV for programs, URDF/SDF
+// <inertial> elements.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "measure_file.hpp"
+
+namespace polyvol::cli {
+
+// The <inertial> element of a URDF link (sdf: of an SDF link) for the file:
+// mass, pose at the centroid, the inertia tensor about it (ixy = -∫ρxy, the
+// tensor's own entries, as both formats take them), in the file's units.
+std::string inertial_element(const FileResult& r, const Request& request, bool sdf);
+
+nlohmann::json to_json(const FileResult& r, const Request& request);
+
+// Table for `polyvol volume` (one row per file), and the reports of
+// `polyvol measure` and `polyvol check` for one file.
+std::string volume_table(const std::vector<FileResult>& results, const Request& request);
+std::string measure_report(const FileResult& r, const Request& request);
+std::string check_report(const FileResult& r);
+// --csv: one row per file (RFC 4180, a header row first), every number in
+// full (shortest round trip), empty where a file has none; `inertia` adds
+// the tensor about the centroid, its bound and the edge length (measure).
+std::string csv_table(const std::vector<FileResult>& results, bool inertia);
+
+// A sentence stating the guarantee of the printed volume.
+std::string volume_guarantee(const MassProperties& m);
+
+}  // namespace polyvol::cli
