@@ -37,6 +37,7 @@
 #include "polyvol/topology.hpp"
 #include "read_input.hpp"
 #include "output/format.hpp"
+#include "output/grid.hpp"
 
 namespace polyvol::cli {
 namespace {
@@ -119,74 +120,6 @@ void write_slice_png(const std::string& path, const GridAxes& g, std::span<const
     p.row_label = std::string(1, names[b]);
     p.value_label = "fraction";
     write_png_picture(path, p);
-}
-
-nlohmann::json summary_json(const std::vector<std::string>& files, const std::vector<double>& mesh_volumes,
-                            const GridAxes& g, const GridSummary& s, double seconds, const std::string& union_problem) {
-    nlohmann::json j;
-    nlohmann::json grid{{"dims", {g.nx(), g.ny(), g.nz()}}, {"bounds", g.bounds()}, {"cells", g.cell_count()},
-                        {"uniform", g.uniform()}};
-    if (g.uniform())
-        grid["spacing"] = {(g.x.back() - g.x.front()) / static_cast<double>(g.nx()),
-                           (g.y.back() - g.y.front()) / static_cast<double>(g.ny()),
-                           (g.z.back() - g.z.front()) / static_cast<double>(g.nz())};
-    j["grid"] = grid;
-    nlohmann::json bodies = nlohmann::json::array(), volumes = nlohmann::json::array();
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-        const GridBodySummary& body = s.bodies[b];
-        bodies.push_back({{"file", files[b]},
-                          {"triangles", body.triangles},
-                          {"volume", body.volume},
-                          {"mesh_volume", mesh_volumes[b]},
-                          {"pieces", body.pieces},
-                          {"full_cells", body.full_cells},
-                          {"empty_cells", body.empty_cells},
-                          {"cut_cells", body.cut_cells}});
-        volumes.push_back(body.volume);
-    }
-    j["bodies"] = bodies;
-    j["body_volumes"] = volumes;
-    j["union_volume"] = std::isnan(s.union_volume) ? nlohmann::json(nullptr) : nlohmann::json(s.union_volume);
-    if (!union_problem.empty()) j["union_error"] = union_problem;
-    if (!std::isnan(s.intersection_volume)) j["intersection_volume"] = s.intersection_volume;
-    j["crossing_pairs"] = s.crossing_pairs;
-    j["full_cells"] = s.full_cells;
-    j["empty_cells"] = s.empty_cells;
-    j["cut_cells"] = s.cut_cells;
-    j["contact_cells"] = s.contact_cells;
-    j["seconds"] = seconds;
-    return j;
-}
-
-std::string summary_text(const std::vector<std::string>& files, const std::vector<double>& mesh_volumes,
-                         const GridAxes& g, const GridSummary& s, const std::string& union_problem) {
-    std::ostringstream out;
-    const auto bb = g.bounds();
-    out << "grid " << g.nx() << " x " << g.ny() << " x " << g.nz() << " cells over [" << shortest(bb[0]) << ", "
-        << shortest(bb[3]) << "] x [" << shortest(bb[1]) << ", " << shortest(bb[4]) << "] x [" << shortest(bb[2])
-        << ", " << shortest(bb[5]) << "]";
-    if (g.uniform())
-        out << ", spacing " << shortest((g.x.back() - g.x.front()) / static_cast<double>(g.nx())) << " x "
-            << shortest((g.y.back() - g.y.front()) / static_cast<double>(g.ny())) << " x "
-            << shortest((g.z.back() - g.z.front()) / static_cast<double>(g.nz()));
-    out << "\n";
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-        const GridBodySummary& body = s.bodies[b];
-        out << files[b] << ": " << body.triangles << " triangles, " << body.pieces << " pieces; volume in the grid "
-            << shortest(body.volume) << " (mesh " << shortest(mesh_volumes[b]) << "); cells: " << body.full_cells
-            << " full, " << body.cut_cells << " cut, " << body.empty_cells << " empty\n";
-    }
-    if (s.bodies.size() > 1 && !union_problem.empty()) {
-        out << "union: not computed (" << union_problem << ")\n";
-    } else if (s.bodies.size() > 1) {
-        out << "union: " << shortest(s.union_volume);
-        if (!std::isnan(s.intersection_volume)) out << "; intersection: " << shortest(s.intersection_volume);
-        out << " (exact in every cell; " << s.crossing_pairs << " crossing triangle pairs, " << s.contact_cells
-            << " contact cells, where surfaces of two or more bodies meet)\n";
-    }
-    out << "cells: " << s.full_cells << " full, " << s.cut_cells << " cut, " << s.contact_cells << " contact, "
-        << s.empty_cells << " empty\n";
-    return out.str();
 }
 
 }  // namespace
@@ -452,7 +385,7 @@ int run_grid_command(const GridArgs& a) {
                     for (std::size_t b = 0; b < arrays; ++b) v[b * cells + g.cell(i, j, k)] /= cv;
                 }
     };
-    const nlohmann::json summary_j = summary_json(a.files, mesh_volumes, g, summary, seconds, union_problem);
+    const nlohmann::json summary_j = grid_summary_json(a.files, mesh_volumes, g, summary, seconds, union_problem);
     if (seconds_since(t_start) > 1.0 && (!a.out.empty() || !a.png.empty() || !a.centroids.empty() ||
                                           !a.union_out.empty() || !a.intersection_out.empty()))
         std::cerr << "polyvol grid: writing " << cells << " cells\n";
@@ -544,7 +477,7 @@ int run_grid_command(const GridArgs& a) {
     if (a.json)
         std::cout << summary_j.dump(2) << "\n";
     else
-        std::cout << summary_text(a.files, mesh_volumes, g, summary, union_problem);
+        std::cout << grid_summary_text(a.files, mesh_volumes, g, summary, union_problem);
     return Exit::ok;
 }
 

@@ -30,6 +30,7 @@
 
 #include "polyvol/implicit.hpp"
 #include "output/format.hpp"
+#include "output/implicit.hpp"
 
 namespace polyvol::cli {
 
@@ -111,26 +112,6 @@ bool write_stl(const std::string& path, const Chain& chain) {
     return static_cast<bool>(out);
 }
 
-nlohmann::json pass_json(const ImplicitPass& p) {
-    return {{"spacing", p.spacing},
-            {"cells", p.cells},
-            {"volume", p.volume},
-            {"rounding_error_bound", p.rounding_error_bound},
-            {"boundary_simplices", p.boundary_simplices},
-            {"crossed_simplices", p.crossed_simplices},
-            {"face_simplices", p.face_simplices},
-            {"function_evaluations", p.function_evaluations},
-            {"components", p.components},
-            {"box_vertices_inside", p.box_vertices_inside},
-            {"seconds", p.seconds}};
-}
-
-std::string short_number(double x) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.3g", x);
-    return buf;
-}
-
 // Progress on stderr for a lattice that takes more than a second or two:
 // the estimate up front (from the 2h lattice), then a bar on a terminal.
 class ProgressBar {
@@ -160,7 +141,6 @@ public:
 private:
     bool bar_ = false, drawn_ = false;
 };
-
 
 }  // namespace
 
@@ -290,49 +270,16 @@ int run_implicit_command(const ImplicitArgs& a) {
         std::cerr << "polyvol: warning: the solid reaches the box boundary (" << r.fine.box_vertices_inside
                   << " boundary lattice vertices with F <= 0): it is clipped by the box\n";
 
-    const bool estimate = o.error_estimate;
-    if (a.json) {
-        nlohmann::json j = {{"expression", a.expression},
-                            {"dimension", r.dimension},
-                            {"h", r.h},
-                            {"spacing", r.fine.spacing},
-                            {"volume", r.volume},
-                            {"volume_pl", r.fine.volume},
-                            {"error_estimate", estimate ? nlohmann::json(r.error_estimate) : nlohmann::json()},
-                            {"boundary_simplices", r.fine.boundary_simplices},
-                            {"clipped", r.clipped},
-                            {"box_rule", a.box_rule},
-                            {"formula", a.formula},
-                            {"streamed", !o.keep_chain && o.formula == SimplexFormula::cone},
-                            {"seconds", r.seconds},
-                            {"fine", pass_json(r.fine)}};
-        if (r.coarse) {
-            j["volume_pl_2h"] = r.coarse->volume;
-            j["coarse"] = pass_json(*r.coarse);
-        }
-        std::cout << j.dump(2) << "\n";
-        return Exit::ok;
-    }
-    std::cout << "dimension           " << r.dimension << "\n";
-    std::cout << "h                   " << shortest(r.h) << "  (lattice";
-    for (std::size_t k = 0; k < r.fine.cells.size(); ++k) std::cout << (k ? " x " : " ") << r.fine.cells[k];
-    std::cout << " cells)\n";
-    if (estimate) {
-        // Each number beside its estimate, with the digits the estimate leaves.
-        std::cout << "volume              " << plus_minus(r.volume, r.error_estimate, 0)
-                  << "  (Richardson extrapolation from h and 2h; ± is |V(h) - V(2h)| / 3, the estimated error of "
-                     "V(h), which also bounds the extrapolation's while V(h) converges as h^2)\n";
-        std::cout << "PL volume at h      " << plus_minus(r.fine.volume, r.error_estimate, 0)
-                  << "  (the piecewise-linear solid's, V(h))\n";
-        std::cout << "PL volume at 2h     " << plus_minus(r.coarse->volume, 4 * r.error_estimate, 0)
-                  << "  (V(2h): 4 times the error at h)\n";
-    } else {
-        std::cout << "volume              " << shortest(r.volume) << "  (the PL solid at h; no error estimate)\n";
-    }
-    std::cout << "boundary simplices  " << r.fine.boundary_simplices << "  (" << r.fine.crossed_simplices
-              << " crossed " << r.dimension << "-simplices, " << r.fine.face_simplices << " in the box faces)\n";
-    std::cout << "seconds             " << short_number(r.seconds) << "\n";
-    if (!a.stl.empty()) std::cout << "surface written     " << a.stl << "\n";
+    const ImplicitPrint print{.expression = a.expression,
+                              .box_rule = a.box_rule,
+                              .formula = a.formula,
+                              .stl = a.stl,
+                              .streamed = !o.keep_chain && o.formula == SimplexFormula::cone,
+                              .estimate = o.error_estimate};
+    if (a.json)
+        std::cout << implicit_json(r, print).dump(2) << "\n";
+    else
+        std::cout << implicit_report(r, print);
     return Exit::ok;
 }
 

@@ -15,8 +15,6 @@
 namespace polyvol::cli {
 namespace {
 
-
-
 const char* const kWeldHelp =
     "Merge points within this distance of one another (transitively) before anything else, for exports whose "
     "coordinates differ in the last digits; the report says so, and the figures are the welded mesh's";

@@ -13,11 +13,10 @@
 #include "polyvol/topology.hpp"
 #include "read_input.hpp"
 #include "output/format.hpp"
+#include "output/overlap.hpp"
 
 namespace polyvol::cli {
 namespace {
-
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 // Which operand a status is about, and the sentence for it.
 std::string status_text(BooleanStatus s, const OverlapArgs& args, const Mesh& a, const Mesh& b) {
@@ -82,59 +81,10 @@ int run_overlap_command(const OverlapArgs& args) {
                  perturbation_bounds(b->mesh.view(), b->coordinate_error, true).swept_volume) *
                 (1 + 0x1p-40);
     }
-    if (args.json) {
-        nlohmann::json j = {{"a", args.a},
-                            {"b", args.b},
-                            {"volume_a", number(r.volume_a)},
-                            {"volume_b", number(r.volume_b)},
-                            {"intersection", number(r.intersection)},
-                            {"union", number(r.union_volume)},
-                            {"a_minus_b", number(r.a_minus_b)},
-                            {"b_minus_a", number(r.b_minus_a)},
-                            {"accuracy", bound > 0 ? "error-bound" : "correctly-rounded"},
-                            {"volume_error_bound", bound},
-                            {"area_a", number(r.area_a)},
-                            {"area_b", number(r.area_b)},
-                            {"area_intersection", number(r.area_intersection)},
-                            {"area_union", number(r.area_union)},
-                            {"area_a_minus_b", number(r.area_a_minus_b)},
-                            {"area_b_minus_a", number(r.area_b_minus_a)},
-                            {"area_error_bound", number(r.area_error_bound)},
-                            {"triangles_a", r.triangles_a},
-                            {"triangles_b", r.triangles_b},
-                            {"candidate_pairs", r.candidate_pairs},
-                            {"crossing_pairs", r.crossing_pairs},
-                            {"rational_terms", r.rational_terms},
-                            {"seconds", seconds}};
-        std::cout << j.dump(2) << "\n";
-        return Exit::ok;
-    }
-    std::ostringstream out;
-    out << "A = " << args.a << " (" << r.triangles_a << " triangles), B = " << args.b << " (" << r.triangles_b
-        << " triangles)\n\n";
-    out << std::left << std::setw(8) << "" << std::setw(26) << "volume" << "area\n";
-    const std::pair<const char*, std::pair<double, double>> rows[] = {
-        {"A", {r.volume_a, r.area_a}},
-        {"B", {r.volume_b, r.area_b}},
-        {"A ∩ B", {r.intersection, r.area_intersection}},
-        {"A ∪ B", {r.union_volume, r.area_union}},
-        {"A − B", {r.a_minus_b, r.area_a_minus_b}},
-        {"B − A", {r.b_minus_a, r.area_b_minus_a}},
-    };
-    for (const auto& [name, v] : rows) {
-        // setw counts bytes: ∩ ∪ − are three bytes each, shown as one column.
-        const std::string label = name;
-        const int pad = label.size() > 1 ? 8 + 2 : 8;
-        out << std::setw(pad) << label << std::setw(26) << shortest(v.first) << shortest(v.second) << "\n";
-    }
-    out << "\nvolumes: "
-        << (bound > 0 ? "within ±" + shortest(bound) + " each (3MF transforms, applied in floating point)"
-                      : std::string("correctly rounded (the exact volume of the coordinates as read, rounded once)"))
-        << "\n"
-        << "areas: within ±" << std::setprecision(2) << r.area_error_bound << " each\n"
-        << r.crossing_pairs << " crossing triangle pair" << (r.crossing_pairs == 1 ? "" : "s") << " (of "
-        << r.candidate_pairs << " whose boxes meet), " << std::setprecision(3) << seconds << " s\n";
-    std::cout << out.str();
+    if (args.json)
+        std::cout << overlap_json(args.a, args.b, r, bound, seconds).dump(2) << "\n";
+    else
+        std::cout << overlap_table(args.a, args.b, r, bound, seconds);
     return Exit::ok;
 }
 
