@@ -65,14 +65,14 @@ MassProperties volume_only_properties(const MeshView& view, const MeasureOptions
 }
 
 // Whether process_file streams a binary STL for the request: what it asks
-// for is what streaming computes with the same guarantees (Request::
-// table_only; the cone rule), and nothing asks for the loaded mesh (a weld,
+// for is what streaming computes (Request::table_only; the cone rule), and
+// nothing asks for the loaded mesh (its counts in the JSON, a weld,
 // orientation, units, a scale, the full overlap and self-crossing check of
 // --solid, an archive member).
 bool streams(const Request& q, const std::string& member) {
-    return q.need_mass && q.table_only && q.measure.method == Method::cone && member.empty() && !q.orient &&
-           q.weld_tolerance == 0 && !q.self_check_always && q.units.empty() && q.to.empty() && q.scale == 1 &&
-           q.scale_typed_exactly && q.density_kg_m3 == 0 && std::isfinite(q.measure.density);
+    return q.need_mass && q.table_only && !q.mesh_counts && q.measure.method == Method::cone && member.empty() &&
+           !q.orient && q.weld_tolerance == 0 && !q.self_check_always && q.units.empty() && q.to.empty() &&
+           q.scale == 1 && q.scale_typed_exactly && q.density_kg_m3 == 0 && std::isfinite(q.measure.density);
 }
 
 // The streaming route for a binary STL: nothing when the file is not binary
@@ -103,6 +103,8 @@ std::optional<FileResult> stream_binary_stl(const std::string& path, const Reque
         r.exit_code = Exit::unreadable;
         r.error = e.what();
         return r;
+    } catch (const std::exception&) {
+        return std::nullopt;  // e.g. the file changed between passes: the loaded route reads it once
     }
     if (!acc.result().closed) return std::nullopt;
     r.streamed = true;

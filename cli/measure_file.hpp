@@ -1,8 +1,10 @@
 // cli/measure_file.hpp — one mesh file read, checked and measured, for
 // `polyvol volume`, `measure` and `check` and for the Python package's
 // measure_file: the route (a binary STL streamed, or the file loaded) is
-// chosen here from what the request asks for, and the result has the same
-// guarantees either way. Never prints; its messages are fields.
+// chosen here from what the request asks for, and the result is the same
+// type either way, each figure with its guarantee: the same ones, except
+// the table's centroid (table_moments_bounded). Never prints; its messages
+// are fields.
 #pragma once
 
 #include <optional>
@@ -32,7 +34,7 @@ struct FileResult {
     double seconds_read = 0, seconds_measure = 0;
     // The route process_file chose: a binary STL streamed (polyvol/soup.hpp:
     // constant memory, nothing loaded or welded; loaded and topology stay
-    // empty) or the file loaded. mass has the same guarantees either way.
+    // empty) or the file loaded. mass is a MassProperties either way.
     bool streamed = false;
     uint64_t triangles = 0;                  // the fan triangles measured (either route)
     // The solid of overlapping shells, or of a shell crossing itself
@@ -91,13 +93,17 @@ struct Request {
     // `volume`'s table, --volume-only and --stream: only the volume, area,
     // centroid and the closedness they need: topology without shells, no
     // second moments, no edge length. process_file then streams a binary STL
-    // (polyvol/soup.hpp: constant memory, the same figures with the same
-    // guarantees) when nothing asks for the loaded mesh (method cone, no
-    // weld, orientation, units or scale, not --solid); a surface the
-    // fingerprint finds open, or inside out, is loaded to be reported.
+    // (polyvol/soup.hpp: constant memory, the same figures) when nothing
+    // asks for the loaded mesh (mesh_counts, method cone, no weld,
+    // orientation, units or scale, not --solid); a surface the fingerprint
+    // finds open, or inside out, is loaded to be reported.
     bool table_only = false;
+    // The JSON without --stream reports the loaded mesh's counts (vertices,
+    // faces, edges; with --volume-only the edge counts that decide
+    // closedness), which a streamed binary STL does not have: it is loaded.
+    bool mesh_counts = false;
     // `volume`'s table: a loaded mesh's closedness by fingerprint_closedness
-    // (measure.hpp; the streamed binary STL's check, on the loaded mesh);
+    // (topology.hpp; the streamed binary STL's check, on the loaded mesh);
     // analyze_topology runs only when it does not say closed, to name the
     // unbalanced edges.
     bool closedness_by_fingerprint = false;

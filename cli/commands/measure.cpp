@@ -118,6 +118,7 @@ int run(Command command, const MeasureCommandOptions& c) {
     request.volume_only = command == Command::volume && c.volume_only;
     // The table's figures (the library streams a binary STL for them when it can).
     request.table_only = command == Command::volume && (!c.json || request.volume_only || c.stream);
+    request.mesh_counts = c.json && !c.stream;
     request.closedness_by_fingerprint = command == Command::volume && !c.json;
     request.table_moments_bounded = command == Command::volume && !c.json;
     if (request.table_only) {

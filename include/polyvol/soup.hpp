@@ -14,7 +14,8 @@
 // Accuracy::correctly_rounded), in its result type:
 //   volume, first moments Σ det·(a_i+b_i+c_i)/24 and centroid: each the exact
 //                  value for the coordinates as read, rounded once to nearest
-//                  (ties to even);
+//                  (ties to even); the moments and centroid within a bound
+//                  instead when SoupWants::moments is fast;
 //   area           Σ |(b-a)×(c-a)|/2 with a rigorous relative bound;
 //   triangles, whether a coordinate is NaN or infinite, and
 //   a closedness fingerprint (below).
@@ -60,8 +61,9 @@
 //
 // Determinism. Blocks are triangles [32 j, 32 j + 32) of the whole input, so
 // every window must start at a triangle index that is a multiple of 32;
-// the area's sums across blocks are exact (a superaccumulator), the volume,
-// moments and centroid are correctly rounded and the fingerprint is a sum
+// the area's and the bounded moments' sums across blocks are exact (a
+// superaccumulator), the volume and the correctly rounded moments and
+// centroid are the exact values rounded once and the fingerprint is a sum
 // mod p, so the results are bit-identical for any window sizes, any
 // order of the windows and any number of threads. (Pass 1 sums the volume
 // and the moments of up to four neighbouring blocks in double-double
@@ -110,9 +112,12 @@ struct SoupWants {
     bool moments_and_area = true;  // first moments, centroid, area
     // correctly_rounded: the first moments and centroid are decided, with one
     // exact pass more when pass 1 cannot (an exactly or nearly cancelling
-    // sum: a part centred on the origin). fast: they are pass 1's, with its
-    // bound (MassProperties::moments_relative_error), never a pass of their
-    // own; the volume is correctly rounded either way.
+    // sum: a part centred on the origin, or one far from it). fast: they are
+    // pass 1's in double, with its bound (MassProperties::
+    // moments_relative_error, however large: unlike mass_properties' fast
+    // accuracy, no limit sends them to the exact path), and no pass of their
+    // own unless every one is exactly 0 with a nonzero bound (which no
+    // relative bound can carry). The volume is correctly rounded either way.
     Accuracy moments = Accuracy::correctly_rounded;
     // Scales the mass and the first moments as MeasureOptions::density does
     // (each still the exact value rounded once); finite, else the
@@ -130,7 +135,7 @@ struct SoupResult {
     // mean nothing else.
     std::array<uint64_t, 4> fingerprint{};
     bool closed = false;           // fingerprint all zero and !nonfinite (false when not computed)
-    int passes = 0;                // passes over the input the results needed (1..3)
+    int passes = 0;                // passes over the input the results needed (1..3; pass 2 may be skipped)
     // The figures with their guarantees (measure.hpp; Method::cone, the
     // accuracy SoupWants::moments asks for, SoupWants::density): volume and
     // mass (correctly rounded), first moments and centroid (correctly

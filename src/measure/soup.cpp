@@ -1,8 +1,9 @@
 // measure/soup.cpp — polyvol/soup.hpp: volume, first moments, area and a
 // closedness fingerprint of float32 triangle records, in constant memory.
 //
-// The passes: pass 1 (soup_pass1.cpp) forms the volume and first moments
-// in double-double, the area and the fingerprint in one read; the results
+// The passes: pass 1 (soup_pass1.cpp) forms the volume in double-double,
+// the first moments in double-double (correctly rounded ones) or in double
+// (bounded ones), the area and the fingerprint in one read; the results
 // are decided as a loaded mesh's are (measure/cone_results.hpp). When the
 // volume alone is undecided, pass 2 runs the cone kernels' translated form
 // on each block; pass 3 sums exactly what is still undecided. The error
@@ -105,6 +106,7 @@ struct SoupAccumulator::State {
     ExactSum sum[cone::kSxx];
     double bound[cone::kSxx] = {};
     uint32_t exact_mask = 0;  // pass 3: the sums it recomputes exactly
+    int reads = 1;            // passes over the input so far (pass 2 may be skipped)
     SoupResult result;
 
     State(uint64_t seed, SoupWants w)
@@ -249,18 +251,21 @@ void set_nan(MassProperties& m, bool volume) {
 //   c_i = F_i / V within (E + 1.01 u (|F| + E)) / |V| + u |c|;
 // each relative to its array's largest entry (measure.hpp), rounded up.
 void set_bounded_moments(const ExactSum* sum, const double* bound, double density, MassProperties& m) {
+    // x rounded up, an exact 0 kept (every nonzero sum here is a multiple of
+    // 2^-596 / 24 and far from underflow: docs/numerics.md).
+    const auto up0 = [](double x) { return x == 0 ? 0.0 : up(x); };
     const double V = m.volume;
     double e_first = 0, e_centroid = 0, largest_first = 0, largest_centroid = 0;
     for (int k = 0; k < 3; ++k) {
         const double F = sum[cone::kMx + k].round_div(24);
-        const double E = up(up(bound[cone::kMx + k] / 24) + up(kU * std::fabs(F)));
+        const double E = up0(up0(bound[cone::kMx + k] / 24) + up0(kU * std::fabs(F)));
         m.first_moments[k] = density * F;
-        e_first = std::max(e_first, density == 1 ? E : up(up(density * E) + up(kU * std::fabs(density * F))));
+        e_first = std::max(e_first, density == 1 ? E : up0(up0(std::fabs(density) * E) + up0(kU * std::fabs(density * F))));
         largest_first = std::max(largest_first, std::fabs(m.first_moments[k]));
         m.centroid[k] = V == 0 ? kNaN : F / V;
         if (V == 0) continue;
-        const double num = up(E + up(1.01 * kU * up(std::fabs(F) + E)));
-        e_centroid = std::max(e_centroid, up(up(num / std::fabs(V)) + up(kU * std::fabs(m.centroid[k]))));
+        const double num = up0(E + up0(1.01 * kU * up0(std::fabs(F) + E)));
+        e_centroid = std::max(e_centroid, up0(up0(num / std::fabs(V)) + up0(kU * std::fabs(m.centroid[k]))));
         largest_centroid = std::max(largest_centroid, std::fabs(m.centroid[k]));
     }
     const auto relative = [](double e, double largest) { return e == 0 ? 0.0 : largest > 0 ? up(e / largest) : kInf; };
@@ -294,7 +299,7 @@ bool SoupAccumulator::next_pass() {
         set_nan(m, false);  // second moments, inertia, edge length: never; the rest when computed below
         if (all.nonfinite) {
             set_nan(m, true);
-            r.passes = 1;
+            r.passes = s.reads;
             s.done = true;
             return false;
         }
@@ -353,9 +358,9 @@ bool SoupAccumulator::next_pass() {
         // (the exact sums always decide).
         s.pass = s.pass == 1 && need == cone::bit(cone::kV) ? 2 : 3;
         s.exact_mask = need;
+        ++s.reads;
         return true;
     }
-    r.passes = s.pass;
     m.method = Method::cone;
     m.accuracy = Accuracy::correctly_rounded;
     m.volume = rational ? *cone::decided(results[cone::kVolume]) : *volume;
@@ -371,7 +376,19 @@ bool SoupAccumulator::next_pass() {
         m.moments_relative_error = 0x1p-53;
     } else if (moments) {
         set_bounded_moments(s.sum, s.bound, s.wants.density, m);
+        // A bound that no entry can carry (every approximation exactly 0, a
+        // nonzero volume): the sums that have a bound are summed exactly.
+        uint32_t inexact = 0;
+        for (int k = cone::kMx; k < count; ++k)
+            if (s.bound[k] > 0) inexact |= cone::bit(k);
+        if (!std::isfinite(m.moments_relative_error) && m.volume != 0 && inexact != 0) {
+            s.pass = 3;
+            s.exact_mask = inexact;
+            ++s.reads;
+            return true;
+        }
     }
+    r.passes = s.reads;
     s.done = true;
     return false;
 }

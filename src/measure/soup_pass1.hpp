@@ -19,9 +19,9 @@ constexpr int kB = cone::kBlockTriangles;  // triangles per block (32)
 constexpr int kFpLanes = core::fingerprint::kLanes;
 
 // Pass 1 works on groups of up to kGroupBlocks consecutive blocks of a task:
-// their volume sums and fingerprints are combined before they go into the
-// superaccumulators (the error analysis in docs/numerics.md, "The streamed
-// soup"), the rest block by block.
+// their volume sums, double-double moment sums and fingerprints are
+// combined before they go into the superaccumulators (the error analysis in
+// docs/numerics.md, "The streamed soup"), the rest block by block.
 constexpr int kGroupBlocks = 4;
 
 // The fingerprint's keys: AES (whitening, then three round keys) for the

@@ -181,6 +181,11 @@ TEST(CliStream, VolumeOnlyTable) {
     EXPECT_NE(r.out.find("correctly rounded"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("Streamed binary STL"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("1791.8163324528632"), std::string::npos) << r.out;  // the torus, as the full path prints it
+    // The JSON without --stream keeps the loaded mesh's edge counts: a binary STL is loaded for it.
+    const json loaded = json::parse(polyvol("volume --volume-only --json " + quoted(torus)).out)[0];
+    EXPECT_FALSE(loaded.contains("streamed"));
+    EXPECT_TRUE(loaded.contains("edges"));
+    EXPECT_EQ(loaded["volume"].get<double>(), 1791.8163324528632);
     // Open surfaces are refused as without the flag; other methods keep their bound.
     const CliRun open = polyvol("volume --volume-only " + quoted(kCorpus / "meshes/stl-models/bunny.bin.stl"));
     EXPECT_EQ(open.code, 3);
