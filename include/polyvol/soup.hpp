@@ -53,8 +53,9 @@
 // M_b the largest |coordinate| of a block of n_b <= 32 triangles — decides
 // unless the mesh is far from the origin compared with its size, or a
 // result is exactly a rounding boundary such as 0: a centred, symmetric
-// part), pass 2 for the volume alone (measure/cone.cpp's translated
-// double-double kernel), pass 3 for what is still undecided (exact). Area,
+// part), pass 2 (measure/cone.cpp's translated double-double kernels, for
+// the volume and the moments still undecided; skipped for a moment that
+// may be 0), pass 3 for what is still undecided (exact). Area,
 // counts and the fingerprint come from pass 1. After feeding every triangle
 // once, call next_pass(): when it returns true, feed the same triangles
 // again (in any windows), then call it again.
@@ -111,8 +112,8 @@ struct SoupWants {
     bool closedness = true;        // the fingerprint (SoupResult::closed)
     bool moments_and_area = true;  // first moments, centroid, area
     // correctly_rounded: the first moments and centroid are decided, with one
-    // exact pass more when pass 1 cannot (an exactly or nearly cancelling
-    // sum: a part centred on the origin, or one far from it). fast: they are
+    // or two passes more when pass 1 cannot (a part far from the origin; an
+    // exactly or nearly cancelling sum: a part centred on the origin). fast: they are
     // pass 1's in double, with its bound (MassProperties::
     // moments_relative_error, however large: unlike mass_properties' fast
     // accuracy, no limit sends them to the exact path), and no pass of their

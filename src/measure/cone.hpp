@@ -129,6 +129,13 @@ struct TriangleBlock {
 // Needs Range::safe (every finite float32 is in it).
 void filtered_volume_block(const TriangleBlock& b, exact::ExactSum& sum, exact::ExactSum& magnitude);
 
+// The double-double filtered terms of the volume and the first moments
+// (sums kV .. kMz, the kernel of filtered_sums(mesh, kSxx, double_double):
+// translated form) of one block: adds the exact sums of the approximations
+// to sum[k] and their magnitudes to magnitude[k]; |Σ_k - sum[k]| <=
+// filtered_bound(k, double_double, magnitude[k].round()). Needs Range::safe.
+void filtered_first_moments_block(const TriangleBlock& b, exact::ExactSum* sum, exact::ExactSum* magnitude);
+
 // The rigorous bound on |sum - exact sum| for sum k from the rounded sum of
 // magnitudes (what filtered_sums reports in ConeSums::bound).
 double filtered_bound(int k, Precision precision, double magnitude);

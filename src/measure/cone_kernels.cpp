@@ -294,7 +294,7 @@ HWY_INLINE void block_terms(const Block& blk, bool dd, Terms<N>& t) {
 // Sum2 in 4 lanes of 8 (lane j: triangles j, j + 4, ...), then each lane's
 // (sum, error) pair into the superaccumulator.
 template <int N>
-HWY_INLINE void accumulate(const Terms<N>& t, bool dd, Accumulator<N>& acc) {
+HWY_INLINE void accumulate(const Terms<N>& t, bool dd, ExactSum* sum, ExactSum* magnitude) {
     constexpr int kLanes = 4, kPerLane = kBlock / kLanes;
     for (int k = 0; k < N; ++k) {
         double s[kLanes] = {}, e[kLanes] = {}, m[kLanes] = {};
@@ -319,10 +319,10 @@ HWY_INLINE void accumulate(const Terms<N>& t, bool dd, Accumulator<N>& acc) {
             }
         }
         for (int j = 0; j < kLanes; ++j) {
-            acc.sum[k].add(s[j]);
-            if (dd) acc.sum[k].add(e[j]);
+            sum[k].add(s[j]);
+            if (dd) sum[k].add(e[j]);
         }
-        acc.magnitude[k].add((m[0] + m[1]) + (m[2] + m[3]));
+        magnitude[k].add((m[0] + m[1]) + (m[2] + m[3]));
     }
 }
 
@@ -349,7 +349,7 @@ HWY_INLINE void sums_in(const MeshView& mesh, std::size_t f0, std::size_t f1, bo
         acc.triangles += static_cast<std::size_t>(b.n);
         Terms<N> t;
         block_terms<N>(b, dd, t);
-        accumulate<N>(t, dd, acc);
+        accumulate<N>(t, dd, acc.sum, acc.magnitude);
     });
 }
 
@@ -444,6 +444,12 @@ void VolumeBlock(const Block& b, ExactSum& sum, ExactSum& magnitude) {
     magnitude.add(v.m);
 }
 
+void FirstMomentsBlock(const Block& b, ExactSum* sum, ExactSum* magnitude) {
+    Terms<kSxx> t;
+    block_terms<kSxx>(b, true, t);
+    accumulate<kSxx>(t, true, sum, magnitude);
+}
+
 void Sums1(const MeshView& mesh, std::size_t f0, std::size_t f1, bool dd, Accumulator<1>& acc) {
     sums_in<1>(mesh, f0, f1, dd, acc);
 }
@@ -500,6 +506,10 @@ bool kernels_check_what_they_read() { return POLYVOL_DISPATCH(ChecksWhatItReads)
 void filtered_volume_block(const TriangleBlock& b, exact::ExactSum& sum, exact::ExactSum& magnitude) {
     POLYVOL_DISPATCH(VolumeBlock)(b, sum, magnitude);
 }
+void filtered_first_moments_block(const TriangleBlock& b, exact::ExactSum* sum, exact::ExactSum* magnitude) {
+    POLYVOL_DISPATCH(FirstMomentsBlock)(b, sum, magnitude);
+}
+
 void exact_block_sums(const TriangleBlock& b, uint32_t mask, exact::ExactSum* acc) {
     POLYVOL_DISPATCH(ExactBlock)(b, mask, acc);
 }

@@ -4,9 +4,10 @@
 // The passes: pass 1 (soup_pass1.cpp) forms the volume in double-double,
 // the first moments in double-double (correctly rounded ones) or in double
 // (bounded ones), the area and the fingerprint in one read; the results
-// are decided as a loaded mesh's are (measure/cone_results.hpp). When the
-// volume alone is undecided, pass 2 runs the cone kernels' translated form
-// on each block; pass 3 sums exactly what is still undecided. The error
+// are decided as a loaded mesh's are (measure/cone_results.hpp). What is
+// undecided goes through pass 2, the cone kernels' translated form on each
+// block (not for a moment that may be exactly 0), then pass 3, which sums
+// it exactly. The error
 // analysis behind each bound used here is in docs/numerics.md, "The
 // streamed soup".
 #include "polyvol/soup.hpp"
@@ -60,7 +61,8 @@ static_assert(kChunk % kB == 0);
 
 struct Partial {
     ExactSum sum[cone::kSxx];     // 6 V and 24 ∫x_i (cone::SumIndex): the current pass's sums
-    ExactSum vol_mag, mom_mag;    // pass 1 and 2: the bounds' magnitudes
+    ExactSum vol_mag, mom_mag;    // pass 1 (and 2, the volume alone): the bounds' magnitudes
+    ExactSum mag[cone::kSxx];     // pass 2 with the moments: each sum's magnitudes
     ExactSum area2, cross;        // pass 1: 2 A and Σ X
     uint64_t fp[kFpLanes] = {};   // mod p
     uint64_t triangles = 0;
@@ -69,6 +71,7 @@ struct Partial {
     void merge(const Partial& o) {
         for (int k = 0; k < cone::kSxx; ++k) sum[k].merge(o.sum[k]);
         vol_mag.merge(o.vol_mag);
+        for (int k = 0; k < cone::kSxx; ++k) mag[k].merge(o.mag[k]);
         mom_mag.merge(o.mom_mag);
         area2.merge(o.area2);
         cross.merge(o.cross);
@@ -105,7 +108,8 @@ struct SoupAccumulator::State {
     // the exact sum (0: exact).
     ExactSum sum[cone::kSxx];
     double bound[cone::kSxx] = {};
-    uint32_t exact_mask = 0;  // pass 3: the sums it recomputes exactly
+    uint32_t exact_mask = 0;  // passes 2 and 3: the sums they recompute
+    bool pass2_moments = false;  // pass 2 recomputes moments too (else the volume alone)
     int reads = 1;            // passes over the input so far (pass 2 may be skipped)
     SoupResult result;
 
@@ -177,7 +181,9 @@ struct SoupAccumulator::State {
             for (int i = n; i < kB; ++i) b.c[k][i] = 0;
         b.n = n;
         p.triangles += static_cast<uint64_t>(n);
-        if (pass == 2) {
+        if (pass == 2 && pass2_moments) {
+            cone::filtered_first_moments_block(b, p.sum, p.mag);
+        } else if (pass == 2) {
             cone::filtered_volume_block(b, p.sum[cone::kV], p.vol_mag);
         } else {
             cone::exact_block_sums(b, exact_mask, p.sum);
@@ -325,8 +331,14 @@ bool SoupAccumulator::next_pass() {
                                    std::to_string(all.triangles) + " triangles, pass 1 saw " +
                                    std::to_string(s.pass1_triangles));
         if (s.pass == 2) {
-            s.sum[cone::kV] = all.sum[cone::kV];
-            s.bound[cone::kV] = cone::filtered_bound(cone::kV, cone::Precision::double_double, all.vol_mag.round());
+            // The translated double-double sums replace those still undecided.
+            for (int k = 0; k < count; ++k)
+                if (s.exact_mask & cone::bit(k)) {
+                    s.sum[k] = all.sum[k];
+                    s.bound[k] = cone::filtered_bound(
+                        k, cone::Precision::double_double,
+                        s.pass2_moments ? all.mag[k].round() : all.vol_mag.round());
+                }
         } else {
             for (int k = 0; k < count; ++k)
                 if (s.exact_mask & cone::bit(k)) {
@@ -354,9 +366,16 @@ bool SoupAccumulator::next_pass() {
         need = volume ? 0u : cone::bit(cone::kV);
     }
     if (need != 0) {
-        // Pass 2 when only the volume is undecided after pass 1; pass 3 otherwise
-        // (the exact sums always decide).
-        s.pass = s.pass == 1 && need == cone::bit(cone::kV) ? 2 : 3;
+        // After pass 1, pass 2: the cone kernels' translated form, whose bound
+        // shrinks with the triangles' size, not their distance from the origin
+        // (for the moments only when each undecided one is away from 0: an
+        // exact zero, a centred part's, no filter decides). Else, and after
+        // pass 2, pass 3: the exact sums always decide.
+        bool translate = s.pass == 1;
+        for (int k = cone::kMx; k < count; ++k)
+            if ((need & cone::bit(k)) && !(std::fabs(s.sum[k].round()) > 2 * s.bound[k])) translate = false;
+        s.pass = translate ? 2 : 3;
+        s.pass2_moments = translate && (need & ~cone::bit(cone::kV)) != 0;
         s.exact_mask = need;
         ++s.reads;
         return true;
