@@ -113,8 +113,8 @@ struct SoupWants {
     bool moments_and_area = true;  // first moments, centroid, area
     // correctly_rounded: the first moments and centroid are decided, with one
     // or two passes more when pass 1 cannot (a part far from the origin; an
-    // exactly or nearly cancelling sum: a part centred on the origin). fast: they are
-    // pass 1's in double, with its bound (MassProperties::
+    // exactly or nearly cancelling sum: a part centred on the origin).
+    // fast: they are pass 1's in double, with its bound (MassProperties::
     // moments_relative_error, however large: unlike mass_properties' fast
     // accuracy, no limit sends them to the exact path), and no pass of their
     // own unless every one is exactly 0 with a nonzero bound (which no
