@@ -589,6 +589,61 @@ TEST(Soup, NonFiniteCoordinatesAreFlagged) {
     EXPECT_TRUE(std::isnan(s.properties.volume));
 }
 
+// Random soups near the origin and far from it, of every scale, some
+// symmetric (first moments exactly 0), some with degenerate triangles, some
+// with a density: the streamed volume, mass, first moments and centroid are
+// the loaded mesh's bit for bit, whichever passes they took, and the bounded
+// moments lie within their bound of them.
+TEST(Soup, RandomSoupsGetTheLoadedMeshsBits) {
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    int passes[4] = {};
+    for (int c = 0; c < 600; ++c) {
+        SCOPED_TRACE(c);
+        const int n = 1 + static_cast<int>(rng() % (c % 50 == 0 ? 20000 : 500));
+        const double scale = std::ldexp(1.0, static_cast<int>(rng() % 60) - 30);
+        const double offset =
+            rng() % 3 == 0 ? 0.0 : std::ldexp(1.0, static_cast<int>(rng() % 40) - 10) * ((rng() & 1) ? 1 : -1);
+        const bool symmetric = rng() % 4 == 0;
+        std::vector<float> tri;
+        for (int t = 0; t < n; ++t) {
+            float v[9];
+            for (float& x : v) x = static_cast<float>(offset + scale * unit(rng));
+            if (rng() % 5 == 0)
+                for (int k = 0; k < 3; ++k) v[3 + k] = v[k];
+            tri.insert(tri.end(), v, v + 9);
+            if (symmetric)
+                for (float x : v) tri.push_back(-x);
+        }
+        MeasureOptions o;
+        o.second_moments = false;
+        o.edge_length = false;
+        o.density = rng() % 3 == 0 ? 7.85 : 1.0;
+        const MassProperties mp = mass_properties(mesh_of(tri).view(), o);
+        const SoupResult s = soup_properties(packed_triangles(tri), static_cast<uint64_t>(c), SoupWants{.density = o.density});
+        const SoupResult f = soup_properties(packed_triangles(tri), static_cast<uint64_t>(c),
+                                             SoupWants{.moments = Accuracy::fast, .density = o.density});
+        ++passes[s.passes];
+        EXPECT_EQ(bits(s.properties.volume), bits(mp.volume));
+        EXPECT_EQ(bits(s.properties.mass), bits(mp.mass));
+        EXPECT_EQ(bits(f.properties.volume), bits(mp.volume));
+        double largest = 0;
+        for (int k = 0; k < 3; ++k) largest = std::max(largest, std::fabs(f.properties.first_moments[k]));
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(bits(s.properties.first_moments[k]), bits(mp.first_moments[k])) << k;
+            EXPECT_EQ(bits(s.properties.centroid[k]), bits(mp.centroid[k])) << k;
+            if (std::isfinite(f.properties.moments_relative_error)) {
+                EXPECT_LE(std::fabs(f.properties.first_moments[k] - mp.first_moments[k]),
+                          f.properties.moments_relative_error * largest + std::fabs(mp.first_moments[k]) * 0x1p-53);
+            }
+        }
+    }
+    // Every route was taken: one read, the translated pass 2, the exact pass.
+    EXPECT_GT(passes[1], 0);
+    EXPECT_GT(passes[2], 0);
+    EXPECT_GT(passes[3], 0);
+}
+
 TEST(Soup, ContractErrors) {
     // (Off the origin: a centred sphere's first moments are exactly 0, which takes the exact pass.)
     const auto rec = records_of(sphere(6, 8, 1, 2));
