@@ -395,7 +395,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         figure_notes += "  " + r.file + ": area relative error <= " + shortest(m.area_relative_error) + "; centroid " +
                         (m.moments_correctly_rounded
                              ? std::string("correctly rounded")
-                             : "within " + shortest(m.moments_relative_error) + " of its largest coordinate's magnitude") +
+                             : "within ±" + bound_text(centroid_error) + " per coordinate (" +
+                                   shortest(m.moments_relative_error) + " of its largest coordinate's magnitude)") +
                         "\n";
     }
     std::vector<std::string> footer;
