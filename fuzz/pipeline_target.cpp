@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 
 #include "polyvol/boolean.hpp"
@@ -34,7 +35,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, std::size_t size) {
         o.method = m;
         (void)mass_properties(view, o);
     }
-    if (loaded.format == Format::stl && loaded.encoding == "binary_le" && size >= 84) {
+    // The records as they stand in the input: binary STL by the size rule on
+    // the bytes themselves (the reader also skips a UTF-8 byte-order mark,
+    // after which other bytes are the records).
+    uint32_t count = 0;
+    if (size >= 84) std::memcpy(&count, bytes + 80, 4);
+    if (loaded.format == Format::stl && loaded.encoding == "binary_le" && size >= 84 &&
+        size - 84 == 50 * std::size_t{count}) {
         const std::span<const std::byte> records(reinterpret_cast<const std::byte*>(bytes) + 84, size - 84);
         const SoupResult exact = soup_properties(stl_records(records), 1);
         const SoupResult bounded = soup_properties(stl_records(records), 1, SoupWants{.moments = Accuracy::fast});
