@@ -116,6 +116,12 @@ double error_bound(const Result& r, double x) {
 }
 
 
+double relative_to(double error, double magnitude) {
+    if (error == 0) return 0;
+    if (!(magnitude > 0)) return std::numeric_limits<double>::infinity();
+    return std::nextafter(error / magnitude, std::numeric_limits<double>::infinity());
+}
+
 uint32_t undecided_sums(const std::vector<Result>& results) {
     uint32_t need = 0;
     for (const Result& r : results)

@@ -70,6 +70,11 @@ std::optional<double> decided(const Result& r);
 // An upper bound (a double) on max(|x - lo|, |hi - x|).
 double error_bound(const Result& r, double x);
 
+// error / magnitude rounded up: a bound relative to the largest magnitude
+// of an array (MassProperties::moments_relative_error); 0 when the error is
+// 0, infinite when no magnitude is above 0 (no relative bound carries it).
+double relative_to(double error, double magnitude);
+
 // The sums (a mask of bits 1 << k) that the undecided results depend on;
 // 0 when every result is decided.
 uint32_t undecided_sums(const std::vector<Result>& results);

@@ -150,10 +150,7 @@ double relative(const ConeResults& r, int first, int n) {
         err = std::max(err, r.bound[k]);
         mag = std::max(mag, std::fabs(r.value[k]));
     }
-    if (err == 0) return 0;
-    if (!(mag > 0)) return kInf;
-    const double q = err / mag;
-    return std::nextafter(q, kInf);  // err/mag rounded up
+    return relative_to(err, mag);
 }
 
 double relative_bound(const measure::SumWithBound& s) {

@@ -7,9 +7,8 @@
 // are decided as a loaded mesh's are (measure/cone_results.hpp). What is
 // undecided goes through pass 2, the cone kernels' translated form on each
 // block (not for a moment that may be exactly 0), then pass 3, which sums
-// it exactly. The error
-// analysis behind each bound used here is in docs/numerics.md, "The
-// streamed soup".
+// it exactly. The error analysis behind each bound used here is in
+// docs/numerics.md, "The streamed soup".
 #include "polyvol/soup.hpp"
 
 #include <tbb/blocked_range.h>
@@ -30,11 +29,11 @@
 #include <string>
 #include <vector>
 
+#include "core/fingerprint.hpp"
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "measure/cone.hpp"
 #include "measure/cone_results.hpp"
-#include "core/fingerprint.hpp"
 #include "measure/soup_pass1.hpp"
 #include "measure/soup_testing.hpp"
 
@@ -61,8 +60,8 @@ static_assert(kChunk % kB == 0);
 
 struct Partial {
     ExactSum sum[cone::kSxx];     // 6 V and 24 ∫x_i (cone::SumIndex): the current pass's sums
-    ExactSum vol_mag, mom_mag;    // pass 1 (and 2, the volume alone): the bounds' magnitudes
-    ExactSum mag[cone::kSxx];     // pass 2 with the moments: each sum's magnitudes
+    ExactSum vol_mag, mom_mag;    // pass 1: the bounds' magnitudes
+    ExactSum mag[cone::kSxx];     // pass 2: each sum's magnitudes
     ExactSum area2, cross;        // pass 1: 2 A and Σ X
     uint64_t fp[kFpLanes] = {};   // mod p
     uint64_t triangles = 0;
@@ -184,7 +183,7 @@ struct SoupAccumulator::State {
         if (pass == 2 && pass2_moments) {
             cone::filtered_first_moments_block(b, p.sum, p.mag);
         } else if (pass == 2) {
-            cone::filtered_volume_block(b, p.sum[cone::kV], p.vol_mag);
+            cone::filtered_volume_block(b, p.sum[cone::kV], p.mag[cone::kV]);
         } else {
             cone::exact_block_sums(b, exact_mask, p.sum);
         }
@@ -274,9 +273,10 @@ void set_bounded_moments(const ExactSum* sum, const double* bound, double densit
         e_centroid = std::max(e_centroid, up0(up0(num / std::fabs(V)) + up0(kU * std::fabs(m.centroid[k]))));
         largest_centroid = std::max(largest_centroid, std::fabs(m.centroid[k]));
     }
-    const auto relative = [](double e, double largest) { return e == 0 ? 0.0 : largest > 0 ? up(e / largest) : kInf; };
     m.moments_correctly_rounded = false;
-    m.moments_relative_error = V == 0 ? kInf : std::max(relative(e_first, largest_first), relative(e_centroid, largest_centroid));
+    m.moments_relative_error = V == 0 ? kInf
+                                      : std::max(cone::relative_to(e_first, largest_first),
+                                                 cone::relative_to(e_centroid, largest_centroid));
     m.accuracy = Accuracy::fast;
 }
 }  // namespace
@@ -335,9 +335,7 @@ bool SoupAccumulator::next_pass() {
             for (int k = 0; k < count; ++k)
                 if (s.exact_mask & cone::bit(k)) {
                     s.sum[k] = all.sum[k];
-                    s.bound[k] = cone::filtered_bound(
-                        k, cone::Precision::double_double,
-                        s.pass2_moments ? all.mag[k].round() : all.vol_mag.round());
+                    s.bound[k] = cone::filtered_bound(k, cone::Precision::double_double, all.mag[k].round());
                 }
         } else {
             for (int k = 0; k < count; ++k)
