@@ -286,7 +286,7 @@ std::string unbalanced_message(const TopologyReport& t, double closes_at_toleran
                     " (used a different number of times in its two directions)";
     if (t.unbalanced_example) {
         const auto& e = *t.unbalanced_example;
-        m += ", e.g. " + point_text(e[0], e[1], e[2]) + " - " + point_text(e[3], e[4], e[5]);
+        m += ", e.g. " + point_text(std::span(e).first<3>()) + " - " + point_text(std::span(e).last<3>());
     }
     if (closes_at_tolerance > 0)
         m += "; merging the points within " + shortest(closes_at_tolerance) +

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <span>
 
 #include <nlohmann/json.hpp>
 
@@ -31,8 +32,7 @@ std::string status_text(BooleanStatus s, const OverlapArgs& args, const Mesh& a,
                 (t.unbalanced_edges == 1 ? "" : "s") + " (used a different number of times in its two directions)";
         if (t.unbalanced_example) {
             const auto& e = *t.unbalanced_example;
-            text += ", e.g. (" + shortest(e[0]) + ", " + shortest(e[1]) + ", " + shortest(e[2]) + ") - (" +
-                    shortest(e[3]) + ", " + shortest(e[4]) + ", " + shortest(e[5]) + ")";
+            text += ", e.g. " + point_text(std::span(e).first<3>()) + " - " + point_text(std::span(e).last<3>());
         }
         return text;
     }

@@ -3,6 +3,7 @@
 // digit; and the exit codes, stated once.
 #pragma once
 
+#include <span>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -29,7 +30,7 @@ std::string plus_minus(double v, double e, int digits);
 std::string bound_text(double e);
 // A finite number for JSON (never -0), else null.
 nlohmann::json json_number(double v);
-// "(x, y, z)", each coordinate its shortest decimal.
-std::string point_text(double x, double y, double z);
+// "(x, y, z, ...)", each coordinate its shortest decimal.
+std::string point_text(std::span<const double> c);
 
 }  // namespace polyvol::cli

@@ -28,10 +28,9 @@ double moments_bound(const MassProperties& m, std::span<const double> entries) {
 
 // Symmetric {xx,yy,zz,xy,yz,zx} -> 3x3 rows.
 nlohmann::json matrix3(const std::array<double, 6>& s) {
-    auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v + 0.0) : nlohmann::json(nullptr); };  // no -0
-    return nlohmann::json::array({{num(s[0]), num(s[3]), num(s[5])},
-                                  {num(s[3]), num(s[1]), num(s[4])},
-                                  {num(s[5]), num(s[4]), num(s[2])}});
+    return nlohmann::json::array({{json_number(s[0]), json_number(s[3]), json_number(s[5])},
+                                  {json_number(s[3]), json_number(s[1]), json_number(s[4])},
+                                  {json_number(s[5]), json_number(s[4]), json_number(s[2])}});
 }
 
 // mass = density × volume: the density as typed is within 2^-53 of its
@@ -482,7 +481,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
         << ")" << unit_suffix(r, 1) << "\n";
     if (r.loaded) {
         const std::array<double, 6> b = bounds_in_units(r);
-        out << "  bounds          " << point_text(b[0], b[1], b[2]) << " to " << point_text(b[3], b[4], b[5]) << unit_suffix(r, 1)
+        out << "  bounds          " << point_text(std::span(b).first<3>()) << " to " << point_text(std::span(b).last<3>()) << unit_suffix(r, 1)
             << "; size " << shortest(b[3] - b[0]) << " x " << shortest(b[4] - b[1]) << " x " << shortest(b[5] - b[2])
             << (r.length_factor == 1 ? " (differences rounded once)\n" : " (converted, then rounded)\n");
     }

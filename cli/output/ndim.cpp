@@ -9,15 +9,6 @@
 #include "output/format.hpp"
 
 namespace polyvol::cli {
-namespace {
-
-std::string point_text(const std::vector<double>& c) {
-    std::string s = "(";
-    for (std::size_t i = 0; i < c.size(); ++i) s += (i ? ", " : "") + shortest(c[i]);
-    return s + ")";
-}
-
-}  // namespace
 
 std::string unmatched_text(const ChainReport& r) {
     std::ostringstream s;
