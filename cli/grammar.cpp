@@ -114,4 +114,19 @@ int answer_before_parse(CLI::App& app, int argc, char** argv) {
     return -1;
 }
 
+void add_solid_flags(CLI::App* cmd, SolidFlags& flags, bool keep_signed) {
+    cmd->add_flag("--orient", flags.orient,
+                  "Orient the faces first: consistently within each shell (a walk over the faces), and outward, "
+                  "cavities inward by nesting; reports the faces flipped, then measures the oriented mesh");
+    cmd->add_option("--weld-tolerance", flags.weld_tolerance,
+                    "Merge points within this distance of one another (transitively) before anything else, for "
+                    "exports whose coordinates differ in the last digits; the report says so, and the figures are "
+                    "the welded mesh's")
+        ->check(positive_number());
+    if (keep_signed)
+        cmd->add_flag("--signed", flags.keep_signed,
+                  "Keep the signed sums of a surface that is inside out (negative volume, mass and inertia); by "
+                  "default its shells are turned outward, and the report says so");
+}
+
 }  // namespace polyvol::cli

@@ -14,6 +14,16 @@ CLI::Validator positive_number();
 // A whole number in [lo, hi] ("not a whole number: 2.5", "must be from 3 to 1048576: 2").
 CLI::Validator whole_number(long long lo, long long hi);
 
+// What makes a file's mesh a solid, the same options on every command that
+// takes one (polyvol/solid.hpp): --orient, --weld-tolerance, --signed.
+struct SolidFlags {
+    bool orient = false;
+    double weld_tolerance = 0;
+    bool keep_signed = false;
+};
+// keep_signed: whether the command offers --signed (`check` judges the file as it is).
+void add_solid_flags(CLI::App* cmd, SolidFlags& flags, bool keep_signed = true);
+
 // The candidate nearest to `word` by edit distance, if it is near enough to
 // be a typing slip (at most a third of the word's letters, and 2 at least);
 // else "".

@@ -16,6 +16,7 @@
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/simplicial.hpp"
+#include "polyvol/solid.hpp"
 #include "polyvol/topology.hpp"
 
 namespace polyvol::cli {
@@ -73,6 +74,8 @@ struct FileResult {
         MassProperties m;
     };
     std::vector<Piece> shell_figures, part_figures;
+    // `check`: what the file needs before it is a solid as it is (repairs_needed); empty: ready.
+    std::vector<std::string> repairs;
     // A surface that is not closed but would close when points within a
     // tolerance below 1e-9 of its size were merged: that tolerance (else 0).
     double closes_at_tolerance = 0;
@@ -80,11 +83,6 @@ struct FileResult {
 
 // Per-shell figures are given for at most this many shells (the largest).
 inline constexpr std::size_t kMaxPieces = 1000;
-
-// Files up to this many fan triangles are checked for a surface crossing
-// itself by default: about 0.1 s (docs/benchmarks.md, "SelfCrossings":
-// 0.5 s per million triangles on 2 cores, 3.5x what `measure` costs).
-inline constexpr std::size_t kSelfCheckTriangles = 250'000;
 
 struct Request {
     MeasureOptions measure;
@@ -158,11 +156,6 @@ struct Request {
 // reported as "FILE:MEMBER"; empty for the file itself.
 FileResult process_file(const std::string& file, const Request& request, const std::string& member = "");
 
-// Why a surface is not closed, in words (unbalanced, misoriented edges; an
-// example; the weld tolerance that would close it, when known).
-std::string unbalanced_message(const TopologyReport& t, double closes_at_tolerance = 0);
-// Where a surface crosses itself within a shell, in words.
-std::string self_crossing_sentence(const SelfCrossings& s);
 // Whether the solid differs from the shells' sum (overlap, self-crossing).
 inline bool solid_differs(const SolidVolume& s) { return s.overlapping_shells > 0 || s.shells_crossing_themselves > 0; }
 

@@ -34,6 +34,7 @@
 #include "polyvol/io.hpp"
 #include "memory.hpp"
 #include "polyvol/measure.hpp"
+#include "polyvol/solid.hpp"
 #include "polyvol/topology.hpp"
 #include "read_input.hpp"
 #include "output/format.hpp"
@@ -161,6 +162,7 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
                     "with several: FILE.npy, shape (..., 4): area, nx, ny, nz (and, with a .vti/.vtr output, the "
                     "arrays wetted_area and surface_normal)");
     cmd->add_option("--png", a.png, "Picture of one slice of the volume fractions (viridis)");
+    add_solid_flags(cmd, a.solid_flags);
     cmd->add_option("--max-memory", a.max_memory,
                     "Refuse a grid whose arrays would need more than SIZE (e.g. 8G, 512M; default: three quarters "
                     "of physical memory)");
@@ -203,24 +205,43 @@ int run_grid_command(const GridArgs& a) {
             code = Exit::unreadable;
     }
     if (code != Exit::ok) return code;
+    // Each body the solid it means (polyvol/solid.hpp): inside-out shells
+    // turned outward, overlapping shells as the union of groups of shells
+    // that do not overlap (grid_union_volumes).
+    const SolidOptions policy{.weld_tolerance = a.solid_flags.weld_tolerance,
+                              .orient = a.solid_flags.orient,
+                              .keep_signed = a.solid_flags.keep_signed,
+                              .face_shells = true};
     std::vector<MeshView> views;
+    std::vector<std::vector<Mesh>> groups(meshes.size());
+    std::vector<std::vector<MeshView>> parts(meshes.size());
     std::vector<double> mesh_volumes;
     for (std::size_t b = 0; b < meshes.size(); ++b) {
-        const MeshView v = meshes[b].mesh.view();
-        const TopologyReport t = analyze_topology(v);
-        if (!t.closed_2_cycle) {
-            std::cerr << "polyvol: " << a.files[b] << ": not a closed surface: " << t.unbalanced_edges
-                      << " unbalanced edge" << (t.unbalanced_edges == 1 ? "" : "s")
-                      << " (used a different number of times in its two directions); its volume per cell "
-                         "is not defined\n";
+        const std::optional<MeshSolid> solid = solid_or_report(a.files[b], meshes[b].mesh, policy);
+        if (!solid) {
             code = Exit::invalid;
+            continue;
         }
+        const MeshView v = meshes[b].mesh.view();
         if (meshes[b].coordinate_error > 0)
             std::cerr << "polyvol: warning: " << a.files[b] << ": its 3MF transforms are applied in floating point "
                       << "(each coordinate within " << shortest(meshes[b].coordinate_error)
                       << " of the file's): the cells are exact for the coordinates so rounded\n";
         views.push_back(v);
-        mesh_volumes.push_back(signed_volume(v));
+        if (solid->resolved()) {
+            try {
+                groups[b] = solid_as_union(v, *solid);
+            } catch (const std::invalid_argument& e) {
+                std::cerr << "polyvol: " << a.files[b] << ": its shells overlap, and " << e.what() << "\n";
+                code = Exit::invalid;
+                continue;
+            }
+            for (const Mesh& m : groups[b]) parts[b].push_back(m.view());
+            mesh_volumes.push_back(solid->solid->volume);
+        } else {
+            parts[b].push_back(v);
+            mesh_volumes.push_back(signed_volume(v));
+        }
     }
     if (code != Exit::ok) return code;
 
@@ -354,7 +375,7 @@ int run_grid_command(const GridArgs& a) {
     std::string union_problem;  // why the union was not computed
     try {
         try {
-            summary = grid_volumes(views, g, out, options);
+            summary = grid_union_volumes(parts, g, GridBlock{{0, 0, 0}, {g.nx(), g.ny(), g.nz()}}, out, options);
         } catch (const std::invalid_argument& e) {
             if (union_needed || std::string_view(e.what()).find("the union is undefined") == std::string_view::npos)
                 throw;
@@ -363,7 +384,7 @@ int run_grid_command(const GridArgs& a) {
             out.cell_class = {};
             union_volumes.clear();
             cls.clear();
-            summary = grid_volumes(views, g, out, options);
+            summary = grid_union_volumes(parts, g, GridBlock{{0, 0, 0}, {g.nx(), g.ny(), g.nz()}}, out, options);
         }
     } catch (const std::invalid_argument& e) {
         if (printed) std::cerr << "\n";
@@ -382,7 +403,11 @@ int run_grid_command(const GridArgs& a) {
             for (std::size_t j = 0; j < g.ny(); ++j)
                 for (std::size_t k = 0; k < g.nz(); ++k) {
                     const double cv = g.cell_volume(i, j, k);
-                    for (std::size_t b = 0; b < arrays; ++b) v[b * cells + g.cell(i, j, k)] /= cv;
+                    // Clamped to [0, 1]: a cell's volume is within a few ulps of it (docs/grid.md).
+                    for (std::size_t b = 0; b < arrays; ++b) {
+                        double& f = v[b * cells + g.cell(i, j, k)];
+                        f = a.solid_flags.keep_signed ? f / cv : std::clamp(f / cv, 0.0, 1.0);
+                    }
                 }
     };
     const nlohmann::json summary_j = grid_summary_json(a.files, mesh_volumes, g, summary, seconds, union_problem);

@@ -7,10 +7,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "grammar.hpp"
+
 namespace polyvol::cli {
 
 struct GridArgs {
     std::vector<std::string> files;
+    SolidFlags solid_flags;  // --orient, --weld-tolerance, --signed: each body the solid it means
     uint32_t cells = 128;
     bool cells_given = false;  // --cells was on the command line (not the default)
     double cell_size = 0;

@@ -15,14 +15,6 @@
 namespace polyvol::cli {
 namespace {
 
-const char* const kWeldHelp =
-    "Merge points within this distance of one another (transitively) before anything else, for exports whose "
-    "coordinates differ in the last digits; the report says so, and the figures are the welded mesh's";
-
-const char* const kOrientHelp =
-    "Orient the faces first: consistently within each shell (a walk over the faces), and outward, cavities "
-    "inward by nesting; reports the faces flipped, then measures the oriented mesh";
-
 void add_measure_options(CLI::App* cmd, MeasureCommandOptions& c) {
     cmd->add_option("files", c.files,
                     "Mesh files (STL, OBJ, OFF, PLY, 3MF, AMF, glTF; .gz or .bz2; zip and tar archives of them); "
@@ -72,11 +64,7 @@ void add_measure_options(CLI::App* cmd, MeasureCommandOptions& c) {
     cmd->add_flag("--csv", c.csv, "Print CSV for spreadsheets (one row per file, every digit)")->excludes(json);
     cmd->add_flag("--allow-open", c.allow_open,
                   "Measure surfaces with unbalanced edges anyway (the result then depends on the origin)");
-    cmd->add_flag("--orient", c.orient, kOrientHelp);
-    cmd->add_option("--weld-tolerance", c.weld_tolerance, kWeldHelp)->check(positive_number());
-    cmd->add_flag("--signed", c.keep_signed,
-                  "Keep the signed sums of a surface that is inside out (negative volume, mass and inertia); by "
-                  "default its shells are turned outward, and the report says so");
+    add_solid_flags(cmd, c.solid_flags);
 }
 
 Request make_request(const MeasureCommandOptions& c, bool need_mass) {
@@ -100,9 +88,9 @@ Request make_request(const MeasureCommandOptions& c, bool need_mass) {
     r.scale_typed_exactly = typed_exactly(c.scale, r.scale);
     r.allow_open = c.allow_open;
     r.need_mass = need_mass;
-    r.orient = c.orient;
-    r.keep_signed = c.keep_signed;
-    r.weld_tolerance = c.weld_tolerance;
+    r.orient = c.solid_flags.orient;
+    r.keep_signed = c.solid_flags.keep_signed;
+    r.weld_tolerance = c.solid_flags.weld_tolerance;
     r.digits = c.digits;
     r.verbose = c.verbose;
     r.density_given = c.density_option && c.density_option->count() > 0;
@@ -202,8 +190,7 @@ void add_measure_commands(CLI::App& app, MeasureCommands& c) {
                                               "unbalanced edges, shells and how they nest");
     c.check->add_option("files", c.check_opts.files, "Mesh files; - reads stdin")->required();
     c.check->add_flag("--json", c.check_opts.json, "Print JSON");
-    c.check->add_flag("--orient", c.check_opts.orient, kOrientHelp);
-    c.check->add_option("--weld-tolerance", c.check_opts.weld_tolerance, kWeldHelp)->check(positive_number());
+    add_solid_flags(c.check, c.check_opts.solid_flags, /*keep_signed=*/false);
 }
 
 int run_measure_commands(const MeasureCommands& c) {

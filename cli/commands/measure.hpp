@@ -8,6 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "grammar.hpp"
+
 namespace polyvol::cli {
 
 // The options of one of the three commands.
@@ -23,10 +25,8 @@ struct MeasureCommandOptions {
     bool stream = false;       // volume --stream: the JSON has the table's figures (a binary STL streams)
     bool volume_only = false;  // volume --volume-only
     bool solid = false;        // volume/measure --solid: the full overlap and self-crossing check
-    bool orient = false;       // --orient: faces wound consistently and outward before measuring
-    bool keep_signed = false;  // --signed: an inside-out surface's signed sums, not turned outward
+    SolidFlags solid_flags;    // --orient, --weld-tolerance, --signed
     std::string format = "table";  // measure --format table|urdf|sdf
-    double weld_tolerance = 0;     // --weld-tolerance
     int digits = 0;                // --digits
     bool verbose = false;          // --verbose
     bool csv = false;              // --csv

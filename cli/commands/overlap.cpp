@@ -11,7 +11,7 @@
 
 #include "polyvol/boolean.hpp"
 #include "polyvol/measure.hpp"
-#include "polyvol/topology.hpp"
+#include "polyvol/solid.hpp"
 #include "read_input.hpp"
 #include "output/format.hpp"
 #include "output/overlap.hpp"
@@ -19,29 +19,23 @@
 namespace polyvol::cli {
 namespace {
 
-// Which operand a status is about, and the sentence for it.
-std::string status_text(BooleanStatus s, const OverlapArgs& args, const Mesh& a, const Mesh& b) {
+// Which operand a status is about, and the sentence for it (what the solid
+// policy leaves to boolean_volumes: an inside-out operand kept by --signed,
+// a shell crossing itself that was not looked for, coordinates out of range).
+std::string status_text(BooleanStatus s, const OverlapArgs& args) {
     const bool about_b = s == BooleanStatus::b_not_closed || s == BooleanStatus::b_inside_out ||
                          s == BooleanStatus::b_overlaps_itself;
-    std::string text = (about_b ? args.b + " (B): " : args.a + " (A): ");
-    if (s == BooleanStatus::a_not_closed || s == BooleanStatus::b_not_closed) {
-        TopologyOptions edges_only;
-        edges_only.shells = false;
-        const TopologyReport t = analyze_topology((about_b ? b : a).view(), edges_only);
-        text += "not a closed surface: " + std::to_string(t.unbalanced_edges) + " unbalanced edge" +
-                (t.unbalanced_edges == 1 ? "" : "s") + " (used a different number of times in its two directions)";
-        if (t.unbalanced_example) {
-            const auto& e = *t.unbalanced_example;
-            text += ", e.g. " + point_text(std::span(e).first<3>()) + " - " + point_text(std::span(e).last<3>());
-        }
-        return text;
-    }
+    const std::string text = (about_b ? args.b + " (B): " : args.a + " (A): ");
     switch (s) {
         case BooleanStatus::a_inside_out:
-        case BooleanStatus::b_inside_out: return text + "inside out: its volume is negative (faces clockwise seen from outside)";
+        case BooleanStatus::b_inside_out:
+            return text + "inside out: its volume is negative (faces clockwise seen from outside); without --signed "
+                          "its shells are turned outward";
         case BooleanStatus::a_overlaps_itself:
         case BooleanStatus::b_overlaps_itself:
-            return text + "its shells overlap or its surface crosses itself (winding number above 1 at a vertex of the other operand)";
+            return text + "its surface crosses itself (winding number above 1 at a vertex of the other operand), "
+                          "where it was not looked for (more than " +
+                   std::to_string(kSelfCheckTriangles) + " triangles)";
         default: return args.a + ", " + args.b + ": " + boolean_status_message(s);
     }
 }
@@ -50,24 +44,37 @@ std::string status_text(BooleanStatus s, const OverlapArgs& args, const Mesh& a,
 
 CLI::App* add_overlap_command(CLI::App& app, OverlapArgs& args) {
     auto* cmd = app.add_subcommand("overlap",
-                                   "Volumes of A, B, A∩B, A∪B, A−B and B−A of two closed meshes, correctly "
-                                   "rounded, without building the result; boundary areas with a bound");
+                                   "Volumes of A, B, A∩B, A∪B, A−B and B−A of two closed meshes, each the solid it "
+                                   "means (as for volume), correctly rounded, without building the result; boundary "
+                                   "areas with a bound");
     cmd->add_option("a", args.a, "Mesh A (any format polyvol reads; - reads stdin)")->required();
     cmd->add_option("b", args.b, "Mesh B")->required();
     cmd->add_flag("--json", args.json, "Print one JSON object");
+    add_solid_flags(cmd, args.solid_flags);
     return cmd;
 }
 
 int run_overlap_command(const OverlapArgs& args) {
-    const auto a = read_or_report(args.a, [&] { return read_mesh_file(args.a); });
+    auto a = read_or_report(args.a, [&] { return read_mesh_file(args.a); });
     if (!a) return Exit::unreadable;
-    const auto b = read_or_report(args.b, [&] { return read_mesh_file(args.b); });
+    auto b = read_or_report(args.b, [&] { return read_mesh_file(args.b); });
     if (!b) return Exit::unreadable;
     const auto start = std::chrono::steady_clock::now();
-    const BooleanVolumes r = boolean_volumes(a->mesh.view(), b->mesh.view());
+    // Each operand the solid it means, as `volume` takes it.
+    const SolidOptions policy{.weld_tolerance = args.solid_flags.weld_tolerance,
+                              .orient = args.solid_flags.orient,
+                              .keep_signed = args.solid_flags.keep_signed};
+    const auto sa = solid_or_report(args.a + " (A)", a->mesh, policy);
+    if (!sa) return Exit::invalid;
+    const auto sb = solid_or_report(args.b + " (B)", b->mesh, policy);
+    if (!sb) return Exit::invalid;
+    const bool within = (sa->self && sa->self->pairs > 0) || (sb->self && sb->self->pairs > 0);
+    const BooleanVolumes r = sa->resolved() || sb->resolved()
+                                 ? solid_boolean_volumes(a->mesh.view(), b->mesh.view(), within)
+                                 : boolean_volumes(a->mesh.view(), b->mesh.view());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (r.status != BooleanStatus::ok) {
-        std::cerr << "polyvol: " << status_text(r.status, args, a->mesh, b->mesh) << "\n";
+        std::cerr << "polyvol: " << status_text(r.status, args) << "\n";
         return Exit::invalid;
     }
     // Coordinates a reader computed (3MF transforms): every result is a region

@@ -253,6 +253,16 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
             if (r.self->example) j["self_crossing_example"] = {(*r.self->example)[0], (*r.self->example)[1]};
         }
     }
+    if (!request.need_mass && r.loaded) {  // `check`: the solid, and whether the file is one as it is
+        if (r.solid) {
+            j["solid_volume"] = json_number(r.solid->volume);
+            j["winding_volume"] = json_number(r.solid->winding_volume);
+            j["overlapping_shells"] = r.solid->overlapping_shells;
+            j["crossing_pairs"] = r.solid->crossing_pairs;
+        }
+        j["ready"] = r.repairs.empty() && r.exit_code == Exit::ok;
+        j["repairs"] = r.repairs;
+    }
     if (request.need_mass) {
         j["method"] = std::string(method_name(request.measure.method));
         j["accuracy"] = std::string(accuracy_name(request.measure.accuracy));
@@ -675,6 +685,14 @@ std::string check_report(const FileResult& r) {
     if (t.cavities || t.inside_out_shells || t.nested_shells)
         out << "  nesting         " << t.cavities << " cavities, " << t.inside_out_shells << " inside-out shells, "
             << t.nested_shells << " shells inside other solids\n";
+    out << "  verdict         ";
+    if (r.repairs.empty()) {
+        out << "a solid as it is: ready to print or simulate\n";
+    } else {
+        out << "not ready — ";
+        for (std::size_t i = 0; i < r.repairs.size(); ++i) out << (i ? "; " : "") << r.repairs[i];
+        out << "\n";
+    }
     return out.str();
 }
 

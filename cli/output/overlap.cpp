@@ -1,6 +1,7 @@
 // cli/output/overlap.cpp — cli/output/overlap.hpp.
 #include "output/overlap.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <utility>
@@ -54,13 +55,18 @@ std::string overlap_table(const std::string& a, const std::string& b, const Bool
         // setw counts bytes: ∩ ∪ − are three bytes each, shown as one column.
         const std::string label = name;
         const int pad = label.size() > 1 ? 8 + 2 : 8;
-        out << std::setw(pad) << label << std::setw(26) << shortest(v.first) << shortest(v.second) << "\n";
+        out << std::setw(pad) << label << std::setw(26) << shortest(v.first)
+            << (std::isnan(v.second) ? std::string("-") : shortest(v.second)) << "\n";
     }
     out << "\nvolumes: "
         << (bound > 0 ? "within ±" + shortest(bound) + " each (3MF transforms, applied in floating point)"
                       : std::string("correctly rounded (the exact volume of the coordinates as read, rounded once)"))
         << "\n"
-        << "areas: within ±" << std::setprecision(2) << r.area_error_bound << " each\n"
+        << (std::isnan(r.area_error_bound)
+                ? std::string("areas: not computed where an operand's shells overlap or cross themselves (its "
+                              "solid's boundary is not formed)")
+                : "areas: within ±" + bound_text(r.area_error_bound) + " each")
+        << "\n"
         << r.crossing_pairs << " crossing triangle pair" << (r.crossing_pairs == 1 ? "" : "s") << " (of "
         << r.candidate_pairs << " whose boxes meet), " << std::setprecision(3) << seconds << " s\n";
     return out.str();

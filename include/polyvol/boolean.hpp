@@ -67,6 +67,18 @@ BooleanVolumes boolean_volumes(const MeshView& a, const MeshView& b);
 
 const char* boolean_status_message(BooleanStatus status);
 
+// The same volumes where A's or B's shells may overlap one another or cross
+// themselves: each operand is the solid it means, the region where its
+// winding number is >= 1 (solid_volume below). Every shell must be outward
+// or a cavity inside an outward one (winding numbers >= 0), so that
+// A ∪ B = {W_A + W_B >= 1}, the solid of both meshes together; then
+// |A ∩ B| = |A| + |B| - |A ∪ B|, |A - B| = |A ∪ B| - |B|, |B - A| = |A ∪ B| - |A|,
+// each formed exactly and rounded once (correctly rounded). Three solids
+// are resolved, so it costs more than boolean_volumes: call it only where
+// an operand needs it (polyvol/solid.hpp's MeshSolid::resolved). The areas
+// are not computed (NaN); within_shells as in solid_volume.
+BooleanVolumes solid_boolean_volumes(const MeshView& a, const MeshView& b, bool within_shells = false);
+
 // The solid a mesh whose shells may overlap or cross themselves bounds: the
 // region where the winding number of all its shells is >= 1 (what a slicer
 // prints; cavities, inward shells inside outward ones, subtract). The shells

@@ -244,4 +244,16 @@ struct GridBlock {
 GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes& grid, const GridBlock& block,
                                const GridOutput& out, const GridOptions& options = {});
 
+// The same where each body is the union of some meshes (the solid of a file
+// whose shells overlap, polyvol/solid.hpp's solid_as_union): body b is the
+// union of parts[b], each part a closed outward mesh. A body of one part is
+// grid_volumes' body; a body of several is their union's volume in every
+// cell (grid_volumes' union_volumes, exact in the same sense), its wetted
+// area and normal the union's surface's. first_moments and
+// intersection_volumes are not computed for a body of several parts
+// (std::invalid_argument); the union of the bodies is that of all parts.
+// `block` as in grid_block_volumes (the whole grid: {{0, 0, 0}, {nx, ny, nz}}).
+GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, const GridAxes& grid,
+                               const GridBlock& block, const GridOutput& out, const GridOptions& options = {});
+
 }  // namespace polyvol

@@ -24,14 +24,14 @@ import warnings
 import numpy as np
 
 from . import _arrays
-from ._errors import ExpressionError, ImplicitError, ReadError
+from ._errors import ExpressionError, ImplicitError, NotASolidError, ReadError
 from ._polyvol import __version__
 from . import _polyvol as _core
 
 __all__ = [
     "Mesh", "load", "load_bytes", "measure_file", "orient", "mass_properties", "volume", "check", "solid", "overlap", "self_crossings",
     "grid", "Grid", "chain_volume", "polygon_area", "load_chain", "load_polygons", "implicit",
-    "ReadError", "ImplicitError", "ExpressionError", "__version__",
+    "ReadError", "ImplicitError", "ExpressionError", "NotASolidError", "__version__",
 ]
 
 
@@ -208,21 +208,43 @@ class MassProperties(_Result):
                "edge_length_relative_error")
 
 
+def _solid_verdict(verdict, name=""):
+    """Raises NotASolidError for a refused mesh; warns the policy's notes."""
+    status, message, notes = verdict
+    for note in notes:
+        _warn((name + ": " if name else "") + note)
+    if status != "ok":
+        raise NotASolidError((name + ": " if name else "") + message, status, message)
+
+
+def _policy(signed, allow_open, orient, weld_tolerance, solid=True):
+    return {"signed": bool(signed), "allow_open": bool(allow_open), "orient": bool(orient),
+            "weld_tolerance": float(weld_tolerance), "solid": bool(solid)}
+
+
 def mass_properties(mesh, faces=None, *, density=1.0, method="cone", accuracy="correctly-rounded",
-                    second_moments=True, edge_length=True):
-    """Volume, mass, area, centroid, moments, inertia and edge length of a
-    closed mesh (a polyvol.Mesh, an object with .vertices and .faces, or
-    vertices and faces arrays).
+                    second_moments=True, edge_length=True, signed=False, allow_open=False, orient=False,
+                    weld_tolerance=0.0, solid=True):
+    """Volume, mass, area, centroid, moments, inertia and edge length of the
+    solid a closed mesh means (a polyvol.Mesh, an object with .vertices and
+    .faces, or vertices and faces arrays), as `polyvol measure` takes it:
+    inside-out shells turned outward (a warning says so; signed=True keeps
+    their signed sums), overlapping and self-crossing shells resolved (the
+    solid's volume, mass and moments: winding number >= 1; area and edge
+    length the shells' sums), an open or misoriented surface refused with
+    NotASolidError (allow_open=True measures it about the origin;
+    orient=True winds the faces first; weld_tolerance merges points first;
+    solid=False keeps the shells' sums where they overlap: ∫ winding number).
 
     method: "cone" (det/6 per fan triangle), "prism", "pyramid" or "vtnb"
     (Franklin's vertex-edge-face formula); it chooses the volume only.
     accuracy: "correctly-rounded" (the exact value rounded once: volume,
     mass, moments, centroid, inertia) or "fast" (double sums with a rigorous
-    bound). Area and edge length always carry a relative bound.
-    For an open surface the sums are about the origin: check(mesh).closed says
-    whether they are a solid's."""
+    bound). Area and edge length always carry a relative bound."""
     v, idx, offsets = _arrays.mesh(mesh, faces)
-    p = _core.mass_properties(v, idx, offsets, method, accuracy, float(density), second_moments, edge_length)
+    verdict, p = _core.measure_solid(v, idx, offsets, method, accuracy, float(density), second_moments, edge_length,
+                                     _policy(signed, allow_open, orient, weld_tolerance, solid))
+    _solid_verdict(verdict)
     return MassProperties(
         method=p.method, accuracy="correctly-rounded" if p.volume_correctly_rounded else "error-bound",
         density=float(density), volume=p.volume,
@@ -235,11 +257,14 @@ def mass_properties(mesh, faces=None, *, density=1.0, method="cone", accuracy="c
         edge_length_relative_error=p.edge_length_relative_error)
 
 
-def volume(mesh, faces=None, *, method="cone", accuracy="correctly-rounded"):
-    """The signed volume (negative for an inside-out surface), correctly rounded
-    by default (see mass_properties)."""
-    v, idx, offsets = _arrays.mesh(mesh, faces)
-    return _core.signed_volume(v, idx, offsets, method, accuracy)
+def volume(mesh, faces=None, *, method="cone", accuracy="correctly-rounded", signed=False, allow_open=False,
+           orient=False, weld_tolerance=0.0):
+    """The volume of the solid the mesh means, correctly rounded by default,
+    with mass_properties' policy (signed=True: an inside-out surface keeps
+    its negative volume)."""
+    return mass_properties(mesh, faces, method=method, accuracy=accuracy, second_moments=False, edge_length=False,
+                           signed=signed, allow_open=allow_open, orient=orient,
+                           weld_tolerance=weld_tolerance).volume
 
 
 # ---- topology --------------------------------------------------------------------
@@ -264,11 +289,13 @@ class Topology(_Result):
     _fields = ("closed_2_cycle", "faces", "triangles", "vertices", "vertices_welded", "edges", "boundary_edges",
                "holes", "nonmanifold_edges", "misoriented_edges", "unbalanced_edges", "unbalanced_example",
                "degenerate_triangles", "euler_characteristic", "components", "cavities", "inside_out_shells",
-               "shells", "self_crossing_checked", "self_crossing_pairs", "self_crossing_example")
+               "shells", "self_crossing_checked", "self_crossing_pairs", "self_crossing_example", "ready",
+               "repairs", "solid_volume", "winding_volume", "overlapping_shells", "crossing_pairs")
 
     def to_dict(self):
         d = super().to_dict()
-        for key in ("unbalanced_example", "self_crossing_example"):  # the CLI writes them only when there is one
+        for key in ("unbalanced_example", "self_crossing_example", "solid_volume", "winding_volume",
+                    "overlapping_shells", "crossing_pairs"):  # the CLI writes them only when there is one
             if d[key] is None:
                 del d[key]
         return d
@@ -294,6 +321,8 @@ def check(mesh, faces=None, *, shells=True, self_crossings=True):
         s = _core.solid_volume(v, idx, offsets, False)
         if s.status == "ok" and s.face_crosses.size:
             crosses = s.face_crosses
+    # The verdict of `polyvol check`: a solid as it is, or the repairs it needs.
+    _, repairs, solid_figures = _core.solid_repairs(v, idx, offsets)
     example = None
     if t.unbalanced_example is not None:
         e = t.unbalanced_example
@@ -310,6 +339,8 @@ def check(mesh, faces=None, *, shells=True, self_crossings=True):
         degenerate_triangles=t.zero_area_triangles,  # those with a repeated vertex included
         euler_characteristic=t.euler_characteristic, components=t.components_edge_connected, cavities=t.cavities,
         inside_out_shells=t.inside_out_shells, nested_shells=t.nested_shells,
+        ready=not repairs and t.closed_2_cycle, repairs=list(repairs),
+        **{k: solid_figures.get(k) for k in ("solid_volume", "winding_volume", "overlapping_shells", "crossing_pairs")},
         shells=[Shell(role="crossing" if crosses is not None and crosses[s.first_face] else s.role,
                       signed_volume=s.signed_volume, faces=s.faces, boundary_edges=s.boundary_edges,
                       unbalanced_edges=s.unbalanced_edges, euler_characteristic=s.euler_characteristic,
@@ -363,13 +394,18 @@ class BooleanVolumes(_Result):
                "triangles_a", "triangles_b", "candidate_pairs", "crossing_pairs", "rational_terms")
 
 
-def overlap(a, b):
-    """Volumes of the booleans of two closed, outward meshes, exactly, without
-    building them (`polyvol overlap`). Raises ValueError when a mesh is not a
-    solid (open, inside out, overlapping itself, coordinates out of range)."""
+def overlap(a, b, *, signed=False, orient=False, weld_tolerance=0.0):
+    """Volumes of the booleans of the solids two closed meshes mean, exactly,
+    without building them (`polyvol overlap`): each operand as
+    mass_properties takes it (inside-out shells turned outward, overlapping
+    shells resolved: then the areas are NaN). Raises NotASolidError when an
+    operand is not a solid (open, misoriented), ValueError for the rest
+    (inside out with signed=True, coordinates out of range)."""
     pa, ia, oa = _arrays.mesh(a)
     pb, ib, ob = _arrays.mesh(b)
-    r = _core.boolean_volumes(pa, ia, oa, pb, ib, ob)
+    va, vb, r = _core.overlap_solids(pa, ia, oa, pb, ib, ob, _policy(signed, False, orient, weld_tolerance))
+    _solid_verdict(va, "A")
+    _solid_verdict(vb, "B")
     if r.status != "ok":
         raise ValueError(f"no boolean volumes: {r.message}")
     return BooleanVolumes(accuracy="correctly-rounded", volume_error_bound=0.0,

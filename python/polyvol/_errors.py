@@ -36,3 +36,19 @@ class ExpressionError(ValueError):
     def __init__(self, text, position):
         super().__init__(text)
         self.position = position
+
+
+class NotASolidError(ValueError):
+    """A mesh does not bound a solid as polyvol takes it (polyvol/solid.hpp),
+    the same refusal as the command line's exit 3: ``defect`` is "open"
+    (unbalanced edges: a hole, or an edge of three or more faces),
+    "misoriented" (closed, faces wound inconsistently: orient=True fixes it),
+    "not_orientable" (orient=True could not), "bad_tolerance" (weld_tolerance
+    refused), or for overlap "inside_out" (signed=True kept an inside-out
+    operand); ``message`` says what and how to fix it. allow_open=True
+    measures an open surface anyway (its figures then depend on the origin)."""
+
+    def __init__(self, text, defect, message=None):
+        super().__init__(text)
+        self.defect = defect
+        self.message = message if message is not None else text

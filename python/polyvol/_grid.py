@@ -143,13 +143,16 @@ def _axes(bodies, dims, cells, cell_size, bounds):
 
 
 def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=False, *, union=None,
-         intersection=False, surface=False, block=None, edges=None):
+         intersection=False, surface=False, block=None, edges=None, signed=False, orient=False, weld_tolerance=0.0):
     """The exact volume of each mesh in every cell of a grid, and with several
     meshes the union's (and on request the intersection's) volume per cell,
     exact in every cell (docs/grid.md).
 
     meshes: a mesh (polyvol.Mesh, an object with .vertices and .faces) or a
-    list of them, each a closed outward surface. The grid: ``dims`` (nx, ny, nz),
+    list of them, each the solid it means as mass_properties takes it
+    (inside-out shells turned outward unless signed=True, overlapping shells
+    their union: winding number >= 1; open or misoriented surfaces raise
+    NotASolidError). The grid: ``dims`` (nx, ny, nz),
     ``cells`` along the longest side (cubic cells, default 128) or
     ``cell_size``; ``bounds`` (xmin, ymin, zmin, xmax, ymax, zmax), default the
     meshes' box padded by a cell; or ``edges`` = (x, y, z) plane coordinates.
@@ -157,7 +160,12 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
     union (default: with several meshes) and intersection; block:
     ((i0, i1), (j0, j1), (k0, k1)) computes only those cells, with the bits
     the whole grid gives them (polyvol.dask.grid uses it)."""
+    from . import _policy, _solid_verdict  # noqa: E402 (defined before this module is imported)
     bodies = _bodies(meshes)
+    solids = [_core.solid_parts(*b, _policy(signed, False, orient, weld_tolerance)) for b in bodies]
+    for i, (verdict, _, _) in enumerate(solids):
+        _solid_verdict(verdict, f"body {i}" if len(bodies) > 1 else "")
+    parts = [s[1] for s in solids]
     if edges is None:
         x, y, z = _axes(bodies, dims, cells, cell_size, bounds)
     else:
@@ -176,7 +184,7 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
     want_union = several if union is None else bool(union)
     error = None
     try:
-        r = _core.grid_volumes(bodies, x, y, z, flat, bool(moments), want_union, bool(intersection) and several,
+        r = _core.grid_volumes(parts, x, y, z, flat, bool(moments), want_union, bool(intersection) and several,
                                bool(surface))
     except ValueError as e:
         if not (want_union and union is None and "the union is undefined" in str(e)):
@@ -184,12 +192,13 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
         # asked by default only: give the bodies' cells, and say why there is no union
         error = str(e)
         warnings.warn(f"polyvol.grid: {error}; the union is not given", stacklevel=2)
-        r = _core.grid_volumes(bodies, x, y, z, flat, bool(moments), False, False, bool(surface))
+        r = _core.grid_volumes(parts, x, y, z, flat, bool(moments), False, False, bool(surface))
     # a block is a grid of its own: its planes, with where it lies in the whole grid
     x, y, z = (e[lo:hi + 1] for e, (lo, hi) in zip((x, y, z), block))
     bshape = tuple(hi - lo for lo, hi in block)
-    for body, arrays in zip(r["bodies"], bodies):
-        body["mesh_volume"] = _core.signed_volume(*arrays, "cone", "correctly-rounded")
+    for body, (_, body_parts, solid_volume) in zip(r["bodies"], solids):
+        body["mesh_volume"] = (solid_volume if solid_volume is not None
+                               else _core.signed_volume(*body_parts[0], "cone", "correctly-rounded"))
     summary = {
         "grid": {"dims": list(bshape), "bounds": [float(x[0]), float(y[0]), float(z[0]), float(x[-1]),
                                                   float(y[-1]), float(z[-1])],

@@ -21,6 +21,13 @@ std::vector<MeshView> views_of(const std::vector<BodyArrays>& bodies) {
     return views;
 }
 
+// Each body's parts (grid_union_volumes: the body is their union).
+std::vector<std::vector<MeshView>> parts_of(const std::vector<std::vector<BodyArrays>>& bodies) {
+    std::vector<std::vector<MeshView>> parts;
+    for (const auto& b : bodies) parts.push_back(views_of(b));
+    return parts;
+}
+
 std::vector<double> vector_of(const Doubles& a) { return {a.data(), a.data() + a.size()}; }
 
 // A grid's planes as three new arrays.
@@ -62,9 +69,9 @@ void bind_grid(py::module_& m) {
     // or (bx, by, bz[, 3]) for the union's, and the summary's figures.
     m.def(
         "grid_volumes",
-        [](const std::vector<BodyArrays>& bodies, const Doubles& x, const Doubles& y, const Doubles& z,
+        [](const std::vector<std::vector<BodyArrays>>& bodies, const Doubles& x, const Doubles& y, const Doubles& z,
            std::array<std::size_t, 6> block, bool moments, bool union_volume, bool intersection, bool surface) {
-            const std::vector<MeshView> views = views_of(bodies);
+            const std::vector<std::vector<MeshView>> views = parts_of(bodies);
             const GridAxes g{vector_of(x), vector_of(y), vector_of(z)};
             const GridBlock b{{block[0], block[2], block[4]}, {block[1], block[3], block[5]}};
             if (!(b.lo[0] < b.hi[0] && b.hi[0] <= g.nx() && b.lo[1] < b.hi[1] && b.hi[1] <= g.ny() &&
@@ -92,7 +99,7 @@ void bind_grid(py::module_& m) {
             GridSummary s;
             {
                 py::gil_scoped_release release;
-                s = grid_block_volumes(views, g, b, out);
+                s = grid_union_volumes(views, g, b, out);
             }
             const auto bx = static_cast<py::ssize_t>(b.hi[0] - b.lo[0]), by = static_cast<py::ssize_t>(b.hi[1] - b.lo[1]),
                        bz = static_cast<py::ssize_t>(b.hi[2] - b.lo[2]), n = static_cast<py::ssize_t>(nb);

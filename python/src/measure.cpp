@@ -7,6 +7,7 @@
 #include "bindings.hpp"
 #include "polyvol/boolean.hpp"
 #include "polyvol/measure.hpp"
+#include "polyvol/solid.hpp"
 #include "polyvol/topology.hpp"
 
 namespace polyvol::python {
@@ -41,6 +42,42 @@ const char* status_name(BooleanStatus s) {
         case BooleanStatus::shell_touches_itself: return "shell_touches_itself";
     }
     return "ok";
+}
+
+const char* solid_status_name(SolidStatus s) {
+    switch (s) {
+        case SolidStatus::ok: return "ok";
+        case SolidStatus::open: return "open";
+        case SolidStatus::misoriented: return "misoriented";
+        case SolidStatus::not_orientable: return "not_orientable";
+        case SolidStatus::bad_tolerance: return "bad_tolerance";
+    }
+    return "ok";
+}
+
+// An owned copy of the arrays (make_solid changes its mesh).
+Mesh mesh_copy(const MeshView& v) {
+    return Mesh{std::vector<double>(v.positions.begin(), v.positions.end()),
+                std::vector<uint32_t>(v.face_offsets.begin(), v.face_offsets.end()),
+                std::vector<uint32_t>(v.indices.begin(), v.indices.end())};
+}
+
+// The policy's options from Python's keywords (polyvol/solid.hpp).
+SolidOptions solid_options(const py::dict& k) {
+    SolidOptions o;
+    if (k.contains("signed")) o.keep_signed = k["signed"].cast<bool>();
+    if (k.contains("allow_open")) o.allow_open = k["allow_open"].cast<bool>();
+    if (k.contains("orient")) o.orient = k["orient"].cast<bool>();
+    if (k.contains("weld_tolerance")) o.weld_tolerance = k["weld_tolerance"].cast<double>();
+    if (k.contains("solid")) o.resolve_overlaps = k["solid"].cast<bool>();
+    return o;
+}
+
+// What the policy found, for Python: (status, message, notes).
+py::tuple solid_verdict(const MeshSolid& s) {
+    py::list notes;
+    for (const SolidNote& n : s.notes) notes.append(n.text);
+    return py::make_tuple(solid_status_name(s.status), s.message, notes);
 }
 
 template <std::size_t N>
@@ -88,6 +125,86 @@ void bind_measure(py::module_& m) {
         },
         py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("method"), py::arg("accuracy"),
         py::arg("density"), py::arg("second_moments"), py::arg("edge_length"));
+
+    // mass_properties of the solid the mesh means (polyvol/solid.hpp):
+    // ((status, message, notes), MassProperties or None).
+    m.def(
+        "measure_solid",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets,
+           const std::string& method, const std::string& accuracy, double density, bool second_moments,
+           bool edge_length, const py::dict& policy) {
+            Mesh mesh = mesh_copy(mesh_view(positions, indices, offsets));
+            MeasureOptions o;
+            o.method = parse_method(method);
+            o.accuracy = parse_accuracy(accuracy);
+            o.density = density;
+            o.second_moments = second_moments;
+            o.edge_length = edge_length;
+            const SolidOptions p = solid_options(policy);
+            SolidMass r;
+            {
+                py::gil_scoped_release release;
+                r = measure_solid(mesh, p, o);
+            }
+            return py::make_tuple(solid_verdict(r.solid), r.mass ? py::cast(*r.mass) : py::none());
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("method"), py::arg("accuracy"),
+        py::arg("density"), py::arg("second_moments"), py::arg("edge_length"), py::arg("policy"));
+
+    // Whether the mesh is a solid as it is (`polyvol check`'s verdict):
+    // ((status, message, notes), repairs, the solid's figures or {}).
+    m.def(
+        "solid_repairs",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
+            Mesh mesh = mesh_copy(mesh_view(positions, indices, offsets));
+            MeshSolid s;
+            {
+                py::gil_scoped_release release;
+                s = make_solid(mesh, SolidOptions{.keep_signed = true, .shells = true});
+            }
+            py::dict solid;  // as `polyvol check --json` gives it, when solid_volume ran
+            if (s.solid) {
+                solid["solid_volume"] = s.solid->volume;
+                solid["winding_volume"] = s.solid->winding_volume;
+                solid["overlapping_shells"] = s.solid->overlapping_shells;
+                solid["crossing_pairs"] = s.solid->crossing_pairs;
+            }
+            return py::make_tuple(solid_verdict(s), repairs_needed(s), solid);
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"));
+
+    // The solid of one body for the grid (polyvol/solid.hpp): ((status,
+    // message, notes), [(positions, indices, offsets), ...] whose union it
+    // is, its volume or None when it is the mesh's own).
+    m.def(
+        "solid_parts",
+        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets,
+           const py::dict& policy) {
+            Mesh mesh = mesh_copy(mesh_view(positions, indices, offsets));
+            SolidOptions p = solid_options(policy);
+            p.face_shells = true;
+            MeshSolid s;
+            std::vector<Mesh> parts;
+            {
+                py::gil_scoped_release release;
+                s = make_solid(mesh, p);
+                if (s.status == SolidStatus::ok && s.resolved()) parts = solid_as_union(mesh.view(), s);
+            }
+            if (parts.empty() && s.status == SolidStatus::ok) parts.push_back(std::move(mesh));
+            py::list arrays;
+            for (Mesh& part : parts) {
+                const auto n = static_cast<py::ssize_t>(part.vertex_count());
+                py::object part_offsets = part.face_offsets.empty()
+                                         ? py::object(py::none())
+                                         : py::object(adopt_array(std::move(part.face_offsets), {static_cast<py::ssize_t>(part.face_offsets.size())}));
+                const auto ni = static_cast<py::ssize_t>(part.indices.size());
+                arrays.append(py::make_tuple(adopt_array(std::move(part.positions), {n, 3}),
+                                             adopt_array(std::move(part.indices), {ni}), part_offsets));
+            }
+            const py::object volume = s.resolved() ? py::object(py::float_(s.solid->volume)) : py::none();
+            return py::make_tuple(solid_verdict(s), arrays, volume);
+        },
+        py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("policy"));
 
     m.def(
         "signed_volume",
@@ -233,6 +350,31 @@ void bind_measure(py::module_& m) {
         .def_readonly("candidate_pairs", &BooleanVolumes::candidate_pairs)
         .def_readonly("crossing_pairs", &BooleanVolumes::crossing_pairs)
         .def_readonly("rational_terms", &BooleanVolumes::rational_terms);
+    // The booleans of the solids two meshes mean (`polyvol overlap`):
+    // ((status, message, notes) of A, of B, BooleanVolumes or None).
+    m.def(
+        "overlap_solids",
+        [](const Doubles& pa, const Indices& ia, const std::optional<Indices>& oa, const Doubles& pb,
+           const Indices& ib, const std::optional<Indices>& ob, const py::dict& policy) {
+            Mesh a = mesh_copy(mesh_view(pa, ia, oa)), b = mesh_copy(mesh_view(pb, ib, ob));
+            const SolidOptions p = solid_options(policy);
+            MeshSolid sa, sb;
+            std::optional<BooleanVolumes> r;
+            {
+                py::gil_scoped_release release;
+                sa = make_solid(a, p);
+                if (sa.status == SolidStatus::ok) sb = make_solid(b, p);
+                if (sa.status == SolidStatus::ok && sb.status == SolidStatus::ok) {
+                    const bool within = (sa.self && sa.self->pairs > 0) || (sb.self && sb.self->pairs > 0);
+                    r = sa.resolved() || sb.resolved() ? solid_boolean_volumes(a.view(), b.view(), within)
+                                                       : boolean_volumes(a.view(), b.view());
+                }
+            }
+            return py::make_tuple(solid_verdict(sa), solid_verdict(sb), r ? py::cast(*r) : py::none());
+        },
+        py::arg("positions_a"), py::arg("indices_a"), py::arg("offsets_a"), py::arg("positions_b"),
+        py::arg("indices_b"), py::arg("offsets_b"), py::arg("policy"));
+
     m.def(
         "boolean_volumes",
         [](const Doubles& pa, const Indices& ia, const std::optional<Indices>& oa, const Doubles& pb,

@@ -20,6 +20,7 @@
 #include "boolean/operand.hpp"
 #include "boolean/predicates.hpp"
 #include "boolean/solid_pieces.hpp"
+#include "boolean/solid_sums.hpp"
 #include "measure/cone.hpp"
 #include "exact/eft.hpp"
 #include "exact/expansion.hpp"
@@ -98,10 +99,8 @@ void solid_group(const Operand& g, const std::vector<uint32_t>& g_face, const st
 }
 
 }  // namespace
-}  // namespace boolean
 
-SolidVolume solid_volume(const MeshView& mesh, bool moments, bool within_shells) {
-    using namespace boolean;
+SolidVolume solid_sums(const MeshView& mesh, bool moments, bool within_shells, SolidSums& out) {
     SolidVolume r;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     auto fail = [&](BooleanStatus s) {
@@ -249,6 +248,23 @@ SolidVolume solid_volume(const MeshView& mesh, bool moments, bool within_shells)
             return fail(BooleanStatus::shell_touches_itself);
         }
     }
+    out.pieces = std::move(pieces);
+    out.whole = std::move(whole);
+    out.e0 = e0;
+    return r;
+}
+
+}  // namespace boolean
+
+SolidVolume solid_volume(const MeshView& mesh, bool moments, bool within_shells) {
+    using namespace boolean;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    SolidSums sums;
+    SolidVolume r = solid_sums(mesh, moments, within_shells, sums);
+    if (r.status != BooleanStatus::ok) return r;
+    std::vector<PieceSum>& pieces = sums.pieces;
+    const Mesh& whole = sums.whole;
+    const int e0 = sums.e0;
     // The whole triangles' sums by measure's kernels (parallel): the volume
     // filtered first (an interval), exact when that leaves the rounding open.
     const Combination one[1] = {{nullptr, +1}};

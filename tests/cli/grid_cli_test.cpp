@@ -351,7 +351,9 @@ TEST(GridCli, TooLargeForMemoryIsRefusedWithTheEstimate) {
 
 // A body inside out has no union with the others: the bodies' cells are still
 // given, with a warning, unless an output needs the union (exit 3).
-TEST(GridCli, NoUnionWithABodyInsideOut) {
+// An inside-out body is turned outward, as `volume` turns it (the union is
+// then defined); --signed keeps it, and then the union is undefined.
+TEST(GridCli, AnInsideOutBodyIsTurnedOutwardUnlessSigned) {
     const fs::path a = scratch("outward.obj"), b = scratch("inward.obj");
     cli_test::write_boxes_obj(a, {{0, 0, 0, 2, 2, 2}});
     cli_test::write_boxes_obj(b, {{1, 1, 1, 3, 3, 3}});
@@ -370,7 +372,14 @@ TEST(GridCli, NoUnionWithABodyInsideOut) {
         std::ofstream(b) << flipped;
     }
     const std::string files = "'" + a.string() + "' '" + b.string() + "' --dims 4 4 4";
-    const CliRun r = polyvol("grid " + files + " --json");
+    const CliRun turned = polyvol("grid " + files + " --json");
+    ASSERT_EQ(turned.code, 0) << turned.err;
+    EXPECT_NE(turned.err.find("inside out: 1 shell turned outward (6 faces reversed)"), std::string::npos) << turned.err;
+    const json t = json::parse(turned.out);
+    EXPECT_EQ(t["body_volumes"][0], 8.0);
+    EXPECT_EQ(t["body_volumes"][1], 8.0);
+    EXPECT_EQ(t["union_volume"], 15.0);
+    const CliRun r = polyvol("grid " + files + " --json --signed");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.err.find("warning: grid: the union is undefined: body 2 is inside out"), std::string::npos) << r.err;
     const json j = json::parse(r.out);
@@ -378,7 +387,7 @@ TEST(GridCli, NoUnionWithABodyInsideOut) {
     EXPECT_NE(j["union_error"].get<std::string>().find("inside out"), std::string::npos);
     EXPECT_EQ(j["body_volumes"][0], 8.0);
     EXPECT_EQ(j["body_volumes"][1], -8.0);
-    const CliRun needs = polyvol("grid " + files + " --union '" + scratch("u2.npy").string() + "'");
+    const CliRun needs = polyvol("grid " + files + " --signed --union '" + scratch("u2.npy").string() + "'");
     EXPECT_EQ(needs.code, 3);
     EXPECT_NE(needs.err.find("inside out"), std::string::npos) << needs.err;
 }

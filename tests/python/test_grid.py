@@ -58,15 +58,18 @@ def test_two_overlapping_boxes_union_and_intersection():
     assert g.summary["contact_cells"] == int((g.cell_class == 3).sum())
 
 
-def test_an_inside_out_body_gives_the_bodies_and_says_why_there_is_no_union():
+def test_an_inside_out_body_is_turned_outward_unless_signed():
     v, f = box()
     inside_out = (v + 0.5, f[:, ::-1].copy())
-    with pytest.warns(UserWarning, match="union"):
+    with pytest.warns(UserWarning, match="turned outward"):
         g = polyvol.grid([(v, f), inside_out], dims=(3, 3, 3), bounds=(-1, -1, -1, 2, 2, 2))
+    assert g.volumes[1].sum() == 1.0 and g.summary["union_volume"] == 2 - 0.125
+    with pytest.warns(UserWarning, match="union"):
+        g = polyvol.grid([(v, f), inside_out], dims=(3, 3, 3), bounds=(-1, -1, -1, 2, 2, 2), signed=True)
     assert g.union is None and "inside out" in g.union_error
     assert g.volumes[1].sum() == -1.0
     with pytest.raises(ValueError):
-        polyvol.grid([(v, f), inside_out], dims=(3, 3, 3), union=True)
+        polyvol.grid([(v, f), inside_out], dims=(3, 3, 3), union=True, signed=True)
 
 
 def test_blocks_have_the_whole_grids_bits():
