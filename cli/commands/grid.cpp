@@ -232,7 +232,7 @@ int run_grid_command(const GridArgs& a) {
             try {
                 groups[b] = solid_as_union(v, *solid);
             } catch (const std::invalid_argument& e) {
-                std::cerr << "polyvol: " << a.files[b] << ": its shells overlap, and " << e.what() << "\n";
+                std::cerr << "polyvol: " << a.files[b] << ": " << e.what() << "\n";
                 code = Exit::invalid;
                 continue;
             }

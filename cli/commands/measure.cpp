@@ -101,6 +101,13 @@ enum class Command { volume, measure, check };
 
 int run(Command command, const MeasureCommandOptions& c) {
     Request request = make_request(c, command != Command::check);
+    // A simulator takes the <inertial> mass as given: no density, no guess.
+    if (c.format != "table" && !request.density_given) {
+        std::cerr << "polyvol: --format " << c.format
+                  << " needs --density (the material's, e.g. 2700kg/m3 for aluminium, 1.24g/cm3 for PLA): a "
+                     "simulator takes the mass as given\n";
+        return Exit::usage;
+    }
     request.metres_when_known = c.format != "table";
     request.self_check_always = command == Command::check || c.solid;
     request.volume_only = command == Command::volume && c.volume_only;
@@ -117,7 +124,12 @@ int run(Command command, const MeasureCommandOptions& c) {
     // each measured as a file of its own, "ARCHIVE:MEMBER".
     std::vector<std::pair<std::string, std::string>> inputs;  // (file, member)
     for (const std::string& f : c.files) {
-        const std::vector<std::string> members = f == "-" ? std::vector<std::string>{} : mesh_archive_members(f);
+        std::vector<std::string> members;
+        try {
+            if (f != "-") members = mesh_archive_members(f);
+        } catch (const ReadError&) {
+            // Not a readable archive: read as one file, whose reader says what is wrong (exit 2).
+        }
         if (members.empty()) inputs.emplace_back(f, "");
         for (const std::string& m : members) inputs.emplace_back(f, m);
     }

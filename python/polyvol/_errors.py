@@ -44,8 +44,8 @@ class NotASolidError(ValueError):
     (unbalanced edges: a hole, or an edge of three or more faces),
     "misoriented" (closed, faces wound inconsistently: orient=True fixes it),
     "not_orientable" (orient=True could not), "bad_tolerance" (weld_tolerance
-    refused), or for overlap "inside_out" (signed=True kept an inside-out
-    operand); ``message`` says what and how to fix it. allow_open=True
+    refused), for grid "not_split" (a solid the grid cannot take yet: a shell
+    crossing itself, cavities among overlapping shells); ``message`` says what and how to fix it. allow_open=True
     measures an open surface anyway (its figures then depend on the origin)."""
 
     def __init__(self, text, defect, message=None):

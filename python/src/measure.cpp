@@ -108,24 +108,6 @@ void bind_measure(py::module_& m) {
         .def_property_readonly("accuracy",
                                [](const MassProperties& p) { return std::string(accuracy_name(p.accuracy)); });
 
-    m.def(
-        "mass_properties",
-        [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets,
-           const std::string& method, const std::string& accuracy, double density, bool second_moments,
-           bool edge_length) {
-            const MeshView view = mesh_view(positions, indices, offsets);
-            MeasureOptions o;
-            o.method = parse_method(method);
-            o.accuracy = parse_accuracy(accuracy);
-            o.density = density;
-            o.second_moments = second_moments;
-            o.edge_length = edge_length;
-            py::gil_scoped_release release;
-            return mass_properties(view, o);
-        },
-        py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("method"), py::arg("accuracy"),
-        py::arg("density"), py::arg("second_moments"), py::arg("edge_length"));
-
     // mass_properties of the solid the mesh means (polyvol/solid.hpp):
     // ((status, message, notes), MassProperties or None).
     m.def(
@@ -185,11 +167,18 @@ void bind_measure(py::module_& m) {
             p.face_shells = true;
             MeshSolid s;
             std::vector<Mesh> parts;
+            std::string not_split;  // why the solid is not a union of bodies the grid takes
             {
                 py::gil_scoped_release release;
                 s = make_solid(mesh, p);
-                if (s.status == SolidStatus::ok && s.resolved()) parts = solid_as_union(mesh.view(), s);
+                try {
+                    if (s.status == SolidStatus::ok && s.resolved()) parts = solid_as_union(mesh.view(), s);
+                } catch (const std::invalid_argument& e) {
+                    not_split = e.what();
+                }
             }
+            if (!not_split.empty())
+                return py::make_tuple(py::make_tuple("not_split", not_split, py::list()), py::list(), py::none());
             if (parts.empty() && s.status == SolidStatus::ok) parts.push_back(std::move(mesh));
             py::list arrays;
             for (Mesh& part : parts) {

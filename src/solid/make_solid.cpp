@@ -330,7 +330,8 @@ std::vector<Mesh> solid_as_union(const MeshView& mesh, const MeshSolid& solid) {
     if (!solid.topology || solid.topology->face_shell.size() != mesh.face_count())
         throw std::invalid_argument("solid_as_union: the topology's face shells are needed");
     if (solid.solid && solid.solid->shells_crossing_themselves > 0)
-        throw std::invalid_argument("a shell crosses itself: its solid cannot be split into bodies that do not");
+        throw std::invalid_argument("its surface crosses itself within a shell: its solid cannot be split into "
+                                    "bodies that do not (the grid cannot take it yet; polyvol volume resolves it)");
     const TopologyReport& t = *solid.topology;
     if (t.cavities > 0)
         throw std::invalid_argument("its shells overlap and it has cavities: which shell holds each cavity is not "

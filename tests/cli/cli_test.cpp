@@ -247,3 +247,17 @@ TEST(Cli, MissingFileExitsTwo) {
 }
 
 }  // namespace
+
+namespace {
+// A file that starts like a zip but is none is unreadable input (exit 2, the
+// reader's message), not an internal error (exit 4), whatever its name.
+TEST(Cli, AFileThatOnlyLooksLikeAZipIsUnreadable) {
+    const fs::path not_zip = fs::path(POLYVOL_TEST_DATA) / "regressions" / "not_a_zip.3mf";
+    for (const char* command : {"volume", "measure", "check"}) {
+        const CliRun r = polyvol(std::string(command) + " '" + not_zip.string() + "'");
+        EXPECT_EQ(r.code, 2) << command << ": " << r.err;
+        EXPECT_NE(r.err.find("not a readable zip archive"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    }
+}
+}  // namespace

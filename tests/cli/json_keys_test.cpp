@@ -291,6 +291,11 @@ TEST(JsonKeys, UrdfAndSdfInertialOfABox) {
         return obj + "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
     };
     const std::string plain = scratch("urdf_box.obj", box_obj(1, 0)).string();
+    // Without --density the mass would be a guess: refused (exit 1), never written.
+    const auto guess = cli_test::run_polyvol("measure --format urdf '" + plain + "'");
+    EXPECT_EQ(guess.code, 1);
+    EXPECT_NE(guess.err.find("--format urdf needs --density"), std::string::npos) << guess.err;
+    EXPECT_EQ(guess.out, "");
     const auto urdf = cli_test::run_polyvol("measure --format urdf --density 2 '" + plain + "'");
     ASSERT_EQ(urdf.code, 0) << urdf.err;
     pugi::xml_document doc;
