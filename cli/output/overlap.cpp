@@ -67,8 +67,10 @@ std::string overlap_table(const std::string& a, const std::string& b, const Bool
                               "solid's boundary is not formed)")
                 : "areas: within ±" + bound_text(r.area_error_bound) + " each")
         << "\n"
-        << r.crossing_pairs << " crossing triangle pair" << (r.crossing_pairs == 1 ? "" : "s") << " (of "
-        << r.candidate_pairs << " whose boxes meet), " << std::setprecision(3) << seconds << " s\n";
+        << r.crossing_pairs << " crossing triangle pair" << (r.crossing_pairs == 1 ? "" : "s")
+        // (solid_boolean_volumes counts the crossings of its three solids, not candidate pairs)
+        << (r.candidate_pairs > 0 ? " (of " + std::to_string(r.candidate_pairs) + " whose boxes meet)" : std::string())
+        << ", " << std::setprecision(3) << seconds << " s\n";
     return out.str();
 }
 
