@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "polyvol/solid.hpp"
+
 namespace polyvol::cli {
 
 // A finite number > 0 ("not a number: abc", "must be > 0: -1").
@@ -20,6 +22,10 @@ struct SolidFlags {
     bool orient = false;
     double weld_tolerance = 0;
     bool keep_signed = false;
+
+    SolidOptions policy() const {
+        return SolidOptions{.weld_tolerance = weld_tolerance, .orient = orient, .keep_signed = keep_signed};
+    }
 };
 // keep_signed: whether the command offers --signed (`check` judges the file as it is).
 void add_solid_flags(CLI::App* cmd, SolidFlags& flags, bool keep_signed = true);

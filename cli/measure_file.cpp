@@ -233,23 +233,16 @@ FileResult process_file(const std::string& file, const Request& request, const s
     r.solid = solid.solid;
     const std::string notes = solid.notes_text(path);
     if (!notes.empty()) r.warning += (r.warning.empty() ? "" : "; ") + notes;
-    switch (solid.status) {
-        case SolidStatus::ok: break;
-        case SolidStatus::open:
-        case SolidStatus::misoriented:
-            // `check` reports why in its table; the other commands say it here.
-            r.exit_code = Exit::invalid;
-            if (request.need_mass) r.error = path + ": " + solid.message;
-            return r;
-        case SolidStatus::not_orientable:
-        case SolidStatus::bad_tolerance:
-            r.exit_code = Exit::invalid;
-            r.error = path + ": " + solid.message;
-            return r;
+    if (solid.status != SolidStatus::ok) {
+        r.exit_code = Exit::invalid;
+        // `check` reports an open or misoriented surface in its table; every other refusal is said here.
+        const bool in_report = !request.need_mass && r.topology;
+        if (!in_report) r.error = path + ": " + solid.message;
+        return r;
     }
     const bool closed = solid.closed;
-    // `check`: a file that needs any repair (even --allow-open's) is not a solid as it is.
-    if (!request.need_mass && (!closed || !r.repairs.empty())) r.exit_code = Exit::invalid;
+    // `check`: a file that needs any repair is not a solid as it is.
+    if (!r.repairs.empty()) r.exit_code = Exit::invalid;
     const bool pieces = request.need_mass && !request.table_only;  // per-shell and per-part figures
     if (request.need_mass) {
         r.mass = request.volume_only ? volume_only_properties(view, request.measure)

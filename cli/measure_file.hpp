@@ -156,7 +156,4 @@ struct Request {
 // reported as "FILE:MEMBER"; empty for the file itself.
 FileResult process_file(const std::string& file, const Request& request, const std::string& member = "");
 
-// Whether the solid differs from the shells' sum (overlap, self-crossing).
-inline bool solid_differs(const SolidVolume& s) { return s.overlapping_shells > 0 || s.shells_crossing_themselves > 0; }
-
 }  // namespace polyvol::cli

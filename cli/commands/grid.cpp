@@ -208,10 +208,8 @@ int run_grid_command(const GridArgs& a) {
     // Each body the solid it means (polyvol/solid.hpp): inside-out shells
     // turned outward, overlapping shells as the union of groups of shells
     // that do not overlap (grid_union_volumes).
-    const SolidOptions policy{.weld_tolerance = a.solid_flags.weld_tolerance,
-                              .orient = a.solid_flags.orient,
-                              .keep_signed = a.solid_flags.keep_signed,
-                              .face_shells = true};
+    SolidOptions policy = a.solid_flags.policy();
+    policy.face_shells = true;  // solid_as_union groups the shells
     std::vector<MeshView> views;
     std::vector<std::vector<Mesh>> groups(meshes.size());
     std::vector<std::vector<MeshView>> parts(meshes.size());

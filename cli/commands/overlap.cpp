@@ -2,10 +2,7 @@
 
 #include <chrono>
 #include <cmath>
-#include <iomanip>
 #include <iostream>
-#include <sstream>
-#include <span>
 
 #include <nlohmann/json.hpp>
 
@@ -61,17 +58,12 @@ int run_overlap_command(const OverlapArgs& args) {
     if (!b) return Exit::unreadable;
     const auto start = std::chrono::steady_clock::now();
     // Each operand the solid it means, as `volume` takes it.
-    const SolidOptions policy{.weld_tolerance = args.solid_flags.weld_tolerance,
-                              .orient = args.solid_flags.orient,
-                              .keep_signed = args.solid_flags.keep_signed};
+    const SolidOptions policy = args.solid_flags.policy();
     const auto sa = solid_or_report(args.a + " (A)", a->mesh, policy);
     if (!sa) return Exit::invalid;
     const auto sb = solid_or_report(args.b + " (B)", b->mesh, policy);
     if (!sb) return Exit::invalid;
-    const bool within = (sa->self && sa->self->pairs > 0) || (sb->self && sb->self->pairs > 0);
-    const BooleanVolumes r = sa->resolved() || sb->resolved()
-                                 ? solid_boolean_volumes(a->mesh.view(), b->mesh.view(), within)
-                                 : boolean_volumes(a->mesh.view(), b->mesh.view());
+    const BooleanVolumes r = solid_booleans(a->mesh.view(), *sa, b->mesh.view(), *sb);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (r.status != BooleanStatus::ok) {
         std::cerr << "polyvol: " << status_text(r.status, args) << "\n";

@@ -146,7 +146,7 @@ std::string orient_sentence(const OrientResult& o) {
 
 // The sentence for a file whose shells overlap, or "".
 std::string overlap_sentence(const FileResult& r) {
-    if (!r.solid || !solid_differs(*r.solid)) return "";
+    if (!r.solid || !r.solid->differs_from_shells()) return "";
     const SolidVolume& s = *r.solid;
     std::string what;
     if (s.overlapping_shells > 0)
@@ -385,7 +385,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
             continue;
         }
         const auto& m = *r.mass;
-        const bool overlap = r.solid && solid_differs(*r.solid);
+        const bool overlap = r.solid && r.solid->differs_from_shells();
         any_checked = any_checked || r.overlap_checked;
         (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
         const double volume_error = m.volume_correctly_rounded ? 0 : m.volume_error_bound;
@@ -462,7 +462,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     if (r.turned_outward)
         out << "  orientation     inside out: " << r.turned_outward->components << " shell(s) turned outward, "
             << r.turned_outward->flipped << " faces reversed (--signed keeps the signed sums)\n";
-    const bool overlap = r.solid && solid_differs(*r.solid);
+    const bool overlap = r.solid && r.solid->differs_from_shells();
     // Each figure shows the digits its guarantee supports (--digits caps them).
     const int digits = request.digits;
     const double volume_error = m.volume_correctly_rounded ? 0 : m.volume_error_bound;

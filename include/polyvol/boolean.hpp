@@ -115,6 +115,10 @@ struct SolidVolume {
     std::array<double, 3> centroid{};        // first_moments / volume in double: relative error < 2^-51 (NaN when V = 0)
     std::array<double, 6> inertia_centroid{};// about the centroid, in double
     double inertia_relative_error = 0;       // bound, relative to its largest magnitude
+
+    // Whether the solid differs from the shells' sum: shells overlap, or a
+    // shell's own crossings were resolved.
+    bool differs_from_shells() const { return overlapping_shells > 0 || shells_crossing_themselves > 0; }
 };
 
 // Touching and coincident shells are resolved by moving shell k of each

@@ -74,6 +74,9 @@ struct Mesh {
     void append(const Mesh& other);
 };
 
+// An owning copy of a view's arrays.
+Mesh to_mesh(const MeshView& view);
+
 // Canonical vertex ids: result[v] is the smallest index of a vertex with the
 // same coordinates as v (bit-identical doubles, -0.0 equal to +0.0; NaNs are
 // never welded). Expected O(n).

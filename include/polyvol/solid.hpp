@@ -98,8 +98,7 @@ struct MeshSolid {
 
     // Whether the solid differs from the shells' sum: the figures must be the solid's.
     bool resolved() const {
-        return solid && solid->status == BooleanStatus::ok &&
-               (solid->overlapping_shells > 0 || solid->shells_crossing_themselves > 0);
+        return solid && solid->status == BooleanStatus::ok && solid->differs_from_shells();
     }
     // Every note's text, "; " between them, each after `name: ` when name is given.
     std::string notes_text(const std::string& name = "") const;
@@ -133,6 +132,12 @@ struct SolidMass {
     std::optional<MassProperties> mass;
 };
 SolidMass measure_solid(Mesh& mesh, SolidOptions policy, const MeasureOptions& measure);
+
+// A ∩ B and the rest of two meshes that make_solid has made solids (both
+// status ok): boolean_volumes, or solid_boolean_volumes (boolean.hpp) where
+// an operand's shells overlap or cross themselves (their crossings looked
+// for again where make_solid found a shell crossing itself).
+BooleanVolumes solid_booleans(const MeshView& a, const MeshSolid& sa, const MeshView& b, const MeshSolid& sb);
 
 // What a mesh needs before it is a solid as it is — ready to print or
 // simulate without repair — each item with its fix, from make_solid with

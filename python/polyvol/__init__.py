@@ -339,7 +339,7 @@ def check(mesh, faces=None, *, shells=True, self_crossings=True):
         degenerate_triangles=t.zero_area_triangles,  # those with a repeated vertex included
         euler_characteristic=t.euler_characteristic, components=t.components_edge_connected, cavities=t.cavities,
         inside_out_shells=t.inside_out_shells, nested_shells=t.nested_shells,
-        ready=not repairs and t.closed_2_cycle, repairs=list(repairs),
+        ready=not repairs, repairs=list(repairs),
         **{k: solid_figures.get(k) for k in ("solid_volume", "winding_volume", "overlapping_shells", "crossing_pairs")},
         shells=[Shell(role="crossing" if crosses is not None and crosses[s.first_face] else s.role,
                       signed_volume=s.signed_volume, faces=s.faces, boundary_edges=s.boundary_edges,

@@ -20,9 +20,7 @@ namespace {
 LoadedMesh mesh_from_arrays(const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
     const MeshView v = mesh_view(positions, indices, offsets);
     LoadedMesh l;
-    l.mesh.positions.assign(v.positions.begin(), v.positions.end());
-    l.mesh.indices.assign(v.indices.begin(), v.indices.end());
-    l.mesh.face_offsets.assign(v.face_offsets.begin(), v.face_offsets.end());
+    l.mesh = to_mesh(v);
     l.vertices_in_file = l.mesh.vertex_count();
     return l;
 }

@@ -55,13 +55,6 @@ const char* solid_status_name(SolidStatus s) {
     return "ok";
 }
 
-// An owned copy of the arrays (make_solid changes its mesh).
-Mesh mesh_copy(const MeshView& v) {
-    return Mesh{std::vector<double>(v.positions.begin(), v.positions.end()),
-                std::vector<uint32_t>(v.face_offsets.begin(), v.face_offsets.end()),
-                std::vector<uint32_t>(v.indices.begin(), v.indices.end())};
-}
-
 // The policy's options from Python's keywords (polyvol/solid.hpp).
 SolidOptions solid_options(const py::dict& k) {
     SolidOptions o;
@@ -115,7 +108,7 @@ void bind_measure(py::module_& m) {
         [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets,
            const std::string& method, const std::string& accuracy, double density, bool second_moments,
            bool edge_length, const py::dict& policy) {
-            Mesh mesh = mesh_copy(mesh_view(positions, indices, offsets));
+            Mesh mesh = to_mesh(mesh_view(positions, indices, offsets));  // make_solid changes it
             MeasureOptions o;
             o.method = parse_method(method);
             o.accuracy = parse_accuracy(accuracy);
@@ -138,7 +131,7 @@ void bind_measure(py::module_& m) {
     m.def(
         "solid_repairs",
         [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
-            Mesh mesh = mesh_copy(mesh_view(positions, indices, offsets));
+            Mesh mesh = to_mesh(mesh_view(positions, indices, offsets));
             MeshSolid s;
             {
                 py::gil_scoped_release release;
@@ -162,7 +155,7 @@ void bind_measure(py::module_& m) {
         "solid_parts",
         [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets,
            const py::dict& policy) {
-            Mesh mesh = mesh_copy(mesh_view(positions, indices, offsets));
+            Mesh mesh = to_mesh(mesh_view(positions, indices, offsets));
             SolidOptions p = solid_options(policy);
             p.face_shells = true;
             MeshSolid s;
@@ -345,7 +338,7 @@ void bind_measure(py::module_& m) {
         "overlap_solids",
         [](const Doubles& pa, const Indices& ia, const std::optional<Indices>& oa, const Doubles& pb,
            const Indices& ib, const std::optional<Indices>& ob, const py::dict& policy) {
-            Mesh a = mesh_copy(mesh_view(pa, ia, oa)), b = mesh_copy(mesh_view(pb, ib, ob));
+            Mesh a = to_mesh(mesh_view(pa, ia, oa)), b = to_mesh(mesh_view(pb, ib, ob));
             const SolidOptions p = solid_options(policy);
             MeshSolid sa, sb;
             std::optional<BooleanVolumes> r;
@@ -353,11 +346,8 @@ void bind_measure(py::module_& m) {
                 py::gil_scoped_release release;
                 sa = make_solid(a, p);
                 if (sa.status == SolidStatus::ok) sb = make_solid(b, p);
-                if (sa.status == SolidStatus::ok && sb.status == SolidStatus::ok) {
-                    const bool within = (sa.self && sa.self->pairs > 0) || (sb.self && sb.self->pairs > 0);
-                    r = sa.resolved() || sb.resolved() ? solid_boolean_volumes(a.view(), b.view(), within)
-                                                       : boolean_volumes(a.view(), b.view());
-                }
+                if (sa.status == SolidStatus::ok && sb.status == SolidStatus::ok)
+                    r = solid_booleans(a.view(), sa, b.view(), sb);
             }
             return py::make_tuple(solid_verdict(sa), solid_verdict(sb), r ? py::cast(*r) : py::none());
         },

@@ -21,36 +21,17 @@ namespace polyvol {
 namespace boolean {
 namespace {
 
-// Both meshes' faces, B's vertices after A's.
-Mesh both_meshes(const MeshView& a, const MeshView& b) {
-    Mesh m;
-    m.positions.assign(a.positions.begin(), a.positions.end());
-    m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
-    const auto offset = static_cast<uint32_t>(a.vertex_count());
-    std::vector<uint32_t> face;
-    for (const MeshView* v : {&a, &b})
-        for (std::size_t f = 0; f < v->face_count(); ++f) {
-            const auto c = v->face(f);
-            face.assign(c.begin(), c.end());
-            if (v == &b)
-                for (uint32_t& i : face) i += offset;
-            m.add_face(face);
-        }
-    return m;
-}
-
 // 6 × the volume of Σ sign_i × solid_i as one PieceSum in units of 2^(3 e0):
-// the whole triangles summed exactly, integers and numerators scaled from
-// each solid's e0_i to the least e0.
+// the exact whole parts added, integers and numerators scaled from each
+// solid's e0_i to the least e0.
 PieceSum combine(std::span<const std::pair<const SolidSums*, int>> terms, int e0) {
     PieceSum out;
     for (const auto& [s, sign] : terms) {
-        const VolumeSum whole = cone_volume_sum(s->whole.view(), true);
-        if (sign > 0)
-            out.whole.merge(whole.sum);
-        else
-            out.whole.subtract(whole.sum);
         const PieceSum& p = s->pieces[0];
+        if (sign > 0)
+            out.whole.merge(p.whole);
+        else
+            out.whole.subtract(p.whole);
         mpz_class scale;
         mpz_ui_pow_ui(scale.get_mpz_t(), 2, static_cast<unsigned long>(3 * (s->e0 - e0)));
         out.integer += sign * p.integer * scale;
@@ -73,15 +54,21 @@ BooleanVolumes solid_boolean_volumes(const MeshView& a, const MeshView& b, bool 
         r.volume_a = r.volume_b = r.intersection = r.union_volume = r.a_minus_b = r.b_minus_a = nan;
         return r;
     };
-    const Mesh ab = both_meshes(a, b);
     SolidSums sa, sb, su;
     const SolidVolume ra = solid_sums(a, false, within_shells, sa);
     if (ra.status != BooleanStatus::ok) return fail(ra.status);
     const SolidVolume rb = solid_sums(b, false, within_shells, sb);
     if (rb.status != BooleanStatus::ok)
         return fail(rb.status == BooleanStatus::a_not_closed ? BooleanStatus::b_not_closed : rb.status);
+    Mesh ab = to_mesh(a);  // both meshes' faces, B's vertices after A's
+    ab.append(to_mesh(b));
     const SolidVolume ru = solid_sums(ab.view(), false, within_shells, su);
     if (ru.status != BooleanStatus::ok) return fail(ru.status);
+    // Each solid's whole triangles, summed exactly once (solid_sums leaves them).
+    for (SolidSums* s : {&sa, &sb, &su}) {
+        s->pieces[0].whole = cone_volume_sum(s->whole.view(), true).sum;
+        s->pieces[0].whole_bound = 0;
+    }
     r.triangles_a = a.triangle_count();
     r.triangles_b = b.triangle_count();
     r.crossing_pairs = ru.crossing_pairs;

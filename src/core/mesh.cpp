@@ -42,4 +42,10 @@ void Mesh::append(const Mesh& other) {
     }
 }
 
+Mesh to_mesh(const MeshView& view) {
+    return Mesh{std::vector<double>(view.positions.begin(), view.positions.end()),
+                std::vector<uint32_t>(view.face_offsets.begin(), view.face_offsets.end()),
+                std::vector<uint32_t>(view.indices.begin(), view.indices.end())};
+}
+
 }  // namespace polyvol

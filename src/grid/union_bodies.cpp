@@ -2,6 +2,7 @@
 // that are unions of meshes, each as grid_volumes' union of its parts.
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <string>
 #include <stdexcept>
 #include <vector>
@@ -37,6 +38,7 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
                                     " values, not " + std::to_string(out.volumes.size()));
     GridSummary s;
     std::vector<double> scratch;
+    std::optional<GridSummary> one_union;  // one body of several parts: its union is the bodies' union
     for (std::size_t b = 0; b < nb; ++b) {
         GridOutput o;
         GridBodySummary body;
@@ -51,7 +53,7 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
             o.union_volumes = slice(out.volumes, b, cells);
             o.union_wetted_area = slice(out.wetted_area, b, cells);
             o.union_surface_normal = slice(out.surface_normal, b, cells, 3);
-            if (nb == 1) {  // the body's union outputs are the bodies' union's
+            if (nb == 1) {
                 o.cell_class = out.cell_class;
                 if (o.union_wetted_area.empty()) o.union_wetted_area = out.union_wetted_area;
                 if (o.union_surface_normal.empty()) o.union_surface_normal = out.union_surface_normal;
@@ -66,18 +68,18 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
             body.empty_cells = u.empty_cells;
             body.cut_cells = u.cut_cells + u.contact_cells;
             s.crossing_pairs += u.crossing_pairs;
+            if (nb == 1) one_union = u;
         }
         s.bodies.push_back(body);
     }
     const bool union_outputs = !out.union_volumes.empty() || !out.cell_class.empty() ||
                                !out.union_wetted_area.empty() || !out.union_surface_normal.empty();
-    if (nb == 1) {
-        const GridBodySummary& b = s.bodies[0];
-        s.union_volume = b.volume;
-        s.full_cells = b.full_cells;
-        s.empty_cells = b.empty_cells;
-        s.cut_cells = b.cut_cells;
-        s.contact_cells = 0;
+    if (one_union) {
+        s.union_volume = one_union->union_volume;
+        s.full_cells = one_union->full_cells;
+        s.empty_cells = one_union->empty_cells;
+        s.cut_cells = one_union->cut_cells;
+        s.contact_cells = one_union->contact_cells;
         auto copy = [](std::span<const double> from, std::span<double> to) {
             if (!to.empty() && !from.empty() && from.data() != to.data()) std::copy(from.begin(), from.end(), to.begin());
         };
@@ -95,7 +97,7 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
         s.empty_cells = u.empty_cells;
         s.cut_cells = u.cut_cells;
         s.contact_cells = u.contact_cells;
-        s.crossing_pairs += u.crossing_pairs;
+        s.crossing_pairs = u.crossing_pairs;  // every part against every other: the bodies' own pairs included
     } else {
         s.union_volume = std::numeric_limits<double>::quiet_NaN();
     }

@@ -8,6 +8,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "core/union_find.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/solid.hpp"
 
@@ -28,6 +29,12 @@ std::string plural(std::size_t n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
+// Closed but misoriented: no boundary or non-manifold edge, and some edge
+// used twice in one direction (faces wound inconsistently; orient fixes it).
+bool only_misoriented(const TopologyReport& t) {
+    return t.boundary_edges == 0 && t.nonmanifold_edges == 0 && t.misoriented_edges > 0;
+}
+
 // The surface closes when points within a tolerance below 1e-9 of its size
 // (its box's diagonal) are merged: the largest power of ten at most that,
 // if welding there leaves no unbalanced edge; else 0.
@@ -41,9 +48,7 @@ double closing_tolerance(const MeshView& view) {
     const double size = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
     if (!(size > 0) || !std::isfinite(size)) return 0;
     const double tolerance = std::pow(10.0, std::floor(std::log10(1e-9 * size)));
-    Mesh copy{std::vector<double>(view.positions.begin(), view.positions.end()),
-              std::vector<uint32_t>(view.face_offsets.begin(), view.face_offsets.end()),
-              std::vector<uint32_t>(view.indices.begin(), view.indices.end())};
+    Mesh copy = to_mesh(view);
     try {
         if (weld_within(copy, tolerance).moved == 0) return 0;
     } catch (const std::invalid_argument&) {
@@ -53,24 +58,17 @@ double closing_tolerance(const MeshView& view) {
 }
 
 // The part (faces joined through shared vertex indices) of every vertex, as
-// a root vertex: a union–find over the indices, one pass, no sorting.
+// a root vertex.
 std::vector<uint32_t> part_roots(const MeshView& view) {
-    std::vector<uint32_t> parent(view.vertex_count());
-    for (uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
-    auto find = [&](uint32_t v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    };
+    core::UnionFind parts(view.vertex_count());
     for (std::size_t f = 0; f < view.face_count(); ++f) {
         const auto c = view.face(f);
         if (c.size() < 3) continue;
-        for (std::size_t i = 1; i < c.size(); ++i) {
-            const uint32_t a = find(c[0]), b = find(c[i]);
-            if (a != b) parent[b] = a;
-        }
+        for (std::size_t i = 1; i < c.size(); ++i) parts.unite(c[0], c[i]);
     }
-    for (uint32_t v = 0; v < parent.size(); ++v) parent[v] = find(v);
-    return parent;
+    std::vector<uint32_t> root(view.vertex_count());
+    for (uint32_t v = 0; v < root.size(); ++v) root[v] = parts.find(v);
+    return root;
 }
 
 // Whether the mesh's faces form more than one part.
@@ -140,7 +138,7 @@ std::string MeshSolid::notes_text(const std::string& name) const {
 }
 
 std::string unbalanced_message(const TopologyReport& t, double closes_at_tolerance) {
-    if (t.boundary_edges == 0 && t.nonmanifold_edges == 0 && t.misoriented_edges > 0)
+    if (only_misoriented(t))
         return "closed, but " + std::to_string(t.misoriented_edges) + " edge" +
                (t.misoriented_edges == 1 ? " is" : "s are") + " misoriented (faces wound inconsistently): " +
                plural(t.unbalanced_edges, "unbalanced edge", "unbalanced edges") +
@@ -200,9 +198,7 @@ MeshSolid make_solid(Mesh& mesh, const SolidOptions& o) {
                      "the sums about (0,0,0))");
         } else {
             r.closes_at_tolerance = closing_tolerance(view);
-            r.status = t.boundary_edges == 0 && t.nonmanifold_edges == 0 && t.misoriented_edges > 0
-                           ? SolidStatus::misoriented
-                           : SolidStatus::open;
+            r.status = only_misoriented(t) ? SolidStatus::misoriented : SolidStatus::open;
             r.message = unbalanced_message(t, r.closes_at_tolerance);
             r.self_not_checked = "not a closed surface";
             return r;
@@ -309,17 +305,24 @@ SolidMass measure_solid(Mesh& mesh, SolidOptions policy, const MeasureOptions& m
     return r;
 }
 
+BooleanVolumes solid_booleans(const MeshView& a, const MeshSolid& sa, const MeshView& b, const MeshSolid& sb) {
+    if (!sa.resolved() && !sb.resolved()) return boolean_volumes(a, b);
+    const bool within = (sa.self && sa.self->pairs > 0) || (sb.self && sb.self->pairs > 0);
+    return solid_boolean_volumes(a, b, within);
+}
+
 std::vector<std::string> repairs_needed(const MeshSolid& s) {
     std::vector<std::string> out;
+    // (A surface that is not closed always has its topology: the fingerprint decides only "closed".)
     const TopologyReport* t = s.topology ? &*s.topology : nullptr;
-    if (s.status == SolidStatus::misoriented && t)
+    if (!s.closed && only_misoriented(*t))
         out.push_back(plural(t->misoriented_edges, "misoriented edge", "misoriented edges") +
                       ", faces wound inconsistently (fix: --orient)");
-    if (s.status == SolidStatus::open && t)
+    else if (!s.closed)
         out.push_back("not closed: " + plural(t->unbalanced_edges, "unbalanced edge", "unbalanced edges") +
                       (s.closes_at_tolerance > 0 ? " (fix: --weld-tolerance " + shortest(s.closes_at_tolerance) + ")"
                                                  : " (fix: close its holes in a mesh editor)"));
-    if (s.status == SolidStatus::ok && t && t->inside_out_shells > 0)
+    else if (t && t->inside_out_shells > 0)
         out.push_back(plural(t->inside_out_shells, "inside-out shell", "inside-out shells") + " (fix: --orient)");
     if (s.self_unresolved)
         out.push_back("a shell crosses itself and touches itself there: its solid is not decided (fix: the mesh)");
