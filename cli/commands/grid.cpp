@@ -298,7 +298,10 @@ int run_grid_command(const GridArgs& a) {
     }
     const std::size_t cells = g.cell_count();
     const std::size_t nb = views.size();
-    if (cells > (std::size_t{1} << 34)) return usage_error("too many cells (" + std::to_string(cells) + ")");
+    if (cells > (std::size_t{1} << 34))
+        return usage_error("too many cells (" + std::to_string(cells) + ", more than 2^34 = 17179869184): the volumes "
+                           "alone would need about " + bytes_text(8.0 * static_cast<double>(cells * nb)) +
+                           "; a coarser grid (--cells, --cell-size, --dims), or polyvol.dask.grid in blocks");
     {
         // The arrays below, per cell: the bodies' volumes, centroids (moments
         // and the written copy), surfaces (the sums and the written copy), the

@@ -194,7 +194,7 @@ int run_implicit_command(const ImplicitArgs& a) {
         if (dimension == 0) dimension = std::max(2, expression_coordinates(a.expression));
     } catch (const ExpressionError& e) {
         std::cerr << "polyvol: " << e.what() << "\n";
-        return Exit::unreadable;
+        return Exit::usage;  // the expression is an argument, not input read
     }
     if (dimension > kImplicitMaxDimension) {
         std::cerr << "polyvol: the expression names coordinate x" << dimension << "; at most "
@@ -250,7 +250,7 @@ int run_implicit_command(const ImplicitArgs& a) {
         std::cerr << "polyvol: " << e.what();
         if (e.position() >= 0) std::cerr << " (at character " << e.position() + 1 << ")";
         std::cerr << "\n";
-        return Exit::unreadable;
+        return Exit::usage;
     } catch (const ImplicitError& e) {
         std::cerr << "polyvol: " << e.what();
         if (e.code() == ImplicitError::Code::too_large && std::string(e.what()).find("memory") != std::string::npos)

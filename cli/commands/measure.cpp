@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "grammar.hpp"
 #include "output/measure.hpp"
 #include "units.hpp"
@@ -139,7 +141,8 @@ int run(Command command, const MeasureCommandOptions& c) {
     const auto start = std::chrono::steady_clock::now();
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         const auto& [file, member] = inputs[i];
-        if (inputs.size() > 1 && std::chrono::steady_clock::now() - start > std::chrono::seconds(1))
+        // Progress for people: on a terminal, for work longer than a second.
+        if (inputs.size() > 1 && ::isatty(2) && std::chrono::steady_clock::now() - start > std::chrono::seconds(1))
             std::cerr << "[" << (i + 1) << "/" << inputs.size() << "] " << file << (member.empty() ? "" : ":" + member) << "\n";
         results.push_back(process_file(file, request, member));
         const FileResult& r = results.back();
@@ -187,7 +190,7 @@ void add_measure_commands(CLI::App& app, MeasureCommands& c) {
     const char* solid_help =
         "The full check: shells overlapping one another (where they do, the volume is the solid's: winding number "
         ">= 1) in a binary STL too (loaded instead of streamed), and a surface crossing itself within a shell in "
-        "files of any size (by default up to 250000 triangles; it is reported, not resolved)";
+        "files of any size (by default up to 250000 triangles): both are resolved, the figures the solid's";
     c.volume->add_flag("--solid", c.volume_opts.solid, solid_help);
     c.measure = app.add_subcommand("measure", "All mass properties (volume, area, edge length, centroid, "
                                                   "second moments, inertia) with their guarantees");

@@ -1,6 +1,7 @@
 // cli/output/format.cpp — cli/output/format.hpp.
 #include "output/format.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -32,13 +33,36 @@ std::string plus_minus(double v, double e, int digits) {
     return shown + " ±" + bound_text(e + std::fabs(std::strtod(shown.c_str(), nullptr) - v));
 }
 
+// v rounded to `significant` digits (as %.*g rounds it), written positionally
+// when the rounded value lies in [1e-4, 1e15) — 400, not 4e+02 — and with
+// an exponent otherwise; no trailing zeros.
+std::string significant_text(double v, int significant) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf, "%.*e", significant - 1, v);
+    const double rounded = std::strtod(buf, nullptr);  // the value %.*g shows
+    if (!(std::fabs(rounded) >= 1e-4 && std::fabs(rounded) < 1e15)) {
+        std::snprintf(buf, sizeof buf, "%.*g", significant, v);
+        return buf;
+    }
+    // The rounded value's digits, positionally: they end `significant - 1`
+    // places after its leading one.
+    const int exponent = std::atoi(std::strchr(buf, 'e') + 1);
+    std::snprintf(buf, sizeof buf, "%.*f", std::max(0, significant - 1 - exponent), rounded);
+    std::string s = buf;
+    if (s.find('.') != std::string::npos) {
+        s.erase(s.find_last_not_of('0') + 1);
+        if (s.back() == '.') s.pop_back();
+    }
+    return s;
+}
+
 std::string shortest_within(double v, double abs_error) {
     v += 0.0;
     if (!std::isfinite(v) || v == 0 || !(abs_error > 0) || !std::isfinite(abs_error)) return shortest(v);
+    if (std::fabs(v) <= abs_error) return "0";  // the shortest decimal within the bound: noise, not a figure
     for (int d = 1; d < 17; ++d) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%.*g", d, v);
-        if (std::fabs(std::strtod(buf, nullptr) - v) <= abs_error) return buf;
+        const std::string s = significant_text(v, d);
+        if (std::fabs(std::strtod(s.c_str(), nullptr) - v) <= abs_error) return s;
     }
     return shortest(v);
 }
@@ -50,9 +74,8 @@ std::string number_text(double v, double abs_error, int digits) {
     // the bound's leading one), or every digit when the value is correctly rounded.
     std::string s = abs_error > 0 && std::isfinite(abs_error) ? shortest_within(v, abs_error / 2) : shortest(v);
     if (digits > 0) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-        if (std::strlen(buf) < s.size()) s = buf;
+        const std::string d = significant_text(v, digits);
+        if (d.size() < s.size()) s = d;
     }
     return s;
 }

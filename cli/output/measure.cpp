@@ -230,7 +230,8 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["inside_out_shells"] = t.inside_out_shells;
         nlohmann::json shells = nlohmann::json::array();
         for (const Shell& s : t.shells) {
-            nlohmann::json sj{{"signed_volume", s.signed_volume},
+            // An open shell's volume depends on the origin: not a figure of the file.
+            nlohmann::json sj{{"signed_volume", s.role == ShellRole::open ? nlohmann::json(nullptr) : nlohmann::json(s.signed_volume)},
                               {"faces", s.faces},
                               {"boundary_edges", s.boundary_edges},
                               {"unbalanced_edges", s.unbalanced_edges},
@@ -600,29 +601,60 @@ std::string csv_table(const std::vector<FileResult>& results, bool inertia) {
         for (char c : f) q += c == '"' ? std::string("\"\"") : std::string(1, c);
         return q + "\"";
     };
+    // Bounds with every digit; each figure with the digits its bound supports
+    // (number_text, as the table shows it), every digit where correctly rounded.
     const auto num = [](double v) { return std::isfinite(v) ? shortest(v + 0.0) : std::string(); };
+    const auto within = [](double v, double bound) { return std::isfinite(v) ? number_text(v, bound, 0) : std::string(); };
+    // The header names the units when every measured file has the same
+    // (volume_cm3, mass_kg); the last two columns name each row's.
+    std::string unit, mass_unit;
+    bool same_units = true, first = true;
+    for (const FileResult& r : results)
+        if (r.mass) {
+            if (first) unit = r.length_unit, mass_unit = r.mass_unit, first = false;
+            same_units = same_units && r.length_unit == unit && r.mass_unit == mass_unit;
+        }
+    if (!same_units) unit.clear(), mass_unit.clear();
+    const auto in = [&](int power) {
+        return unit.empty() ? std::string() : "_" + unit + (power > 1 ? std::to_string(power) : std::string());
+    };
+    const std::string m_in = mass_unit.empty() ? std::string() : "_" + mass_unit;
+    const std::string i_in = mass_unit.empty() || unit.empty() ? std::string() : "_" + mass_unit + "_" + unit + "2";
     std::ostringstream out;
-    out << "file,exit_code,triangles,volume,volume_error_bound,mass,area,area_relative_error,centroid_x,centroid_y,"
-           "centroid_z,centroid_error_bound";
-    if (inertia) out << ",ixx,iyy,izz,ixy,iyz,izx,inertia_error_bound,edge_length,edge_length_relative_error";
-    out << "\r\n";
+    out << "file,exit_code,triangles,volume" << in(3) << ",volume_error_bound" << in(3) << ",mass" << m_in << ",area"
+        << in(2) << ",area_relative_error,centroid_x" << in(1) << ",centroid_y" << in(1) << ",centroid_z" << in(1)
+        << ",centroid_error_bound" << in(1);
+    if (inertia) {
+        for (const char* name : {"ixx", "iyy", "izz", "ixy", "iyz", "izx", "inertia_error_bound"}) out << "," << name << i_in;
+        out << ",edge_length" << in(1) << ",edge_length_relative_error";
+        for (const char* name : {"xmin", "ymin", "zmin", "xmax", "ymax", "zmax"}) out << "," << name << in(1);
+    }
+    out << ",length_unit,mass_unit\r\n";
     for (const FileResult& r : results) {
         out << field(r.file) << "," << r.exit_code << ",";
         if (r.mass) {
             const MassProperties& m = *r.mass;
-            out << r.triangles << "," << num(m.volume) << ","
-                << num(m.volume_correctly_rounded ? 0.0 : m.volume_error_bound) << "," << num(m.mass) << ","
-                << num(m.area) << "," << num(m.area_relative_error) << "," << num(m.centroid[0]) << ","
-                << num(m.centroid[1]) << "," << num(m.centroid[2]) << ","
-                << num(moments_bound(m, m.centroid));
+            const double volume_error = m.volume_correctly_rounded ? 0.0 : m.volume_error_bound;
+            const double centroid_error = moments_bound(m, m.centroid);
+            const double density = m.volume != 0 ? std::fabs(m.mass / m.volume) : 0.0;  // as the table's mass
+            out << r.triangles << "," << within(m.volume, volume_error) << "," << num(volume_error) << ","
+                << mass_text(m.mass, density * volume_error, 0) << "," << within(m.area, m.area * m.area_relative_error)
+                << "," << num(m.area_relative_error);
+            for (double c : m.centroid) out << "," << within(c, centroid_error);
+            out << "," << num(centroid_error);
             if (inertia) {
-                for (double e : m.inertia_centroid) out << "," << num(e);
-                out << "," << num(moments_bound(m, m.inertia_centroid)) << ","
-                    << num(m.edge_length) << "," << num(m.edge_length_relative_error);
+                const double inertia_error = moments_bound(m, m.inertia_centroid);
+                for (double e : m.inertia_centroid) out << "," << within(e, inertia_error);
+                out << "," << num(inertia_error) << "," << within(m.edge_length, m.edge_length * m.edge_length_relative_error)
+                    << "," << num(m.edge_length_relative_error);
+                const std::array<double, 6> b = r.loaded ? bounds_in_units(r) : std::array<double, 6>{NAN, NAN, NAN, NAN, NAN, NAN};
+                for (double x : b) out << "," << num(x);
             }
+            out << "," << field(r.length_unit) << "," << field(r.mass_unit);
         } else {
             out << (r.loaded ? std::to_string(r.triangles) : std::string()) << ",,,,,,,,,";
-            if (inertia) out << ",,,,,,,,,";
+            if (inertia) out << ",,,,,,,,,,,,,,,";
+            out << ",,";
         }
         out << "\r\n";
     }
@@ -667,7 +699,7 @@ std::string check_report(const FileResult& r) {
         }
         const bool crossing = r.solid && s.first_face < r.solid->face_crosses.size() && r.solid->face_crosses[s.first_face];
         out << "  shell " << shown << ": " << (crossing ? std::string_view("crossing another shell") : shell_role_name(s.role))
-            << ", volume " << shortest(s.signed_volume) << ", "
+            << (s.role == ShellRole::open ? std::string() : ", volume " + shortest(s.signed_volume)) << ", "
             << s.faces << " faces, χ = " << s.euler_characteristic;
         if (s.genus) out << ", genus " << *s.genus;
         if (s.boundary_edges) out << ", " << s.boundary_edges << " boundary edges";

@@ -270,7 +270,8 @@ def volume(mesh, faces=None, *, method="cone", accuracy="correctly-rounded", sig
 # ---- topology --------------------------------------------------------------------
 
 class Shell(_Result):
-    """An edge-connected component: signed_volume (correctly rounded), faces,
+    """An edge-connected component: signed_volume (correctly rounded; None
+    for an open shell, whose volume depends on the origin), faces,
     boundary_edges, unbalanced_edges, euler_characteristic, genus (None
     unless defined), winding_of_others (the other shells' winding number at
     a point of it) and role: "solid", "cavity", "inside-out", "nested", "open",
@@ -342,7 +343,8 @@ def check(mesh, faces=None, *, shells=True, self_crossings=True):
         ready=not repairs, repairs=list(repairs),
         **{k: solid_figures.get(k) for k in ("solid_volume", "winding_volume", "overlapping_shells", "crossing_pairs")},
         shells=[Shell(role="crossing" if crosses is not None and crosses[s.first_face] else s.role,
-                      signed_volume=s.signed_volume, faces=s.faces, boundary_edges=s.boundary_edges,
+                      signed_volume=None if s.role == "open" else s.signed_volume,  # depends on the origin
+                      faces=s.faces, boundary_edges=s.boundary_edges,
                       unbalanced_edges=s.unbalanced_edges, euler_characteristic=s.euler_characteristic,
                       genus=s.genus, winding_of_others=s.winding_of_others) for s in t.shells])
 

@@ -1,6 +1,7 @@
 """polyvol.grid: the exact volume of one or many solids in every cell of a
 rectilinear grid (include/polyvol/grid.hpp, docs/grid.md)."""
 
+import os
 import warnings
 
 import numpy as np
@@ -16,7 +17,8 @@ class Grid:
     volumes          (nx, ny, nz) for one mesh, (bodies, nx, ny, nz) for several:
                      each body's exact volume per cell (up to the rounding of its
                      terms: about 2^-50 × cell volume per surface sheet above)
-    fractions        volumes / cell volumes
+    fractions        volumes / cell volumes, clamped to [0, 1] (each cell is within
+                     a few ulps of its volume; not clamped for signed=True)
     union            (nx, ny, nz): the union's volume per cell (several meshes;
                      for one mesh, its volumes), exact in every cell, contact
                      cells included; None when undefined (union_error says why)
@@ -31,8 +33,9 @@ class Grid:
     summary          totals and cell counts (the CLI's JSON keys)
     """
 
-    def __init__(self, edges, arrays, summary, bodies, block):
+    def __init__(self, edges, arrays, summary, bodies, block, signed=False):
         self.edges = edges
+        self.signed = signed
         self.block = block
         self.bodies = bodies
         self.summary = summary
@@ -66,8 +69,9 @@ class Grid:
 
     @property
     def fractions(self):
-        """Volume fractions (volumes / cell volumes), per body."""
-        return self.volumes / self.cell_volumes
+        """Volume fractions (volumes / cell volumes), per body, clamped to [0, 1] unless signed."""
+        f = self.volumes / self.cell_volumes
+        return f if self.signed else np.clip(f, 0.0, 1.0)
 
     def to_npy(self, path, what="volumes"):
         """Writes one array (volumes, union, intersection, fractions, ...) as .npy."""
@@ -81,7 +85,8 @@ class Grid:
         for b in range(self.bodies):
             suffix = "" if self.bodies == 1 else f"_{b}"
             arrays.append(("volume" + suffix, np.ascontiguousarray(vol[b]).reshape(-1), 1))
-            arrays.append(("fraction" + suffix, np.ascontiguousarray(vol[b] / self.cell_volumes).reshape(-1), 1))
+            fraction = self.fractions if self.bodies == 1 else self.fractions[b]
+            arrays.append(("fraction" + suffix, np.ascontiguousarray(fraction).reshape(-1), 1))
         if self.bodies > 1 and self.union is not None:
             arrays.append(("union_volume", np.ascontiguousarray(self.union).reshape(-1), 1))
         if self.intersection is not None:
@@ -142,8 +147,27 @@ def _axes(bodies, dims, cells, cell_size, bounds):
                            d, b)
 
 
+def _check_memory(block, bodies, moments, surface, several, intersection, max_memory):
+    """MemoryError when the grid's arrays would exceed max_memory (the CLI's
+    --max-memory rule): per cell 8 bytes a body, 24 more with moments, 32
+    with surface; 9 for the union and classes, 8 for the intersection."""
+    cells = 1
+    for lo, hi in block:
+        cells *= hi - lo
+    per_cell = 8 * bodies + (24 * bodies if moments else 0) + (32 * (bodies + several) if surface else 0)
+    per_cell += (9 if several else 0) + (8 if several and intersection else 0)
+    need = per_cell * cells
+    if max_memory is None:
+        max_memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") * 3 // 4
+    if need > max_memory:
+        raise MemoryError(f"polyvol.grid: {cells} cells need about {need / 2**30:.3g} GiB for their arrays, more "
+                          f"than max_memory ({max_memory / 2**30:.3g} GiB): polyvol.dask.grid computes a grid in "
+                          "blocks, or choose fewer cells")
+
+
 def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=False, *, union=None,
-         intersection=False, surface=False, block=None, edges=None, signed=False, orient=False, weld_tolerance=0.0):
+         intersection=False, surface=False, block=None, edges=None, signed=False, orient=False, weld_tolerance=0.0,
+         max_memory=None):
     """The exact volume of each mesh in every cell of a grid, and with several
     meshes the union's (and on request the intersection's) volume per cell,
     exact in every cell (docs/grid.md).
@@ -159,7 +183,10 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
     moments: first moments per cell; surface: wetted area and ∫ n dA per cell;
     union (default: with several meshes) and intersection; block:
     ((i0, i1), (j0, j1), (k0, k1)) computes only those cells, with the bits
-    the whole grid gives them (polyvol.dask.grid uses it)."""
+    the whole grid gives them (polyvol.dask.grid uses it). max_memory (bytes;
+    default three quarters of this machine's memory): a grid whose arrays
+    would need more raises MemoryError naming the estimate, before anything
+    is allocated."""
     from . import _policy, _solid_verdict  # noqa: E402 (defined before this module is imported)
     bodies = _bodies(meshes)
     solids = [_core.solid_parts(*b, _policy(signed, False, orient, weld_tolerance)) for b in bodies]
@@ -180,6 +207,7 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
         raise ValueError(f"block must be three ranges (lo, hi) of cells within the grid {shape}, not {block}")
     flat = [v for pair in block for v in pair]
     several = len(bodies) > 1
+    _check_memory(block, len(bodies), moments, surface, several, intersection, max_memory)
     # the union (its crossings) by default with several bodies; union=True also gives one body's cell classes
     want_union = several if union is None else bool(union)
     error = None
@@ -219,4 +247,4 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
         summary["intersection_volume"] = r["intersection_volume"]
     if error is not None:
         summary["union_error"] = error
-    return Grid((x, y, z), r, summary, len(bodies), block)
+    return Grid((x, y, z), r, summary, len(bodies), block, signed=signed)

@@ -123,9 +123,10 @@ def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, ce
     file itself: only the path travels), or a list of them (several bodies).
     dims, bounds, cells, cell_size: the grid, as polyvol.grid chooses it.
     chunks: cells per block along each axis. what: "volumes" ((nx, ny, nz),
-    or (bodies, nx, ny, nz)), "union", "intersection", "cell_class" or
+    or (bodies, nx, ny, nz)), "fractions" (the same shape, polyvol.Grid's:
+    clamped to [0, 1]), "union", "intersection", "cell_class" or
     "first_moments" (a trailing axis of 3). Store with ``.to_zarr(path)``."""
-    fields = ("volumes", "union", "intersection", "cell_class", "first_moments")
+    fields = ("volumes", "fractions", "union", "intersection", "cell_class", "first_moments")
     if what not in fields:
         raise ValueError(f"what must be one of {', '.join(fields)}, not {what!r}")
     meshes = mesh if isinstance(mesh, list) else [mesh]
@@ -141,7 +142,7 @@ def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, ce
     wants_union = what in ("union", "intersection", "cell_class") if union is None else bool(union)
     options = {"union": wants_union, "intersection": intersection or what == "intersection",
                "moments": moments or what == "first_moments"}
-    lead = (len(meshes),) if len(meshes) > 1 and what in ("volumes", "first_moments") else ()
+    lead = (len(meshes),) if len(meshes) > 1 and what in ("volumes", "fractions", "first_moments") else ()
     tail = (3,) if what == "first_moments" else ()
     dtype = np.uint8 if what == "cell_class" else np.float64
     counts = [math.ceil(n / c) for n, c in zip(shape, chunks)]

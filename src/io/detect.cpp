@@ -44,6 +44,11 @@
 
 namespace polyvol {
 
+// Said where a file is not one polyvol reads.
+constexpr const char* kFormatsRead =
+    "polyvol reads STL, OBJ, OFF, PLY, 3MF, AMF and glTF (.gltf, .glb), each also gzip- or "
+    "bzip2-compressed, alone or in zip and tar archives";
+
 std::string unit_short_name(std::string_view declared) {
     static constexpr std::pair<std::string_view, std::string_view> kNames[] = {
         {"micron", "micron"}, {"micrometer", "micron"}, {"millimeter", "mm"}, {"centimeter", "cm"},
@@ -331,7 +336,8 @@ LoadedMesh detect(Bytes data, const std::string& name, Format hint, int depth, u
     throw ReadError::whole_file(
         name,
         "unrecognised content (tried gzip, zip (3MF/AMF), PLY, XML (AMF/3MF), binary STL (size 84 + 50 n), "
-        "ASCII STL ('solid'), OFF and OBJ; the file name's extension gives no hint)");
+        "ASCII STL ('solid'), OFF and OBJ; the file name's extension gives no hint). " +
+            std::string(kFormatsRead));
 }
 
 }  // namespace
@@ -496,6 +502,9 @@ LoadedMesh read_archive_member(const std::string& path, const std::string& membe
 }
 
 LoadedMesh read_mesh_file(const std::string& path) {
+    std::error_code ec;
+    if (path != "-" && std::filesystem::is_directory(path, ec))
+        throw ReadError::whole_file(path, "a directory, not a mesh file. " + std::string(kFormatsRead));
     if (path != "-") {
         const FileBytes file(path);
         if (file.read()) return read_mesh_memory(file.bytes(), path, Format::unknown);

@@ -91,9 +91,9 @@ TEST(ImplicitCli, PerAxisBoxAndNoEstimate) {
 }
 
 TEST(ImplicitCli, ExitCodes) {
-    EXPECT_EQ(polyvol("implicit 'x^2 + ' --dim 2 --box -1:1").code, 2);            // does not parse
-    EXPECT_EQ(polyvol("implicit 'x + foo' --dim 2 --box -1:1").code, 2);           // unknown name
-    EXPECT_EQ(polyvol("implicit 'x + z' --dim 2 --box -1:1").code, 2);             // z beyond n = 2
+    EXPECT_EQ(polyvol("implicit 'x^2 + ' --dim 2 --box -1:1").code, 1);            // does not parse
+    EXPECT_EQ(polyvol("implicit 'x + foo' --dim 2 --box -1:1").code, 1);           // unknown name
+    EXPECT_EQ(polyvol("implicit 'x + z' --dim 2 --box -1:1").code, 1);             // z beyond n = 2
     EXPECT_EQ(polyvol("implicit 'x^2 + y^2 - 1' --dim 2 --box 1").code, 1);        // bad box
     EXPECT_EQ(polyvol("implicit 'x^2 + y^2 - 1' --dim 2 --box 1:-1").code, 1);     // empty box
     EXPECT_EQ(polyvol("implicit 'x^2 + y^2 - 1' --dim 2 --box -2:2 --stl /dev/null").code, 1);  // --stl is 3D

@@ -61,6 +61,8 @@ def test_grid_blocks_on_workers_equal_the_whole_grid(client, tmp_path):
     assert np.array_equal(a.compute(), whole.volumes)
     m = pvd.grid(s, dims=(37, 29, 31), chunks=(16, 10, 8), what="first_moments").compute()
     assert np.array_equal(m, whole.first_moments)
+    f = pvd.grid(s, dims=(37, 29, 31), chunks=(16, 10, 8), what="fractions").compute()
+    assert np.array_equal(f, whole.fractions) and f.min() >= 0 and f.max() <= 1
     a.to_zarr(str(tmp_path / "g.zarr"))
     import zarr
     assert np.array_equal(zarr.open(str(tmp_path / "g.zarr"))[:], whole.volumes)

@@ -170,3 +170,14 @@ def test_summary_has_the_cli_keys_and_numbers(tmp_path):
         assert g["grid"][key] == cli["grid"][key], key
     for key in ("volume", "triangles", "pieces", "full_cells", "empty_cells", "cut_cells"):
         assert g["bodies"][0][key] == cli["bodies"][0][key], key
+
+
+def test_fractions_are_clamped_and_a_grid_beyond_max_memory_says_so():
+    v, f = box((0.1, 0.2, 0.3), (0.9, 0.7, 0.8))
+    g = polyvol.grid((v, f), dims=(4, 4, 4))
+    assert g.fractions.min() >= 0 and g.fractions.max() <= 1
+    assert np.array_equal(g.fractions, np.clip(g.volumes / g.cell_volumes, 0, 1))
+    inside_out = (v, f[:, ::-1].copy())
+    assert polyvol.grid(inside_out, dims=(4, 4, 4), signed=True).fractions.min() < 0  # signed: not clamped
+    with pytest.raises(MemoryError, match=r"64 cells need about .* GiB.*more than max_memory.*polyvol.dask.grid"):
+        polyvol.grid((v, f), dims=(4, 4, 4), max_memory=100)

@@ -5,13 +5,14 @@ TypeError), objects shaped like a trimesh mesh, and the errors."""
 import gzip
 
 import pathlib
+import subprocess
 
 import numpy as np
 import pytest
 
 import polyvol
 from polyvol import _arrays
-from conftest import box, uv_sphere
+from conftest import CLI, box, uv_sphere
 
 OBJ = b"""v 0 0 0
 v 1 0 0
@@ -258,3 +259,20 @@ def test_measure_file_converts_units():
     assert abs(mm["volume"] - 4 / 3 * 16387.064) <= mm["volume_error_bound"] + 1e-11
     with pytest.raises(ValueError):
         polyvol.measure_file(data / "tetra_inch.3mf", to="furlong")
+
+
+def test_check_gives_no_origin_dependent_volume_for_an_open_shell():
+    v, f = box()
+    t = polyvol.check(v, f[:-1])
+    assert t.shells[0].role == "open" and t.shells[0].signed_volume is None
+    assert not t.ready and t.repairs[0].startswith("not closed: 3 unbalanced edges")
+
+
+def test_a_directory_or_an_unknown_file_names_every_format_read(tmp_path):
+    with pytest.raises(polyvol.ReadError, match=r"a directory, not a mesh file\. polyvol reads STL, .*glTF.*bzip2.*tar"):
+        polyvol.load(tmp_path)
+    (tmp_path / "notes.xyz").write_text("hello\n")
+    with pytest.raises(polyvol.ReadError, match=r"unrecognised content .*polyvol reads STL, .*glTF"):
+        polyvol.load(tmp_path / "notes.xyz")
+    r = subprocess.run([CLI, "volume", str(tmp_path)], capture_output=True, text=True)
+    assert r.returncode == 2 and "a directory, not a mesh file" in r.stderr
