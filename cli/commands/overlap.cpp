@@ -58,7 +58,9 @@ int run_overlap_command(const OverlapArgs& args) {
     if (!b) return Exit::unreadable;
     const auto start = std::chrono::steady_clock::now();
     // Each operand the solid it means, as `volume` takes it.
-    const SolidOptions policy = args.solid_flags.policy();
+    SolidOptions policy = args.solid_flags.policy();
+    policy.closedness_by_fingerprint = true;  // the booleans need no shells' report: the cheap checks
+    policy.shells = false;
     const auto sa = solid_or_report(args.a + " (A)", a->mesh, policy);
     if (!sa) return Exit::invalid;
     const auto sb = solid_or_report(args.b + " (B)", b->mesh, policy);

@@ -394,7 +394,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
                                                            : plus_minus(m.volume, m.volume_error_bound, digits);
         if (mass) out << pad(mass_text(m.mass, request.measure.density * volume_error, digits), 24) << "  ";
         if (overlap)
-            overlap_notes += "  " + r.file + ": " + overlap_sentence(r) + (all ? "; its centroid is the solid's, its area the shells' sum" : "") + "\n";
+            overlap_notes += "  " + r.file + ": " + overlap_sentence(r) + (all ? "; its centroid and area are the solid's" : "") + "\n";
         if (!all) {
             out << vol << "\n";
             continue;
@@ -473,8 +473,8 @@ std::string measure_report(const FileResult& r, const Request& request) {
         out << "  volume          " << volume_text << unit_suffix(r, 3) << "   [" << volume_guarantee(m)
             << "; the solid where the winding number is >= 1]\n";
         out << "  shells          " << overlap_sentence(r) << "\n";
-        out << "  note            mass, centroid, moments and inertia are the solid's; surface area and edge length "
-               "are the shells' sums (an overlap counts once per shell covering it)\n";
+        out << "  note            mass, centroid, moments, inertia and surface area are the solid's; edge length "
+               "is the shells' sum (an overlap counts once per shell covering it)\n";
     } else {
         out << "  volume          " << volume_text << unit_suffix(r, 3) << "   [" << volume_guarantee(m) << "]\n";
     }

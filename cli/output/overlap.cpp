@@ -62,10 +62,10 @@ std::string overlap_table(const std::string& a, const std::string& b, const Bool
         << (bound > 0 ? "within ±" + shortest(bound) + " each (3MF transforms, applied in floating point)"
                       : std::string("correctly rounded (the exact volume of the coordinates as read, rounded once)"))
         << "\n"
-        << (std::isnan(r.area_error_bound)
-                ? std::string("areas: not computed where an operand's shells overlap or cross themselves (its "
-                              "solid's boundary is not formed)")
-                : "areas: within ±" + bound_text(r.area_error_bound) + " each")
+        << "areas: within ±" << bound_text(r.area_error_bound) << " each"
+        << (std::isnan(r.area_a_minus_b) ? "; A − B and B − A not computed where an operand's shells overlap or "
+                                           "cross themselves (the parts of one solid's boundary inside the other)"
+                                         : "")
         << "\n"
         << r.crossing_pairs << " crossing triangle pair" << (r.crossing_pairs == 1 ? "" : "s")
         // (solid_boolean_volumes counts the crossings of its three solids, not candidate pairs)

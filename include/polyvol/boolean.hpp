@@ -24,6 +24,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -75,8 +76,10 @@ const char* boolean_status_message(BooleanStatus status);
 // |A ∩ B| = |A| + |B| - |A ∪ B|, |A - B| = |A ∪ B| - |B|, |B - A| = |A ∪ B| - |A|,
 // each formed exactly and rounded once (correctly rounded). Three solids
 // are resolved, so it costs more than boolean_volumes: call it only where
-// an operand needs it (polyvol/solid.hpp's MeshSolid::resolved). The areas
-// are not computed (NaN); within_shells as in solid_volume.
+// an operand needs it (polyvol/solid.hpp's MeshSolid::resolved). Areas:
+// each solid's boundary, and |∂(A ∩ B)| = |∂A| + |∂B| - |∂(A ∪ B)|, within
+// area_error_bound; those of A − B and B − A are not computed (NaN).
+// within_shells as in solid_volume.
 BooleanVolumes solid_boolean_volumes(const MeshView& a, const MeshView& b, bool within_shells = false);
 
 // The solid a mesh whose shells may overlap or cross themselves bounds: the
@@ -115,6 +118,10 @@ struct SolidVolume {
     std::array<double, 3> centroid{};        // first_moments / volume in double: relative error < 2^-51 (NaN when V = 0)
     std::array<double, 6> inertia_centroid{};// about the centroid, in double
     double inertia_relative_error = 0;       // bound, relative to its largest magnitude
+    // With moments: the area of the solid's boundary (the shells' surface
+    // where the winding number steps from 0 to 1), within area_error_bound.
+    double area = std::numeric_limits<double>::quiet_NaN();
+    double area_error_bound = std::numeric_limits<double>::quiet_NaN();
 
     // Whether the solid differs from the shells' sum: shells overlap, or a
     // shell's own crossings were resolved.

@@ -121,7 +121,8 @@ std::vector<Mesh> solid_as_union(const MeshView& mesh, const MeshSolid& solid);
 // Where the solid differs from the shells' sum (MeshSolid::resolved, with
 // solid_moments): m's volume, mass and moments become the solid's (volume
 // and mass correctly rounded; centroid within 2^-51, inertia within its
-// bound); area and edge length stay the shells' sums.
+// bound), and its area with the solid's area bound where solid_volume gave
+// one; edge length stays the shells' sum.
 void use_solid_properties(const SolidVolume& solid, double density, MassProperties& m);
 
 // The mass properties of the solid `mesh` means: make_solid (with

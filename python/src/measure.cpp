@@ -339,7 +339,9 @@ void bind_measure(py::module_& m) {
         [](const Doubles& pa, const Indices& ia, const std::optional<Indices>& oa, const Doubles& pb,
            const Indices& ib, const std::optional<Indices>& ob, const py::dict& policy) {
             Mesh a = to_mesh(mesh_view(pa, ia, oa)), b = to_mesh(mesh_view(pb, ib, ob));
-            const SolidOptions p = solid_options(policy);
+            SolidOptions p = solid_options(policy);
+            p.closedness_by_fingerprint = true;  // as `polyvol overlap`: no shells' report needed
+            p.shells = false;
             MeshSolid sa, sb;
             std::optional<BooleanVolumes> r;
             {

@@ -51,14 +51,6 @@ namespace {
 
 constexpr double kU = 0x1p-53;
 
-// n / d 2^e in double (relative error below 2^-51), without overflow on the way.
-double approx_ratio(const mpz_class& n, const mpz_class& d, int e) {
-    long ne, de;
-    const double mn = mpz_get_d_2exp(&ne, n.get_mpz_t());
-    const double md = mpz_get_d_2exp(&de, d.get_mpz_t());
-    return std::ldexp(mn / md, static_cast<int>(ne - de) + e);
-}
-
 // A crossing point num / den (den > 0) in units of 2^e0, and its double.
 struct CrossPoint {
     IntPoint num;
@@ -81,35 +73,6 @@ CrossPoint crossing_point(const IntPoint& p, const IntPoint& q, const IntPoint* 
     for (int k = 0; k < 3; ++k) x.xyz[k] = approx_ratio(x.num[k], x.den, scale.e0);
     return x;
 }
-
-double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
-struct Geometry {
-    double normal_length;  // |N| in double
-    double normal_error;   // bound on its error: 16u |b - a| |c - a|
-    double n[3];           // N in double
-};
-Geometry triangle_geometry(const double* a, const double* b, const double* c) {
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    Geometry g;
-    g.n[0] = u[1] * v[2] - u[2] * v[1];
-    g.n[1] = u[2] * v[0] - u[0] * v[2];
-    g.n[2] = u[0] * v[1] - u[1] * v[0];
-    g.normal_length = norm3(g.n);
-    g.normal_error = 16 * kU * norm3(u) * norm3(v);
-    return g;
-}
-
-// 2 × an area: terms summed exactly, with the sum of their error bounds.
-struct AreaSum {
-    exact::ExactSum sum;
-    double bound = 0;
-    void add(double value, double error) {
-        sum.add(value);
-        bound += error;
-    }
-};
 
 struct Inputs {
     const Operand& A;
@@ -224,10 +187,8 @@ WholeSums whole_triangles(const Operand& op, const std::vector<int32_t>& other_w
             return sums;
         },
         [](Areas x, const Areas& y) {
-            for (auto [to, from] : {std::pair{&x.all, &y.all}, std::pair{&x.inside, &y.inside}}) {
-                to->sum.merge(from->sum);
-                to->bound += from->bound;
-            }
+            x.all.merge(y.all);
+            x.inside.merge(y.inside);
             return x;
         });
     w.area = areas.all;

@@ -21,6 +21,27 @@ int lowest_bit_exponent(double x) {
     return std::max(field, 1) - 1075 + std::countr_zero(m);
 }
 
+double approx_ratio(const mpz_class& n, const mpz_class& d, int e) {
+    long ne, de;
+    const double mn = mpz_get_d_2exp(&ne, n.get_mpz_t());
+    const double md = mpz_get_d_2exp(&de, d.get_mpz_t());
+    return std::ldexp(mn / md, static_cast<int>(ne - de) + e);
+}
+
+double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+Geometry triangle_geometry(const double* a, const double* b, const double* c) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    Geometry g;
+    g.n[0] = u[1] * v[2] - u[2] * v[1];
+    g.n[1] = u[2] * v[0] - u[0] * v[2];
+    g.n[2] = u[0] * v[1] - u[1] * v[0];
+    g.normal_length = norm3(g.n);
+    g.normal_error = 16 * 0x1p-53 * norm3(u) * norm3(v);
+    return g;
+}
+
 mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c) {
     return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
            a[2] * (b[0] * c[1] - b[1] * c[0]);

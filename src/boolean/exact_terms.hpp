@@ -57,6 +57,34 @@ struct ExactPoint {
 };
 ExactPoint plane_crossing(const IntPoint& p, const IntPoint& q, const mpz_class& dp, const mpz_class& dq);
 
+// n / d 2^e in double (relative error below 2^-51), without overflow on the way.
+double approx_ratio(const mpz_class& n, const mpz_class& d, int e);
+
+double norm3(const double* v);
+
+// A triangle's normal N = (b - a) × (c - a) in double, |N|, and a bound on
+// |N|'s error: 16u |b - a| |c - a|.
+struct Geometry {
+    double normal_length;
+    double normal_error;
+    double n[3];
+};
+Geometry triangle_geometry(const double* a, const double* b, const double* c);
+
+// 2 × an area: terms summed exactly, with the sum of their error bounds.
+struct AreaSum {
+    exact::ExactSum sum;
+    double bound = 0;
+    void add(double value, double error) {
+        sum.add(value);
+        bound += error;
+    }
+    void merge(const AreaSum& other) {
+        sum.merge(other.sum);
+        bound += other.bound;
+    }
+};
+
 // 6 × the volume of some pieces, in three exact parts (see the top).
 struct PieceSum {
     exact::ExactSum whole;

@@ -10,7 +10,9 @@
 // each formed from the exact sums (solid_sums.hpp) before any rounding.
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <utility>
 
@@ -48,21 +50,22 @@ BooleanVolumes solid_boolean_volumes(const MeshView& a, const MeshView& b, bool 
     BooleanVolumes r;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     r.area_a = r.area_b = r.area_intersection = r.area_union = r.area_a_minus_b = r.area_b_minus_a = nan;
-    r.area_error_bound = nan;
+    r.area_error_bound = nan;  // until the solids are summed
     auto fail = [&](BooleanStatus s) {
         r.status = s;
         r.volume_a = r.volume_b = r.intersection = r.union_volume = r.a_minus_b = r.b_minus_a = nan;
         return r;
     };
     SolidSums sa, sb, su;
-    const SolidVolume ra = solid_sums(a, false, within_shells, sa);
+    const SolidWants wants{.area = true, .within_shells = within_shells};
+    const SolidVolume ra = solid_sums(a, wants, sa);
     if (ra.status != BooleanStatus::ok) return fail(ra.status);
-    const SolidVolume rb = solid_sums(b, false, within_shells, sb);
+    const SolidVolume rb = solid_sums(b, wants, sb);
     if (rb.status != BooleanStatus::ok)
         return fail(rb.status == BooleanStatus::a_not_closed ? BooleanStatus::b_not_closed : rb.status);
     Mesh ab = to_mesh(a);  // both meshes' faces, B's vertices after A's
     ab.append(to_mesh(b));
-    const SolidVolume ru = solid_sums(ab.view(), false, within_shells, su);
+    const SolidVolume ru = solid_sums(ab.view(), wants, su);
     if (ru.status != BooleanStatus::ok) return fail(ru.status);
     // Each solid's whole triangles, summed exactly once (solid_sums leaves them).
     for (SolidSums* s : {&sa, &sb, &su}) {
@@ -92,6 +95,18 @@ BooleanVolumes solid_boolean_volumes(const MeshView& a, const MeshView& b, bool 
     r.intersection = volume(inter);
     r.a_minus_b = volume(a_minus_b);
     r.b_minus_a = volume(b_minus_a);
+    // Areas: each solid's boundary; ∂(A ∩ B) and ∂(A ∪ B) split ∂A and ∂B
+    // between them (in the perturbed limit), so |∂(A ∩ B)| = |∂A| + |∂B| - |∂(A ∪ B)|.
+    // A − B and B − A need the parts of ∂A inside B: not formed here (NaN).
+    exact::ExactSum inter_area = sa.area.sum;
+    inter_area.merge(sb.area.sum);
+    inter_area.subtract(su.area.sum);
+    r.area_a = sa.area.sum.round_div(2);
+    r.area_b = sb.area.sum.round_div(2);
+    r.area_union = su.area.sum.round_div(2);
+    r.area_intersection = inter_area.round_div(2);
+    const double largest = std::max({r.area_a + r.area_b, std::fabs(r.area_union), std::fabs(r.area_intersection)});
+    r.area_error_bound = ((sa.area.bound + sb.area.bound + su.area.bound) / 2 + 0x1p-53 * largest) * (1 + 0x1p-40);
     return r;
 }
 

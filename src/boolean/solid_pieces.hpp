@@ -79,6 +79,70 @@ public:
         for (const Cut& cut : cross_.cuts) cut_pieces(cut, out[0]);
     }
 
+    // Twice the area of the boundary of {W >= level} on these triangles. A
+    // triangle no cut crosses lies in it whole or not at all (W_others = c at
+    // its corners); a crossed one gives its region R_t, from its boundary
+    // segments X -> Y counted k times, a its first corner:
+    //   2 area(R_t) = Σ k ((X - a) × (Y - a)) · N / |N|,   N = (b - a) × (c - a),
+    // each term an exact ratio (integer units) rounded once (approx_ratio,
+    // within 2^-51), so |error| <= (terms + 4) 2^-51 Σ|term| / |N| + 8u |2 area(R_t)|
+    // (|N| from N's rounded components).
+    AreaSum twice_area() {
+        AreaSum area;
+        std::size_t next = 0;  // crossed_ is increasing
+        for (uint32_t t = 0; t < g_.triangles(); ++t) {
+            if (next < crossed_.size() && crossed_[next] == t) {
+                ++next;
+                continue;
+            }
+            if (w_[g_.tri[3 * t]] != c_of(g_.body(t))) continue;
+            const Geometry geo = triangle_geometry(corner(t, 0), corner(t, 1), corner(t, 2));
+            area.add(geo.normal_length, geo.normal_error + 0x1p-53 * geo.normal_length);
+        }
+        struct Region {
+            double sum = 0, magnitude = 0;
+            std::size_t terms = 0;
+        };
+        std::vector<Region> region(crossed_.size());
+        std::vector<IntPoint> a(crossed_.size()), normal(crossed_.size());
+        for (std::size_t i = 0; i < crossed_.size(); ++i) {
+            const uint32_t t = crossed_[i];
+            a[i] = scale_.of(corner(t, 0));
+            const IntPoint b = scale_.of(corner(t, 1)), c = scale_.of(corner(t, 2));
+            const IntPoint u = {b[0] - a[i][0], b[1] - a[i][1], b[2] - a[i][2]};
+            const IntPoint v = {c[0] - a[i][0], c[1] - a[i][1], c[2] - a[i][2]};
+            normal[i] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        }
+        boundary_segments([&](uint32_t t, const Point0& X, const Point0& Y, int k) {
+            const std::size_t i = static_cast<std::size_t>(
+                std::lower_bound(crossed_.begin(), crossed_.end(), t) - crossed_.begin());
+            IntPoint x, y;
+            for (int j = 0; j < 3; ++j) {
+                x[j] = X.num[j] - a[i][j] * X.den;
+                y[j] = Y.num[j] - a[i][j] * Y.den;
+            }
+            const IntPoint& n = normal[i];
+            const mpz_class cross_n = (x[1] * y[2] - x[2] * y[1]) * n[0] + (x[2] * y[0] - x[0] * y[2]) * n[1] +
+                                      (x[0] * y[1] - x[1] * y[0]) * n[2];
+            const double term = k * approx_ratio(cross_n, mpz_class(X.den * Y.den), 0);
+            region[i].sum += term;
+            region[i].magnitude += std::fabs(term);
+            ++region[i].terms;
+        });
+        for (std::size_t i = 0; i < crossed_.size(); ++i) {
+            const IntPoint& n = normal[i];
+            const double nd[3] = {n[0].get_d(), n[1].get_d(), n[2].get_d()};
+            const double length = norm3(nd);
+            if (!(length > 0)) continue;
+            const Region& r = region[i];
+            const double value = r.sum / length;
+            const double error = static_cast<double>(r.terms + 4) * 0x1p-51 * r.magnitude / length +
+                                 8 * 0x1p-53 * std::fabs(value);
+            area.add(std::ldexp(value, 2 * scale_.e0), std::ldexp(error, 2 * scale_.e0));
+        }
+        return area;
+    }
+
     // The triangles some cut crosses, increasing (on the others W_others is
     // one value all over the triangle).
     const std::vector<uint32_t>& crossed() const { return crossed_; }

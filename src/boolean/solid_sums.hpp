@@ -17,10 +17,20 @@ struct SolidSums {
     std::vector<PieceSum> pieces;
     Mesh whole;
     int e0 = 0;
+    AreaSum area;  // SolidWants::area: twice the solid's boundary area
+};
+
+// What solid_sums computes beside the volume: the moments' sums, twice the
+// boundary's area; within_shells as in solid_volume.
+struct SolidWants {
+    bool moments = false;
+    bool area = false;
+    bool within_shells = false;
 };
 
 // solid_volume's work without the rounding: the report (status, counts;
-// volume and moments not yet set) and the sums in `out` when status is ok.
-SolidVolume solid_sums(const MeshView& mesh, bool moments, bool within_shells, SolidSums& out);
+// volume, moments and area not yet set) and the sums in `out` when status
+// is ok.
+SolidVolume solid_sums(const MeshView& mesh, const SolidWants& wants, SolidSums& out);
 
 }  // namespace polyvol::boolean

@@ -294,6 +294,10 @@ void use_solid_properties(const SolidVolume& s, double density, MassProperties& 
     // rounded (before the density), the central inertia within its bound.
     m.moments_correctly_rounded = false;
     m.moments_relative_error = std::max(0x1p-51, s.inertia_relative_error) + (density != 1 ? 0x1p-52 : 0.0);
+    if (std::isfinite(s.area)) {
+        m.area = s.area;
+        m.area_relative_error = s.area > 0 ? s.area_error_bound / s.area : 0.0;
+    }
 }
 
 SolidMass measure_solid(Mesh& mesh, SolidOptions policy, const MeasureOptions& measure) {

@@ -76,7 +76,16 @@ TEST(OverlapCli, InvalidOperandsExitWithTheirReason) {
     EXPECT_EQ(j["union"], 15.0);
     EXPECT_EQ(j["a_minus_b"], 14.984375);
     EXPECT_EQ(j["b_minus_a"], 0.0);
-    EXPECT_TRUE(j["area_a"].is_null());  // the solid's boundary is not formed
+    // Areas: the solid's boundary (2 x 24 less the 6 unit faces inside the
+    // other cube), the probe's, and A ∩ B = |∂A| + |∂B| - |∂(A ∪ B)|.
+    const double bound = j["area_error_bound"].get<double>();
+    EXPECT_GT(bound, 0);
+    EXPECT_LT(bound, 1e-12);
+    EXPECT_NEAR(j["area_a"].get<double>(), 42.0, bound);
+    EXPECT_NEAR(j["area_b"].get<double>(), 0.375, bound);
+    EXPECT_NEAR(j["area_union"].get<double>(), 42.0, bound);
+    EXPECT_NEAR(j["area_intersection"].get<double>(), 0.375, bound);
+    EXPECT_TRUE(j["area_a_minus_b"].is_null());  // the parts of ∂A inside B are not formed
 
     const auto missing = cli_test::run_polyvol("overlap '" + good.string() + "' '" + scratch("none.obj").string() + "'");
     EXPECT_EQ(missing.code, 2);
@@ -99,6 +108,8 @@ TEST(OverlapCli, OverlappingShellsOfOneFile) {
     // The solid's centroid and inertia (the union of two cubes is symmetric about (1.5, 1.5, 1.5)).
     EXPECT_EQ(j["centroid"][0], 1.5);
     EXPECT_EQ(j["mass"], 15.0);
+    // The solid's area: 2 x 24 less the 6 unit faces each cube has inside the other.
+    EXPECT_NEAR(j["area"].get<double>(), 42.0, 42.0 * j["area_relative_error"].get<double>());
     const double ixx = j["inertia"][0][0].get<double>(), ixy = j["inertia"][0][1].get<double>();
     // About c = (1.5, 1.5, 1.5), by inclusion-exclusion over A, B and A ∩ B = [1, 2]^3:
     // ∫(x - 1.5)^2 = 2 (8 * 4/12 + 8 * 0.25) - 1/12 = 111/12, so Ixx = 2 * 111/12 = 18.5;

@@ -276,3 +276,17 @@ def test_a_directory_or_an_unknown_file_names_every_format_read(tmp_path):
         polyvol.load(tmp_path / "notes.xyz")
     r = subprocess.run([CLI, "volume", str(tmp_path)], capture_output=True, text=True)
     assert r.returncode == 2 and "a directory, not a mesh file" in r.stderr
+
+
+def test_the_solids_area_where_shells_overlap():
+    # Two boxes overlapping in [0.5, 2] x [0.25, 2] x [0.75, 2]: each loses
+    # its three faces' parts inside the other, 2.1875 + 1.875 + 2.625.
+    a, b = box((0, 0, 0), (2, 2, 2)), box((0.5, 0.25, 0.75), (2.5, 2.25, 2.75))
+    both = np.vstack([a[0], b[0]]), np.vstack([a[1], b[1] + 8])
+    p = polyvol.mass_properties(*both)
+    assert p.volume == 16 - 1.5 * 1.75 * 1.25
+    assert abs(p.area - 34.625) <= p.area * p.area_relative_error and p.area_relative_error < 1e-12
+    assert polyvol.mass_properties(*both, solid=False).area == 48.0  # the shells' sum
+    r = polyvol.overlap(both, box((-1, -1, -1), (4, 4, 4)))
+    assert abs(r.area_a - 34.625) <= r.area_error_bound and abs(r.area_intersection - 34.625) <= r.area_error_bound
+    assert abs(r.area_b - 150) <= r.area_error_bound and np.isnan(r.area_a_minus_b)
