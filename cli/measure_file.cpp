@@ -119,7 +119,7 @@ std::string plan_units(FileResult& r, const Request& q, double& length_error) {
     r.length_factor = f.factor;
     length_error = f.relative_error;
     r.length_unit = to;
-    r.mass_unit = q.density_kg_m3 > 0 ? "kg" : "";
+    r.mass_unit = q.density_kg_m3 > 0 ? q.mass_unit : "";
     return "";
 }
 
@@ -256,7 +256,9 @@ FileResult process_file(const std::string& file, const Request& request, const s
                                    solid.resolved(), *r.mass);
     if (r.mass && pieces && r.topology) piece_figures(r, request, view);
     // In the units asked for: every figure times its power of the length factor.
-    const double density_error = request.density_kg_m3 > 0 ? 4 * 0x1p-53 : 0.0;  // typed, × 1000, × (m per unit)³
+    // The density as typed, × 1000 (g/cm³), × (m per unit)³, and × (g or lb per kg) for another mass unit.
+    const double density_error =
+        request.density_kg_m3 > 0 ? (request.mass_unit == "kg" ? 4 : 6) * 0x1p-53 : 0.0;
     if (r.mass && (r.length_factor != 1 || length_error > 0 || density_error > 0)) {
         scale_mass_properties(*r.mass, r.length_factor, length_error, density_error);
         for (auto* list : {&r.shell_figures, &r.part_figures})

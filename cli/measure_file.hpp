@@ -141,12 +141,13 @@ struct Request {
     // (3MF, AMF), else unknown. The figures are printed in `to` (--to; with a
     // density in kg/m³, metres by default; else the coordinates' unit), every
     // coordinate times `scale` (--scale) first. A density with a unit
-    // (density_kg_m3 > 0) gives the mass in kg: the density used is then
-    // kg per `to`³.
+    // (density_kg_m3 > 0) gives the mass in `mass_unit` (kg, g or lb): the
+    // density used is then mass_unit per `to`³.
     std::string units, to;
     double scale = 1;
     bool scale_typed_exactly = true;  // the scale's text is its double's own decimal
     double density_kg_m3 = 0;
+    std::string mass_unit = "kg";
     // URDF and SDF want SI: metres by default when the coordinates' unit is known.
     bool metres_when_known = false;
 };

@@ -56,6 +56,9 @@ void add_measure_options(CLI::App* cmd, MeasureCommandOptions& c) {
                     "The coordinates' length unit (mm, cm, m, in, ft, micron); a 3MF or AMF file states its own")
         ->check(CLI::IsMember(units));
     cmd->add_option("--to", c.to, "Print lengths, areas, volumes and moments in this unit")->check(CLI::IsMember(units));
+    cmd->add_option("--mass-unit", c.mass_unit,
+                    "The mass (and inertia) unit for a density with a unit: kg (default), g (what a print costs) or lb")
+        ->check(CLI::IsMember({"kg", "g", "lb"}));
     cmd->add_option("--scale", c.scale, "Multiply every coordinate by this first (after --units)")
         ->check(positive_number());
     cmd->add_option("--digits", c.digits,
@@ -82,7 +85,10 @@ Request make_request(const MeasureCommandOptions& c, bool need_mass) {
         const LengthUnit out = *length_unit(c.to.empty() ? "m" : c.to);
         const double metres = static_cast<double>(out.metre_num) / static_cast<double>(out.metre_den);
         r.density_kg_m3 = d.kg_per_m3;
-        r.measure.density = d.kg_per_m3 * (metres * metres * metres);
+        // Mass units per kg: exact for g; 1 lb is 0.45359237 kg exactly (rounded once here).
+        const double per_kg = c.mass_unit == "g" ? 1000.0 : c.mass_unit == "lb" ? 1 / 0.45359237 : 1.0;
+        r.measure.density = d.kg_per_m3 * (metres * metres * metres) * per_kg;
+        r.mass_unit = c.mass_unit;
     }
     r.units = c.units;
     r.to = c.to;
@@ -103,6 +109,16 @@ enum class Command { volume, measure, check };
 
 int run(Command command, const MeasureCommandOptions& c) {
     Request request = make_request(c, command != Command::check);
+    if (c.mass_unit != "kg" && request.density_kg_m3 == 0) {
+        std::cerr << "polyvol: --mass-unit " << c.mass_unit
+                  << " needs --density with a unit (e.g. 1.24g/cm3): a plain number is already mass per volume\n";
+        return Exit::usage;
+    }
+    if (c.format != "table" && c.mass_unit != "kg") {
+        std::cerr << "polyvol: --format " << c.format << " writes SI (kg, m): --mass-unit " << c.mass_unit
+                  << " does not apply\n";
+        return Exit::usage;
+    }
     // A simulator takes the <inertial> mass as given: no density, no guess.
     if (c.format != "table" && !request.density_given) {
         std::cerr << "polyvol: --format " << c.format

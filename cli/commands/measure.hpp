@@ -21,6 +21,7 @@ struct MeasureCommandOptions {
     std::string accuracy = "correctly-rounded";
     std::string density = "1";
     std::string units, to;     // --units, --to
+    std::string mass_unit = "kg";  // --mass-unit (with a density that has a unit)
     std::string scale = "1";   // --scale (its text: whether it is exact)
     bool stream = false;       // volume --stream: the JSON has the table's figures (a binary STL streams)
     bool volume_only = false;  // volume --volume-only

@@ -9,6 +9,7 @@
 #include <limits>
 #include <span>
 #include <sstream>
+#include <utility>
 
 #include "units.hpp"
 
@@ -161,6 +162,20 @@ std::string overlap_sentence(const FileResult& r) {
                                       : std::string("correctly rounded");
     return what + ": the volume is the solid's (winding number >= 1, " + guarantee + "); the shells' volumes add up to " +
            shortest(s.winding_volume);
+}
+
+// The length and mass units every measured file shares ("" for a unit they
+// do not share, or that no file knows), for the headers of tables.
+std::pair<std::string, std::string> common_units(const std::vector<FileResult>& results) {
+    const FileResult* first = nullptr;
+    bool same = true;
+    for (const FileResult& r : results) {
+        if (!r.mass) continue;
+        if (!first) first = &r;
+        same = same && r.length_unit == first->length_unit && r.mass_unit == first->mass_unit;
+    }
+    if (!first || !same) return {};
+    return {first->length_unit, first->mass_unit};
 }
 
 }  // namespace
@@ -348,14 +363,8 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     const int digits = request.digits;
     std::ostringstream out;
     // Units in the header when every measured file has the same.
-    std::string unit, mass_unit;
-    bool same_units = true;
-    for (const auto& r : results)
-        if (r.mass) {
-            if (unit.empty() && mass_unit.empty()) unit = r.length_unit, mass_unit = r.mass_unit;
-            same_units = same_units && r.length_unit == unit && r.mass_unit == mass_unit;
-        }
-    if (!same_units) unit.clear(), mass_unit.clear();
+    const std::pair<std::string, std::string> units = common_units(results);
+    const std::string &unit = units.first, &mass_unit = units.second;
     const auto in = [](const std::string& u) { return u.empty() ? std::string() : " (" + u + ")"; };
     out << pad("file", name_w) << "  " << pad("triangles", 10) << "  ";
     if (mass) out << pad("mass" + in(mass_unit), 24) << "  ";
@@ -425,7 +434,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     out << "method: " << method_name(request.measure.method) << ".";
     for (std::size_t i = 0; i < footer.size(); ++i) out << (i == 0 ? " " : "; ") << footer[i];
     out << (footer.empty() ? "\n" : ".\n");
-    if (!same_units)
+    if (unit.empty())  // not shared: each file's own (files without one have nothing to say)
         for (const auto& r : results)
             if (r.mass && !r.length_unit.empty())
                 out << "  " << r.file << ": lengths in " << r.length_unit
@@ -607,14 +616,8 @@ std::string csv_table(const std::vector<FileResult>& results, bool inertia) {
     const auto within = [](double v, double bound) { return std::isfinite(v) ? number_text(v, bound, 0) : std::string(); };
     // The header names the units when every measured file has the same
     // (volume_cm3, mass_kg); the last two columns name each row's.
-    std::string unit, mass_unit;
-    bool same_units = true, first = true;
-    for (const FileResult& r : results)
-        if (r.mass) {
-            if (first) unit = r.length_unit, mass_unit = r.mass_unit, first = false;
-            same_units = same_units && r.length_unit == unit && r.mass_unit == mass_unit;
-        }
-    if (!same_units) unit.clear(), mass_unit.clear();
+    const std::pair<std::string, std::string> units = common_units(results);
+    const std::string &unit = units.first, &mass_unit = units.second;
     const auto in = [&](int power) {
         return unit.empty() ? std::string() : "_" + unit + (power > 1 ? std::to_string(power) : std::string());
     };

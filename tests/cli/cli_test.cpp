@@ -250,14 +250,20 @@ TEST(Cli, MissingFileExitsTwo) {
 
 namespace {
 // A file that starts like a zip but is none is unreadable input (exit 2, the
-// reader's message), not an internal error (exit 4), whatever its name.
-TEST(Cli, AFileThatOnlyLooksLikeAZipIsUnreadable) {
-    const fs::path not_zip = fs::path(POLYVOL_TEST_DATA) / "regressions" / "not_a_zip.3mf";
-    for (const char* command : {"volume", "measure", "check"}) {
-        const CliRun r = polyvol(std::string(command) + " '" + not_zip.string() + "'");
-        EXPECT_EQ(r.code, 2) << command << ": " << r.err;
-        EXPECT_NE(r.err.find("not a readable zip archive"), std::string::npos) << r.err;
-        EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
-    }
+// reader's message), not an internal error (exit 4), whatever its name; so
+// are a malformed GLB, glTF buffer, bzip2, gzip and tar (#33).
+TEST(Cli, MalformedArchivesAndBuffersAreUnreadable) {
+    const fs::path dir = fs::path(POLYVOL_TEST_DATA) / "regressions";
+    for (const char* name : {"not_a_zip.3mf", "malformed_bad.glb", "malformed_bad.gltf", "malformed_bad.obj.bz2",
+                             "malformed_bad.obj.gz", "malformed_bad.tar"})
+        for (const char* command : {"volume", "measure", "check"}) {
+            const CliRun r = polyvol(std::string(command) + " '" + (dir / name).string() + "'");
+            EXPECT_EQ(r.code, 2) << command << " " << name << ": " << r.err;
+            EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+            EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+            if (std::string(name) == "not_a_zip.3mf") {
+                EXPECT_NE(r.err.find("not a readable zip archive"), std::string::npos) << r.err;
+            }
+        }
 }
 }  // namespace

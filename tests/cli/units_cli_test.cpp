@@ -91,3 +91,22 @@ TEST(UnitsCli, DensityWithAUnitGivesKilograms) {
 }
 
 }  // namespace
+
+namespace {
+// --mass-unit (#33): grams for a print, pounds; only with a density that has
+// a unit, and not for URDF/SDF (SI). The box [0, 0.3]^3 mm is 0.027 mm³.
+TEST(UnitsCli, MassInGramsOrPounds) {
+    const json kg = first("volume --json --units mm --density 1000kg/m3 " + kBox);
+    const json g = first("volume --json --units mm --density 1000kg/m3 --mass-unit g " + kBox);
+    const json lb = first("volume --json --units mm --density 1000kg/m3 --mass-unit lb " + kBox);
+    EXPECT_EQ(g["mass_unit"], "g");
+    EXPECT_EQ(lb["mass_unit"], "lb");
+    EXPECT_NEAR(kg["mass"].get<double>(), 2.7e-8, 1e-20);  // 0.027e-9 m³ × 1000 kg/m³
+    EXPECT_NEAR(g["mass"].get<double>(), 2.7e-5, 1e-17);
+    EXPECT_NEAR(lb["mass"].get<double>(), 2.7e-8 / 0.45359237, 1e-20);
+    const auto table = run_polyvol("volume --units mm --density 1000kg/m3 --mass-unit g " + kBox);
+    EXPECT_NE(table.out.find("mass (g)"), std::string::npos) << table.out;
+    EXPECT_EQ(run_polyvol("volume --mass-unit g " + kBox).code, 1);  // no density with a unit
+    EXPECT_EQ(run_polyvol("measure --format urdf --units mm --density 1000kg/m3 --mass-unit g " + kBox).code, 1);
+}
+}  // namespace
