@@ -209,3 +209,45 @@ TEST(GridUnion, AnOpenBodyCrossingAnotherHasNoUnion) {
 }
 
 }  // namespace
+
+namespace {
+// A body that is the union of two overlapping boxes (grid_union_volumes, a
+// file whose shells overlap): its cells are the union's by inclusion–
+// exclusion, within [0, cell volume], and the summary's counts are the
+// union's cell classes.
+TEST(GridUnion, ABodyOfOverlappingPartsIsTheirUnionInEveryCell) {
+    const Box a{{{0.1, 0.2, 0.3}, {2.1, 2.2, 2.3}}}, b{{{1.05, 0.9, 1.3}, {3.05, 2.9, 3.3}}};
+    const Mesh ma = box(a[0], a[1]), mb = box(b[0], b[1]);
+    const std::vector<std::vector<MeshView>> parts{{ma.view(), mb.view()}};
+    const GridAxes g = uniform_axes({-0.5, -0.5, -0.5, 3.5, 3.5, 3.5}, {9, 8, 7});
+    std::vector<double> volumes(g.cell_count());
+    std::vector<CellClass> classes(g.cell_count());
+    const GridSummary s = grid_union_volumes(parts, g, GridBlock{{0, 0, 0}, {g.nx(), g.ny(), g.nz()}},
+                                             GridOutput{.volumes = volumes, .cell_class = classes});
+    const Box k = common(a, b);
+    double total = 0;
+    std::size_t counted[4] = {0, 0, 0, 0};
+    for (std::size_t i = 0; i < g.nx(); ++i)
+        for (std::size_t j = 0; j < g.ny(); ++j)
+            for (std::size_t l = 0; l < g.nz(); ++l) {
+                const double c0[3] = {g.x[i], g.y[j], g.z[l]}, c1[3] = {g.x[i + 1], g.y[j + 1], g.z[l + 1]};
+                const double want = overlap(a, c0, c1) + overlap(b, c0, c1) - overlap(k, c0, c1);
+                const double v = volumes[g.cell(i, j, l)], cell = g.cell_volume(i, j, l);
+                EXPECT_NEAR(v, want, 1e-15 * cell) << i << " " << j << " " << l;
+                EXPECT_GE(v, -4e-16 * cell);
+                EXPECT_LE(v, cell * (1 + 4e-16));
+                total += v;
+                ++counted[static_cast<int>(classes[g.cell(i, j, l)])];
+            }
+    const double exact = 8 + 8 - (k[1][0] - k[0][0]) * (k[1][1] - k[0][1]) * (k[1][2] - k[0][2]);
+    EXPECT_NEAR(s.bodies[0].volume, exact, 1e-13);
+    EXPECT_NEAR(total, exact, 1e-13);
+    EXPECT_EQ(s.union_volume, s.bodies[0].volume);
+    EXPECT_EQ(s.full_cells, counted[1]);
+    EXPECT_EQ(s.empty_cells, counted[0]);
+    EXPECT_EQ(s.cut_cells, counted[2]);
+    EXPECT_EQ(s.contact_cells, counted[3]);
+    EXPECT_GT(s.contact_cells, 0u);
+    EXPECT_EQ(s.bodies[0].cut_cells, counted[2] + counted[3]);
+}
+}  // namespace
