@@ -129,4 +129,13 @@ void add_solid_flags(CLI::App* cmd, SolidFlags& flags, bool keep_signed) {
                   "default its shells are turned outward, and the report says so");
 }
 
+void add_unit_flags(CLI::App* cmd, UnitFlags& flags, const std::string& to_help) {
+    const std::vector<std::string> units{"micron", "um", "mm", "cm", "m", "in", "ft"};
+    cmd->add_option("--units", flags.units,
+                    "The coordinates' length unit (mm, cm, m, in, ft, micron); a 3MF or AMF file states its own, "
+                    "which this overrides (with a warning)")
+        ->check(CLI::IsMember(units));
+    cmd->add_option("--to", flags.to, to_help)->check(CLI::IsMember(units));
+}
+
 }  // namespace polyvol::cli

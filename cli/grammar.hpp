@@ -30,6 +30,14 @@ struct SolidFlags {
 // keep_signed: whether the command offers --signed (`check` judges the file as it is).
 void add_solid_flags(CLI::App* cmd, SolidFlags& flags, bool keep_signed = true);
 
+// --units and --to of a command that puts several meshes in one coordinate
+// system (overlap, grid): polyvol::common_unit.
+struct UnitFlags {
+    std::string units, to;
+};
+// to_help: what --to sets for this command.
+void add_unit_flags(CLI::App* cmd, UnitFlags& flags, const std::string& to_help);
+
 // The candidate nearest to `word` by edit distance, if it is near enough to
 // be a typing slip (at most a third of the word's letters, and 2 at least);
 // else "".

@@ -11,7 +11,7 @@
 #include "polyvol/chain_io.hpp"
 #include "polyvol/solid.hpp"
 #include "polyvol/soup.hpp"
-#include "units.hpp"
+#include "polyvol/units.hpp"
 
 namespace polyvol::cli {
 namespace {
@@ -95,30 +95,24 @@ std::optional<FileResult> stream_binary_stl(const std::string& path, const Reque
 // sets r's length_unit, mass_unit, length_factor; returns why they cannot be
 // given ("" when they can).
 std::string plan_units(FileResult& r, const Request& q, double& length_error) {
-    std::optional<LengthUnit> from;
-    const std::string& declared = r.loaded->unit;
-    if (!q.units.empty()) {
-        from = length_unit(q.units);
-        r.units_source = "--units";
-        if (!declared.empty() && declared != from->name)
-            r.warning += (r.warning.empty() ? "" : "; ") + r.file + ": the file declares its unit as " + declared +
-                         "; --units " + q.units + " is used instead";
-    } else if (!declared.empty()) {
-        from = length_unit(declared);
-        r.units_source = "declared by the file";
+    const UnitsPlan p = plan_units(r.loaded->unit, UnitsRequest{.units = q.units,
+                                                               .to = q.to,
+                                                               .scale = q.scale,
+                                                               .scale_typed_exactly = q.scale_typed_exactly,
+                                                               .density_si = q.density_kg_m3 > 0,
+                                                               .metres_when_known = q.metres_when_known});
+    if (!p.error.empty()) {
+        if (p.from.empty() && p.source.empty())
+            return std::string("its length unit is not known (") + std::string(format_name(r.loaded->format)) +
+                   " files do not state one): --units gives it (" + kLengthUnitNames + ")";
+        return p.error;
     }
-    const std::string to = !q.to.empty()                               ? q.to
-                           : q.density_kg_m3 > 0 || (q.metres_when_known && from) ? "m"
-                           : from                                             ? from->name
-                                                                              : "";
-    if (!to.empty() && !from)
-        return std::string("its length unit is not known (") + std::string(format_name(r.loaded->format)) +
-               " files do not state one): --units gives it (mm, cm, m, in, ft or micron)";
-    const LengthFactor f = from ? length_factor(*from, *length_unit(to), q.scale, q.scale_typed_exactly)
-                                : scale_only(q.scale, q.scale_typed_exactly);
-    r.length_factor = f.factor;
-    length_error = f.relative_error;
-    r.length_unit = to;
+    r.units_source = p.source;
+    if (!p.warning.empty())
+        r.warning += (r.warning.empty() ? "" : "; ") + r.file + ": " + p.warning + " (--units " + q.units + ")";
+    r.length_factor = p.length.factor;
+    length_error = p.length.relative_error;
+    r.length_unit = p.length_unit;
     r.mass_unit = q.density_kg_m3 > 0 ? q.mass_unit : "";
     return "";
 }
@@ -256,9 +250,7 @@ FileResult process_file(const std::string& file, const Request& request, const s
                                    solid.resolved(), *r.mass);
     if (r.mass && pieces && r.topology) piece_figures(r, request, view);
     // In the units asked for: every figure times its power of the length factor.
-    // The density as typed, × 1000 (g/cm³), × (m per unit)³, and × (g or lb per kg) for another mass unit.
-    const double density_error =
-        request.density_kg_m3 > 0 ? (request.mass_unit == "kg" ? 4 : 6) * 0x1p-53 : 0.0;
+    const double density_error = request.density_relative_error;  // polyvol::density_in's
     if (r.mass && (r.length_factor != 1 || length_error > 0 || density_error > 0)) {
         scale_mass_properties(*r.mass, r.length_factor, length_error, density_error);
         for (auto* list : {&r.shell_figures, &r.part_figures})

@@ -147,6 +147,7 @@ struct Request {
     double scale = 1;
     bool scale_typed_exactly = true;  // the scale's text is its double's own decimal
     double density_kg_m3 = 0;
+    double density_relative_error = 0;  // of measure.density against the density typed (density_in)
     std::string mass_unit = "kg";
     // URDF and SDF want SI: metres by default when the coordinates' unit is known.
     bool metres_when_known = false;

@@ -163,6 +163,9 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
                     "arrays wetted_area and surface_normal)");
     cmd->add_option("--png", a.png, "Picture of one slice of the volume fractions (viridis)");
     add_solid_flags(cmd, a.solid_flags);
+    add_unit_flags(cmd, a.unit_flags,
+                   "The grid's unit: of --cell-size, --bounds and the planes typed, and of every length and volume "
+                   "written (default: the first body's that is known); a body in another unit is converted into it");
     cmd->add_option("--max-memory", a.max_memory,
                     "Refuse a grid whose arrays would need more than SIZE (e.g. 8G, 512M; default: three quarters "
                     "of physical memory)");
@@ -205,6 +208,15 @@ int run_grid_command(const GridArgs& a) {
             code = Exit::unreadable;
     }
     if (code != Exit::ok) return code;
+    // The bodies in one unit, the grid's: every length typed and written is in it.
+    std::vector<LoadedMesh*> in_unit;
+    std::vector<double> read_error;  // the readers' own (3MF transforms), before any conversion
+    for (LoadedMesh& m : meshes) {
+        in_unit.push_back(&m);
+        read_error.push_back(m.coordinate_error);
+    }
+    const std::optional<std::string> unit = put_in_common_unit(a.files, in_unit, a.unit_flags.units, a.unit_flags.to);
+    if (!unit) return Exit::invalid;
     // Each body the solid it means (polyvol/solid.hpp): inside-out shells
     // turned outward, overlapping shells as the union of groups of shells
     // that do not overlap (grid_union_volumes).
@@ -221,10 +233,11 @@ int run_grid_command(const GridArgs& a) {
             continue;
         }
         const MeshView v = meshes[b].mesh.view();
-        if (meshes[b].coordinate_error > 0)
-            std::cerr << "polyvol: warning: " << a.files[b] << ": its 3MF transforms are applied in floating point "
-                      << "(each coordinate within " << shortest(meshes[b].coordinate_error)
-                      << " of the file's): the cells are exact for the coordinates so rounded\n";
+        if (read_error[b] > 0)
+            std::cerr << "polyvol: warning: " << a.files[b]
+                      << ": its coordinates are computed in floating point (3MF transforms or a unit conversion; "
+                      << "each within " << shortest(meshes[b].coordinate_error)
+                      << " of the value meant): the cells are exact for the coordinates so rounded\n";
         views.push_back(v);
         if (solid->resolved()) {
             try {
@@ -411,7 +424,7 @@ int run_grid_command(const GridArgs& a) {
                     }
                 }
     };
-    const nlohmann::json summary_j = grid_summary_json(a.files, mesh_volumes, g, summary, seconds, union_problem);
+    const nlohmann::json summary_j = grid_summary_json(a.files, mesh_volumes, g, summary, seconds, union_problem, *unit);
     if (seconds_since(t_start) > 1.0 && (!a.out.empty() || !a.png.empty() || !a.centroids.empty() ||
                                           !a.union_out.empty() || !a.intersection_out.empty()))
         std::cerr << "polyvol grid: writing " << cells << " cells\n";
@@ -503,7 +516,7 @@ int run_grid_command(const GridArgs& a) {
     if (a.json)
         std::cout << summary_j.dump(2) << "\n";
     else
-        std::cout << grid_summary_text(a.files, mesh_volumes, g, summary, union_problem);
+        std::cout << grid_summary_text(a.files, mesh_volumes, g, summary, union_problem, *unit);
     return Exit::ok;
 }
 

@@ -14,6 +14,7 @@ namespace polyvol::cli {
 struct GridArgs {
     std::vector<std::string> files;
     SolidFlags solid_flags;  // --orient, --weld-tolerance, --signed: each body the solid it means
+    UnitFlags unit_flags;    // --units, --to: the bodies in one unit, the grid's
     uint32_t cells = 128;
     bool cells_given = false;  // --cells was on the command line (not the default)
     double cell_size = 0;

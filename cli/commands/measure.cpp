@@ -12,7 +12,7 @@
 
 #include "grammar.hpp"
 #include "output/measure.hpp"
-#include "units.hpp"
+#include "polyvol/units.hpp"
 
 namespace polyvol::cli {
 namespace {
@@ -82,12 +82,10 @@ Request make_request(const MeasureCommandOptions& c, bool need_mass) {
     const Density d = *parse_density(c.density);
     r.measure.density = d.value;
     if (d.si) {
-        const LengthUnit out = *length_unit(c.to.empty() ? "m" : c.to);
-        const double metres = static_cast<double>(out.metre_num) / static_cast<double>(out.metre_den);
         r.density_kg_m3 = d.kg_per_m3;
-        // Mass units per kg: exact for g; 1 lb is 0.45359237 kg exactly (rounded once here).
-        const double per_kg = c.mass_unit == "g" ? 1000.0 : c.mass_unit == "lb" ? 1 / 0.45359237 : 1.0;
-        r.measure.density = d.kg_per_m3 * (metres * metres * metres) * per_kg;
+        const DensityIn in = density_in(d, *length_unit(c.to.empty() ? "m" : c.to), c.mass_unit);
+        r.measure.density = in.value;
+        r.density_relative_error = in.relative_error;
         r.mass_unit = c.mass_unit;
     }
     r.units = c.units;

@@ -133,7 +133,17 @@ int run_one_area(const std::string& file, const NdimOptions& o, nlohmann::json& 
     if (!p) return unreadable(file, array, o);
     Chain c = polygon_chain(p->view());
     std::vector<std::string> extra{"loops       " + std::to_string(p->loop_count())};
-    return measure_and_print(file, "polygons", c, false, o, std::move(extra), array);
+    // A hole wound like its outer loop counts as land: said, unless --orient winds them by nesting.
+    const std::size_t against = o.orient ? 0 : loops_wound_like_their_container(p->view()).size();
+    if (against > 0)
+        std::cerr << "polyvol: warning: " << file << ": " << against << " loop" << (against == 1 ? " is" : "s are")
+                  << " wound like the loop around " << (against == 1 ? "it" : "them")
+                  << " (a hole counter-clockwise inside a counter-clockwise outer loop, say): "
+                  << (against == 1 ? "its" : "their") << " area is added, not taken away; --orient winds loops by "
+                  << "nesting\n";
+    const int code = measure_and_print(file, "polygons", c, false, o, std::move(extra), array);
+    if (o.json && !array.empty()) array.back()["loops_wound_like_container"] = against;
+    return code;
 }
 
 // Every file in turn (a blank line between reports); with --json one array

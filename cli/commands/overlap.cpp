@@ -48,6 +48,9 @@ CLI::App* add_overlap_command(CLI::App& app, OverlapArgs& args) {
     cmd->add_option("b", args.b, "Mesh B")->required();
     cmd->add_flag("--json", args.json, "Print one JSON object");
     add_solid_flags(cmd, args.solid_flags);
+    add_unit_flags(cmd, args.unit_flags,
+                   "Print volumes and areas in this unit (default: A's, or B's when A states none); B in another "
+                   "unit than A is converted into A's");
     return cmd;
 }
 
@@ -56,6 +59,20 @@ int run_overlap_command(const OverlapArgs& args) {
     if (!a) return Exit::unreadable;
     auto b = read_or_report(args.b, [&] { return read_mesh_file(args.b); });
     if (!b) return Exit::unreadable;
+    // A and B in one unit: B converted where it states another; the figures
+    // are then scaled to --to, as volume's are.
+    if (!args.unit_flags.to.empty()) {
+        const CommonUnit c = common_unit(std::vector<std::string>{a->unit, b->unit}, args.unit_flags.units,
+                                         args.unit_flags.to);
+        if (!c.error.empty()) {
+            const std::string& who = c.notes[0] == c.error ? args.a + " (A)" : args.b + " (B)";
+            std::cerr << "polyvol: " << who << ": " << c.error << ": --units gives it (" << kLengthUnitNames << ")\n";
+            return Exit::invalid;
+        }
+    }
+    const std::optional<std::string> unit =
+        put_in_common_unit({args.a + " (A)", args.b + " (B)"}, {&*a, &*b}, args.unit_flags.units, "");
+    if (!unit) return Exit::invalid;
     const auto start = std::chrono::steady_clock::now();
     // Each operand the solid it means, as `volume` takes it.
     SolidOptions policy = args.solid_flags.policy();
@@ -65,27 +82,21 @@ int run_overlap_command(const OverlapArgs& args) {
     if (!sa) return Exit::invalid;
     const auto sb = solid_or_report(args.b + " (B)", b->mesh, policy);
     if (!sb) return Exit::invalid;
-    const BooleanVolumes r = solid_booleans(a->mesh.view(), *sa, b->mesh.view(), *sb);
+    BooleanVolumes r = solid_booleans(a->mesh.view(), *sa, b->mesh.view(), *sb);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (r.status != BooleanStatus::ok) {
         std::cerr << "polyvol: " << status_text(r.status, args) << "\n";
         return Exit::invalid;
     }
-    // Coordinates a reader computed (3MF transforms): every result is a region
-    // bounded by pieces of A and B, so it moves by at most what their
-    // triangles sweep (docs/numerics.md), beside its own half-ulp rounding.
-    double bound = 0;
-    if (a->coordinate_error > 0 || b->coordinate_error > 0) {
-        double largest = 0;
-        for (double v : {r.volume_a, r.volume_b, r.union_volume}) largest = std::max(largest, std::fabs(v));
-        bound = (0x1p-53 * largest + perturbation_bounds(a->mesh.view(), a->coordinate_error, true).swept_volume +
-                 perturbation_bounds(b->mesh.view(), b->coordinate_error, true).swept_volume) *
-                (1 + 0x1p-40);
-    }
+    // Coordinates a reader computed (3MF transforms, a unit conversion), then the unit asked for.
+    widen_for_coordinate_error(r, a->mesh.view(), a->coordinate_error, b->mesh.view(), b->coordinate_error);
+    if (!args.unit_flags.to.empty() && !unit->empty())
+        scale_boolean_volumes(r, length_factor(*length_unit(*unit), *length_unit(args.unit_flags.to)));
+    const std::string out_unit = args.unit_flags.to.empty() ? *unit : length_unit(args.unit_flags.to)->name;
     if (args.json)
-        std::cout << overlap_json(args.a, args.b, r, bound, seconds).dump(2) << "\n";
+        std::cout << overlap_json(args.a, args.b, r, out_unit, seconds).dump(2) << "\n";
     else
-        std::cout << overlap_table(args.a, args.b, r, bound, seconds);
+        std::cout << overlap_table(args.a, args.b, r, out_unit, seconds);
     return Exit::ok;
 }
 

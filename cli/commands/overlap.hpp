@@ -14,6 +14,7 @@ struct OverlapArgs {
     std::string a, b;
     bool json = false;
     SolidFlags solid_flags;  // --orient, --weld-tolerance, --signed, as for `volume`
+    UnitFlags unit_flags;    // --units, --to
 };
 
 CLI::App* add_overlap_command(CLI::App& app, OverlapArgs& args);

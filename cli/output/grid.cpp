@@ -9,7 +9,8 @@
 namespace polyvol::cli {
 
 nlohmann::json grid_summary_json(const std::vector<std::string>& files, const std::vector<double>& mesh_volumes,
-                            const GridAxes& g, const GridSummary& s, double seconds, const std::string& union_problem) {
+                            const GridAxes& g, const GridSummary& s, double seconds, const std::string& union_problem,
+                                 const std::string& unit) {
     nlohmann::json j;
     nlohmann::json grid{{"dims", {g.nx(), g.ny(), g.nz()}}, {"bounds", g.bounds()}, {"cells", g.cell_count()},
                         {"uniform", g.uniform()}};
@@ -18,6 +19,7 @@ nlohmann::json grid_summary_json(const std::vector<std::string>& files, const st
                            (g.y.back() - g.y.front()) / static_cast<double>(g.ny()),
                            (g.z.back() - g.z.front()) / static_cast<double>(g.nz())};
     j["grid"] = grid;
+    j["unit"] = unit.empty() ? nlohmann::json(nullptr) : nlohmann::json(unit);  // of every length; volumes in unit³
     nlohmann::json bodies = nlohmann::json::array(), volumes = nlohmann::json::array();
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
         const GridBodySummary& body = s.bodies[b];
@@ -46,7 +48,8 @@ nlohmann::json grid_summary_json(const std::vector<std::string>& files, const st
 }
 
 std::string grid_summary_text(const std::vector<std::string>& files, const std::vector<double>& mesh_volumes,
-                         const GridAxes& g, const GridSummary& s, const std::string& union_problem) {
+                         const GridAxes& g, const GridSummary& s, const std::string& union_problem,
+                              const std::string& unit) {
     std::ostringstream out;
     const auto bb = g.bounds();
     out << "grid " << g.nx() << " x " << g.ny() << " x " << g.nz() << " cells over [" << shortest(bb[0]) << ", "
@@ -56,6 +59,7 @@ std::string grid_summary_text(const std::vector<std::string>& files, const std::
         out << ", spacing " << shortest((g.x.back() - g.x.front()) / static_cast<double>(g.nx())) << " x "
             << shortest((g.y.back() - g.y.front()) / static_cast<double>(g.ny())) << " x "
             << shortest((g.z.back() - g.z.front()) / static_cast<double>(g.nz()));
+    if (!unit.empty()) out << " (lengths in " << unit << ", volumes in " << unit << "³)";
     out << "\n";
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
         const GridBodySummary& body = s.bodies[b];

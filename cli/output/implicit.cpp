@@ -1,6 +1,7 @@
 // cli/output/implicit.cpp — cli/output/implicit.hpp.
 #include "output/implicit.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -49,6 +50,8 @@ nlohmann::json implicit_json(const ImplicitVolume& r, const ImplicitPrint& p) {
     if (r.coarse) {
         j["volume_pl_2h"] = r.coarse->volume;
         j["coarse"] = pass_json(*r.coarse);
+        j["extrapolated_error_estimate"] = json_number(r.extrapolated_error_estimate);  // null: not estimated
+        j["volume_pl_4h"] = r.coarser ? nlohmann::json(r.coarser->volume) : nlohmann::json(nullptr);
     }
     return j;
 }
@@ -61,9 +64,23 @@ std::string implicit_report(const ImplicitVolume& r, const ImplicitPrint& p) {
     out << " cells)\n";
     if (p.estimate) {
         // Each number beside its estimate, with the digits the estimate leaves.
-        out << "volume              " << plus_minus(r.volume, r.error_estimate, 0)
-            << "  (Richardson extrapolation from h and 2h; ± is |V(h) - V(2h)| / 3, the estimated error of "
-               "V(h), which also bounds the extrapolation's while V(h) converges as h^2)\n";
+        // (V(2h) - V(4h)) / (V(h) - V(2h)): 4 in the h^2 regime (implicit.hpp).
+        const double ratio = r.coarser ? (r.coarse->volume - r.coarser->volume) / (r.fine.volume - r.coarse->volume)
+                                       : std::nan("");
+        if (std::isfinite(r.extrapolated_error_estimate))
+            out << "volume              " << plus_minus(r.volume, r.extrapolated_error_estimate, 0)
+                << "  (Richardson extrapolation R(h) from h and 2h; ± is |R(h) - R(2h)|, R(2h) from 2h and 4h, "
+                   "its estimated error: the lattices show V converging as h^2, ratio of differences "
+                << short_number(ratio) << ")\n";
+        else
+            out << "volume              " << plus_minus(r.volume, r.error_estimate, 0)
+                << "  (Richardson extrapolation from h and 2h; ± is |V(h) - V(2h)| / 3, the estimated error of "
+                   "V(h), which also bounds the extrapolation's while V(h) converges as h^2"
+                << (r.coarser && !(ratio >= 3 && ratio <= 5)
+                        ? "; but the 4h lattice does not show that regime (ratio of differences " + short_number(ratio) +
+                              ", 4 expected): this estimate may not hold"
+                        : std::string())
+                << ")\n";
         out << "PL volume at h      " << plus_minus(r.fine.volume, r.error_estimate, 0)
             << "  (the piecewise-linear solid's, V(h))\n";
         out << "PL volume at 2h     " << plus_minus(r.coarse->volume, 4 * r.error_estimate, 0)

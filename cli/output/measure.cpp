@@ -11,7 +11,7 @@
 #include <sstream>
 #include <utility>
 
-#include "units.hpp"
+#include "polyvol/units.hpp"
 
 namespace polyvol::cli {
 namespace {
@@ -43,31 +43,6 @@ std::string mass_text(double mass, double volume_error_times_density, int digits
     const double error = volume_error_times_density + std::fabs(mass) * 0x1p-52;
     const std::string s = shortest_within(mass, error);
     return digits > 0 ? number_text(std::strtod(s.c_str(), nullptr), error, digits) : s;
-}
-
-// The principal moments and axes of the inertia about the centroid, with
-// bounds from the tensor's own guarantee (each entry correctly rounded: within
-// u of the largest entry).
-PrincipalInertia principal_of(const MassProperties& m) {
-    return principal_inertia(m.inertia_centroid, m.moments_correctly_rounded ? 0x1p-53 : m.moments_relative_error);
-}
-
-// The box of the vertices the faces use {xmin, ymin, zmin, xmax, ymax, zmax}
-// (exact: a min and max of the coordinates); NaN when there are no faces.
-std::array<double, 6> face_bounds(const MeshView& view) {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    std::array<double, 6> b{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    bool any = false;
-    for (const uint32_t v : view.indices) {
-        const double* p = view.positions.data() + 3 * std::size_t{v};
-        for (int k = 0; k < 3; ++k) {
-            b[k] = std::min(b[k], p[k]);
-            b[3 + k] = std::max(b[3 + k], p[k]);
-        }
-        any = true;
-    }
-    if (!any) b = {nan, nan, nan, nan, nan, nan};
-    return b;
 }
 
 // The self-crossing line of the reports: none, or the pairs and what became of them.
@@ -322,8 +297,14 @@ nlohmann::json to_json(const FileResult& r, const Request& request) {
         j["inertia_origin"] = matrix3(m.inertia_origin);
         j["moments_accuracy"] = m.moments_correctly_rounded ? "correctly-rounded" : "error-bound";
         j["moments_relative_error"] = m.moments_relative_error;
-        if (std::isfinite(m.inertia_centroid[0])) {
-            const PrincipalInertia p = principal_of(m);
+        // null where the inertia is not finite (no faces, say), so that the keys are always there
+        {
+            const double nan = std::numeric_limits<double>::quiet_NaN();
+            PrincipalInertia p;
+            if (std::isfinite(m.inertia_centroid[0]))
+                p = principal_inertia(m);
+            else
+                p = {{nan, nan, nan}, {{{nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan}}}, nan, {nan, nan, nan}};
             j["principal_moments"] = {json_number(p.moments[0]), json_number(p.moments[1]), json_number(p.moments[2])};
             j["principal_axes"] = nlohmann::json::array();
             for (const auto& a : p.axes) j["principal_axes"].push_back({json_number(a[0]), json_number(a[1]), json_number(a[2])});
@@ -542,7 +523,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     tensor("inertia tensor about the origin", m.inertia_origin);
     tensor("inertia tensor about the centroid", m.inertia_centroid);
     if (std::isfinite(m.inertia_centroid[0])) {
-        const PrincipalInertia p = principal_of(m);
+        const PrincipalInertia p = principal_inertia(m);
         out << "  principal moments " << number_text(p.moments[0], p.moment_error, digits) << ", "
             << number_text(p.moments[1], p.moment_error, digits) << ", " << number_text(p.moments[2], p.moment_error, digits)
             << mass_unit_suffix(r, 5) << "   [each within " << bound_text(p.moment_error) << "]\n";

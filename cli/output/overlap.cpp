@@ -10,10 +10,12 @@
 
 namespace polyvol::cli {
 
-nlohmann::json overlap_json(const std::string& a, const std::string& b, const BooleanVolumes& r, double bound,
-                            double seconds) {
+nlohmann::json overlap_json(const std::string& a, const std::string& b, const BooleanVolumes& r,
+                            const std::string& unit, double seconds) {
+    const double bound = r.volume_error_bound;
     return {{"a", a},
             {"b", b},
+            {"unit", unit.empty() ? nlohmann::json(nullptr) : nlohmann::json(unit)},
             {"volume_a", json_number(r.volume_a)},
             {"volume_b", json_number(r.volume_b)},
             {"intersection", json_number(r.intersection)},
@@ -37,12 +39,16 @@ nlohmann::json overlap_json(const std::string& a, const std::string& b, const Bo
             {"seconds", seconds}};
 }
 
-std::string overlap_table(const std::string& a, const std::string& b, const BooleanVolumes& r, double bound,
+std::string overlap_table(const std::string& a, const std::string& b, const BooleanVolumes& r, const std::string& unit,
                           double seconds) {
+    const double bound = r.volume_error_bound;
     std::ostringstream out;
     out << "A = " << a << " (" << r.triangles_a << " triangles), B = " << b << " (" << r.triangles_b
         << " triangles)\n\n";
-    out << std::left << std::setw(8) << "" << std::setw(26) << "volume" << "area\n";
+    const std::string volume_head = unit.empty() ? "volume" : "volume (" + unit + "³)";
+    const std::string area_head = unit.empty() ? "area" : "area (" + unit + "²)";
+    // setw counts bytes: ³ is two bytes, shown as one column.
+    out << std::left << std::setw(8) << "" << std::setw(unit.empty() ? 26 : 27) << volume_head << area_head << "\n";
     const std::pair<const char*, std::pair<double, double>> rows[] = {
         {"A", {r.volume_a, r.area_a}},
         {"B", {r.volume_b, r.area_b}},
@@ -55,11 +61,14 @@ std::string overlap_table(const std::string& a, const std::string& b, const Bool
         // setw counts bytes: ∩ ∪ − are three bytes each, shown as one column.
         const std::string label = name;
         const int pad = label.size() > 1 ? 8 + 2 : 8;
-        out << std::setw(pad) << label << std::setw(26) << shortest(v.first)
-            << (std::isnan(v.second) ? std::string("-") : shortest(v.second)) << "\n";
+        // Each figure to the digits its guarantee supports (as volume's table).
+        const std::string volume = bound > 0 ? plus_minus(v.first, bound, 0) : number_text(v.first, 0, 0);
+        out << std::setw(pad) << label << std::setw(26) << volume
+            << (std::isnan(v.second) ? std::string("-") : number_text(v.second, r.area_error_bound, 0)) << "\n";
     }
     out << "\nvolumes: "
-        << (bound > 0 ? "within ±" + shortest(bound) + " each (3MF transforms, applied in floating point)"
+        << (bound > 0 ? "within the ± shown (a change of unit, or coordinates computed in floating point: 3MF "
+                        "transforms)"
                       : std::string("correctly rounded (the exact volume of the coordinates as read, rounded once)"))
         << "\n"
         << "areas: within ±" << bound_text(r.area_error_bound) << " each"

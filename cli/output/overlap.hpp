@@ -11,11 +11,12 @@
 
 namespace polyvol::cli {
 
-// a, b: the operands' file names; volume_bound: 0 when the volumes are
-// correctly rounded, else the bound on each (coordinates a reader computed).
-nlohmann::json overlap_json(const std::string& a, const std::string& b, const BooleanVolumes& r, double volume_bound,
-                            double seconds);
-std::string overlap_table(const std::string& a, const std::string& b, const BooleanVolumes& r, double volume_bound,
+// a, b: the operands' file names; unit: the lengths' ("" when not known).
+// The volumes are correctly rounded where r.volume_error_bound is 0, else
+// each within it (coordinates a reader computed, a change of unit).
+nlohmann::json overlap_json(const std::string& a, const std::string& b, const BooleanVolumes& r,
+                            const std::string& unit, double seconds);
+std::string overlap_table(const std::string& a, const std::string& b, const BooleanVolumes& r, const std::string& unit,
                           double seconds);
 
 }  // namespace polyvol::cli

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "polyvol/mesh.hpp"
+#include "polyvol/units.hpp"
 
 namespace polyvol {
 
@@ -48,9 +49,11 @@ enum class BooleanStatus {
 
 struct BooleanVolumes {
     BooleanStatus status = BooleanStatus::ok;
-    // Correctly rounded volumes (NaN unless status == ok).
+    // Correctly rounded volumes (NaN unless status == ok); after a widening
+    // or a change of unit (below) each is within volume_error_bound instead.
     double volume_a = 0, volume_b = 0;
     double intersection = 0, union_volume = 0, a_minus_b = 0, b_minus_a = 0;
+    double volume_error_bound = 0;  // 0: correctly rounded
     // Boundary areas, each within area_error_bound of the exact value.
     double area_a = 0, area_b = 0;
     double area_intersection = 0, area_union = 0, area_a_minus_b = 0, area_b_minus_a = 0;
@@ -67,6 +70,20 @@ struct BooleanVolumes {
 BooleanVolumes boolean_volumes(const MeshView& a, const MeshView& b);
 
 const char* boolean_status_message(BooleanStatus status);
+
+// r's volumes for operands whose every coordinate is within a_error
+// (b_error) of the value meant (LoadedMesh::coordinate_error): each result
+// is a region bounded by pieces of A and B, so it moves by at most what
+// their triangles sweep (perturbation_bounds' swept_volume), beside its own
+// half-ulp rounding. The areas keep their bound, which is for the
+// coordinates as computed.
+void widen_for_coordinate_error(BooleanVolumes& r, const MeshView& a, double a_error, const MeshView& b,
+                                double b_error);
+
+// r in another length unit: volumes × f³, areas × f², their bounds widened
+// by the products' rounding and the factor's own error (exact for a power
+// of two meant exactly).
+void scale_boolean_volumes(BooleanVolumes& r, const LengthFactor& f);
 
 // The same volumes where A's or B's shells may overlap one another or cross
 // themselves: each operand is the solid it means, the region where its

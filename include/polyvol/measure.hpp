@@ -148,6 +148,9 @@ struct PrincipalInertia {
     std::array<double, 3> axis_angle{};
 };
 PrincipalInertia principal_inertia(const std::array<double, 6>& tensor, double relative_error);
+// Of m's inertia about the centroid, with m's own guarantee on it (each
+// entry correctly rounded: within u of the largest entry).
+PrincipalInertia principal_inertia(const MassProperties& m);
 
 // The figures of the mesh with every coordinate multiplied by length_factor
 // (a change of unit, or a scale), from those of the mesh as read: each

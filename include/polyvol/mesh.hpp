@@ -17,6 +17,7 @@
 //   * indices are always < vertex_count() (readers check this).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -76,6 +77,10 @@ struct Mesh {
 
 // An owning copy of a view's arrays.
 Mesh to_mesh(const MeshView& view);
+
+// The box of the vertices the faces use {xmin, ymin, zmin, xmax, ymax, zmax}
+// (exact: a min and max of the coordinates); NaN when there are no faces.
+std::array<double, 6> face_bounds(const MeshView& view);
 
 // Canonical vertex ids: result[v] is the smallest index of a vertex with the
 // same coordinates as v (bit-identical doubles, -0.0 equal to +0.0; NaNs are

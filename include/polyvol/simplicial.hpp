@@ -186,6 +186,16 @@ OrientResult orient_mesh(Mesh& mesh);
 // The 2D chain of a polygon set: edge (v_i, v_{i+1}) for each loop, wrapping.
 Chain polygon_chain(const PolygonsView& polygons);
 
+// The loops wound against the rule (an outer loop counter-clockwise, a hole
+// in it clockwise, an island in the hole counter-clockwise again): those
+// wound the same way as the innermost loop that contains them. A hole wound
+// like its outer loop adds its area instead of taking it away (orient_chain
+// winds loops by nesting). Nesting from one vertex of each loop, tested
+// against the others (loops are taken not to cross); areas and tests in
+// double: a hint for a warning, not a predicate (a loop of zero area, or
+// one whose vertex lies on another loop, is never counted).
+std::vector<uint32_t> loops_wound_like_their_container(const PolygonsView& polygons);
+
 // Area (in ChainVolume::volume) and centroid of polygons with holes and
 // islands, by (3.1) (SimplexFormula::cone) or (3.2) (prism); correctly rounded
 // unless options.accuracy says bounded.

@@ -124,6 +124,10 @@ class Mesh:
     notes = property(lambda self: self._core.notes, doc="quirks met while reading")
     vertices_in_file = property(lambda self: self._core.vertices_in_file,
                                 doc="vertices as the file lists them (STL: three per facet, before welding)")
+    unit = property(lambda self: self._core.unit or None,
+                    doc='the length unit the file declares ("mm", "cm", "m", "in", "ft", "micron": 3MF, AMF), or None')
+    coordinate_error = property(lambda self: self._core.coordinate_error,
+                                doc="a bound on |coordinate - the file's value| (3MF transforms), 0 when exact")
     face_count = property(lambda self: self._core.face_count)
     triangle_count = property(lambda self: self._core.triangle_count, doc="fan triangles of the faces")
 
@@ -197,15 +201,23 @@ class MassProperties(_Result):
     CLI's JSON:
     volume, mass = density * volume, area, centroid (3,), first_moments (3,),
     second_moments (3, 3) = density * ∫x_i x_j about the origin, inertia (3, 3)
-    about the centroid, inertia_origin (3, 3), edge_length; and their
+    about the centroid, inertia_origin (3, 3), principal_moments (3,)
+    increasing with principal_axes (3, 3) (row k the unit axis of moment k,
+    right-handed), edge_length, bounds (xmin, ymin, zmin, xmax, ymax, zmax)
+    of the vertices the faces use; unit (the lengths' unit, or None when not
+    known), mass_unit (with a density with a unit), length_factor (the
+    coordinates' factor to unit) and density (mass per unit³ used); and the
     guarantees: volume_correctly_rounded (else volume_error_bound, absolute),
     moments_correctly_rounded (else moments_relative_error), area_relative_error,
-    edge_length_relative_error."""
+    edge_length_relative_error, principal_moment_error (absolute, each
+    moment), principal_axis_angle_bound (radians, each axis; inf where
+    moments are equal)."""
 
-    _fields = ("method", "accuracy", "density", "volume", "volume_error_bound", "mass",
-               "area", "area_relative_error", "centroid", "first_moments", "second_moments", "inertia",
-               "inertia_origin", "moments_accuracy", "moments_relative_error", "edge_length",
-               "edge_length_relative_error")
+    _fields = ("method", "accuracy", "unit", "mass_unit", "length_factor", "density", "volume",
+               "volume_error_bound", "mass", "area", "area_relative_error", "centroid", "bounds", "first_moments",
+               "second_moments", "inertia", "inertia_origin", "moments_accuracy", "moments_relative_error",
+               "principal_moments", "principal_axes", "principal_moment_error", "principal_axis_angle_bound",
+               "edge_length", "edge_length_relative_error")
 
 
 def _solid_verdict(verdict, name=""):
@@ -222,19 +234,33 @@ def _policy(signed, allow_open, orient, weld_tolerance, solid=True):
             "weld_tolerance": float(weld_tolerance), "solid": bool(solid)}
 
 
+def _units(mesh, units, to, mass_unit):
+    """The units keywords for the bindings: the file's own unit when the mesh has one."""
+    declared = mesh.unit if isinstance(mesh, Mesh) else None
+    return {"declared": declared or "", "units": units or "", "to": to or "", "mass_unit": mass_unit}
+
+
 def mass_properties(mesh, faces=None, *, density=1.0, method="cone", accuracy="correctly-rounded",
                     second_moments=True, edge_length=True, signed=False, allow_open=False, orient=False,
-                    weld_tolerance=0.0, solid=True):
+                    weld_tolerance=0.0, solid=True, units=None, to=None, mass_unit="kg"):
     """Volume, mass, area, centroid, moments, inertia and edge length of the
     solid a closed mesh means (a polyvol.Mesh, an object with .vertices and
     .faces, or vertices and faces arrays), as `polyvol measure` takes it:
     inside-out shells turned outward (a warning says so; signed=True keeps
     their signed sums), overlapping and self-crossing shells resolved (the
-    solid's volume, mass and moments: winding number >= 1; area and edge
-    length the shells' sums), an open or misoriented surface refused with
+    solid's volume, mass, moments and area: winding number >= 1; edge
+    length the shells' sum), an open or misoriented surface refused with
     NotASolidError (allow_open=True measures it about the origin;
     orient=True winds the faces first; weld_tolerance merges points first;
     solid=False keeps the shells' sums where they overlap: ∫ winding number).
+
+    Units (`--units`, `--to`, `--density`, `--mass-unit`): units is the
+    coordinates' unit ("mm", "cm", "m", "in", "ft", "micron"; a Mesh read
+    from 3MF or AMF states its own), to the unit of the figures (default:
+    the coordinates'; metres with a density with a unit). density is a
+    number (mass per unit³) or a text with its unit, '2700kg/m3' or
+    '1.24g/cm3': the mass is then in mass_unit ("kg", "g" or "lb"). A
+    conversion that is not exact widens each guarantee by its rounding.
 
     method: "cone" (det/6 per fan triangle), "prism", "pyramid" or "vtnb"
     (Franklin's vertex-edge-face formula); it chooses the volume only.
@@ -242,29 +268,40 @@ def mass_properties(mesh, faces=None, *, density=1.0, method="cone", accuracy="c
     mass, moments, centroid, inertia) or "fast" (double sums with a rigorous
     bound). Area and edge length always carry a relative bound."""
     v, idx, offsets = _arrays.mesh(mesh, faces)
-    verdict, p = _core.measure_solid(v, idx, offsets, method, accuracy, float(density), second_moments, edge_length,
-                                     _policy(signed, allow_open, orient, weld_tolerance, solid))
+    if not isinstance(density, str):
+        density = float(density)
+    verdict, p, u = _core.measure_solid(v, idx, offsets, method, accuracy, density, second_moments, edge_length,
+                                        _policy(signed, allow_open, orient, weld_tolerance, solid),
+                                        _units(mesh, units, to, mass_unit))
+    if u["warning"]:
+        _warn(u["warning"])
     _solid_verdict(verdict)
+    nan3 = np.full(3, np.nan)
     return MassProperties(
         method=p.method, accuracy="correctly-rounded" if p.volume_correctly_rounded else "error-bound",
-        density=float(density), volume=p.volume,
-        volume_correctly_rounded=p.volume_correctly_rounded, volume_error_bound=p.volume_error_bound, mass=p.mass,
-        area=p.area, area_relative_error=p.area_relative_error, centroid=p.centroid, first_moments=p.first_moments,
+        unit=u["unit"], mass_unit=u["mass_unit"], length_factor=u["length_factor"], density=u["density"],
+        volume=p.volume, volume_correctly_rounded=p.volume_correctly_rounded, volume_error_bound=p.volume_error_bound,
+        mass=p.mass, area=p.area, area_relative_error=p.area_relative_error, centroid=p.centroid,
+        bounds=u["bounds"], first_moments=p.first_moments,
         second_moments=p.second_moments, inertia=p.inertia, inertia_origin=p.inertia_origin,
         moments_correctly_rounded=p.moments_correctly_rounded,
         moments_accuracy="correctly-rounded" if p.moments_correctly_rounded else "error-bound",
-        moments_relative_error=p.moments_relative_error, edge_length=p.edge_length,
-        edge_length_relative_error=p.edge_length_relative_error)
+        moments_relative_error=p.moments_relative_error,
+        principal_moments=u.get("principal_moments", nan3),
+        principal_axes=u.get("principal_axes", np.full((3, 3), np.nan)),
+        principal_moment_error=u.get("principal_moment_error", np.nan),
+        principal_axis_angle_bound=u.get("principal_axis_angle_bound", nan3),
+        edge_length=p.edge_length, edge_length_relative_error=p.edge_length_relative_error)
 
 
 def volume(mesh, faces=None, *, method="cone", accuracy="correctly-rounded", signed=False, allow_open=False,
-           orient=False, weld_tolerance=0.0):
+           orient=False, weld_tolerance=0.0, units=None, to=None):
     """The volume of the solid the mesh means, correctly rounded by default,
     with mass_properties' policy (signed=True: an inside-out surface keeps
-    its negative volume)."""
+    its negative volume) and units (in to³ from coordinates in units)."""
     return mass_properties(mesh, faces, method=method, accuracy=accuracy, second_moments=False, edge_length=False,
                            signed=signed, allow_open=allow_open, orient=orient,
-                           weld_tolerance=weld_tolerance).volume
+                           weld_tolerance=weld_tolerance, units=units, to=to).volume
 
 
 # ---- topology --------------------------------------------------------------------
@@ -387,32 +424,48 @@ def solid(mesh, faces=None, *, moments=True, within_shells=True):
 
 
 class BooleanVolumes(_Result):
-    """Volumes of A, B, A∩B, A∪B, A−B, B−A (each correctly rounded) and the
-    areas of their boundaries (each within area_error_bound)."""
+    """Volumes of A, B, A∩B, A∪B, A−B, B−A (each correctly rounded, or
+    within volume_error_bound when accuracy is "error-bound") and the areas
+    of their boundaries (each within area_error_bound), in unit."""
 
-    _fields = ("volume_a", "volume_b", "intersection", "union", "a_minus_b", "b_minus_a", "accuracy",
+    _fields = ("unit", "volume_a", "volume_b", "intersection", "union", "a_minus_b", "b_minus_a", "accuracy",
                "volume_error_bound", "area_a",
                "area_b", "area_intersection", "area_union", "area_a_minus_b", "area_b_minus_a", "area_error_bound",
                "triangles_a", "triangles_b", "candidate_pairs", "crossing_pairs", "rational_terms")
 
 
-def overlap(a, b, *, signed=False, orient=False, weld_tolerance=0.0):
+def overlap(a, b, *, signed=False, orient=False, weld_tolerance=0.0, units=None, to=None):
     """Volumes of the booleans of the solids two closed meshes mean, exactly,
     without building them (`polyvol overlap`): each operand as
     mass_properties takes it (inside-out shells turned outward, overlapping
-    shells resolved: then the areas are NaN). Raises NotASolidError when an
-    operand is not a solid (open, misoriented), ValueError for the rest
-    (inside out with signed=True, coordinates out of range)."""
+    shells resolved: then the areas of A − B and B − A are NaN). Raises
+    NotASolidError when an operand is not a solid (open, misoriented),
+    ValueError for the rest (inside out with signed=True, coordinates out of
+    range, a unit not known).
+
+    units: the coordinates' unit of operands that state none (a Mesh read
+    from 3MF or AMF states its own; B in another unit than A is converted
+    into A's, each coordinate rounded once); to: the unit of the figures
+    (`--units`, `--to`). accuracy is "correctly-rounded", or "error-bound"
+    after a conversion that is not exact (each volume within
+    volume_error_bound); unit names the figures' unit (None when not known)."""
     pa, ia, oa = _arrays.mesh(a)
     pb, ib, ob = _arrays.mesh(b)
-    va, vb, r = _core.overlap_solids(pa, ia, oa, pb, ib, ob, _policy(signed, False, orient, weld_tolerance))
+    units_kw = {"declared_a": (a.unit or "") if isinstance(a, Mesh) else "",
+                "declared_b": (b.unit or "") if isinstance(b, Mesh) else "",
+                "error_a": a.coordinate_error if isinstance(a, Mesh) else 0.0,
+                "error_b": b.coordinate_error if isinstance(b, Mesh) else 0.0,
+                "units": units or "", "to": to or ""}
+    va, vb, r, unit, notes = _core.overlap_solids(pa, ia, oa, pb, ib, ob, _policy(signed, False, orient, weld_tolerance),
+                                                  units_kw)
+    for note in notes:
+        _warn(note)
     _solid_verdict(va, "A")
     _solid_verdict(vb, "B")
     if r.status != "ok":
         raise ValueError(f"no boolean volumes: {r.message}")
-    return BooleanVolumes(accuracy="correctly-rounded", volume_error_bound=0.0,
-                          **{k: getattr(r, k) for k in BooleanVolumes._fields
-                             if k not in ("accuracy", "volume_error_bound")})
+    return BooleanVolumes(accuracy="correctly-rounded" if r.volume_error_bound == 0 else "error-bound", unit=unit,
+                          **{k: getattr(r, k) for k in BooleanVolumes._fields if k not in ("accuracy", "unit")})
 
 
 class SelfCrossings(_Result):
@@ -494,7 +547,11 @@ def polygon_area(loops, formula="cone"):
     offsets = np.zeros(len(arrays) + 1, dtype=np.uint32)
     np.cumsum([a.shape[0] for a in arrays], out=offsets[1:])
     idx = np.arange(points.shape[0], dtype=np.uint32)
-    d = _chain_result(_core.polygon_area(points, offsets, idx, formula))
+    raw = _core.polygon_area(points, offsets, idx, formula)
+    if raw["loops_wound_like_container"]:
+        _warn(f"polygon_area: {raw['loops_wound_like_container']} loop(s) wound like the loop around them (a hole "
+              "counter-clockwise inside a counter-clockwise outer loop, say): their area is added, not taken away")
+    d = _chain_result(raw)
     return PolygonArea(area=d["volume"], correctly_rounded=d["correctly_rounded"], error_bound=d["error_bound"],
                        centroid=d["centroid"], centroid_correctly_rounded=d["centroid_correctly_rounded"],
                        closed=d["closed"])
@@ -513,14 +570,17 @@ def load_polygons(path):
 class ImplicitVolume(_Result):
     """Volume of {F <= 0} in a box from a piecewise-linear approximation on a
     Kuhn triangulation: ``volume`` is the Richardson extrapolation of the
-    lattices of spacing h and 2h, ``error_estimate`` its estimated error
-    (an estimate, not a bound: it holds in the O(h²) regime), ``volume_pl``
-    the PL solid's volume at spacing h; ``clipped`` when the solid reaches
-    the box (it is then clipped by it)."""
+    lattices of spacing h and 2h, ``extrapolated_error_estimate`` its own
+    estimated error (from the 4h lattice too; None where the lattices do not
+    show the O(h²) regime, or a side has a cell count that is not a multiple
+    of 4), ``error_estimate`` the estimated error of ``volume_pl``, the PL
+    solid's volume at spacing h, which also bounds the extrapolation's
+    comfortably in that regime (estimates, not bounds); ``clipped`` when the
+    solid reaches the box (it is then clipped by it)."""
 
-    _fields = ("expression", "dimension", "h", "spacing", "volume", "volume_pl", "error_estimate",
-               "boundary_simplices", "clipped", "box_rule", "formula", "streamed", "seconds", "fine", "volume_pl_2h",
-               "coarse")
+    _fields = ("expression", "dimension", "h", "spacing", "volume", "extrapolated_error_estimate", "volume_pl",
+               "error_estimate", "boundary_simplices", "clipped", "box_rule", "formula", "streamed", "seconds", "fine",
+               "volume_pl_2h", "volume_pl_4h", "coarse")
 
 
 def implicit(f, dim, box, h=None, *, coarse_cells=0, error_estimate=True, box_rule="clip", seeds=None):
@@ -545,10 +605,13 @@ def implicit(f, dim, box, h=None, *, coarse_cells=0, error_estimate=True, box_ru
     return ImplicitVolume(expression=f if isinstance(f, str) else None, spacing=fine["spacing"], box_rule=box_rule,
                           formula="cone", streamed=True, dimension=r["dimension"], h=r["h"], volume=r["volume"],
                           error_estimate=r["error_estimate"] if error_estimate else None, volume_pl=fine["volume"],
-                          volume_pl_2h=coarse["volume"] if coarse else None, clipped=r["clipped"],
+                          extrapolated_error_estimate=(r["extrapolated_error_estimate"] if error_estimate and not
+                                                       math.isnan(r["extrapolated_error_estimate"]) else None),
+                          volume_pl_2h=coarse["volume"] if coarse else None, volume_pl_4h=r["volume_pl_4h"],
+                          clipped=r["clipped"],
                           boundary_simplices=fine["boundary_simplices"],
                           function_evaluations=fine["function_evaluations"] + (
-                              coarse["function_evaluations"] if coarse else 0),
+                              coarse["function_evaluations"] if coarse else 0) + r["coarser_evaluations"],
                           seconds=r["seconds"], fine=fine, coarse=coarse)
 
 

@@ -121,6 +121,24 @@ def _bodies(meshes):
     return [_arrays.mesh(meshes)]
 
 
+def _in_common_unit(meshes, bodies, units, to):
+    """The bodies' arrays in one unit (polyvol/units.hpp's common_unit) and
+    that unit (None when no body's is known)."""
+    listed = meshes if isinstance(meshes, (list, tuple)) and not (
+        len(meshes) == 2 and isinstance(meshes[0], np.ndarray)) else [meshes]
+    declared = [(getattr(m, "unit", None) or "") if hasattr(m, "_core") else "" for m in listed]
+    error, unit, factors, notes = _core.common_unit(declared, units or "", to or "")
+    if error:
+        hint = ": units= gives it (mm, cm, m, in, ft or micron)" if "not known" in error else ""
+        raise ValueError(f"grid: {error}{hint}")
+    out = []
+    for i, ((v, idx, offsets), f, note) in enumerate(zip(bodies, factors, notes)):
+        if note:
+            warnings.warn(f"polyvol.grid: body {i}: {note}", stacklevel=3)
+        out.append((v * f if f != 1 else v, idx, offsets))
+    return out, unit
+
+
 def axes(meshes, dims=None, cells=None, cell_size=None, bounds=None):
     """The grid planes (x, y, z) polyvol.grid uses for these arguments."""
     return _axes(_bodies(meshes), dims, cells, cell_size, bounds)
@@ -167,7 +185,7 @@ def _check_memory(block, bodies, moments, surface, several, intersection, max_me
 
 def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=False, *, union=None,
          intersection=False, surface=False, block=None, edges=None, signed=False, orient=False, weld_tolerance=0.0,
-         max_memory=None):
+         max_memory=None, units=None, to=None):
     """The exact volume of each mesh in every cell of a grid, and with several
     meshes the union's (and on request the intersection's) volume per cell,
     exact in every cell (docs/grid.md).
@@ -186,9 +204,17 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
     the whole grid gives them (polyvol.dask.grid uses it). max_memory (bytes;
     default three quarters of this machine's memory): a grid whose arrays
     would need more raises MemoryError naming the estimate, before anything
-    is allocated."""
+    is allocated.
+
+    units, to (`--units`, `--to`): the grid's unit is ``to``, else the first
+    body's that is known (units gives the unit of meshes that state none; a
+    Mesh read from 3MF or AMF states its own); cell_size, bounds and edges
+    are in it, and so is every volume. A body in another unit is converted
+    into it, each coordinate rounded once (a warning says so): its cells are
+    exact for the coordinates so converted. summary["unit"] names it."""
     from . import _policy, _solid_verdict  # noqa: E402 (defined before this module is imported)
     bodies = _bodies(meshes)
+    bodies, unit = _in_common_unit(meshes, bodies, units, to)
     solids = [_core.solid_parts(*b, _policy(signed, False, orient, weld_tolerance)) for b in bodies]
     for i, (verdict, _, _) in enumerate(solids):
         _solid_verdict(verdict, f"body {i}" if len(bodies) > 1 else "")
@@ -228,6 +254,7 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
         body["mesh_volume"] = (solid_volume if solid_volume is not None
                                else _core.signed_volume(*body_parts[0], "cone", "correctly-rounded"))
     summary = {
+        "unit": unit,
         "grid": {"dims": list(bshape), "bounds": [float(x[0]), float(y[0]), float(z[0]), float(x[-1]),
                                                   float(y[-1]), float(z[-1])],
                  "cells": bshape[0] * bshape[1] * bshape[2], "uniform": _uniform((x, y, z))},

@@ -104,11 +104,15 @@ void bind_chain(py::module_& m) {
                 if (v >= p.vertex_count()) throw std::invalid_argument("a loop vertex index is out of range");
             const ChainOptions o = chain_options(formula, "auto");
             ChainVolume v;
+            std::size_t against = 0;
             {
                 py::gil_scoped_release release;
                 v = polygon_area(p, o);
+                against = loops_wound_like_their_container(p).size();
             }
-            return chain_result(v);
+            py::dict d = chain_result(v);
+            d["loops_wound_like_container"] = against;
+            return d;
         },
         py::arg("points"), py::arg("loop_offsets"), py::arg("indices"), py::arg("formula"));
 
@@ -198,6 +202,9 @@ void bind_chain(py::module_& m) {
             d["volume"] = r.volume;
             d["error_estimate"] = r.error_estimate;
             d["volume_extrapolated"] = r.volume_extrapolated;
+            d["extrapolated_error_estimate"] = r.extrapolated_error_estimate;
+            d["volume_pl_4h"] = r.coarser ? py::object(py::float_(r.coarser->volume)) : py::object(py::none());
+            d["coarser_evaluations"] = r.coarser ? r.coarser->function_evaluations : 0;
             d["fine"] = pass_dict(r.fine);
             d["coarse"] = r.coarse ? py::object(pass_dict(*r.coarse)) : py::object(py::none());
             d["clipped"] = r.clipped;

@@ -11,7 +11,7 @@
 #include "polyvol/io.hpp"
 #include "polyvol/simplicial.hpp"
 #include "output/measure.hpp"
-#include "units.hpp"
+#include "polyvol/units.hpp"
 
 namespace polyvol::python {
 
@@ -55,7 +55,9 @@ void bind_io(py::module_& m) {
         .def_readonly("encoding", &LoadedMesh::encoding)
         .def_readonly("gzip", &LoadedMesh::gzip)
         .def_readonly("notes", &LoadedMesh::notes)
-        .def_readonly("vertices_in_file", &LoadedMesh::vertices_in_file);
+        .def_readonly("vertices_in_file", &LoadedMesh::vertices_in_file)
+        .def_readonly("unit", &LoadedMesh::unit)
+        .def_readonly("coordinate_error", &LoadedMesh::coordinate_error);
 
     m.def(
         "load",
@@ -114,7 +116,7 @@ void bind_io(py::module_& m) {
            const std::string& to, double scale) {
             cli::Request request;
             request.weld_tolerance = weld_tolerance;
-            if ((!units.empty() && !cli::length_unit(units)) || (!to.empty() && !cli::length_unit(to)))
+            if ((!units.empty() && !length_unit(units)) || (!to.empty() && !length_unit(to)))
                 throw py::value_error("units are mm, cm, m, in, ft or micron");
             request.units = units;
             request.to = to;

@@ -1,6 +1,8 @@
 // python/src/measure.cpp — mass properties (measure.hpp), topology
 // (topology.hpp) and the volumes of booleans and overlapping shells
 // (boolean.hpp) of meshes given as numpy arrays.
+#include <cmath>
+
 #include <pybind11/stl.h>
 
 #include "arrays.hpp"
@@ -9,6 +11,7 @@
 #include "polyvol/measure.hpp"
 #include "polyvol/solid.hpp"
 #include "polyvol/topology.hpp"
+#include "polyvol/units.hpp"
 
 namespace polyvol::python {
 
@@ -101,30 +104,82 @@ void bind_measure(py::module_& m) {
         .def_property_readonly("accuracy",
                                [](const MassProperties& p) { return std::string(accuracy_name(p.accuracy)); });
 
-    // mass_properties of the solid the mesh means (polyvol/solid.hpp):
-    // ((status, message, notes), MassProperties or None).
+    // mass_properties of the solid the mesh means (polyvol/solid.hpp), in
+    // the units asked for (polyvol/units.hpp): ((status, message, notes),
+    // MassProperties or None, {unit, mass_unit, length_factor, density,
+    // warning, principal moments and axes, bounds}).
     m.def(
         "measure_solid",
         [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets,
-           const std::string& method, const std::string& accuracy, double density, bool second_moments,
-           bool edge_length, const py::dict& policy) {
+           const std::string& method, const std::string& accuracy, const py::object& density, bool second_moments,
+           bool edge_length, const py::dict& policy, const py::dict& units) {
             Mesh mesh = to_mesh(mesh_view(positions, indices, offsets));  // make_solid changes it
             MeasureOptions o;
             o.method = parse_method(method);
             o.accuracy = parse_accuracy(accuracy);
-            o.density = density;
             o.second_moments = second_moments;
             o.edge_length = edge_length;
+            Density d;
+            if (py::isinstance<py::str>(density)) {
+                const std::optional<Density> typed = parse_density(density.cast<std::string>());
+                if (!typed)
+                    throw py::value_error("density must be a positive number, optionally with kg/m3 or g/cm3, not '" +
+                                          density.cast<std::string>() + "'");
+                d = *typed;
+            } else {
+                d.value = density.cast<double>();
+            }
+            const std::string mass_unit = units["mass_unit"].cast<std::string>();
+            if (!mass_units_per_kg(mass_unit)) throw py::value_error("mass_unit must be 'kg', 'g' or 'lb'");
+            if (mass_unit != "kg" && !d.si)
+                throw py::value_error("mass_unit='" + mass_unit +
+                                      "' needs a density with a unit (e.g. '1.24g/cm3'): a plain number is already "
+                                      "mass per volume");
+            const UnitsPlan plan = plan_units(units["declared"].cast<std::string>(),
+                                              UnitsRequest{.units = units["units"].cast<std::string>(),
+                                                           .to = units["to"].cast<std::string>(),
+                                                           .scale = 1,
+                                                           .scale_typed_exactly = true,
+                                                           .density_si = d.si,
+                                                           .metres_when_known = false});
+            if (!plan.error.empty())
+                throw py::value_error(plan.error.find("not known") != std::string::npos
+                                          ? plan.error + ": units= gives it (" + kLengthUnitNames + ")"
+                                          : plan.error);
+            const DensityIn in = density_in(d, *length_unit(plan.length_unit.empty() ? "m" : plan.length_unit), mass_unit);
+            o.density = in.value;
             const SolidOptions p = solid_options(policy);
             SolidMass r;
+            std::array<double, 6> box{};
             {
                 py::gil_scoped_release release;
                 r = measure_solid(mesh, p, o);
+                if (r.mass && (plan.length.factor != 1 || plan.length.relative_error > 0 || in.relative_error > 0))
+                    scale_mass_properties(*r.mass, plan.length.factor, plan.length.relative_error, in.relative_error);
+                box = face_bounds(mesh.view());
+                for (double& x : box) x *= plan.length.factor;
             }
-            return py::make_tuple(solid_verdict(r.solid), r.mass ? py::cast(*r.mass) : py::none());
+            py::dict info;
+            info["unit"] = plan.length_unit.empty() ? py::object(py::none()) : py::object(py::str(plan.length_unit));
+            info["mass_unit"] = d.si ? py::object(py::str(mass_unit)) : py::object(py::none());
+            info["length_factor"] = plan.length.factor;
+            info["density"] = in.value;
+            info["warning"] = plan.warning;
+            info["bounds"] = vec(box);
+            if (r.mass && std::isfinite(r.mass->inertia_centroid[0])) {
+                const PrincipalInertia pi = principal_inertia(*r.mass);
+                info["principal_moments"] = vec(pi.moments);
+                py::array_t<double> axes({3, 3});
+                for (int i = 0; i < 3; ++i)
+                    for (int k = 0; k < 3; ++k) axes.mutable_at(i, k) = pi.axes[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)];
+                info["principal_axes"] = axes;
+                info["principal_moment_error"] = pi.moment_error;
+                info["principal_axis_angle_bound"] = vec(pi.axis_angle);
+            }
+            return py::make_tuple(solid_verdict(r.solid), r.mass ? py::cast(*r.mass) : py::none(), info);
         },
         py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("method"), py::arg("accuracy"),
-        py::arg("density"), py::arg("second_moments"), py::arg("edge_length"), py::arg("policy"));
+        py::arg("density"), py::arg("second_moments"), py::arg("edge_length"), py::arg("policy"), py::arg("units"));
 
     // Whether the mesh is a solid as it is (`polyvol check`'s verdict):
     // ((status, message, notes), repairs, the solid's figures or {}).
@@ -318,6 +373,7 @@ void bind_measure(py::module_& m) {
         .def_readonly("volume_b", &BooleanVolumes::volume_b)
         .def_readonly("intersection", &BooleanVolumes::intersection)
         .def_readonly("union", &BooleanVolumes::union_volume)
+        .def_readonly("volume_error_bound", &BooleanVolumes::volume_error_bound)
         .def_readonly("a_minus_b", &BooleanVolumes::a_minus_b)
         .def_readonly("b_minus_a", &BooleanVolumes::b_minus_a)
         .def_readonly("area_a", &BooleanVolumes::area_a)
@@ -337,24 +393,63 @@ void bind_measure(py::module_& m) {
     m.def(
         "overlap_solids",
         [](const Doubles& pa, const Indices& ia, const std::optional<Indices>& oa, const Doubles& pb,
-           const Indices& ib, const std::optional<Indices>& ob, const py::dict& policy) {
+           const Indices& ib, const std::optional<Indices>& ob, const py::dict& policy, const py::dict& units) {
             Mesh a = to_mesh(mesh_view(pa, ia, oa)), b = to_mesh(mesh_view(pb, ib, ob));
             SolidOptions p = solid_options(policy);
             p.closedness_by_fingerprint = true;  // as `polyvol overlap`: no shells' report needed
             p.shells = false;
+            // A and B in one unit (B converted where it states another), then
+            // the figures in `to` (polyvol/units.hpp), as `polyvol overlap --units --to`.
+            const std::vector<std::string> declared{units["declared_a"].cast<std::string>(),
+                                                    units["declared_b"].cast<std::string>()};
+            const std::string given = units["units"].cast<std::string>(), to = units["to"].cast<std::string>();
+            for (const std::string& t : {to, std::string()}) {
+                const CommonUnit c = common_unit(declared, given, t);
+                if (!c.error.empty())
+                    throw py::value_error((c.notes[0] == c.error ? "A: " : c.notes[1] == c.error ? "B: " : "") +
+                                          c.error + ": units= gives it (" + kLengthUnitNames + ")");
+            }
+            const CommonUnit c = common_unit(declared, given, "");
+            const double error_a = scale_coordinates(a, c.factors[0], units["error_a"].cast<double>());
+            const double error_b = scale_coordinates(b, c.factors[1], units["error_b"].cast<double>());
             MeshSolid sa, sb;
             std::optional<BooleanVolumes> r;
             {
                 py::gil_scoped_release release;
                 sa = make_solid(a, p);
                 if (sa.status == SolidStatus::ok) sb = make_solid(b, p);
-                if (sa.status == SolidStatus::ok && sb.status == SolidStatus::ok)
+                if (sa.status == SolidStatus::ok && sb.status == SolidStatus::ok) {
                     r = solid_booleans(a.view(), sa, b.view(), sb);
+                    if (r->status == BooleanStatus::ok) {
+                        widen_for_coordinate_error(*r, a.view(), error_a, b.view(), error_b);
+                        if (!to.empty() && !c.unit.empty())
+                            scale_boolean_volumes(*r, length_factor(*length_unit(c.unit), *length_unit(to)));
+                    }
+                }
             }
-            return py::make_tuple(solid_verdict(sa), solid_verdict(sb), r ? py::cast(*r) : py::none());
+            py::list notes;
+            for (std::size_t i = 0; i < 2; ++i)
+                if (!c.notes[i].empty()) notes.append(std::string(i == 0 ? "A: " : "B: ") + c.notes[i]);
+            const std::string unit = to.empty() ? c.unit : length_unit(to)->name;
+            return py::make_tuple(solid_verdict(sa), solid_verdict(sb), r ? py::cast(*r) : py::none(),
+                                  unit.empty() ? py::object(py::none()) : py::object(py::str(unit)), notes);
         },
         py::arg("positions_a"), py::arg("indices_a"), py::arg("offsets_a"), py::arg("positions_b"),
-        py::arg("indices_b"), py::arg("offsets_b"), py::arg("policy"));
+        py::arg("indices_b"), py::arg("offsets_b"), py::arg("policy"), py::arg("units"));
+
+    // Several meshes in one unit (polyvol/units.hpp): (error, unit or None,
+    // [factor per mesh], [note per mesh]); each mesh's coordinates × its
+    // factor, each product rounded once, is what scale_coordinates does.
+    m.def(
+        "common_unit",
+        [](const std::vector<std::string>& declared, const std::string& units, const std::string& to) {
+            const CommonUnit c = common_unit(declared, units, to);
+            py::list factors;
+            for (const LengthFactor& f : c.factors) factors.append(f.factor);
+            return py::make_tuple(c.error, c.unit.empty() ? py::object(py::none()) : py::object(py::str(c.unit)),
+                                  factors, c.notes);
+        },
+        py::arg("declared"), py::arg("units"), py::arg("to"));
 
     m.def(
         "boolean_volumes",

@@ -1,5 +1,8 @@
 #include "polyvol/mesh.hpp"
 
+#include <algorithm>
+#include <limits>
+
 namespace polyvol {
 
 std::size_t MeshView::triangle_count() const {
@@ -46,6 +49,21 @@ Mesh to_mesh(const MeshView& view) {
     return Mesh{std::vector<double>(view.positions.begin(), view.positions.end()),
                 std::vector<uint32_t>(view.face_offsets.begin(), view.face_offsets.end()),
                 std::vector<uint32_t>(view.indices.begin(), view.indices.end())};
+}
+
+std::array<double, 6> face_bounds(const MeshView& view) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    std::array<double, 6> b{inf, inf, inf, -inf, -inf, -inf};
+    for (const uint32_t v : view.indices) {
+        const double* p = view.positions.data() + 3 * std::size_t{v};
+        for (int k = 0; k < 3; ++k) {
+            b[k] = std::min(b[k], p[k]);
+            b[3 + k] = std::max(b[3 + k], p[k]);
+        }
+    }
+    if (view.indices.empty()) b = {nan, nan, nan, nan, nan, nan};
+    return b;
 }
 
 }  // namespace polyvol

@@ -175,6 +175,20 @@ ImplicitVolume implicit_volume_batch(const ImplicitBatchFunction& f, const Impli
 }
 
 namespace {
+// |R(h) - R(2h)| + the three passes' rounding bounds, R(h) = (4 V(h) - V(2h)) / 3:
+// the extrapolation's error while V(2h) - V(4h) is 3 to 5 times V(h) - V(2h)
+// (the h^2 regime; implicit.hpp); NaN otherwise or without the 4h pass.
+double extrapolation_error(const ImplicitPass& h, const ImplicitPass& h2, const std::optional<ImplicitPass>& h4) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (!h4) return nan;
+    const double d1 = h.volume - h2.volume, d2 = h2.volume - h4->volume;
+    if (!(d1 != 0 && d2 / d1 >= 3 && d2 / d1 <= 5)) return nan;
+    const double r1 = richardson(h.volume, h2.volume).extrapolated;
+    const double r2 = richardson(h2.volume, h4->volume).extrapolated;
+    const double rounding = h.rounding_error_bound + h2.rounding_error_bound + h4->rounding_error_bound;
+    return std::fabs(r1 - r2) + 2 * rounding;  // 4/3 + 1/3 of each bound, over both extrapolations
+}
+
 ImplicitVolume volume_with(const ImplicitBatchFunction& f, bool lookahead, const ImplicitOptions& options) {
     const auto t0 = Clock::now();
     const Box b = checked_box(options);
@@ -202,6 +216,16 @@ ImplicitVolume volume_with(const ImplicitBatchFunction& f, bool lookahead, const
                                     " times as many at h), more than the memory limit allows; a larger h, a smaller "
                                     "box, or a higher limit");
     }
+    // The 4h lattice, for the extrapolation's own estimate (4^-(n-1) of the work).
+    std::optional<ImplicitPass> coarser;
+    if (options.error_estimate && std::all_of(cells.begin(), cells.end(), [](int32_t c) { return c % 4 == 0; })) {
+        std::vector<int32_t> quarter(cells);
+        for (auto& c : quarter) c /= 4;
+        ImplicitOptions quiet = options;  // too short to report
+        quiet.progress = nullptr;
+        coarser.emplace();
+        volume_pass(f, lookahead, quiet, b, quarter, *coarser, nullptr, ImplicitProgress{});
+    }
     ImplicitProgress fine{.pass = 1};
     if (options.error_estimate) {
         // The seeding scan's (coarse_cells + 1)^n evaluations are the same at
@@ -221,11 +245,17 @@ ImplicitVolume volume_with(const ImplicitBatchFunction& f, bool lookahead, const
         r.volume_extrapolated = e.extrapolated;
         r.volume = e.extrapolated;
         r.error_estimate = e.error_of_fine + r.fine.rounding_error_bound + coarse.rounding_error_bound;
+        // Not informative where it exceeds V(h)'s (4h too coarse for R's regime).
+        r.extrapolated_error_estimate = extrapolation_error(r.fine, coarse, coarser);
+        if (!(r.extrapolated_error_estimate < r.error_estimate))
+            r.extrapolated_error_estimate = std::numeric_limits<double>::quiet_NaN();
         r.coarse = std::move(coarse);
+        r.coarser = std::move(coarser);
     } else {
         r.volume = r.fine.volume;
         r.volume_extrapolated = std::numeric_limits<double>::quiet_NaN();
         r.error_estimate = std::numeric_limits<double>::quiet_NaN();
+        r.extrapolated_error_estimate = std::numeric_limits<double>::quiet_NaN();
     }
     r.seconds = seconds_since(t0);
     return r;

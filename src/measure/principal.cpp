@@ -65,4 +65,8 @@ PrincipalInertia principal_inertia(const std::array<double, 6>& t, double relati
     return p;
 }
 
+PrincipalInertia principal_inertia(const MassProperties& m) {
+    return principal_inertia(m.inertia_centroid, m.moments_correctly_rounded ? 0x1p-53 : m.moments_relative_error);
+}
+
 }  // namespace polyvol

@@ -81,6 +81,26 @@ TEST(ImplicitCli, TableAndDimensionFromTheExpression) {
     EXPECT_NE(r.err.find("clipped"), std::string::npos) << r.err;  // the orthant: clipped, with a warning
 }
 
+// The Richardson value with its own estimate (from the 4h lattice): the
+// ball's volume to five or six digits, not V(h)'s three (#33 item 14).
+TEST(ImplicitCli, ExtrapolatedVolumeWithItsOwnEstimate) {
+    const std::string ball = "implicit 'x^2 + y^2 + z^2 - 1' --dim 3 --bounds -1.5:1.5";
+    const CliResult r = polyvol(ball);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(polyvol(ball + " --json").out);
+    const double e = j["extrapolated_error_estimate"].get<double>();
+    const double exact = 4.0 / 3.0 * std::numbers::pi;
+    EXPECT_LE(std::fabs(j["volume"].get<double>() - exact), e);
+    EXPECT_LT(e, j["error_estimate"].get<double>() / 10);
+    EXPECT_TRUE(j.contains("volume_pl_4h"));
+    EXPECT_NE(r.out.find("volume              " + polyvol::cli::plus_minus(j["volume"].get<double>(), e, 0)),
+              std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("4.18879"), std::string::npos) << r.out;
+    // a square whose sides fall between lattice planes: no h^2 regime, and the table says so
+    const CliResult square = polyvol("implicit 'max(abs(x),abs(y)) - 1' --dim 2 --bounds -1.5:1.5");
+    EXPECT_NE(square.out.find("this estimate may not hold"), std::string::npos) << square.out;
+}
+
 TEST(ImplicitCli, PerAxisBoxAndNoEstimate) {
     const CliResult r = polyvol("implicit 'x^2/4 + y^2 - 1' --box -2.5:2.5,-1.5:1.5 --h 0.01 --no-estimate --json");
     ASSERT_EQ(r.code, 0) << r.err;

@@ -177,4 +177,16 @@ TEST_F(NdimCli, AreaOfPolygonsWithHoles) {
     EXPECT_EQ(json::parse(polyvol("area --orient --json " + g).out)[0]["area"].get<double>(), 64.0);
     const CliRun t = polyvol("area " + f);
     EXPECT_NE(t.out.find("area        64"), std::string::npos) << t.out;
+    EXPECT_EQ(t.err.find("wound like"), std::string::npos) << t.err;
+    // A hole wound like its outer loop counts as land: said, and --orient fixes it.
+    const std::string h = file("ccw_hole.txt", "0 0 10 0 10 10 0 10\n2 2 8 2 8 8 2 8\n");
+    const CliRun w = polyvol("area --json " + h);
+    ASSERT_EQ(w.code, 0) << w.err;
+    EXPECT_NE(w.err.find("1 loop is wound like the loop around it"), std::string::npos) << w.err;
+    EXPECT_NE(w.err.find("--orient"), std::string::npos) << w.err;
+    EXPECT_EQ(json::parse(w.out)[0]["area"].get<double>(), 136.0);
+    EXPECT_EQ(json::parse(w.out)[0]["loops_wound_like_container"], 1);
+    const CliRun fixed = polyvol("area --orient --json " + h);
+    EXPECT_EQ(json::parse(fixed.out)[0]["area"].get<double>(), 64.0);
+    EXPECT_EQ(fixed.err.find("wound like"), std::string::npos) << fixed.err;
 }

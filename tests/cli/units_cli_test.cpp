@@ -110,3 +110,89 @@ TEST(UnitsCli, MassInGramsOrPounds) {
     EXPECT_EQ(run_polyvol("measure --format urdf --units mm --density 1000kg/m3 --mass-unit g " + kBox).code, 1);
 }
 }  // namespace
+
+namespace {
+// #33 item 10: overlap and grid take --units and --to. The operands (the
+// bodies) are put in one unit: one that states another is converted into
+// it (each coordinate rounded once, said on stderr), one that states none
+// is taken to be in it; the figures are then in --to, each within a bound
+// that holds.
+json parsed(const cli_test::CliRun& r) { return json::parse(r.out); }
+
+TEST(UnitsCli, OverlapInTheUnitAsked) {
+    const long double in3_mm3 = 16387.064L;  // 1 in³ in mm³, exactly
+    const auto mm = run_polyvol("overlap --json --to mm " + kInch3mf + " " + kInch3mf);
+    ASSERT_EQ(mm.code, 0) << mm.err;
+    const json j = parsed(mm);
+    EXPECT_EQ(j["unit"], "mm");
+    EXPECT_EQ(j["accuracy"], "error-bound");
+    const double bound = j["volume_error_bound"].get<double>();
+    EXPECT_GT(bound, 0.0);
+    EXPECT_LT(bound, 1e-13 * 4 / 3 * 16387.064);
+    for (const char* key : {"volume_a", "intersection", "union"})
+        EXPECT_LE(std::fabs(static_cast<long double>(j[key].get<double>()) - 4.0L / 3.0L * in3_mm3), bound) << key;
+    EXPECT_LE(std::fabs(j["a_minus_b"].get<double>()), bound);
+    const auto table = run_polyvol("overlap --to mm " + kInch3mf + " " + kInch3mf);
+    EXPECT_NE(table.out.find("volume (mm³)"), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("21849.41866666"), std::string::npos) << table.out;  // 4/3 × 16387.064 = 21849.4186…
+
+    // no conversion: the file's own unit, correctly rounded
+    const json in = parsed(run_polyvol("overlap --json " + kInch3mf + " " + kInch3mf));
+    EXPECT_EQ(in["unit"], "in");
+    EXPECT_EQ(in["accuracy"], "correctly-rounded");
+    EXPECT_EQ(in["volume_a"], 4.0 / 3.0);
+}
+
+TEST(UnitsCli, OverlapConvertsAnOperandInAnotherUnit) {
+    // A in metres, B in inches: B's coordinates × 0.0254 into metres.
+    const auto r = run_polyvol("overlap --json " + kMeterAmf + " " + kInch3mf);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("converted from in to m"), std::string::npos) << r.err;
+    const json j = parsed(r);
+    EXPECT_EQ(j["unit"], "m");
+    const long double b = 4.0L / 3.0L * 0.0254L * 0.0254L * 0.0254L;
+    const double bound = j["volume_error_bound"].get<double>();
+    EXPECT_LE(std::fabs(static_cast<long double>(j["volume_b"].get<double>()) - b), bound);
+    EXPECT_LE(std::fabs(static_cast<long double>(j["intersection"].get<double>()) - b), bound);  // B inside A
+    EXPECT_EQ(j["volume_a"], 4.0 / 3.0);                                                            // A unmoved
+    // a file that states no unit beside one that does: taken to be in it, and said
+    const auto box = run_polyvol("overlap --json " + kInch3mf + " " + kBox);
+    ASSERT_EQ(box.code, 0) << box.err;
+    EXPECT_NE(box.err.find("states no unit: taken to be in in"), std::string::npos) << box.err;
+    // --to with an operand whose unit is not known: refused, with the flag that gives it
+    const auto unknown = run_polyvol("overlap --to cm " + kBox + " " + kBox);
+    EXPECT_EQ(unknown.code, 3);
+    EXPECT_NE(unknown.err.find("its length unit is not known"), std::string::npos) << unknown.err;
+    EXPECT_NE(unknown.err.find("--units gives it"), std::string::npos) << unknown.err;
+    // --units for both: 0.027 cm³ = 27 mm³
+    const json cm = parsed(run_polyvol("overlap --json --units cm --to mm " + kBox + " " + kBox));
+    EXPECT_NEAR(cm["volume_a"].get<double>(), 27.0, 1e-12);
+    EXPECT_LE(std::fabs(cm["volume_a"].get<double>() - 27.0), cm["volume_error_bound"].get<double>() + 4e-15);
+}
+
+TEST(UnitsCli, GridInTheUnitAsked) {
+    // The tetrahedron of 2 in converted to mm: its grid volume is of the
+    // coordinates so converted, within a few ulps of 4/3 × 16387.064.
+    const auto r = run_polyvol("grid --json --cells 4 --to mm " + kInch3mf);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("converted from in to mm"), std::string::npos) << r.err;
+    const json j = parsed(r);
+    EXPECT_EQ(j["unit"], "mm");
+    EXPECT_NEAR(j["bodies"][0]["volume"].get<double>(), 4.0 / 3.0 * 16387.064, 1e-9);
+    EXPECT_GT(j["grid"]["bounds"][3].get<double>(), 50.8);  // the 2 in edge, in mm, padded
+    EXPECT_LE(j["grid"]["bounds"][3].get<double>(), 50.8 * 1.5 + 1e-9);
+    // the file's own unit: nothing converted, the volume exact
+    const json in = parsed(run_polyvol("grid --json --cells 4 " + kInch3mf));
+    EXPECT_EQ(in["unit"], "in");
+    EXPECT_EQ(in["bodies"][0]["volume"], 4.0 / 3.0);
+    // the typed lengths are in the grid's unit: one 1 mm cell per 1 mm
+    const json typed = parsed(run_polyvol("grid --json --units mm --cell-size 0.1 " + kBox));
+    EXPECT_EQ(typed["unit"], "mm");
+    EXPECT_EQ(typed["grid"]["dims"][0], 5);  // 0.3 mm padded by a cell each side
+    const auto text = run_polyvol("grid --cells 4 --units mm " + kBox);
+    EXPECT_NE(text.out.find("lengths in mm, volumes in mm³"), std::string::npos) << text.out;
+    const auto unknown = run_polyvol("grid --cells 4 --to mm " + kBox);
+    EXPECT_EQ(unknown.code, 3);
+    EXPECT_NE(unknown.err.find("its length unit is not known"), std::string::npos) << unknown.err;
+}
+}  // namespace

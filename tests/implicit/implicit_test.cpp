@@ -277,6 +277,34 @@ TEST(ImplicitVolume, ConvergesAtSecondOrderAndTheEstimateCoversTheError) {
     }
 }
 
+// The 4h lattice gives the extrapolated volume its own estimate: it covers
+// the true error, far below V(h)'s estimate; none where the lattices do not
+// show the h^2 regime (a square between lattice planes).
+TEST(ImplicitVolume, ExtrapolationCarriesItsOwnEstimate) {
+    for (int n : {2, 3}) {
+        for (double h : {0.1, 0.05, 0.025}) {
+            ImplicitOptions o = box_options(n, -1.2, 1.2, h);
+            const ImplicitVolume r = implicit_volume(unit_ball, o);
+            ASSERT_TRUE(r.coarser.has_value()) << "n=" << n << " h=" << h;  // 24, 48, 96 cells: multiples of 4
+            if (h > 0.06) {  // 6 cells across at 4h: R(2h) barely in its regime; no better than V(h)'s
+                if (std::isfinite(r.extrapolated_error_estimate)) {
+                    EXPECT_LE(std::fabs(r.volume - ball_volume(n)), r.extrapolated_error_estimate) << "n=" << n;
+                }
+                continue;
+            }
+            ASSERT_TRUE(std::isfinite(r.extrapolated_error_estimate)) << "n=" << n << " h=" << h;
+            EXPECT_LE(std::fabs(r.volume - ball_volume(n)), r.extrapolated_error_estimate) << "n=" << n << " h=" << h;
+            EXPECT_LT(r.extrapolated_error_estimate, r.error_estimate / 10) << "n=" << n << " h=" << h;
+        }
+    }
+    const ImplicitFunction square = [](std::span<const double> x) {
+        return std::max(std::fabs(x[0]), std::fabs(x[1])) - 1;
+    };
+    const ImplicitVolume r = implicit_volume(square, box_options(2, -1.5, 1.5, 0.03));
+    EXPECT_TRUE(std::isnan(r.extrapolated_error_estimate));
+    EXPECT_FALSE(implicit_volume(unit_ball, box_options(2, -1.25, 1.25, 0.25)).coarser.has_value());  // 10 cells
+}
+
 TEST(ImplicitVolume, CostFollowsTheSurface) {
     // Halving h multiplies the work by about 2^(n-1) = 4 in 3D, not 8.
     ImplicitOptions coarse = box_options(3, -1.25, 1.25, 1.0 / 32);
@@ -598,8 +626,16 @@ TEST(ImplicitVolume, BatchedFHasThePointwiseBits) {
         EXPECT_EQ(a.coarse->volume, b.coarse->volume);
         EXPECT_EQ(a.fine.boundary_simplices, b.fine.boundary_simplices);
         EXPECT_EQ(a.fine.box_vertices_inside, b.fine.box_vertices_inside);
-        EXPECT_EQ(points, b.fine.function_evaluations + b.coarse->function_evaluations);
-        EXPECT_GE(points, a.fine.function_evaluations + a.coarse->function_evaluations);
+        const auto evaluations = [](const ImplicitVolume& r) {
+            return r.fine.function_evaluations + r.coarse->function_evaluations +
+                   (r.coarser ? r.coarser->function_evaluations : 0);
+        };
+        EXPECT_EQ(std::isnan(a.extrapolated_error_estimate), std::isnan(b.extrapolated_error_estimate));
+        if (!std::isnan(a.extrapolated_error_estimate)) {
+            EXPECT_EQ(a.extrapolated_error_estimate, b.extrapolated_error_estimate);
+        }
+        EXPECT_EQ(points, evaluations(b));
+        EXPECT_GE(points, evaluations(a));
         EXPECT_LT(16 * calls, points) << calls << " calls for " << points << " points";
     }
 }

@@ -3,6 +3,7 @@ closed forms, the same bits for an expression and a Python function, and the
 errors with their positions."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -112,3 +113,23 @@ def test_implicit_errors():
 
     with pytest.raises(KeyError):
         polyvol.implicit(broken, 2, (-1, 1))
+
+
+def test_extrapolated_volume_carries_its_own_estimate():
+    # The 4h lattice estimates the Richardson value's own error (#33 item 14):
+    # far below V(h)'s estimate, and it covers the true error of the ball.
+    r = polyvol.implicit("x^2+y^2+z^2-1", 3, (-1.5, 1.5))
+    assert r.extrapolated_error_estimate is not None and r.volume_pl_4h is not None
+    assert abs(r.volume - 4 / 3 * math.pi) <= r.extrapolated_error_estimate < r.error_estimate / 10
+    square = polyvol.implicit("max(abs(x),abs(y))-1", 2, (-1.5, 1.5))  # sides between lattice planes
+    assert square.extrapolated_error_estimate is None
+
+
+def test_a_hole_wound_like_its_outer_loop_is_said():
+    outer = np.array([(0, 0), (10, 0), (10, 10), (0, 10)], float)
+    hole_ccw = np.array([(2, 2), (8, 2), (8, 8), (2, 8)], float)
+    with pytest.warns(UserWarning, match="1 loop.s. wound like the loop around them"):
+        assert polyvol.polygon_area([outer, hole_ccw]).area == 136.0  # counted as land, and said
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert polyvol.polygon_area([outer, hole_ccw[::-1]]).area == 64.0

@@ -47,6 +47,28 @@ TEST(Polygon, HolesAndIslandsAddUp) {
     }
 }
 
+// A hole wound like its outer loop counts as land: the loops against the
+// rule are found by nesting (#33 item 14), islands in holes included.
+TEST(Polygon, LoopsWoundLikeTheirContainer) {
+    Polygons right;
+    right.add_loop(square(0, 0, 10, true));
+    right.add_loop(square(2, 2, 6, false));
+    right.add_loop(square(4, 4, 2, true));
+    right.add_loop(square(20, 0, 1, true));
+    EXPECT_TRUE(loops_wound_like_their_container(right.view()).empty());
+    Polygons wrong;
+    wrong.add_loop(square(0, 0, 10, true));
+    wrong.add_loop(square(2, 2, 6, true));    // a hole wound like its outer loop
+    wrong.add_loop(square(4, 4, 2, true));    // an island wound like that hole
+    wrong.add_loop(square(12, 0, 4, false));  // outside everything: clockwise, but no container
+    EXPECT_EQ(loops_wound_like_their_container(wrong.view()), (std::vector<uint32_t>{1, 2}));
+    EXPECT_EQ(polygon_area(wrong.view()).volume, 100.0 + 36 + 4 - 16);  // what the rule gives for it
+    Polygons all_clockwise;
+    all_clockwise.add_loop(square(0, 0, 10, false));
+    all_clockwise.add_loop(square(2, 2, 6, false));
+    EXPECT_EQ(loops_wound_like_their_container(all_clockwise.view()), (std::vector<uint32_t>{1}));
+}
+
 TEST(Polygon, OrientByNesting) {
     Polygons p;
     p.add_loop(square(0, 0, 10, false));  // every loop clockwise
