@@ -121,12 +121,16 @@ def _bodies(meshes):
     return [_arrays.mesh(meshes)]
 
 
-def _in_common_unit(meshes, bodies, units, to):
-    """The bodies' arrays in one unit (polyvol/units.hpp's common_unit) and
-    that unit (None when no body's is known)."""
+def _declared_units(meshes):
+    """The unit each body's mesh declares ("" for arrays and files that state none)."""
     listed = meshes if isinstance(meshes, (list, tuple)) and not (
         len(meshes) == 2 and isinstance(meshes[0], np.ndarray)) else [meshes]
-    declared = [(getattr(m, "unit", None) or "") if hasattr(m, "_core") else "" for m in listed]
+    return [(getattr(m, "unit", None) or "") if hasattr(m, "_core") else "" for m in listed]
+
+
+def _in_common_unit(declared, bodies, units, to):
+    """The bodies' arrays in one unit (polyvol/units.hpp's common_unit), that
+    unit (None when no body's is known) and each body's factor."""
     error, unit, factors, notes = _core.common_unit(declared, units or "", to or "")
     if error:
         hint = ": units= gives it (mm, cm, m, in, ft or micron)" if "not known" in error else ""
@@ -134,9 +138,9 @@ def _in_common_unit(meshes, bodies, units, to):
     out = []
     for i, ((v, idx, offsets), f, note) in enumerate(zip(bodies, factors, notes)):
         if note:
-            warnings.warn(f"polyvol.grid: body {i}: {note}", stacklevel=3)
+            warnings.warn(f"polyvol.grid: body {i}: {note}", stacklevel=4)
         out.append((v * f if f != 1 else v, idx, offsets))
-    return out, unit
+    return out, unit, factors
 
 
 def axes(meshes, dims=None, cells=None, cell_size=None, bounds=None):
@@ -214,7 +218,7 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
     exact for the coordinates so converted. summary["unit"] names it."""
     from . import _policy, _solid_verdict  # noqa: E402 (defined before this module is imported)
     bodies = _bodies(meshes)
-    bodies, unit = _in_common_unit(meshes, bodies, units, to)
+    bodies, unit, _ = _in_common_unit(_declared_units(meshes), bodies, units, to)
     solids = [_core.solid_parts(*b, _policy(signed, False, orient, weld_tolerance)) for b in bodies]
     for i, (verdict, _, _) in enumerate(solids):
         _solid_verdict(verdict, f"body {i}" if len(bodies) > 1 else "")

@@ -85,8 +85,9 @@ def measure_files(paths, files_per_partition=16, **options):
 
 @functools.lru_cache(maxsize=8)
 def _read(path):
-    """A mesh file read once per worker process."""
-    return _arrays.mesh(polyvol.load(path))
+    """A mesh file read once per worker process: its arrays and declared unit."""
+    mesh = polyvol.load(path)
+    return _arrays.mesh(mesh), mesh.unit or ""
 
 
 class _Body:
@@ -96,9 +97,11 @@ class _Body:
         self.arrays = arrays
 
 
-def _block(bodies, edges, block, field, options):
-    """One block's cells of one field, computed from the bodies alone."""
-    meshes = [_read(b) if isinstance(b, str) else b.arrays for b in bodies]
+def _block(bodies, factors, edges, block, field, options):
+    """One block's cells of one field, computed from the bodies alone (each
+    body's coordinates × its factor into the grid's unit, as polyvol.grid does)."""
+    meshes = [_read(b)[0] if isinstance(b, str) else b.arrays for b in bodies]
+    meshes = [(v * f if f != 1 else v, i, o) for (v, i, o), f in zip(meshes, factors)]
     return np.asarray(getattr(polyvol.grid(meshes, edges=edges, block=block, **options), field))
 
 
@@ -111,7 +114,7 @@ def _assemble(blocks, counts, axis):
 
 
 def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, cell_size=None, what="volumes",
-         union=None, intersection=False, moments=False):
+         union=None, intersection=False, moments=False, units=None, to=None):
     """The exact per-cell values of polyvol.grid as a dask.array whose blocks
     are computed independently, each from the mesh alone (polyvol.grid's
     block=: only the triangles that reach the block's columns are clipped, and
@@ -125,19 +128,25 @@ def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, ce
     chunks: cells per block along each axis. what: "volumes" ((nx, ny, nz),
     or (bodies, nx, ny, nz)), "fractions" (the same shape, polyvol.Grid's:
     clamped to [0, 1]), "union", "intersection", "cell_class" or
-    "first_moments" (a trailing axis of 3). Store with ``.to_zarr(path)``."""
+    "first_moments" (a trailing axis of 3). units, to: the grid's unit, as
+    polyvol.grid takes them (bounds and cell_size in it; a body in another
+    unit converted into it). Store with ``.to_zarr(path)``."""
     fields = ("volumes", "fractions", "union", "intersection", "cell_class", "first_moments")
     if what not in fields:
         raise ValueError(f"what must be one of {', '.join(fields)}, not {what!r}")
     meshes = mesh if isinstance(mesh, list) else [mesh]
     paths = [os.fsdecode(m) if isinstance(m, (str, bytes)) or hasattr(m, "__fspath__") else None for m in meshes]
-    local = [_read(p) if p else _arrays.mesh(m) for p, m in zip(paths, meshes)]
+    read = [_read(p) if p else (_arrays.mesh(m), "") for p, m in zip(paths, meshes)]
+    declared = [u if p else _grid._declared_units([m])[0] for (_, u), p, m in zip(read, paths, meshes)]
+    local, _, factors = _grid._in_common_unit(declared, [a for a, _ in read], units, to)
     x, y, z = _grid._axes(local, dims, cells, cell_size, bounds)  # the planes need the bodies' box, once
     edges = (x, y, z)
     shape = tuple(len(e) - 1 for e in edges)
     chunks = tuple(int(c) for c in chunks)
     # each body travels once: as its path, or as one node of the graph that the blocks share
+    # (a path's body is converted on the worker: its factor travels with it)
     bodies = [p if p else dask.delayed(_Body(a), pure=True, traverse=False) for p, a in zip(paths, local)]
+    factors = [f if p else 1.0 for p, f in zip(paths, factors)]
     # the union's crossings only where asked for: each block repeats them
     wants_union = what in ("union", "intersection", "cell_class") if union is None else bool(union)
     options = {"union": wants_union, "intersection": intersection or what == "intersection",
@@ -149,6 +158,6 @@ def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, ce
     blocks = np.empty(counts, dtype=object)
     for index in np.ndindex(*counts):
         block = tuple((b * c, min(n, (b + 1) * c)) for b, c, n in zip(index, chunks, shape))
-        part = dask.delayed(_block, pure=True)(bodies, edges, block, what, options)
+        part = dask.delayed(_block, pure=True)(bodies, factors, edges, block, what, options)
         blocks[index] = da.from_delayed(part, shape=lead + tuple(hi - lo for lo, hi in block) + tail, dtype=dtype)
     return _assemble(blocks, counts, len(lead))

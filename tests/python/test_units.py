@@ -141,3 +141,13 @@ def test_grid_in_one_unit():
     v, f = box((1.0, 1.0, 1.0))
     with pytest.raises(ValueError, match="its length unit is not known"):
         polyvol.grid((v, f), cells=4, to="mm")
+
+
+def test_dask_grid_in_one_unit_has_the_grids_bits():
+    dask_grid = pytest.importorskip("polyvol.dask").grid
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the conversion's note, said by both
+        whole = polyvol.grid(polyvol.load(INCH_3MF), cells=8, to="mm")
+        blocks = dask_grid(str(INCH_3MF), cells=8, to="mm", chunks=(3, 3, 3)).compute(scheduler="synchronous")
+    assert np.array_equal(blocks, whole.volumes)
+    assert whole.summary["unit"] == "mm"
