@@ -12,6 +12,7 @@
 
 #include "grammar.hpp"
 #include "output/measure.hpp"
+#include "output/format.hpp"
 #include "polyvol/units.hpp"
 
 namespace polyvol::cli {
@@ -130,25 +131,15 @@ int run(Command command, const MeasureCommandOptions& c) {
     // The table's figures (the library streams a binary STL for them when it can).
     request.table_only = command == Command::volume && (!c.json || request.volume_only || c.stream);
     request.mesh_counts = c.json && !c.stream;
-    request.closedness_by_fingerprint = command == Command::volume && !c.json;
-    request.table_moments_bounded = command == Command::volume && !c.json;
+    request.edge_counts = !(command == Command::volume && !c.json);  // the table: closedness by fingerprint
+    request.moments_bounded = command == Command::volume && !c.json;
     if (request.table_only) {
         request.measure.second_moments = false;
         request.measure.edge_length = false;
     }
     // A zip archive of plain meshes (not a 3MF or AMF package) is its members,
     // each measured as a file of its own, "ARCHIVE:MEMBER".
-    std::vector<std::pair<std::string, std::string>> inputs;  // (file, member)
-    for (const std::string& f : c.files) {
-        std::vector<std::string> members;
-        try {
-            if (f != "-") members = mesh_archive_members(f);
-        } catch (const ReadError&) {
-            // Not a readable archive: read as one file, whose reader says what is wrong (exit 2).
-        }
-        if (members.empty()) inputs.emplace_back(f, "");
-        for (const std::string& m : members) inputs.emplace_back(f, m);
-    }
+    const std::vector<std::pair<std::string, std::string>> inputs = file_inputs(c.files);
     std::vector<FileResult> results;
     int code = Exit::ok;
     // Progress on stderr only once the run has taken more than a second.
@@ -158,7 +149,7 @@ int run(Command command, const MeasureCommandOptions& c) {
         // Progress for people: on a terminal, for work longer than a second.
         if (inputs.size() > 1 && ::isatty(2) && std::chrono::steady_clock::now() - start > std::chrono::seconds(1))
             std::cerr << "[" << (i + 1) << "/" << inputs.size() << "] " << file << (member.empty() ? "" : ":" + member) << "\n";
-        results.push_back(process_file(file, request, member));
+        results.push_back(measure_file(file, request, member));
         const FileResult& r = results.back();
         code = std::max(code, r.exit_code);
         if (!r.error.empty()) std::cerr << "polyvol: " << r.error << "\n";
@@ -170,7 +161,7 @@ int run(Command command, const MeasureCommandOptions& c) {
     }
     if (c.json) {
         nlohmann::json out = nlohmann::json::array();
-        for (const auto& r : results) out.push_back(to_json(r, request));
+        for (const auto& r : results) out.push_back(report_json(r, request));
         std::cout << out.dump(2) << "\n";
         return code;
     }

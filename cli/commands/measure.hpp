@@ -1,5 +1,5 @@
 // `polyvol volume`, `measure` and `check`: read each file, analyse and
-// measure it (measure_file.hpp's process_file), print a table, a report, JSON, CSV
+// measure it (polyvol/report.hpp's measure_file), print a table, a report, JSON, CSV
 // or a URDF/SDF <inertial> element.
 #pragma once
 

@@ -80,8 +80,6 @@ std::string number_text(double v, double abs_error, int digits) {
     return s;
 }
 
-nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v + 0.0) : nlohmann::json(nullptr); }  // no -0
-
 std::string point_text(std::span<const double> c) {
     std::string s = "(";
     for (std::size_t i = 0; i < c.size(); ++i) s += (i ? ", " : "") + shortest(c[i]);

@@ -8,11 +8,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "polyvol/report.hpp"
+
 namespace polyvol::cli {
 
-// Exit codes, stated once: 0 ok, 1 usage, 2 unreadable input, 3 input read
-// but not valid for the request (e.g. an open surface asked for a volume).
-enum Exit : int { ok = 0, usage = 1, unreadable = 2, invalid = 3 };
+// The exit codes and json_number are polyvol/report.hpp's.
+using polyvol::Exit;
+using polyvol::json_number;
 
 // Shortest decimal that reads back as the same double ("nan", "inf" spelled out).
 std::string shortest(double v);
@@ -28,8 +30,6 @@ std::string shortest_within(double v, double abs_error);
 std::string plus_minus(double v, double e, int digits);
 // e rounded up to two significant digits.
 std::string bound_text(double e);
-// A finite number for JSON (never -0), else null.
-nlohmann::json json_number(double v);
 // "(x, y, z, ...)", each coordinate its shortest decimal.
 std::string point_text(std::span<const double> c);
 

@@ -11,28 +11,11 @@
 #include <sstream>
 #include <utility>
 
+#include "output/format.hpp"
 #include "polyvol/units.hpp"
 
 namespace polyvol::cli {
 namespace {
-
-// An absolute bound on each entry of one of m's moment quantities (the
-// centroid, the first or second moments, an inertia tensor): its relative
-// bound times the largest entry's magnitude; 0 when they are correctly
-// rounded (each is then the exact value rounded once).
-double moments_bound(const MassProperties& m, std::span<const double> entries) {
-    if (m.moments_correctly_rounded) return 0;
-    double largest = 0;
-    for (double e : entries) largest = std::max(largest, std::fabs(e));
-    return m.moments_relative_error * largest;
-}
-
-// Symmetric {xx,yy,zz,xy,yz,zx} -> 3x3 rows.
-nlohmann::json matrix3(const std::array<double, 6>& s) {
-    return nlohmann::json::array({{json_number(s[0]), json_number(s[3]), json_number(s[5])},
-                                  {json_number(s[3]), json_number(s[1]), json_number(s[4])},
-                                  {json_number(s[5]), json_number(s[4]), json_number(s[2])}});
-}
 
 // mass = density × volume: the density as typed is within 2^-53 of its
 // double, and the product is rounded once more, so the mass of the decimal
@@ -85,24 +68,6 @@ std::string units_sentence(const FileResult& r) {
     if (!r.length_unit.empty()) s += (s.empty() ? "" : "; ") + std::string("lengths in ") + r.length_unit;
     if (!r.mass_unit.empty()) s += ", mass in " + r.mass_unit;
     return s;
-}
-
-// The box of the faces' vertices in the units of the figures (each bound
-// times the length factor, rounded once more when it is not 1).
-std::array<double, 6> bounds_in_units(const FileResult& r) {
-    std::array<double, 6> b = face_bounds(r.loaded->mesh.view());
-    for (double& x : b) x *= r.length_factor;
-    return b;
-}
-
-// A piece's figures in the JSON: each with its bound.
-nlohmann::json piece_json(const MassProperties& m) {
-    return {{"volume", json_number(m.volume)},
-            {"volume_error_bound", m.volume_correctly_rounded ? 0.0 : m.volume_error_bound},
-            {"area", json_number(m.area)},
-            {"area_relative_error", m.area_relative_error},
-            {"centroid", {json_number(m.centroid[0]), json_number(m.centroid[1]), json_number(m.centroid[2])}},
-            {"centroid_error_bound", json_number(moments_bound(m, m.centroid))}};
 }
 
 // What --weld-tolerance did, in words.
@@ -158,175 +123,6 @@ std::pair<std::string, std::string> common_units(const std::vector<FileResult>& 
 std::string volume_guarantee(const MassProperties& m) {
     if (m.volume_correctly_rounded) return "correctly rounded (the exact volume of the coordinates as read, rounded once)";
     return "error bound " + shortest(m.volume_error_bound) + " (absolute) for the value in full (JSON)";
-}
-
-nlohmann::json to_json(const FileResult& r, const Request& request) {
-    nlohmann::json j;
-    j["file"] = r.file;
-    if (r.streamed) {  // no mesh loaded: what the stream knows of the file
-        j["format"] = "stl";
-        j["encoding"] = "binary_le";
-        j["streamed"] = true;
-        j["triangles"] = r.triangles;
-        j["closed_2_cycle"] = true;  // by the fingerprint (else the file is loaded)
-    }
-    if (r.loaded) {
-        const auto& l = *r.loaded;
-        j["format"] = std::string(format_name(l.format));
-        j["encoding"] = l.encoding;
-        j["gzip"] = l.gzip;
-        j["notes"] = l.notes;
-        if (l.format == Format::stl) j["facet_normals_against_winding"] = l.facet_normals_against_winding;
-        j["vertices"] = l.vertices_in_file;
-        j["faces"] = l.mesh.face_count();
-        j["triangles"] = l.mesh.view().triangle_count();
-        if (r.welded) {
-            j["weld_tolerance"] = r.weld_tolerance;
-            j["welded_points_moved"] = r.welded->moved;
-            j["weld_largest_move"] = r.welded->largest_move;
-        }
-        if (r.oriented) {
-            j["oriented"] = r.oriented->orientable;
-            j["oriented_faces_flipped"] = r.oriented->flipped;
-            j["oriented_shells_undecided"] = r.oriented->undecided;
-        }
-        if (request.need_mass && !request.keep_signed && !request.orient)
-            j["turned_outward_faces"] = r.turned_outward ? r.turned_outward->flipped : 0;
-    } else if (!r.streamed) {
-        j["format"] = nullptr;
-    }
-    if (r.topology) {
-        const auto& t = *r.topology;
-        j["boundary_edges"] = t.boundary_edges;
-        j["holes"] = t.holes;
-        j["nonmanifold_edges"] = t.nonmanifold_edges;
-        j["misoriented_edges"] = t.misoriented_edges;
-        j["unbalanced_edges"] = t.unbalanced_edges;
-        j["closed_2_cycle"] = t.closed_2_cycle;
-        j["euler_characteristic"] = t.euler_characteristic;
-        j["vertices_welded"] = t.vertices_welded;
-        j["edges"] = t.edges;
-        if (t.unbalanced_example) {
-            const auto& e = *t.unbalanced_example;
-            j["unbalanced_example"] = {{e[0], e[1], e[2]}, {e[3], e[4], e[5]}};
-        }
-    }
-    if (r.topology && !request.volume_only) {  // shells, nesting, degenerate faces: not computed for --volume-only
-        const auto& t = *r.topology;
-        j["components"] = t.components_edge_connected;
-        // zero_area_triangles counts those with a repeated vertex too (their cross product is zero)
-        j["degenerate_triangles"] = t.zero_area_triangles;
-        j["cavities"] = t.cavities;
-        j["inside_out_shells"] = t.inside_out_shells;
-        nlohmann::json shells = nlohmann::json::array();
-        for (const Shell& s : t.shells) {
-            // An open shell's volume depends on the origin: not a figure of the file.
-            nlohmann::json sj{{"signed_volume", s.role == ShellRole::open ? nlohmann::json(nullptr) : nlohmann::json(s.signed_volume)},
-                              {"faces", s.faces},
-                              {"boundary_edges", s.boundary_edges},
-                              {"unbalanced_edges", s.unbalanced_edges},
-                              {"euler_characteristic", s.euler_characteristic},
-                              {"winding_of_others", s.winding_of_others},
-                              {"role", r.solid && s.first_face < r.solid->face_crosses.size() &&
-                                               r.solid->face_crosses[s.first_face]
-                                           ? std::string("crossing")
-                                           : std::string(shell_role_name(s.role))}};
-            sj["genus"] = s.genus ? nlohmann::json(*s.genus) : nlohmann::json(nullptr);
-            if (const std::size_t i = shells.size(); i < r.shell_figures.size()) sj.update(piece_json(r.shell_figures[i].m));
-            shells.push_back(std::move(sj));
-        }
-        j["shells"] = std::move(shells);
-    }
-    if (r.loaded) {  // a surface crossing itself within a shell: looked for, and found
-        j["self_crossing_checked"] = r.self.has_value();
-        if (r.self) {
-            j["self_crossing_pairs"] = r.self->pairs;
-            if (r.self->example) j["self_crossing_example"] = {(*r.self->example)[0], (*r.self->example)[1]};
-        }
-    }
-    if (!request.need_mass && r.loaded) {  // `check`: the solid, and whether the file is one as it is
-        if (r.solid) {
-            j["solid_volume"] = json_number(r.solid->volume);
-            j["winding_volume"] = json_number(r.solid->winding_volume);
-            j["overlapping_shells"] = r.solid->overlapping_shells;
-            j["crossing_pairs"] = r.solid->crossing_pairs;
-        }
-        j["ready"] = r.repairs.empty() && r.exit_code == Exit::ok;
-        j["repairs"] = r.repairs;
-    }
-    if (request.need_mass) {
-        j["method"] = std::string(method_name(request.measure.method));
-        j["accuracy"] = std::string(accuracy_name(request.measure.accuracy));
-        if (!request.volume_only) j["density"] = request.measure.density;
-    }
-    if (r.mass) {
-        const auto& m = *r.mass;
-        j["unit"] = r.length_unit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.length_unit);
-        j["mass_unit"] = r.mass_unit.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.mass_unit);
-        j["length_factor"] = r.length_factor;
-        j["accuracy"] = m.volume_correctly_rounded ? "correctly-rounded" : "error-bound";
-        j["volume"] = json_number(m.volume);
-        j["volume_error_bound"] = m.volume_error_bound;
-        j["overlap_checked"] = r.overlap_checked;  // the volume above is already the solid's (use_solid_properties)
-        if (r.solid) {
-            j["winding_volume"] = json_number(r.solid->winding_volume);
-            j["overlapping_shells"] = r.solid->overlapping_shells;
-            j["crossing_pairs"] = r.solid->crossing_pairs;
-            j["self_crossing_resolved"] = r.solid->shells_crossing_themselves > 0;
-        } else if (r.overlap_checked) {
-            j["winding_volume"] = json_number(m.volume);
-            j["overlapping_shells"] = 0;
-            j["crossing_pairs"] = 0;
-            j["self_crossing_resolved"] = false;
-        }
-    }
-    if (r.mass && !request.volume_only) {
-        const auto& m = *r.mass;
-        j["mass"] = json_number(m.mass);
-        j["area"] = json_number(m.area);
-        j["area_relative_error"] = m.area_relative_error;
-        j["centroid"] = {json_number(m.centroid[0]), json_number(m.centroid[1]), json_number(m.centroid[2])};
-        if (r.loaded) {
-            const std::array<double, 6> b = bounds_in_units(r);
-            j["bounds"] = {json_number(b[0]), json_number(b[1]), json_number(b[2]), json_number(b[3]), json_number(b[4]), json_number(b[5])};
-            j["size"] = {json_number(b[3] - b[0]), json_number(b[4] - b[1]), json_number(b[5] - b[2])};
-        }
-        j["first_moments"] = {json_number(m.first_moments[0]), json_number(m.first_moments[1]), json_number(m.first_moments[2])};
-        j["second_moments"] = matrix3(m.second_moments);
-        j["inertia"] = matrix3(m.inertia_centroid);
-        j["inertia_origin"] = matrix3(m.inertia_origin);
-        j["moments_accuracy"] = m.moments_correctly_rounded ? "correctly-rounded" : "error-bound";
-        j["moments_relative_error"] = m.moments_relative_error;
-        // null where the inertia is not finite (no faces, say), so that the keys are always there
-        {
-            const double nan = std::numeric_limits<double>::quiet_NaN();
-            PrincipalInertia p;
-            if (std::isfinite(m.inertia_centroid[0]))
-                p = principal_inertia(m);
-            else
-                p = {{nan, nan, nan}, {{{nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan}}}, nan, {nan, nan, nan}};
-            j["principal_moments"] = {json_number(p.moments[0]), json_number(p.moments[1]), json_number(p.moments[2])};
-            j["principal_axes"] = nlohmann::json::array();
-            for (const auto& a : p.axes) j["principal_axes"].push_back({json_number(a[0]), json_number(a[1]), json_number(a[2])});
-            j["principal_moment_error"] = json_number(p.moment_error);
-            j["principal_axis_angle_bound"] = {json_number(p.axis_angle[0]), json_number(p.axis_angle[1]), json_number(p.axis_angle[2])};
-        }
-        j["edge_length"] = json_number(m.edge_length);
-        j["edge_length_relative_error"] = m.edge_length_relative_error;
-        if (r.loaded && !r.loaded->parts.empty()) {
-            nlohmann::json parts = nlohmann::json::array();
-            for (const FileResult::Piece& p : r.part_figures) {
-                nlohmann::json pj{{"name", p.name}, {"faces", p.faces}};
-                pj.update(piece_json(p.m));
-                parts.push_back(std::move(pj));
-            }
-            j["parts"] = std::move(parts);
-        }
-    }
-    if (!r.warning.empty()) j["warning"] = r.warning;
-    if (!r.error.empty()) j["error"] = r.error;
-    j["exit_code"] = r.exit_code;
-    return j;
 }
 
 std::string volume_table(const std::vector<FileResult>& results, const Request& request) {
@@ -389,7 +185,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
             out << vol << "\n";
             continue;
         }
-        const double centroid_error = moments_bound(m, m.centroid);
+        const double centroid_error = moments_error_bound(m, m.centroid);
         out << pad(vol, 24) << "  " << pad(number_text(m.area, m.area * m.area_relative_error, digits), 24) << "  "
             << centroid_text(m.centroid, centroid_error) << "\n";
         figure_notes += "  " + r.file + ": area relative error <= " + shortest(m.area_relative_error) + "; centroid " +
@@ -476,12 +272,12 @@ std::string measure_report(const FileResult& r, const Request& request) {
         << "   [relative error <= " << bound_text(m.area_relative_error) << "]\n";
     out << "  edge length     " << number_text(m.edge_length, m.edge_length * m.edge_length_relative_error, digits)
         << unit_suffix(r, 1) << "   [relative error <= " << bound_text(m.edge_length_relative_error) << "]\n";
-    const double centroid_error = moments_bound(m, m.centroid);
+    const double centroid_error = moments_error_bound(m, m.centroid);
     out << "  centroid        (" << number_text(m.centroid[0], centroid_error, digits) << ", "
         << number_text(m.centroid[1], centroid_error, digits) << ", " << number_text(m.centroid[2], centroid_error, digits)
         << ")" << unit_suffix(r, 1) << "\n";
     if (r.loaded) {
-        const std::array<double, 6> b = bounds_in_units(r);
+        const std::array<double, 6> b = report_bounds(r);
         out << "  bounds          " << point_text(std::span(b).first<3>()) << " to " << point_text(std::span(b).last<3>()) << unit_suffix(r, 1)
             << "; size " << shortest(b[3] - b[0]) << " x " << shortest(b[4] - b[1]) << " x " << shortest(b[5] - b[2])
             << (r.length_factor == 1 ? " (differences rounded once)\n" : " (converted, then rounded)\n");
@@ -490,7 +286,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     const auto pieces = [&](const char* what, const std::vector<FileResult::Piece>& list) {
         for (std::size_t i = 0; i < list.size() && i < 20; ++i) {
             const MassProperties& p = list[i].m;
-            const double c = moments_bound(p, p.centroid);
+            const double c = moments_error_bound(p, p.centroid);
             out << "  " << what << (*what ? " " : "") << list[i].name << ": volume "
                 << number_text(p.volume, p.volume_correctly_rounded ? 0 : p.volume_error_bound, digits) << unit_suffix(r, 3)
                 << ", area " << number_text(p.area, p.area * p.area_relative_error, digits) << unit_suffix(r, 2)
@@ -504,7 +300,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     if (r.shell_figures.size() > 1) pieces("", r.shell_figures);  // named "shell k"
     // A symmetric tensor {xx, yy, zz, xy, yz, zx} with labelled rows and columns.
     auto tensor = [&](const char* title, const std::array<double, 6>& s) {
-        const double error = moments_bound(m, s);
+        const double error = moments_error_bound(m, s);
         char line[256];
         out << "  " << title;
         if (!r.length_unit.empty()) out << " [" << mass_unit_suffix(r, 5).substr(1) << "]";
@@ -555,7 +351,7 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
     // inertia each relative to the largest entry of its own array), so the
     // printed value is within twice the bound of the exact one.
     const double rel = m.moments_correctly_rounded ? 0.0 : m.moments_relative_error;
-    const double c_err = moments_bound(m, c), i_err = moments_bound(m, i), m_err = rel * std::fabs(m.mass);
+    const double c_err = moments_error_bound(m, c), i_err = moments_error_bound(m, i), m_err = rel * std::fabs(m.mass);
     const auto cs = [&](double x) { return shortest_within(x, c_err); };
     const auto is = [&](double x) { return shortest_within(x, i_err); };
     const std::string units = r.length_unit.empty() ? std::string("units as in the file")
@@ -619,7 +415,7 @@ std::string csv_table(const std::vector<FileResult>& results, bool inertia) {
         if (r.mass) {
             const MassProperties& m = *r.mass;
             const double volume_error = m.volume_correctly_rounded ? 0.0 : m.volume_error_bound;
-            const double centroid_error = moments_bound(m, m.centroid);
+            const double centroid_error = moments_error_bound(m, m.centroid);
             const double density = m.volume != 0 ? std::fabs(m.mass / m.volume) : 0.0;  // as the table's mass
             out << r.triangles << "," << within(m.volume, volume_error) << "," << num(volume_error) << ","
                 << mass_text(m.mass, density * volume_error, 0) << "," << within(m.area, m.area * m.area_relative_error)
@@ -627,11 +423,11 @@ std::string csv_table(const std::vector<FileResult>& results, bool inertia) {
             for (double c : m.centroid) out << "," << within(c, centroid_error);
             out << "," << num(centroid_error);
             if (inertia) {
-                const double inertia_error = moments_bound(m, m.inertia_centroid);
+                const double inertia_error = moments_error_bound(m, m.inertia_centroid);
                 for (double e : m.inertia_centroid) out << "," << within(e, inertia_error);
                 out << "," << num(inertia_error) << "," << within(m.edge_length, m.edge_length * m.edge_length_relative_error)
                     << "," << num(m.edge_length_relative_error);
-                const std::array<double, 6> b = r.loaded ? bounds_in_units(r) : std::array<double, 6>{NAN, NAN, NAN, NAN, NAN, NAN};
+                const std::array<double, 6> b = r.loaded ? report_bounds(r) : std::array<double, 6>{NAN, NAN, NAN, NAN, NAN, NAN};
                 for (double x : b) out << "," << num(x);
             }
             out << "," << field(r.length_unit) << "," << field(r.mass_unit);

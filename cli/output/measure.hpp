@@ -1,5 +1,5 @@
 // cli/output/measure.hpp — what `polyvol volume`, `measure` and `check`
-// print for the files measure_file.hpp measured: a table or report for
+// print for the files the library measured (polyvol/report.hpp): a table or report for
 // people, JSON (one schema for every route) and CSV for programs, URDF/SDF
 // <inertial> elements.
 #pragma once
@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "measure_file.hpp"
+#include "request.hpp"
 
 namespace polyvol::cli {
 
@@ -17,8 +17,6 @@ namespace polyvol::cli {
 // mass, pose at the centroid, the inertia tensor about it (ixy = -∫ρxy, the
 // tensor's own entries, as both formats take them), in the file's units.
 std::string inertial_element(const FileResult& r, const Request& request, bool sdf);
-
-nlohmann::json to_json(const FileResult& r, const Request& request);
 
 // Table for `polyvol volume` (one row per file), and the reports of
 // `polyvol measure` and `polyvol check` for one file.

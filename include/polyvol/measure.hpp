@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include "polyvol/mesh.hpp"
@@ -148,6 +149,12 @@ struct PrincipalInertia {
     std::array<double, 3> axis_angle{};
 };
 PrincipalInertia principal_inertia(const std::array<double, 6>& tensor, double relative_error);
+// An absolute bound on each entry of one of m's moment quantities (the
+// centroid, the first or second moments, an inertia tensor): the relative
+// bound times the largest entry's magnitude; 0 when they are correctly
+// rounded (each is then the exact value rounded once).
+double moments_error_bound(const MassProperties& m, std::span<const double> entries);
+
 // Of m's inertia about the centroid, with m's own guarantee on it (each
 // entry correctly rounded: within u of the largest entry).
 PrincipalInertia principal_inertia(const MassProperties& m);

@@ -17,11 +17,11 @@ Meshes are read exactly as the ``polyvol`` command reads them
     >>> p.volume, p.centroid, p.inertia
 """
 
-import math
-import os
-import warnings
+import math as _math
+import os as _os
+import warnings as _warnings
 
-import numpy as np
+import numpy as _np
 
 from . import _arrays
 from ._errors import ExpressionError, ImplicitError, NotASolidError, ReadError
@@ -37,11 +37,11 @@ __all__ = [
 
 def _plain(value):
     """Plain Python values as the CLI's JSON holds them (NaN and infinity as None)."""
-    if isinstance(value, np.ndarray):
+    if isinstance(value, _np.ndarray):
         return _plain(value.tolist())
-    if isinstance(value, np.generic):
+    if isinstance(value, _np.generic):
         value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
+    if isinstance(value, float) and not _math.isfinite(value):
         return None
     if isinstance(value, (list, tuple)):
         return [_plain(v) for v in value]
@@ -68,8 +68,8 @@ class _Result:
         shown = []
         for k in self._fields:
             v = getattr(self, k)
-            if isinstance(v, np.ndarray):
-                v = np.array2string(v, precision=17, separator=", ").replace("\n", "")
+            if isinstance(v, _np.ndarray):
+                v = _np.array2string(v, precision=17, separator=", ").replace("\n", "")
             elif isinstance(v, list) and len(v) > 4:
                 v = f"[{len(v)} items]"
             shown.append(f"{k}={v}")
@@ -110,7 +110,7 @@ class Mesh:
     def face_offsets(self):
         """(m + 1,) uint32: face f is face_indices[face_offsets[f]:face_offsets[f + 1]]."""
         if self._core.offsets is None:
-            return np.arange(0, self._core.indices.size + 1, 3, dtype=np.uint32)
+            return _np.arange(0, self._core.indices.size + 1, 3, dtype=_np.uint32)
         return self._core.offsets
 
     @property
@@ -141,7 +141,7 @@ def load(path):
     them gzip-compressed; the format is chosen by content, as the CLI does.
     Raises ReadError (a ValueError) with .path, .line or .offset and .message.
     path: a str, bytes or os.PathLike (names that are not UTF-8 work)."""
-    return Mesh(_core_mesh=_core.load(os.fsencode(path)))
+    return Mesh(_core_mesh=_core.load(_os.fsencode(path)))
 
 
 def load_bytes(data, name="memory"):
@@ -150,12 +150,13 @@ def load_bytes(data, name="memory"):
 
 
 def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounded", allow_open=False, solid=False,
-                 orient=False, signed=False, weld_tolerance=0.0, units=None, to=None, scale=1.0):
+                 orient=False, signed=False, weld_tolerance=0.0, units=None, to=None, scale=1.0, mass_unit="kg"):
     """Everything `polyvol measure --json FILE` reports for one file, as a dict
-    with its keys (the CLI's own code computes it): format and counts,
-    topology and shells, the mass properties with their guarantees (of the
-    solid when shells overlap), and exit_code with error or warning when the
-    file cannot be read (2) or measured (3). Never raises for a bad file.
+    with its keys (the library's report, polyvol/report.hpp, whose keys the
+    CLI prints too): format and counts, topology and shells, the mass
+    properties with their guarantees (of the solid when shells overlap),
+    and exit_code with error or warning when the file cannot be read (2) or
+    measured (3). Never raises for a bad file.
     solid=True looks for a surface crossing itself at any size (--solid);
     orient=True winds the faces consistently and outward first (--orient).
     A shell that is inside out is turned outward (turned_outward_faces) unless
@@ -164,13 +165,29 @@ def measure_file(path, *, density=1.0, method="cone", accuracy="correctly-rounde
     coordinates' unit ("mm", "cm", "m", "in", "ft", "micron"; 3MF and AMF
     files state theirs), to the unit of the figures, scale multiplies every
     coordinate first (--units, --to, --scale); a conversion widens the
-    guarantees by its rounding (keys unit, length_factor)."""
-    import json
-    report = json.loads(_core.measure_file_json(os.fsencode(path), method, accuracy, float(density),
-                                                bool(allow_open), bool(solid), bool(orient), bool(signed),
-                                                float(weld_tolerance), units or "", to or "", float(scale)))
-    report["file"] = os.fsdecode(path)
-    return report
+    guarantees by its rounding (keys unit, length_factor). density: a number,
+    or a text with its unit ('2700kg/m3', '1.24g/cm3'; figures then in
+    metres unless to= says otherwise), the mass then in mass_unit (kg, g,
+    lb), as --density and --mass-unit."""
+    if not isinstance(density, str):
+        density = float(density)
+    report = _core.measure_file_report(_os.fsencode(path), method, accuracy, density, mass_unit, bool(allow_open),
+                                       bool(solid), bool(orient), bool(signed), float(weld_tolerance), units or "",
+                                       to or "", float(scale))
+    report["file"] = _os.fsdecode(path)
+    return FileReport(report)
+
+
+class FileReport(dict):
+    """One file's report (polyvol/report.hpp): a dict with the keys of
+    `polyvol measure --json` (report_json declares them once), each also an
+    attribute: r["volume"] is r.volume."""
+
+    def __getattr__(self, key):
+        try:
+            return self[key]
+        except KeyError:
+            raise AttributeError(key) from None
 
 
 class Orientation(_Result):
@@ -276,7 +293,7 @@ def mass_properties(mesh, faces=None, *, density=1.0, method="cone", accuracy="c
     if u["warning"]:
         _warn(u["warning"])
     _solid_verdict(verdict)
-    nan3 = np.full(3, np.nan)
+    nan3 = _np.full(3, _np.nan)
     return MassProperties(
         method=p.method, accuracy="correctly-rounded" if p.volume_correctly_rounded else "error-bound",
         unit=u["unit"], mass_unit=u["mass_unit"], length_factor=u["length_factor"], density=u["density"],
@@ -288,8 +305,8 @@ def mass_properties(mesh, faces=None, *, density=1.0, method="cone", accuracy="c
         moments_accuracy="correctly-rounded" if p.moments_correctly_rounded else "error-bound",
         moments_relative_error=p.moments_relative_error,
         principal_moments=u.get("principal_moments", nan3),
-        principal_axes=u.get("principal_axes", np.full((3, 3), np.nan)),
-        principal_moment_error=u.get("principal_moment_error", np.nan),
+        principal_axes=u.get("principal_axes", _np.full((3, 3), _np.nan)),
+        principal_moment_error=u.get("principal_moment_error", _np.nan),
         principal_axis_angle_bound=u.get("principal_axis_angle_bound", nan3),
         edge_length=p.edge_length, edge_length_relative_error=p.edge_length_relative_error)
 
@@ -543,10 +560,10 @@ def polygon_area(loops, formula="cone"):
     arrays, each a closed loop (the last vertex joins the first); outer
     loops counter-clockwise, holes clockwise."""
     arrays = [_arrays.coordinates(loop, columns=2, name="loop") for loop in loops]
-    points = np.concatenate(arrays) if arrays else np.zeros((0, 2))
-    offsets = np.zeros(len(arrays) + 1, dtype=np.uint32)
-    np.cumsum([a.shape[0] for a in arrays], out=offsets[1:])
-    idx = np.arange(points.shape[0], dtype=np.uint32)
+    points = _np.concatenate(arrays) if arrays else _np.zeros((0, 2))
+    offsets = _np.zeros(len(arrays) + 1, dtype=_np.uint32)
+    _np.cumsum([a.shape[0] for a in arrays], out=offsets[1:])
+    idx = _np.arange(points.shape[0], dtype=_np.uint32)
     raw = _core.polygon_area(points, offsets, idx, formula)
     if raw["loops_wound_like_container"]:
         _warn(f"polygon_area: {raw['loops_wound_like_container']} loop(s) wound like the loop around them (a hole "
@@ -559,12 +576,12 @@ def polygon_area(loops, formula="cone"):
 
 def load_chain(path):
     """Reads a .chain file or `qconvex o Qt` output: (points (m, n), simplices (k, n))."""
-    return _core.read_chain(os.fsencode(path))
+    return _core.read_chain(_os.fsencode(path))
 
 
 def load_polygons(path):
     """Reads the polygon text format (one loop per line): a list of (k, 2) arrays."""
-    return _core.read_polygons(os.fsencode(path))
+    return _core.read_polygons(_os.fsencode(path))
 
 
 class ImplicitVolume(_Result):
@@ -594,9 +611,9 @@ def implicit(f, dim, box, h=None, *, coarse_cells=0, error_estimate=True, box_ru
     Raises ExpressionError, ImplicitError (NaN values, the box touched with
     box_rule="error")."""
     lo, hi = box
-    lo = [float(x) for x in np.atleast_1d(lo)]
-    hi = [float(x) for x in np.atleast_1d(hi)]
-    s = [] if seeds is None else [float(x) for x in np.asarray(seeds, dtype=np.float64).reshape(-1)]
+    lo = [float(x) for x in _np.atleast_1d(lo)]
+    hi = [float(x) for x in _np.atleast_1d(hi)]
+    s = [] if seeds is None else [float(x) for x in _np.asarray(seeds, dtype=_np.float64).reshape(-1)]
     if not isinstance(f, str) and not callable(f):
         raise TypeError("f must be an expression string or a callable")
     r = _core.implicit_volume(f, int(dim), lo, hi, 0.0 if h is None else float(h), int(coarse_cells),
@@ -606,7 +623,7 @@ def implicit(f, dim, box, h=None, *, coarse_cells=0, error_estimate=True, box_ru
                           formula="cone", streamed=True, dimension=r["dimension"], h=r["h"], volume=r["volume"],
                           error_estimate=r["error_estimate"] if error_estimate else None, volume_pl=fine["volume"],
                           extrapolated_error_estimate=(r["extrapolated_error_estimate"] if error_estimate and not
-                                                       math.isnan(r["extrapolated_error_estimate"]) else None),
+                                                       _math.isnan(r["extrapolated_error_estimate"]) else None),
                           volume_pl_2h=coarse["volume"] if coarse else None, volume_pl_4h=r["volume_pl_4h"],
                           clipped=r["clipped"],
                           boundary_simplices=fine["boundary_simplices"],
@@ -616,4 +633,4 @@ def implicit(f, dim, box, h=None, *, coarse_cells=0, error_estimate=True, box_ru
 
 
 def _warn(message):
-    warnings.warn(message, stacklevel=3)
+    _warnings.warn(message, stacklevel=3)

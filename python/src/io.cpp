@@ -1,6 +1,8 @@
 // python/src/io.cpp — meshes read from files (polyvol/io.hpp) as zero-copy
 // numpy views, and the grid writers (polyvol/grid_io.hpp).
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <pybind11/stl.h>
@@ -9,13 +11,65 @@
 #include "bindings.hpp"
 #include "polyvol/grid_io.hpp"
 #include "polyvol/io.hpp"
+#include "polyvol/report.hpp"
 #include "polyvol/simplicial.hpp"
-#include "output/measure.hpp"
 #include "polyvol/units.hpp"
 
 namespace polyvol::python {
 
 namespace {
+
+// A JSON value as the Python value json.loads gives (strings decoded with
+// "replace": a file name that is not UTF-8 must not make the report throw).
+py::object to_python(const nlohmann::json& j) {
+    using T = nlohmann::json::value_t;
+    switch (j.type()) {
+        case T::boolean: return py::bool_(j.get<bool>());
+        case T::number_integer: return py::int_(j.get<std::int64_t>());
+        case T::number_unsigned: return py::int_(j.get<std::uint64_t>());
+        case T::number_float: return py::float_(j.get<double>());
+        case T::string: {
+            const std::string& s = j.get_ref<const std::string&>();
+            PyObject* o = PyUnicode_DecodeUTF8(s.data(), static_cast<Py_ssize_t>(s.size()), "replace");
+            if (o == nullptr) throw py::error_already_set();
+            return py::reinterpret_steal<py::object>(o);
+        }
+        case T::array: {
+            py::list l;
+            for (const nlohmann::json& e : j) l.append(to_python(e));
+            return py::object(std::move(l));
+        }
+        case T::object: {
+            py::dict d;
+            for (const auto& [key, value] : j.items()) d[py::str(key)] = to_python(value);
+            return py::object(std::move(d));
+        }
+        default: return py::none();
+    }
+}
+
+// measure_file's density: a number (mass per unit³), or a text with its
+// unit ('2700kg/m3', '1.24g/cm3') converted as `--density` and
+// `--mass-unit` convert it (polyvol/units.hpp).
+void set_density(FileOptions& o, const py::object& density, const std::string& mass_unit) {
+    if (!mass_units_per_kg(mass_unit)) throw py::value_error("mass_unit must be 'kg', 'g' or 'lb'");
+    if (!py::isinstance<py::str>(density)) {
+        o.measure.density = density.cast<double>();
+        if (mass_unit != "kg") throw py::value_error("mass_unit='" + mass_unit + "' needs a density with a unit");
+        return;
+    }
+    const std::optional<Density> d = parse_density(density.cast<std::string>());
+    if (!d)
+        throw py::value_error("density must be a positive number, optionally with kg/m3 or g/cm3, not '" +
+                              density.cast<std::string>() + "'");
+    o.measure.density = d->value;
+    if (!d->si) return;
+    const DensityIn in = density_in(*d, *length_unit(o.to.empty() ? "m" : o.to), mass_unit);
+    o.measure.density = in.value;
+    o.density_kg_m3 = d->kg_per_m3;
+    o.density_relative_error = in.relative_error;
+    o.mass_unit = mass_unit;
+}
 
 LoadedMesh mesh_from_arrays(const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
     const MeshView v = mesh_view(positions, indices, offsets);
@@ -107,39 +161,38 @@ void bind_io(py::module_& m) {
         py::arg("path"), py::arg("x"), py::arg("y"), py::arg("z"), py::arg("arrays"), py::arg("image"));
 
     // What `polyvol measure --json FILE` (with --solid: self-crossings looked
-    // for at any size) prints for the file, as a JSON text: the CLI's own
-    // report (cli/measure_file.cpp, cli/output/measure.cpp), never throwing (errors are its fields).
+    // for at any size) gives for the file: the library's report
+    // (polyvol/report.hpp) under the keys report_json declares, as a dict;
+    // never throwing for a bad file (errors are its fields).
     m.def(
-        "measure_file_json",
-        [](const std::string& path, const std::string& method, const std::string& accuracy, double density,
-           bool allow_open, bool solid, bool orient, bool keep_signed, double weld_tolerance, const std::string& units,
-           const std::string& to, double scale) {
-            cli::Request request;
-            request.weld_tolerance = weld_tolerance;
+        "measure_file_report",
+        [](const std::string& path, const std::string& method, const std::string& accuracy, const py::object& density,
+           const std::string& mass_unit, bool allow_open, bool solid, bool orient, bool keep_signed,
+           double weld_tolerance, const std::string& units, const std::string& to, double scale) {
+            FileOptions options;
+            options.weld_tolerance = weld_tolerance;
             if ((!units.empty() && !length_unit(units)) || (!to.empty() && !length_unit(to)))
-                throw py::value_error("units are mm, cm, m, in, ft or micron");
-            request.units = units;
-            request.to = to;
-            request.scale = scale;
-            request.orient = orient;
-            request.keep_signed = keep_signed;
-            request.measure.method = parse_method(method);
-            request.measure.accuracy = parse_accuracy(accuracy);
-            request.measure.density = density;
-            request.allow_open = allow_open;
-            request.self_check_always = solid;
-            std::string text;
+                throw py::value_error(std::string("units are ") + kLengthUnitNames);
+            options.units = units;
+            options.to = to;
+            options.scale = scale;
+            options.orient = orient;
+            options.keep_signed = keep_signed;
+            options.measure.method = parse_method(method);
+            options.measure.accuracy = parse_accuracy(accuracy);
+            options.allow_open = allow_open;
+            options.self_check_always = solid;
+            set_density(options, density, mass_unit);
+            nlohmann::json report;
             {
                 py::gil_scoped_release release;
-                const cli::FileResult r = cli::process_file(path, request);
-                // replace: a file name that is not UTF-8 must not make the report throw
-                text = cli::to_json(r, request).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+                report = report_json(measure_file(path, options), options);
             }
-            return text;
+            return to_python(report);
         },
-        py::arg("path"), py::arg("method"), py::arg("accuracy"), py::arg("density"), py::arg("allow_open"),
-        py::arg("solid"), py::arg("orient"), py::arg("keep_signed") = false, py::arg("weld_tolerance") = 0.0, py::arg("units") = "",
-        py::arg("to") = "", py::arg("scale") = 1.0);
+        py::arg("path"), py::arg("method"), py::arg("accuracy"), py::arg("density"), py::arg("mass_unit"),
+        py::arg("allow_open"), py::arg("solid"), py::arg("orient"), py::arg("keep_signed") = false,
+        py::arg("weld_tolerance") = 0.0, py::arg("units") = "", py::arg("to") = "", py::arg("scale") = 1.0);
 
     // A copy of the mesh wound consistently and outward (orient_mesh), and what that did.
     m.def(

@@ -69,4 +69,11 @@ PrincipalInertia principal_inertia(const MassProperties& m) {
     return principal_inertia(m.inertia_centroid, m.moments_correctly_rounded ? 0x1p-53 : m.moments_relative_error);
 }
 
+double moments_error_bound(const MassProperties& m, std::span<const double> entries) {
+    if (m.moments_correctly_rounded) return 0;
+    double largest = 0;
+    for (double e : entries) largest = std::max(largest, std::fabs(e));
+    return m.moments_relative_error * largest;
+}
+
 }  // namespace polyvol

@@ -1,6 +1,7 @@
-// cli/measure_file.cpp — cli/measure_file.hpp: read, weld, orient, check
-// closedness and overlap, measure, in the file's units.
-#include "measure_file.hpp"
+// src/report/measure_file.cpp — polyvol/report.hpp's measure_file: read,
+// the solid policy (weld, orient, closedness, overlap), measure, in the
+// units asked for; the route chosen once (streams).
+#include "polyvol/report.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +14,7 @@
 #include "polyvol/soup.hpp"
 #include "polyvol/units.hpp"
 
-namespace polyvol::cli {
+namespace polyvol {
 namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -41,12 +42,14 @@ MassProperties volume_only_properties(const MeshView& view, const MeasureOptions
     return m;
 }
 
-// Whether process_file streams a binary STL for the request: what it asks
-// for is what streaming computes (Request::table_only; the cone rule), and
-// nothing asks for the loaded mesh (its counts in the JSON, a weld,
-// orientation, units, a scale, the full overlap and self-crossing check of
-// --solid, an archive member).
-bool streams(const Request& q, const std::string& member) {
+// The route, decided here only: a binary STL is streamed (constant memory,
+// nothing loaded or welded) when what is wanted is what streaming computes
+// (FileOptions::table_only; the cone rule) and nothing asks for the loaded
+// mesh (its counts, a weld, orientation, units, a scale, the full overlap
+// and self-crossing check, an archive member). A streamed file the
+// fingerprint finds open, or inside out, is loaded after all, to be
+// reported or turned (measure_file).
+bool streams(const FileOptions& q, const std::string& member) {
     return q.need_mass && q.table_only && !q.mesh_counts && q.measure.method == Method::cone && member.empty() &&
            !q.orient && q.weld_tolerance == 0 && !q.self_check_always && q.units.empty() && q.to.empty() &&
            q.scale == 1 && q.scale_typed_exactly && q.density_kg_m3 == 0 && std::isfinite(q.measure.density);
@@ -54,7 +57,7 @@ bool streams(const Request& q, const std::string& member) {
 
 // The streaming route for a binary STL: nothing when the file is not binary
 // STL, cannot be probed, or is not closed (the loaded route then reports it).
-std::optional<FileResult> stream_binary_stl(const std::string& path, const Request& q) {
+std::optional<FileReport> stream_binary_stl(const std::string& path, const FileOptions& q) {
     std::optional<BinaryStlFile> file;
     try {
         file.emplace(path);
@@ -62,13 +65,13 @@ std::optional<FileResult> stream_binary_stl(const std::string& path, const Reque
         return std::nullopt;
     }
     if (!file->probe().binary_stl) return std::nullopt;
-    FileResult r;
+    FileReport r;
     r.file = path;
     const auto t0 = std::chrono::steady_clock::now();
     SoupAccumulator acc(
         SoupWants{.closedness = true,
                   .moments_and_area = !q.volume_only,
-                  .moments = q.table_moments_bounded ? Accuracy::fast : q.measure.accuracy,
+                  .moments = q.moments_bounded ? Accuracy::fast : q.measure.accuracy,
                   .density = q.measure.density});
     try {
         do {
@@ -91,10 +94,10 @@ std::optional<FileResult> stream_binary_stl(const std::string& path, const Reque
     return r;
 }
 
-// The units of the figures for this file (Request's units, to, scale):
+// The units of the figures for this file (FileOptions' units, to, scale):
 // sets r's length_unit, mass_unit, length_factor; returns why they cannot be
 // given ("" when they can).
-std::string plan_units(FileResult& r, const Request& q, double& length_error) {
+std::string plan_units(FileReport& r, const FileOptions& q, double& length_error) {
     const UnitsPlan p = plan_units(r.loaded->unit, UnitsRequest{.units = q.units,
                                                                .to = q.to,
                                                                .scale = q.scale,
@@ -102,7 +105,7 @@ std::string plan_units(FileResult& r, const Request& q, double& length_error) {
                                                                .density_si = q.density_kg_m3 > 0,
                                                                .metres_when_known = q.metres_when_known});
     if (!p.error.empty()) {
-        if (p.from.empty() && p.source.empty())
+        if (p.error.find("not known") != std::string::npos)
             return std::string("its length unit is not known (") + std::string(format_name(r.loaded->format)) +
                    " files do not state one): --units gives it (" + kLengthUnitNames + ")";
         return p.error;
@@ -119,7 +122,7 @@ std::string plan_units(FileResult& r, const Request& q, double& length_error) {
 
 // The figures of a set of faces of the file (their own surface's sums):
 // volume, area, first moments and centroid, widened for computed coordinates.
-MassProperties figures_of(const MeshView& view, const std::vector<uint32_t>& faces, const Request& q, double delta) {
+MassProperties figures_of(const MeshView& view, const std::vector<uint32_t>& faces, const FileOptions& q, double delta) {
     std::vector<uint32_t> offsets{0}, indices;
     offsets.reserve(faces.size() + 1);
     for (uint32_t f : faces) {
@@ -138,7 +141,7 @@ MassProperties figures_of(const MeshView& view, const std::vector<uint32_t>& fac
 }
 
 // Each shell's (the first kMaxPieces) and each named part's figures.
-void piece_figures(FileResult& r, const Request& q, const MeshView& view) {
+void piece_figures(FileReport& r, const FileOptions& q, const MeshView& view) {
     const TopologyReport& t = *r.topology;
     const double delta = r.loaded->coordinate_error;
     if (t.shells.size() > 1 && !t.face_shell.empty()) {
@@ -167,11 +170,11 @@ bool reads_as_chain(const std::string& file) {
 
 }  // namespace
 
-FileResult process_file(const std::string& file, const Request& request, const std::string& member) {
+FileReport measure_file(const std::string& file, const FileOptions& request, const std::string& member) {
     if (streams(request, member))
         if (auto s = stream_binary_stl(file, request))
             if (request.keep_signed || !s->mass || s->mass->volume >= 0) return std::move(*s);  // inside out: loaded below
-    FileResult r;
+    FileReport r;
     r.file = member.empty() ? file : file + ":" + member;
     const std::string& path = r.file;  // the name in every message
     auto t0 = std::chrono::steady_clock::now();
@@ -205,7 +208,7 @@ FileResult process_file(const std::string& file, const Request& request, const s
                         .resolve_overlaps = request.check_overlap,
                         .self_check_triangles = request.self_check_always ? SIZE_MAX : kSelfCheckTriangles,
                         .solid_moments = request.need_mass && !request.volume_only,
-                        .closedness_by_fingerprint = request.closedness_by_fingerprint,
+                        .closedness_by_fingerprint = !request.edge_counts,
                         .shells = !request.table_only,
                         .face_shells = request.need_mass && !request.table_only};
     MeshSolid solid = make_solid(r.loaded->mesh, policy);
@@ -254,11 +257,26 @@ FileResult process_file(const std::string& file, const Request& request, const s
     if (r.mass && (r.length_factor != 1 || length_error > 0 || density_error > 0)) {
         scale_mass_properties(*r.mass, r.length_factor, length_error, density_error);
         for (auto* list : {&r.shell_figures, &r.part_figures})
-            for (FileResult::Piece& p : *list) scale_mass_properties(p.m, r.length_factor, length_error, density_error);
+            for (FileReport::Piece& p : *list) scale_mass_properties(p.m, r.length_factor, length_error, density_error);
         if (r.solid) r.solid->winding_volume *= r.length_factor * r.length_factor * r.length_factor;
     }
     r.seconds_measure = seconds_since(t0);
     return r;
 }
 
-}  // namespace polyvol::cli
+std::vector<std::pair<std::string, std::string>> file_inputs(const std::vector<std::string>& paths) {
+    std::vector<std::pair<std::string, std::string>> inputs;
+    for (const std::string& f : paths) {
+        std::vector<std::string> members;
+        try {
+            if (f != "-") members = mesh_archive_members(f);
+        } catch (const ReadError&) {
+            // Not a readable archive: read as one file, whose reader says what is wrong (exit 2).
+        }
+        if (members.empty()) inputs.emplace_back(f, "");
+        for (const std::string& m : members) inputs.emplace_back(f, m);
+    }
+    return inputs;
+}
+
+}  // namespace polyvol

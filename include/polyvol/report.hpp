@@ -1,0 +1,148 @@
+// polyvol/report.hpp — the library measures a file: read it, turn it into
+// the solid it means (polyvol/solid.hpp), measure what is wanted, in the
+// units asked for; one typed report per file, each figure with its
+// guarantee, never throwing (what went wrong is its fields), never
+// printing. `polyvol volume`, `measure` and `check` print this report, and
+// Python's measure_file is its JSON (report_json: the keys, declared once).
+// The route (a binary STL streamed in constant memory, or the file loaded)
+// is chosen in one place, measure_file, from what is wanted
+// (docs/architecture.md, "Measuring a file").
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "polyvol/boolean.hpp"
+#include "polyvol/io.hpp"
+#include "polyvol/measure.hpp"
+#include "polyvol/simplicial.hpp"
+#include "polyvol/solid.hpp"
+#include "polyvol/topology.hpp"
+
+namespace polyvol {
+
+// The outcome of a file as the command line's exit codes state it (once):
+// 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid for the
+// request (an open surface asked for a volume, say).
+enum Exit : int { ok = 0, usage = 1, unreadable = 2, invalid = 3 };
+
+// What is wanted of a file and how it is to be taken. The quantities first
+// (they choose the route), then the solid policy, then the units.
+struct FileOptions {
+    MeasureOptions measure;
+    // Quantities. need_mass false: `check` (the topology and whether the
+    // file is a solid as it is: FileReport::repairs).
+    bool need_mass = true;
+    // Only the table's figures (volume, area, centroid and the closedness
+    // they need): no second moments, edge length, shells or per-piece
+    // figures. A binary STL is then streamed (polyvol/soup.hpp: constant
+    // memory, the same figures) when nothing asks for the loaded mesh.
+    bool table_only = false;
+    // Only the volume with its guarantee and the closedness check: the
+    // streamed pass skips area and first moments, the loaded route calls
+    // signed_volume when the volume is correctly rounded.
+    bool volume_only = false;
+    // The loaded mesh's counts (vertices, faces, edges; with volume_only the
+    // edge counts that decide closedness): a binary STL is loaded for them.
+    bool mesh_counts = false;
+    // The edge counts of analyze_topology even where the fingerprint finds
+    // the surface closed (false: closedness by fingerprint_closedness, the
+    // edges analysed only to name what is open).
+    bool edge_counts = true;
+    // The centroid to the digits the double sums' bound supports (no exact
+    // pass for the first moments of a streamed binary STL).
+    bool moments_bounded = false;
+    // The solid policy (polyvol/solid.hpp's SolidOptions).
+    bool allow_open = false;
+    bool check_overlap = true;      // overlapping shells resolved (winding number >= 1)
+    bool self_check_always = false; // shells crossing themselves looked for at any size (else up to kSelfCheckTriangles)
+    bool orient = false;            // faces wound consistently and outward first (orient_mesh)
+    bool keep_signed = false;       // an inside-out surface keeps its signed sums
+    double weld_tolerance = 0;      // points within it merged first (weld_within)
+    // Units (polyvol/units.hpp). The coordinates' unit: `units`, else the
+    // file's own (3MF, AMF), else unknown. The figures are in `to` (with a
+    // density in kg/m³, metres by default; else the coordinates' unit),
+    // every coordinate times `scale` first. A density with a unit
+    // (density_kg_m3 > 0, measure.density then in mass_unit per `to`³, from
+    // density_in) gives the mass in `mass_unit` (kg, g or lb).
+    std::string units, to;
+    double scale = 1;
+    bool scale_typed_exactly = true;  // the scale's text is its double's own decimal
+    double density_kg_m3 = 0;
+    double density_relative_error = 0;  // of measure.density against the density typed (density_in)
+    std::string mass_unit = "kg";
+    bool metres_when_known = false;     // SI whenever the unit is known (URDF, SDF)
+};
+
+// Per-shell figures are given for at most this many shells.
+inline constexpr std::size_t kMaxPieces = 1000;
+
+struct FileReport {
+    std::string file;                        // "FILE" or "ARCHIVE:MEMBER"
+    int exit_code = Exit::ok;
+    std::string error;                       // set when exit_code != ok
+    std::string warning;                     // what the figures assume or what was repaired
+    std::optional<LoadedMesh> loaded;        // when the file was read (not when streamed)
+    std::optional<TopologyReport> topology;  // when read (not when closed_by_fingerprint)
+    bool closed_by_fingerprint = false;      // the fingerprint found it closed: no analyze_topology
+    std::optional<MassProperties> mass;      // when measured (of the solid where shells overlap)
+    double seconds_read = 0, seconds_measure = 0;
+    // The route: a binary STL streamed (loaded and topology stay empty) or the file loaded.
+    bool streamed = false;
+    uint64_t triangles = 0;                  // the fan triangles measured (either route)
+    // The solid policy's findings (polyvol/solid.hpp's MeshSolid): the solid
+    // of overlapping or self-crossing shells when resolved, whether shells
+    // were checked for overlap, self-crossings looked for (or why not) and
+    // unresolved, what orienting, turning outward and welding did.
+    std::optional<SolidVolume> solid;
+    bool overlap_checked = false;
+    std::optional<SelfCrossings> self;
+    std::string self_not_checked;
+    bool self_unresolved = false;
+    std::optional<OrientResult> oriented;
+    std::optional<OrientResult> turned_outward;
+    std::optional<ToleranceWeld> welded;
+    double weld_tolerance = 0;
+    // The units of the figures: lengths in `length_unit` ("" when not
+    // known), mass in `mass_unit` ("" for density × volume); every
+    // coordinate was multiplied by `length_factor`.
+    std::string length_unit, mass_unit, units_source;
+    double length_factor = 1;
+    // Each shell's (the first kMaxPieces) and each named part's own figures
+    // (their surfaces' sums: volume, area, centroid with their bounds).
+    struct Piece {
+        std::string name;
+        std::size_t faces = 0;
+        MassProperties m;
+    };
+    std::vector<Piece> shell_figures, part_figures;
+    std::vector<std::string> repairs;  // `check`: what the file needs to be a solid as it is; empty: ready
+    double closes_at_tolerance = 0;    // an open surface that merging points below 1e-9 of its size closes
+};
+
+// Reads, analyses and measures one file (member: one mesh of a zip archive
+// of meshes, mesh_archive_members; "" for the file itself); never throws.
+FileReport measure_file(const std::string& file, const FileOptions& options, const std::string& member = "");
+
+// The files to measure: each path, or a zip archive of plain meshes (not a
+// 3MF or AMF package) as its members, (path, member) each.
+std::vector<std::pair<std::string, std::string>> file_inputs(const std::vector<std::string>& paths);
+
+// The report as JSON (`polyvol measure --json`'s object; Python's
+// measure_file): the keys of every report are written here, once. Non-finite
+// numbers are null.
+nlohmann::json report_json(const FileReport& report, const FileOptions& options);
+// A finite number for JSON (never -0), else null.
+nlohmann::json json_number(double v);
+// The box of the loaded mesh's faces in the units of the figures (each
+// bound times the length factor, rounded once more when it is not 1).
+std::array<double, 6> report_bounds(const FileReport& report);
+
+}  // namespace polyvol
