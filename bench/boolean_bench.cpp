@@ -8,7 +8,7 @@
 // cost of resolving one.
 #include <benchmark/benchmark.h>
 
-#include "generate.hpp"
+#include "common/generate.hpp"
 #include "polyvol/boolean.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/topology.hpp"
@@ -17,8 +17,8 @@ namespace {
 
 void BooleanSpheres(benchmark::State& state) {
     const auto n = static_cast<std::size_t>(state.range(0));
-    const polyvol::Mesh a = polyvol::bench::sphere_with_triangles(n);
-    polyvol::Mesh b = polyvol::bench::sphere_with_triangles(n);
+    const polyvol::Mesh a = polyvol::generate::sphere_with_triangles(n);
+    polyvol::Mesh b = polyvol::generate::sphere_with_triangles(n);
     for (std::size_t v = 0; v < b.vertex_count(); ++v) {
         b.positions[3 * v] += 0.5;
         b.positions[3 * v + 1] += 0.0625;
@@ -36,7 +36,7 @@ void SolidTenSpheres(benchmark::State& state) {
     const auto n = static_cast<std::size_t>(state.range(0));
     polyvol::Mesh ten;
     for (int i = 0; i < 10; ++i) {
-        const polyvol::Mesh s = polyvol::bench::sphere_with_triangles(n);
+        const polyvol::Mesh s = polyvol::generate::sphere_with_triangles(n);
         const auto base = static_cast<uint32_t>(ten.vertex_count());
         for (std::size_t v = 0; v < s.vertex_count(); ++v)
             ten.add_vertex(s.positions[3 * v] + 1.2 * i, s.positions[3 * v + 1], s.positions[3 * v + 2]);
@@ -61,26 +61,26 @@ BENCHMARK(SolidTenSpheres)
     ->UseRealTime();
 
 // SolidSelfCrossing: one shell crossing itself, two spheres of n triangles
-// each joined by a tube through both (bench::join_by_tube). mode 0: what
+// each joined by a tube through both (generate::join_by_tube). mode 0: what
 // `polyvol measure` computes without the solid (analyze_topology +
 // mass_properties); 1: solid_volume resolving it (within_shells, the search
 // within shells included); 2: solid_volume of the same chain as three shells.
 void SolidSelfCrossing(benchmark::State& state) {
     const auto n = static_cast<std::size_t>(state.range(0));
-    polyvol::Mesh b = polyvol::bench::sphere_with_triangles(n);
+    polyvol::Mesh b = polyvol::generate::sphere_with_triangles(n);
     for (std::size_t v = 0; v < b.vertex_count(); ++v) {
         b.positions[3 * v] = 0.8 * b.positions[3 * v] + 0.9;
         b.positions[3 * v + 1] = 0.8 * b.positions[3 * v + 1] + 0.0625;
         b.positions[3 * v + 2] = 0.8 * b.positions[3 * v + 2] + 0.03125;
     }
-    const polyvol::bench::Joined j = polyvol::bench::join_by_tube(polyvol::bench::sphere_with_triangles(n), b);
+    const polyvol::generate::Joined j = polyvol::generate::join_by_tube(polyvol::generate::sphere_with_triangles(n), b);
     double v = 0;
     for (auto _ : state) {
         if (state.range(1) == 0) {
             benchmark::DoNotOptimize(polyvol::analyze_topology(j.one.view()).closed_2_cycle);
             v = polyvol::mass_properties(j.one.view()).volume;
         } else {
-            const polyvol::SolidVolume s = state.range(1) == 1 ? polyvol::solid_volume(j.one.view(), false, true)
+            const polyvol::SolidVolume s = state.range(1) == 1 ? polyvol::solid_volume(j.one.view(), {.within_shells = true})
                                                                : polyvol::solid_volume(j.three.view());
             if (s.status != polyvol::BooleanStatus::ok) state.SkipWithError("no solid");
             v = s.volume;
@@ -98,8 +98,8 @@ BENCHMARK(SolidSelfCrossing)
 // range(0): triangles, range(1): 0 sphere, 1 torus
 void SelfCrossings(benchmark::State& state) {
     const auto n = static_cast<std::size_t>(state.range(0));
-    const polyvol::Mesh m = state.range(1) == 0 ? polyvol::bench::sphere_with_triangles(n)
-                                                : polyvol::bench::torus_with_triangles(n);
+    const polyvol::Mesh m = state.range(1) == 0 ? polyvol::generate::sphere_with_triangles(n)
+                                                : polyvol::generate::torus_with_triangles(n);
     std::size_t pairs = 0;
     for (auto _ : state) {
         pairs = polyvol::self_crossings(m.view()).candidate_pairs;

@@ -17,7 +17,7 @@
 
 #include <tbb/global_control.h>
 
-#include "generate.hpp"
+#include "common/generate.hpp"
 #include "polyvol/grid.hpp"
 
 namespace {
@@ -30,8 +30,8 @@ const Mesh& mesh(int shape, std::size_t n) {
     static std::map<std::pair<int, std::size_t>, Mesh> cache;
     auto it = cache.find({shape, n});
     if (it == cache.end())
-        it = cache.emplace(std::pair{shape, n}, shape == kSphere ? bench::sphere_with_triangles(n)
-                                                                 : bench::torus_with_triangles(n))
+        it = cache.emplace(std::pair{shape, n}, shape == kSphere ? generate::sphere_with_triangles(n)
+                                                                 : generate::torus_with_triangles(n))
                  .first;
     return it->second;
 }

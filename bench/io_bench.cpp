@@ -18,7 +18,7 @@
 // ParseOptions (selects the serial or parallel readers) lives in a private
 // header that includes only public ones.
 #include "../src/io/chunks.hpp"
-#include "generate.hpp"
+#include "common/generate.hpp"
 #include "polyvol/io.hpp"
 
 namespace {
@@ -29,7 +29,7 @@ enum class File { stl_ascii, stl_binary, obj, off, ply_ascii, ply_binary };
 
 const Mesh& source() {
     static const Mesh m = [] {
-        Mesh s = bench::sphere_with_triangles(1'000'000, 3.25);
+        Mesh s = generate::sphere_with_triangles(1'000'000, 3.25);
         for (double& c : s.positions) c = static_cast<double>(static_cast<float>(c));
         return s;
     }();

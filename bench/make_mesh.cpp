@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "generate.hpp"
+#include "common/generate.hpp"
 
 namespace {
 
@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
     const double offset = std::strtod(argv[2], nullptr);
     const std::string out = argv[3];
     const bool torus = argc == 5 && std::strcmp(argv[4], "torus") == 0;
-    polyvol::Mesh m = torus ? polyvol::bench::torus_with_triangles(n) : polyvol::bench::sphere_with_triangles(n, offset);
+    polyvol::Mesh m = torus ? polyvol::generate::torus_with_triangles(n) : polyvol::generate::sphere_with_triangles(n, offset);
     if (torus)
         for (double& x : m.positions) x += offset;
     const auto& p = m.positions;

@@ -6,7 +6,7 @@
 #include <map>
 #include <random>
 
-#include "generate.hpp"
+#include "common/generate.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/topology.hpp"
 
@@ -21,7 +21,7 @@ const Mesh& sphere(std::size_t n, int64_t offset = 1000000) {
     static std::map<std::pair<std::size_t, int64_t>, Mesh> cache;
     const auto key = std::make_pair(n, offset);
     auto it = cache.find(key);
-    if (it == cache.end()) it = cache.emplace(key, bench::sphere_with_triangles(n, static_cast<double>(offset))).first;
+    if (it == cache.end()) it = cache.emplace(key, generate::sphere_with_triangles(n, static_cast<double>(offset))).first;
     return it->second;
 }
 

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "generate.hpp"
+#include "common/generate.hpp"
 #include "polyvol/soup.hpp"
 
 namespace {
@@ -23,7 +23,7 @@ const std::vector<std::byte>& records(std::size_t n, int offset) {
     static std::map<std::pair<std::size_t, int>, std::vector<std::byte>> cache;
     auto it = cache.find({n, offset});
     if (it != cache.end()) return it->second;
-    const Mesh m = bench::sphere_with_triangles(n, offset);
+    const Mesh m = generate::sphere_with_triangles(n, offset);
     const std::size_t tris = m.face_count();
     std::vector<std::byte> out(50 * tris);
     for (std::size_t t = 0; t < tris; ++t)

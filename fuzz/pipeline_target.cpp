@@ -66,7 +66,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, std::size_t size) {
         }
     }
     if (t.closed_2_cycle && view.triangle_count() <= 2000) {
-        (void)solid_volume(view, true, true);
+        (void)solid_volume(view, {.moments = true, .within_shells = true});
         (void)self_crossings(view);
     }
     return 0;

@@ -154,7 +154,11 @@ struct SolidVolume {
 // it, such a shell's crossings are resolved exactly; one body cannot be
 // perturbed against itself, so a shell that also touches itself, or folds
 // onto itself through a shared vertex or edge, gets shell_touches_itself.
-SolidVolume solid_volume(const MeshView& mesh, bool moments = false, bool within_shells = false);
+struct SolidVolumeOptions {
+    bool moments = false;        // centroid, moments and the boundary's area too (else NaN)
+    bool within_shells = false;  // a shell crossing itself resolved (above)
+};
+SolidVolume solid_volume(const MeshView& mesh, const SolidVolumeOptions& options = {});
 
 // Where a mesh's surface crosses itself within one of solid_volume's bodies
 // (the parts the file joins through shared edges when each is closed, else

@@ -265,7 +265,8 @@ SolidVolume solid_sums(const MeshView& mesh, const SolidWants& wants, SolidSums&
 
 }  // namespace boolean
 
-SolidVolume solid_volume(const MeshView& mesh, bool moments, bool within_shells) {
+SolidVolume solid_volume(const MeshView& mesh, const SolidVolumeOptions& options) {
+    const bool moments = options.moments, within_shells = options.within_shells;
     using namespace boolean;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     SolidSums sums;

@@ -14,7 +14,7 @@
 #include <cmath>
 #include <vector>
 
-#include "../../bench/generate.hpp"
+#include "common/generate.hpp"
 #include "common/shapes.hpp"
 #include "exact/rational.hpp"
 #include "polyvol/boolean.hpp"
@@ -103,7 +103,7 @@ TEST(BooleanRotated, CubeAgainstTurnedCube) {
 // its coordinates rounded to multiples of 2^-30, so that moving it by an
 // offset up to 2^20 keeps them exact.
 Mesh sphere(std::array<double, 3> c, double r, uint32_t rings, uint32_t segments) {
-    Mesh m = bench::uv_sphere(rings, segments, r, c[0], c[1], c[2]);
+    Mesh m = generate::uv_sphere(rings, segments, r, c[0], c[1], c[2]);
     for (double& x : m.positions) x = std::ldexp(std::nearbyint(std::ldexp(x, 30)), -30);
     return m;
 }

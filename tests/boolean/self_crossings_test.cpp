@@ -5,7 +5,7 @@
 // other: those are solid_volume's).
 #include <gtest/gtest.h>
 
-#include "../../bench/generate.hpp"
+#include "common/generate.hpp"
 #include "common/shapes.hpp"
 #include "polyvol/boolean.hpp"
 
@@ -80,7 +80,7 @@ TEST(SelfCrossings, PartsSharingAVertexAreSolidVolumesBodies) {
 }
 
 TEST(SelfCrossings, NoneOnSurfacesThatDoNotCrossThemselves) {
-    for (const Mesh& m : {test::box({0, 0, 0}, {1, 2, 3}), bench::uv_sphere(24, 48), bench::torus(40, 16)}) {
+    for (const Mesh& m : {test::box({0, 0, 0}, {1, 2, 3}), generate::uv_sphere(24, 48), generate::torus(40, 16)}) {
         const SelfCrossings s = self_crossings(m.view());
         EXPECT_EQ(s.status, BooleanStatus::ok);
         EXPECT_EQ(s.pairs, 0u);

@@ -97,7 +97,7 @@ TEST(SolidBooleans, TheSolidsAreaOfTwoBoxesInGeneralPosition) {
         Mesh m;
         add(m, a1);
         add(m, a2);
-        const SolidVolume s = solid_volume(m.view(), true);
+        const SolidVolume s = solid_volume(m.view(), {.moments = true});
         ASSERT_EQ(s.status, BooleanStatus::ok);
         const Box k = common(a1, a2);
         const bool meet = volume_of(k) > 0;

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "../../bench/generate.hpp"
+#include "common/generate.hpp"
 #include "common/shapes.hpp"
 #include "exact/rational.hpp"
 #include "polyvol/boolean.hpp"
@@ -139,7 +139,7 @@ void expect_counted_moments(const std::vector<LatticeBox>& boxes, int n, double 
                 s[3] += m[0] * m[1], s[4] += m[1] * m[2], s[5] += m[2] * m[0];
             }
     const mpq_class u4 = mpq_class(unit) * unit * unit * unit, u5 = u4 * unit;
-    const SolidVolume r = solid_volume(mesh_of(boxes, unit).view(), true);
+    const SolidVolume r = solid_volume(mesh_of(boxes, unit).view(), {.moments = true});
     ASSERT_EQ(r.status, BooleanStatus::ok);
     ASSERT_TRUE(r.moments);
     for (int i = 0; i < 3; ++i) {
@@ -165,9 +165,9 @@ TEST(SolidVolume, MomentsOfLatticeBoxes) {
 }
 
 TEST(SolidVolume, MomentsOfApartShellsAreTheMeshMoments) {
-    Mesh m = bench::uv_sphere(12, 24, 1.0);
-    m.append(bench::uv_sphere(10, 20, 0.5, 3, 0.25, -1));
-    const SolidVolume r = solid_volume(m.view(), true);
+    Mesh m = generate::uv_sphere(12, 24, 1.0);
+    m.append(generate::uv_sphere(10, 20, 0.5, 3, 0.25, -1));
+    const SolidVolume r = solid_volume(m.view(), {.moments = true});
     const MassProperties p = mass_properties(m.view());
     ASSERT_EQ(r.status, BooleanStatus::ok);
     EXPECT_EQ(r.volume, p.volume);
@@ -177,7 +177,7 @@ TEST(SolidVolume, MomentsOfApartShellsAreTheMeshMoments) {
 }
 
 TEST(SolidVolume, TwoSpheresInOneFileAreTheirUnion) {
-    Mesh a = bench::uv_sphere(16, 32, 1.0), b = bench::uv_sphere(14, 28, 0.8, 0.5, 0.375, 0.25);
+    Mesh a = generate::uv_sphere(16, 32, 1.0), b = generate::uv_sphere(14, 28, 0.8, 0.5, 0.375, 0.25);
     const BooleanVolumes pair = boolean_volumes(a.view(), b.view());
     ASSERT_EQ(pair.status, BooleanStatus::ok);
     a.append(b);

@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../../bench/generate.hpp"
+#include "common/generate.hpp"
 #include "cli/run_cli.hpp"
 
 namespace {
@@ -81,7 +81,7 @@ void write_obj(const fs::path& p, const Soup& s) {  // welded by bit-identical c
 }
 
 TEST(MutationCli, EveryDefectIsRefusedWithoutAVolume) {
-    const Soup base = soup_of(polyvol::bench::uv_sphere(6, 10));
+    const Soup base = soup_of(polyvol::generate::uv_sphere(6, 10));
     std::vector<std::pair<std::string, Soup>> cases;
     Soup s = base;
     s.t.erase(s.t.begin() + 7);

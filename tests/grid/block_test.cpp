@@ -8,7 +8,7 @@
 #include <cstring>
 #include <random>
 
-#include "../../bench/generate.hpp"
+#include "common/generate.hpp"
 #include "grid_fixtures.hpp"
 
 namespace {
@@ -100,7 +100,7 @@ void check_blocks(const std::vector<const Mesh*>& meshes, const GridAxes& g, std
 }
 
 TEST(GridBlock, SphereBlocksHaveTheWholeGridsBits) {
-    const Mesh s = bench::uv_sphere(24, 48, 1.0, 0.013, -0.021, 0.007);
+    const Mesh s = generate::uv_sphere(24, 48, 1.0, 0.013, -0.021, 0.007);
     const GridAxes g = uniform_axes({-1.3, -1.2, -1.1, 1.2, 1.3, 1.25}, {19, 17, 23});
     check_blocks({&s}, g, {7, 5, 6});
     check_blocks({&s}, g, {19, 17, 4});  // full columns, thin layers
@@ -108,7 +108,7 @@ TEST(GridBlock, SphereBlocksHaveTheWholeGridsBits) {
 }
 
 TEST(GridBlock, NonUniformPlanesAndATorus) {
-    const Mesh t = bench::torus(40, 24, 1.0, 0.42);
+    const Mesh t = generate::torus(40, 24, 1.0, 0.42);
     GridAxes g = uniform_axes({-1.5, -1.5, -0.5, 1.5, 1.5, 0.5}, {14, 13, 9});
     std::mt19937_64 rng(7);
     for (auto* axis : {&g.x, &g.y, &g.z})
@@ -118,13 +118,13 @@ TEST(GridBlock, NonUniformPlanesAndATorus) {
 }
 
 TEST(GridBlock, TwoOverlappingBodiesUnionAndIntersection) {
-    const Mesh a = bench::uv_sphere(16, 32, 1.0, 0, 0, 0), b = bench::uv_sphere(16, 32, 0.8, 0.7, 0.2, 0.1);
+    const Mesh a = generate::uv_sphere(16, 32, 1.0, 0, 0, 0), b = generate::uv_sphere(16, 32, 0.8, 0.7, 0.2, 0.1);
     const GridAxes g = uniform_axes({-1.2, -1.2, -1.2, 1.6, 1.2, 1.2}, {15, 11, 13});
     check_blocks({&a, &b}, g, {6, 4, 5});
 }
 
 TEST(GridBlock, RefusesABlockOutsideTheGrid) {
-    const Mesh s = bench::uv_sphere(8, 16);
+    const Mesh s = generate::uv_sphere(8, 16);
     const MeshView v = s.view();
     const GridAxes g = uniform_axes({-1, -1, -1, 1, 1, 1}, {4, 4, 4});
     std::vector<double> volumes(64);

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "../../bench/generate.hpp"
+#include "common/generate.hpp"
 #include "common/shapes.hpp"
 #include "polyvol/grid.hpp"
 #include "polyvol/measure.hpp"
@@ -61,7 +61,7 @@ TEST(GridSurface, FacesOnGridPlanesCountOnce) {
 }
 
 TEST(GridSurface, SphereCellsAddUpToItsArea) {
-    const Mesh sphere = bench::uv_sphere(24, 48, 1.0, 0.1, -0.2, 0.05);
+    const Mesh sphere = generate::uv_sphere(24, 48, 1.0, 0.1, -0.2, 0.05);
     const GridAxes g = uniform_axes({-1.5, -1.5, -1.5, 1.5, 1.5, 1.5}, {13, 11, 12});
     const Surface s = surface_of(sphere, g);
     double total = 0, net[3] = {0, 0, 0}, outside = 0;

@@ -10,7 +10,7 @@
 
 #include <random>
 
-#include "../../bench/generate.hpp"
+#include "common/generate.hpp"
 #include "grid_fixtures.hpp"
 #include "polyvol/boolean.hpp"
 
@@ -141,7 +141,7 @@ TEST(GridUnion, RandomIntegerBoxesCountedCubeByCube) {
 }
 
 TEST(GridUnion, SpheresAddUpToTheBooleanVolumesAndRefine) {
-    const Mesh a = bench::uv_sphere(20, 40), b = bench::uv_sphere(18, 36, 0.8, 0.5, 0.3, 0.2);
+    const Mesh a = generate::uv_sphere(20, 40), b = generate::uv_sphere(18, 36, 0.8, 0.5, 0.3, 0.2);
     const BooleanVolumes exact = boolean_volumes(a.view(), b.view());
     ASSERT_EQ(exact.status, BooleanStatus::ok);
     const GridAxes coarse = uniform_axes({-1.1, -1.1, -1.1, 1.4, 1.4, 1.4}, {10, 10, 10});
@@ -179,7 +179,7 @@ TEST(GridUnion, SpheresAddUpToTheBooleanVolumesAndRefine) {
 }
 
 TEST(GridUnion, TheSameBitsOnOneThread) {
-    const Mesh a = bench::uv_sphere(16, 32), b = bench::uv_sphere(14, 28, 0.8, 0.5, 0.3, 0.2);
+    const Mesh a = generate::uv_sphere(16, 32), b = generate::uv_sphere(14, 28, 0.8, 0.5, 0.3, 0.2);
     const GridAxes g = uniform_axes({-1.1, -1.1, -1.1, 1.4, 1.4, 1.4}, {24, 24, 24});
     const auto many = test::run_grid({&a, &b}, g, false, true);
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);

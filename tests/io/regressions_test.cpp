@@ -50,7 +50,7 @@ TEST(Regressions, EveryFileReadsOrFailsTheSameWayAndMeasures) {
         const MeshView v = meshes[0]->mesh.view();
         if (!analyze_topology(v).closed_2_cycle) continue;
         (void)mass_properties(v);
-        (void)solid_volume(v, true, true);
+        (void)solid_volume(v, {.moments = true, .within_shells = true});
         (void)self_crossings(v);
         Mesh moved = meshes[0]->mesh;
         for (std::size_t i = 0; i < moved.vertex_count(); ++i) moved.positions[3 * i] += 0.5;

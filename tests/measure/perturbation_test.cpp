@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "../../bench/generate.hpp"
+#include "common/generate.hpp"
 #include "polyvol/measure.hpp"
 
 namespace polyvol {
@@ -15,7 +15,7 @@ namespace {
 
 TEST(PerturbationBounds, RandomMovesStayWithinThem) {
     std::mt19937_64 rng(11);
-    for (const Mesh& base : {bench::uv_sphere(16, 32, 2.0, 10, -3, 4), bench::torus(32, 12)}) {
+    for (const Mesh& base : {generate::uv_sphere(16, 32, 2.0, 10, -3, 4), generate::torus(32, 12)}) {
         const double delta = 1e-7;
         const PerturbationBounds b = perturbation_bounds(base.view(), delta, true);
         const MassProperties m0 = mass_properties(base.view());
@@ -43,7 +43,7 @@ TEST(PerturbationBounds, RandomMovesStayWithinThem) {
     }
     // Scaling the sphere of radius 2 about its centre by 1 + δ/2 moves no
     // coordinate by more than δ and its volume by about 4π r² δ/2 · 2.
-    const Mesh sphere = bench::uv_sphere(16, 32, 2.0, 10, -3, 4);
+    const Mesh sphere = generate::uv_sphere(16, 32, 2.0, 10, -3, 4);
     const double delta = 1e-7;
     Mesh grown = sphere;
     const double centre[3] = {10, -3, 4};
@@ -58,7 +58,7 @@ TEST(PerturbationBounds, RandomMovesStayWithinThem) {
 
 // widen_for_coordinate_error turns the claims into bounds that hold.
 TEST(PerturbationBounds, WidenedGuaranteesAreBounds) {
-    const Mesh sphere = bench::uv_sphere(12, 24, 1.5, 2, 2, 2);
+    const Mesh sphere = generate::uv_sphere(12, 24, 1.5, 2, 2, 2);
     MassProperties m = mass_properties(sphere.view());
     const double v = m.volume;
     widen_for_coordinate_error(sphere.view(), 1e-12, 2.0, true, false, m);

@@ -1,4 +1,4 @@
-// Closed test meshes generated in memory for the benchmarks.
+// Closed meshes generated in memory, for the tests and the benchmarks.
 #pragma once
 
 #include <algorithm>
@@ -9,7 +9,7 @@
 
 #include "polyvol/mesh.hpp"
 
-namespace polyvol::bench {
+namespace polyvol::generate {
 
 // A UV sphere of radius r centred at c: `rings` latitude bands, `segments`
 // longitudes, 2 * segments * (rings - 1) triangles, closed and outward.
@@ -163,4 +163,4 @@ inline Joined join_by_tube(const Mesh& a, const Mesh& b) {
     return j;
 }
 
-}  // namespace polyvol::bench
+}  // namespace polyvol::generate
