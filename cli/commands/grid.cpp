@@ -173,10 +173,11 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
     return cmd;
 }
 
-int run_grid_command(const GridArgs& a) {
-    const auto t_start = Clock::now();
-    // Everything that can be checked before reading.
-    const std::string out_ext = a.out.empty() ? "" : extension(a.out);
+namespace {
+
+// Everything about the arguments that can be checked before reading: the
+// output names, the slice, the box, the planes. 0 when they are fine.
+int check_arguments(const GridArgs& a, const std::string& out_ext, const std::optional<Slice>& slice) {
     if (!a.out.empty() && out_ext != ".npy" && out_ext != ".vti" && out_ext != ".vtr" && out_ext != ".json")
         return usage_error("-o needs a .npy, .vti, .vtr or .json file, not '" + a.out + "'");
     if (!a.centroids.empty() && extension(a.centroids) != ".npy") return usage_error("--centroids needs a .npy file");
@@ -184,104 +185,107 @@ int run_grid_command(const GridArgs& a) {
     if (!a.intersection_out.empty() && extension(a.intersection_out) != ".npy")
         return usage_error("--intersection needs a .npy file");
     if (!a.surface.empty() && extension(a.surface) != ".npy") return usage_error("--surface needs a .npy file");
-    const std::optional<Slice> slice = parse_slice(a.slice);
     if (!slice) return usage_error("--slice takes x=VALUE, y=VALUE or z=VALUE, not '" + a.slice + "'");
     if (!a.slice.empty() && a.png.empty()) return usage_error("--slice goes with --png");
-    if (!a.bounds.empty()) {
+    if (!a.bounds.empty())
         for (int k = 0; k < 3; ++k)
             if (!(a.bounds[k] < a.bounds[k + 3]) || !std::isfinite(a.bounds[k]) || !std::isfinite(a.bounds[k + 3]))
                 return usage_error("--bounds needs XMIN YMIN ZMIN XMAX YMAX ZMAX with each min < max");
-    }
     const std::vector<double>* planes[3] = {&a.x_planes, &a.y_planes, &a.z_planes};
     for (int k = 0; k < 3; ++k)
         if (!planes[k]->empty() && !strictly_increasing(*planes[k]))
             return usage_error(std::string("--") + static_cast<char>('x' + k) +
-                         "-planes needs at least 2 finite, strictly increasing values");
+                               "-planes needs at least 2 finite, strictly increasing values");
+    return Exit::ok;
+}
 
-    // Read and check every mesh.
+// Explicit planes against the other grid options: a disagreement is an
+// error, never a silent choice. 0 when they agree.
+int check_planes(const GridArgs& a) {
+    const std::vector<double>* planes[3] = {&a.x_planes, &a.y_planes, &a.z_planes};
+    const char* axis = "xyz";
+    for (int k = 0; k < 3; ++k) {
+        const std::vector<double>& p = *planes[k];
+        if (p.empty()) continue;
+        const std::string flag = std::string("--") + axis[k] + "-planes";
+        if (a.dims.size() == 3 && p.size() != std::size_t{a.dims[k]} + 1)
+            return usage_error("--dims gives " + std::to_string(a.dims[k]) + " cells along " + axis[k] + " but " +
+                               flag + " gives " + std::to_string(p.size()) + " planes (" +
+                               std::to_string(p.size() - 1) + " cells): give one of them, or make them agree");
+        if (a.bounds.size() == 6 && (p.front() != a.bounds[k] || p.back() != a.bounds[3 + k]))
+            return usage_error("--bounds gives " + std::string(1, axis[k]) + " from " + shortest(a.bounds[k]) +
+                               " to " + shortest(a.bounds[3 + k]) + " but " + flag + " runs from " +
+                               shortest(p.front()) + " to " + shortest(p.back()));
+    }
+    if (!a.x_planes.empty() && !a.y_planes.empty() && !a.z_planes.empty() && (a.cells_given || a.cell_size > 0))
+        return usage_error(std::string(a.cell_size > 0 ? "--cell-size" : "--cells") +
+                           " has no effect when --x-planes, --y-planes and --z-planes give every plane");
+    return Exit::ok;
+}
+
+// The bodies as the grid takes them: read, in one unit, each the solid it
+// means (polyvol/solid.hpp's solid_body: the union of its parts where shells
+// overlap). `meshes` and `bodies` own what the views point into.
+struct Bodies {
     std::vector<LoadedMesh> meshes;
-    int code = Exit::ok;
+    std::vector<SolidBody> bodies;
+    std::vector<MeshView> views;                // each body's mesh (its box sizes the grid)
+    std::vector<std::vector<MeshView>> parts;   // each body's union parts
+    std::vector<double> volumes;                // each body's own volume
+    std::string unit;                           // the grid's ("" when no body's is known)
+};
+
+int read_bodies(const GridArgs& a, Bodies& r) {
+    bool unreadable = false;  // every file is tried, each failure said
     for (const std::string& f : a.files) {
         if (std::optional<LoadedMesh> m = read_or_report(f, [&] { return read_mesh_file(f); }))
-            meshes.push_back(std::move(*m));
+            r.meshes.push_back(std::move(*m));
         else
-            code = Exit::unreadable;
+            unreadable = true;
     }
-    if (code != Exit::ok) return code;
+    if (unreadable) return Exit::unreadable;
     // The bodies in one unit, the grid's: every length typed and written is in it.
     std::vector<LoadedMesh*> in_unit;
     std::vector<double> read_error;  // the readers' own (3MF transforms), before any conversion
-    for (LoadedMesh& m : meshes) {
+    for (LoadedMesh& m : r.meshes) {
         in_unit.push_back(&m);
         read_error.push_back(m.coordinate_error);
     }
     const std::optional<std::string> unit = put_in_common_unit(a.files, in_unit, a.unit_flags.units, a.unit_flags.to);
     if (!unit) return Exit::invalid;
-    // Each body the solid it means (polyvol/solid.hpp): inside-out shells
-    // turned outward, overlapping shells as the union of groups of shells
-    // that do not overlap (grid_union_volumes).
-    SolidOptions policy = a.solid_flags.policy();
-    policy.face_shells = true;  // solid_as_union groups the shells
-    std::vector<MeshView> views;
-    std::vector<std::vector<Mesh>> groups(meshes.size());
-    std::vector<std::vector<MeshView>> parts(meshes.size());
-    std::vector<double> mesh_volumes;
-    for (std::size_t b = 0; b < meshes.size(); ++b) {
-        const std::optional<MeshSolid> solid = solid_or_report(a.files[b], meshes[b].mesh, policy);
-        if (!solid) {
+    r.unit = *unit;
+    int code = Exit::ok;
+    for (std::size_t b = 0; b < r.meshes.size(); ++b) {
+        r.bodies.push_back(solid_body(r.meshes[b].mesh, a.solid_flags.policy()));
+        const SolidBody& body = r.bodies.back();
+        for (const SolidNote& n : body.solid.notes) std::cerr << "polyvol: warning: " << a.files[b] << ": " << n.text << "\n";
+        if (!body.ok()) {
+            std::cerr << "polyvol: " << a.files[b] << ": "
+                      << (body.not_split.empty() ? body.solid.message : body.not_split) << "\n";
             code = Exit::invalid;
             continue;
         }
-        const MeshView v = meshes[b].mesh.view();
         if (read_error[b] > 0)
             std::cerr << "polyvol: warning: " << a.files[b]
                       << ": its coordinates are computed in floating point (3MF transforms or a unit conversion; "
-                      << "each within " << shortest(meshes[b].coordinate_error)
+                      << "each within " << shortest(r.meshes[b].coordinate_error)
                       << " of the value meant): the cells are exact for the coordinates so rounded\n";
-        views.push_back(v);
-        if (solid->resolved()) {
-            try {
-                groups[b] = solid_as_union(v, *solid);
-            } catch (const std::invalid_argument& e) {
-                std::cerr << "polyvol: " << a.files[b] << ": " << e.what() << "\n";
-                code = Exit::invalid;
-                continue;
-            }
-            for (const Mesh& m : groups[b]) parts[b].push_back(m.view());
-            mesh_volumes.push_back(solid->solid->volume);
-        } else {
-            parts[b].push_back(v);
-            mesh_volumes.push_back(signed_volume(v));
-        }
     }
     if (code != Exit::ok) return code;
-
-    // Explicit planes against the other grid options: a disagreement is an
-    // error, never a silent choice.
-    {
-        const std::vector<double>* explicit_planes[3] = {&a.x_planes, &a.y_planes, &a.z_planes};
-        const char* axis = "xyz";
-        for (int k = 0; k < 3; ++k) {
-            const std::vector<double>& p = *explicit_planes[k];
-            if (p.empty()) continue;
-            const std::string flag = std::string("--") + axis[k] + "-planes";
-            if (a.dims.size() == 3 && p.size() != std::size_t{a.dims[k]} + 1)
-                return usage_error("--dims gives " + std::to_string(a.dims[k]) + " cells along " + axis[k] + " but " +
-                                   flag + " gives " + std::to_string(p.size()) + " planes (" +
-                                   std::to_string(p.size() - 1) + " cells): give one of them, or make them agree");
-            if (a.bounds.size() == 6 && (p.front() != a.bounds[k] || p.back() != a.bounds[3 + k]))
-                return usage_error("--bounds gives " + std::string(1, axis[k]) + " from " + shortest(a.bounds[k]) +
-                                   " to " + shortest(a.bounds[3 + k]) + " but " + flag + " runs from " +
-                                   shortest(p.front()) + " to " + shortest(p.back()));
-        }
-        if (!a.x_planes.empty() && !a.y_planes.empty() && !a.z_planes.empty() &&
-            (a.cells_given || a.cell_size > 0))
-            return usage_error(std::string(a.cell_size > 0 ? "--cell-size" : "--cells") +
-                               " has no effect when --x-planes, --y-planes and --z-planes give every plane");
+    for (std::size_t b = 0; b < r.meshes.size(); ++b) {
+        r.views.push_back(r.meshes[b].mesh.view());
+        std::vector<MeshView> parts;
+        for (const Mesh& m : r.bodies[b].parts) parts.push_back(m.view());
+        if (parts.empty()) parts.push_back(r.views.back());
+        r.parts.push_back(std::move(parts));
+        r.volumes.push_back(r.bodies[b].volume);
     }
+    return Exit::ok;
+}
 
-    // The grid.
-    GridAxes g;
+// The grid's planes from --dims, --cell-size or --cells, --bounds and the
+// explicit planes; 0 when they make a grid the outputs can take.
+int make_axes(const GridArgs& a, const Bodies& bodies, const std::string& out_ext, const Slice& slice, GridAxes& g) {
     try {
         GridSpec spec;
         if (a.dims.size() == 3)
@@ -291,10 +295,9 @@ int run_grid_command(const GridArgs& a) {
         else
             spec.cells = a.cells;
         if (a.bounds.size() == 6)
-            spec.bounds = std::array<double, 6>{a.bounds[0], a.bounds[1], a.bounds[2],
-                                                a.bounds[3], a.bounds[4], a.bounds[5]};
+            spec.bounds = std::array<double, 6>{a.bounds[0], a.bounds[1], a.bounds[2], a.bounds[3], a.bounds[4], a.bounds[5]};
         const bool all_planes = !a.x_planes.empty() && !a.y_planes.empty() && !a.z_planes.empty();
-        if (!all_planes) g = make_grid(views, spec);
+        if (!all_planes) g = make_grid(bodies.views, spec);
         if (!a.x_planes.empty()) g.x = a.x_planes;
         if (!a.y_planes.empty()) g.y = a.y_planes;
         if (!a.z_planes.empty()) g.z = a.z_planes;
@@ -303,75 +306,91 @@ int run_grid_command(const GridArgs& a) {
         return Exit::invalid;
     }
     if (out_ext == ".vti" && !g.uniform()) return usage_error("the grid is not uniform: write .vtr (RectilinearGrid) instead");
-    if (slice->given) {
-        const std::vector<double>& c = slice->axis == 0 ? g.x : (slice->axis == 1 ? g.y : g.z);
-        if (slice->value < c.front() || slice->value > c.back())
+    if (slice.given) {
+        const std::vector<double>& c = slice.axis == 0 ? g.x : (slice.axis == 1 ? g.y : g.z);
+        if (slice.value < c.front() || slice.value > c.back())
             return usage_error("--slice " + a.slice + " lies outside the grid [" + shortest(c.front()) + ", " +
                                shortest(c.back()) + "]");
     }
-    const std::size_t cells = g.cell_count();
-    const std::size_t nb = views.size();
+    return Exit::ok;
+}
+
+// The arrays the outputs need, per cell, against --max-memory (default three
+// quarters of this machine's memory), before anything is allocated.
+int check_memory(const GridArgs& a, std::size_t cells, std::size_t nb) {
     if (cells > (std::size_t{1} << 34))
         return usage_error("too many cells (" + std::to_string(cells) + ", more than 2^34 = 17179869184): the volumes "
                            "alone would need about " + bytes_text(8.0 * static_cast<double>(cells * nb)) +
                            "; a coarser grid (--cells, --cell-size, --dims), or polyvol.dask.grid in blocks");
-    {
-        // The arrays below, per cell: the bodies' volumes, centroids (moments
-        // and the written copy), surfaces (the sums and the written copy), the
-        // union, its class and the .vti copy of it, the intersection.
-        const std::optional<uint64_t> limit =
-            a.max_memory.empty() ? std::optional<uint64_t>(default_memory_limit()) : parse_bytes(a.max_memory);
-        if (!limit) return usage_error("--max-memory takes a size such as 8G or 512M, not '" + a.max_memory + "'");
-        const double surfaces = static_cast<double>(nb > 1 ? nb + 1 : 1);
-        double per_cell = 8.0 * static_cast<double>(nb);
-        if (!a.centroids.empty()) per_cell += 48.0 * static_cast<double>(nb);
-        if (!a.surface.empty()) per_cell += 64.0 * surfaces;
-        if (nb > 1) per_cell += 8 + 1 + 8 + (a.intersection_out.empty() ? 0 : 8);
-        const double need = per_cell * static_cast<double>(cells);
-        if (need > static_cast<double>(*limit))
-            return usage_error("the grid of " + std::to_string(cells) + " cells needs about " + bytes_text(need) +
-                               " for its arrays, more than " +
-                               (a.max_memory.empty() ? "three quarters of this machine's memory (" +
-                                                           bytes_text(static_cast<double>(*limit)) + ")"
-                                                     : "--max-memory " + bytes_text(static_cast<double>(*limit))) +
-                               ": use fewer cells, or raise --max-memory");
-    }
+    const std::optional<uint64_t> limit =
+        a.max_memory.empty() ? std::optional<uint64_t>(default_memory_limit()) : parse_bytes(a.max_memory);
+    if (!limit) return usage_error("--max-memory takes a size such as 8G or 512M, not '" + a.max_memory + "'");
+    // The bodies' volumes, centroids (moments and the written copy), surfaces
+    // (the sums and the written copy), the union, its class and the .vti copy
+    // of it, the intersection.
+    const double surfaces = static_cast<double>(nb > 1 ? nb + 1 : 1);
+    double per_cell = 8.0 * static_cast<double>(nb);
+    if (!a.centroids.empty()) per_cell += 48.0 * static_cast<double>(nb);
+    if (!a.surface.empty()) per_cell += 64.0 * surfaces;
+    if (nb > 1) per_cell += 8 + 1 + 8 + (a.intersection_out.empty() ? 0 : 8);
+    const double need = per_cell * static_cast<double>(cells);
+    if (need > static_cast<double>(*limit))
+        return usage_error("the grid of " + std::to_string(cells) + " cells needs about " + bytes_text(need) +
+                           " for its arrays, more than " +
+                           (a.max_memory.empty() ? "three quarters of this machine's memory (" +
+                                                       bytes_text(static_cast<double>(*limit)) + ")"
+                                                 : "--max-memory " + bytes_text(static_cast<double>(*limit))) +
+                           ": use fewer cells, or raise --max-memory");
+    return Exit::ok;
+}
 
-    // Compute.
-    std::vector<double> volumes(nb * cells), moments, union_volumes, intersection_volumes;
+// The per-cell arrays of one run and the GridOutput that points into them.
+struct Arrays {
+    std::vector<double> volumes, moments, union_volumes, intersection_volumes, wetted, normals;
     std::vector<CellClass> cls;
-    GridOutput out{.volumes = volumes};
+    std::size_t surfaces = 1;  // --surface: the bodies' arrays, then (several bodies) the union's
+    GridOutput out;
+};
+
+void allocate(const GridArgs& a, std::size_t nb, std::size_t cells, Arrays& r) {
+    r.volumes.resize(nb * cells);
+    r.out.volumes = r.volumes;
     if (!a.centroids.empty()) {
-        moments.resize(3 * nb * cells);
-        out.first_moments = moments;
+        r.moments.resize(3 * nb * cells);
+        r.out.first_moments = r.moments;
     }
-    // --surface: the bodies' arrays, then (several bodies) the union's.
-    const std::size_t surfaces = nb > 1 ? nb + 1 : 1;
-    std::vector<double> wetted, normals;
+    r.surfaces = nb > 1 ? nb + 1 : 1;
     if (!a.surface.empty()) {
-        wetted.resize(surfaces * cells);
-        normals.resize(3 * surfaces * cells);
-        out.wetted_area = std::span<double>(wetted).first(nb * cells);
-        out.surface_normal = std::span<double>(normals).first(3 * nb * cells);
+        r.wetted.resize(r.surfaces * cells);
+        r.normals.resize(3 * r.surfaces * cells);
+        r.out.wetted_area = std::span<double>(r.wetted).first(nb * cells);
+        r.out.surface_normal = std::span<double>(r.normals).first(3 * nb * cells);
         if (nb > 1) {
-            out.union_wetted_area = std::span<double>(wetted).subspan(nb * cells);
-            out.union_surface_normal = std::span<double>(normals).subspan(3 * nb * cells);
+            r.out.union_wetted_area = std::span<double>(r.wetted).subspan(nb * cells);
+            r.out.union_surface_normal = std::span<double>(r.normals).subspan(3 * nb * cells);
         }
     }
-    // Several bodies: the union always (the summary gives it); an output
-    // that needs it fails without it, the summary alone does not.
-    const bool union_needed = nb > 1 && (!a.union_out.empty() || !a.intersection_out.empty() || !a.png.empty() ||
-                                         out_ext == ".vti" || out_ext == ".vtr" || !a.surface.empty());
     if (nb > 1 || !a.union_out.empty()) {
-        union_volumes.resize(cells);
-        cls.resize(cells);
-        out.union_volumes = union_volumes;
-        out.cell_class = cls;
+        r.union_volumes.resize(cells);
+        r.cls.resize(cells);
+        r.out.union_volumes = r.union_volumes;
+        r.out.cell_class = r.cls;
     }
     if (!a.intersection_out.empty()) {
-        intersection_volumes.resize(cells);
-        out.intersection_volumes = intersection_volumes;
+        r.intersection_volumes.resize(cells);
+        r.out.intersection_volumes = r.intersection_volumes;
     }
+}
+
+// grid_union_volumes with progress on stderr (a terminal's, past a second).
+// Several bodies: the union always (the summary gives it); where it is
+// undefined and no output needs it, the bodies' cells alone, and
+// `union_problem` says why. 0 when computed.
+int compute(const GridArgs& a, const Bodies& bodies, const GridAxes& g, const std::string& out_ext, Arrays& arrays,
+            GridSummary& summary, std::string& union_problem) {
+    const std::size_t nb = bodies.parts.size();
+    const bool union_needed = nb > 1 && (!a.union_out.empty() || !a.intersection_out.empty() || !a.png.empty() ||
+                                         out_ext == ".vti" || out_ext == ".vtr" || !a.surface.empty());
     const auto t_grid = Clock::now();
     auto last_print = t_grid;
     bool printed = false;
@@ -385,20 +404,19 @@ int run_grid_command(const GridArgs& a) {
         std::fprintf(stderr, "\rpolyvol grid: %3.0f%%", 100 * fraction);
         std::fflush(stderr);
     };
-    GridSummary summary;
-    std::string union_problem;  // why the union was not computed
+    const GridBlock whole{{0, 0, 0}, {g.nx(), g.ny(), g.nz()}};
     try {
         try {
-            summary = grid_union_volumes(parts, g, GridBlock{{0, 0, 0}, {g.nx(), g.ny(), g.nz()}}, out, options);
+            summary = grid_union_volumes(bodies.parts, g, whole, arrays.out, options);
         } catch (const std::invalid_argument& e) {
             if (union_needed || std::string_view(e.what()).find("the union is undefined") == std::string_view::npos)
                 throw;
             union_problem = e.what();
-            out.union_volumes = {};
-            out.cell_class = {};
-            union_volumes.clear();
-            cls.clear();
-            summary = grid_union_volumes(parts, g, GridBlock{{0, 0, 0}, {g.nx(), g.ny(), g.nz()}}, out, options);
+            arrays.out.union_volumes = {};
+            arrays.out.cell_class = {};
+            arrays.union_volumes.clear();
+            arrays.cls.clear();
+            summary = grid_union_volumes(bodies.parts, g, whole, arrays.out, options);
         }
     } catch (const std::invalid_argument& e) {
         if (printed) std::cerr << "\n";
@@ -407,108 +425,116 @@ int run_grid_command(const GridArgs& a) {
     }
     if (printed) std::cerr << "\n";
     if (!union_problem.empty()) std::cerr << "polyvol: warning: " << union_problem << "; the bodies' cells are given\n";
-    const bool want_union = nb > 1 && !union_volumes.empty();
-    const double seconds = seconds_since(t_start);
+    return Exit::ok;
+}
 
-    // Write.
-    auto per_cell = [&](std::vector<double>& v, std::size_t arrays) {
-        if (!a.fractions) return;
-        for (std::size_t i = 0; i < g.nx(); ++i)
-            for (std::size_t j = 0; j < g.ny(); ++j)
-                for (std::size_t k = 0; k < g.nz(); ++k) {
-                    const double cv = g.cell_volume(i, j, k);
-                    // Clamped to [0, 1]: a cell's volume is within a few ulps of it (docs/grid.md).
-                    for (std::size_t b = 0; b < arrays; ++b) {
-                        double& f = v[b * cells + g.cell(i, j, k)];
-                        f = a.solid_flags.keep_signed ? f / cv : std::clamp(f / cv, 0.0, 1.0);
-                    }
-                }
+// The VTK image or rectilinear grid: each body's volumes (or fractions), the
+// union's, the intersection's and the cell classes, the surfaces.
+void write_vtk(const GridArgs& a, const GridAxes& g, const Arrays& r, std::size_t nb, const std::string& out_ext) {
+    const std::size_t cells = g.cell_count();
+    const std::string what = a.fractions ? "fraction" : "volume";
+    const auto body_name = [&](std::size_t b) {
+        return "_" + std::to_string(b) + "_" + std::filesystem::path(a.files[b]).stem().string();
     };
-    const nlohmann::json summary_j = grid_summary_json(a.files, mesh_volumes, g, summary, seconds, union_problem, *unit);
+    std::vector<CellArray> arrays;
+    for (std::size_t b = 0; b < nb; ++b)
+        arrays.push_back({what + (nb > 1 ? body_name(b) : ""), std::span<const double>(r.volumes).subspan(b * cells, cells), 1});
+    std::vector<double> contact;
+    if (nb > 1 && !r.union_volumes.empty()) {
+        arrays.push_back({"union_" + what, r.union_volumes, 1});
+        if (!r.intersection_volumes.empty()) arrays.push_back({"intersection_" + what, r.intersection_volumes, 1});
+        contact.resize(cells);
+        for (std::size_t c = 0; c < cells; ++c) contact[c] = static_cast<double>(r.cls[c]);
+        arrays.push_back({"cell_class", contact, 1, true});  // UInt8: 0 empty, 1 full, 2 cut, 3 contact
+    }
+    if (!a.surface.empty())
+        for (std::size_t b = 0; b < r.surfaces; ++b) {
+            const std::string suffix = nb == 1 ? "" : b == nb ? "_union" : body_name(b);
+            arrays.push_back({"wetted_area" + suffix, std::span<const double>(r.wetted).subspan(b * cells, cells), 1});
+            arrays.push_back({"surface_normal" + suffix, std::span<const double>(r.normals).subspan(3 * b * cells, 3 * cells), 3});
+        }
+    if (out_ext == ".vti")
+        write_vti(a.out, g.x, g.y, g.z, arrays);
+    else
+        write_vtr(a.out, g.x, g.y, g.z, arrays);
+}
+
+// Every file asked for: the picture, centroids, surfaces, union and
+// intersection, then -o (fractions in place of volumes with --fractions).
+void write_outputs(const GridArgs& a, const GridAxes& g, Arrays& r, std::size_t nb, const std::string& out_ext,
+                   const Slice& slice, const nlohmann::json& summary) {
+    const std::size_t cells = g.cell_count();
+    const auto shape = [&](std::size_t lead, std::size_t tail) {
+        std::vector<std::size_t> s;
+        if (lead > 1) s.push_back(lead);
+        s.insert(s.end(), {g.nx(), g.ny(), g.nz()});
+        if (tail > 1) s.push_back(tail);
+        return s;
+    };
+    if (!a.png.empty()) {
+        std::string what = std::filesystem::path(a.files[0]).filename().string();
+        if (nb > 1) what = "union of " + std::to_string(nb) + " bodies (" + what + ", ...)";
+        write_slice_png(a.png, g, nb > 1 ? std::span<const double>(r.union_volumes) : std::span<const double>(r.volumes),
+                        slice, what);
+    }
+    if (!a.centroids.empty()) write_npy(a.centroids, cell_centroids(r.volumes, r.moments), shape(nb, 3));
+    if (!a.surface.empty()) {
+        std::vector<double> four(4 * r.surfaces * cells);
+        for (std::size_t n = 0; n < r.surfaces * cells; ++n) {
+            four[4 * n] = r.wetted[n];
+            for (int k = 0; k < 3; ++k) four[4 * n + 1 + k] = r.normals[3 * n + k];
+        }
+        write_npy(a.surface, four, shape(r.surfaces, 4));
+    }
+    const bool keep_signed = a.solid_flags.keep_signed;
+    if (!r.union_volumes.empty()) {
+        if (a.fractions) to_fractions(r.union_volumes, g, 1, keep_signed);
+        if (!a.union_out.empty()) write_npy(a.union_out, r.union_volumes, shape(1, 1));
+    }
+    if (!r.intersection_volumes.empty()) {
+        if (a.fractions) to_fractions(r.intersection_volumes, g, 1, keep_signed);
+        write_npy(a.intersection_out, r.intersection_volumes, shape(1, 1));
+    }
+    if (a.fractions) to_fractions(r.volumes, g, nb, keep_signed);
+    if (out_ext == ".npy") {
+        write_npy(a.out, r.volumes, shape(nb, 1));
+    } else if (out_ext == ".vti" || out_ext == ".vtr") {
+        write_vtk(a, g, r, nb, out_ext);
+    } else if (out_ext == ".json") {
+        std::ofstream f(a.out);
+        f << summary.dump(2) << "\n";
+        if (!f) throw std::runtime_error(a.out + ": write failed");
+    }
+}
+
+}  // namespace
+
+// Check the arguments, read the bodies (each its solid, in one unit), make
+// the grid, compute every cell, write what was asked, print the summary.
+int run_grid_command(const GridArgs& a) {
+    const auto t_start = Clock::now();
+    const std::string out_ext = a.out.empty() ? "" : extension(a.out);
+    const std::optional<Slice> slice = parse_slice(a.slice);
+    if (const int code = check_arguments(a, out_ext, slice)) return code;
+    Bodies bodies;
+    if (const int code = read_bodies(a, bodies)) return code;
+    if (const int code = check_planes(a)) return code;
+    GridAxes g;
+    if (const int code = make_axes(a, bodies, out_ext, *slice, g)) return code;
+    const std::size_t nb = bodies.parts.size(), cells = g.cell_count();
+    if (const int code = check_memory(a, cells, nb)) return code;
+    Arrays arrays;
+    allocate(a, nb, cells, arrays);
+    GridSummary summary;
+    std::string union_problem;  // why the union was not computed
+    if (const int code = compute(a, bodies, g, out_ext, arrays, summary, union_problem)) return code;
+    const nlohmann::json summary_j =
+        grid_summary_json(a.files, bodies.volumes, g, summary, seconds_since(t_start), union_problem, bodies.unit);
     if (seconds_since(t_start) > 1.0 && (!a.out.empty() || !a.png.empty() || !a.centroids.empty() ||
                                           !a.union_out.empty() || !a.intersection_out.empty()))
         std::cerr << "polyvol grid: writing " << cells << " cells\n";
     try {
-        if (!a.png.empty()) {
-            std::span<const double> occupancy = nb > 1 ? std::span<const double>(union_volumes)
-                                                       : std::span<const double>(volumes);
-            std::string what = std::filesystem::path(a.files[0]).filename().string();
-            if (nb > 1) what = "union of " + std::to_string(nb) + " bodies (" + what + ", ...)";
-            write_slice_png(a.png, g, occupancy, *slice, what);
-        }
-        if (!a.centroids.empty()) {
-            std::vector<double> c(moments.size());
-            for (std::size_t n = 0; n < nb * cells; ++n)
-                for (int k = 0; k < 3; ++k)
-                    c[3 * n + k] = volumes[n] != 0 ? moments[3 * n + k] / volumes[n]
-                                                   : std::numeric_limits<double>::quiet_NaN();
-            std::vector<std::size_t> shape;
-            if (nb > 1) shape.push_back(nb);
-            shape.insert(shape.end(), {g.nx(), g.ny(), g.nz(), 3});
-            write_npy(a.centroids, c, shape);
-        }
-        if (!a.surface.empty()) {
-            std::vector<double> four(4 * surfaces * cells);
-            for (std::size_t n = 0; n < surfaces * cells; ++n) {
-                four[4 * n] = wetted[n];
-                for (int k = 0; k < 3; ++k) four[4 * n + 1 + k] = normals[3 * n + k];
-            }
-            std::vector<std::size_t> shape;
-            if (nb > 1) shape.push_back(surfaces);
-            shape.insert(shape.end(), {g.nx(), g.ny(), g.nz(), 4});
-            write_npy(a.surface, four, shape);
-        }
-        const std::size_t shape3[3] = {g.nx(), g.ny(), g.nz()};
-        if (!union_volumes.empty()) {
-            per_cell(union_volumes, 1);
-            if (!a.union_out.empty()) write_npy(a.union_out, union_volumes, shape3);
-        }
-        if (!intersection_volumes.empty()) {
-            per_cell(intersection_volumes, 1);
-            write_npy(a.intersection_out, intersection_volumes, shape3);
-        }
-        per_cell(volumes, nb);
-        if (out_ext == ".npy") {
-            std::vector<std::size_t> shape;
-            if (nb > 1) shape.push_back(nb);
-            shape.insert(shape.end(), {g.nx(), g.ny(), g.nz()});
-            write_npy(a.out, volumes, shape);
-        } else if (out_ext == ".vti" || out_ext == ".vtr") {
-            const std::string what = a.fractions ? "fraction" : "volume";
-            std::vector<std::string> names;
-            std::vector<CellArray> arrays;
-            for (std::size_t b = 0; b < nb; ++b) {
-                std::string name = what;
-                if (nb > 1) name += "_" + std::to_string(b) + "_" + std::filesystem::path(a.files[b]).stem().string();
-                arrays.push_back({name, std::span<const double>(volumes).subspan(b * cells, cells), 1});
-            }
-            std::vector<double> contact;
-            if (want_union) {
-                arrays.push_back({"union_" + what, union_volumes, 1});
-                if (!intersection_volumes.empty()) arrays.push_back({"intersection_" + what, intersection_volumes, 1});
-                contact.resize(cells);
-                for (std::size_t c = 0; c < cells; ++c) contact[c] = static_cast<double>(cls[c]);
-                arrays.push_back({"cell_class", contact, 1, true});  // UInt8: 0 empty, 1 full, 2 cut, 3 contact
-            }
-            if (!a.surface.empty())
-                for (std::size_t b = 0; b < surfaces; ++b) {
-                    const std::string suffix =
-                        nb == 1    ? ""
-                        : b == nb ? "_union"
-                                  : "_" + std::to_string(b) + "_" + std::filesystem::path(a.files[b]).stem().string();
-                    arrays.push_back({"wetted_area" + suffix, std::span<const double>(wetted).subspan(b * cells, cells), 1});
-                    arrays.push_back({"surface_normal" + suffix,
-                                      std::span<const double>(normals).subspan(3 * b * cells, 3 * cells), 3});
-                }
-            if (out_ext == ".vti")
-                write_vti(a.out, g.x, g.y, g.z, arrays);
-            else
-                write_vtr(a.out, g.x, g.y, g.z, arrays);
-        } else if (out_ext == ".json") {
-            std::ofstream f(a.out);
-            f << summary_j.dump(2) << "\n";
-            if (!f) throw std::runtime_error(a.out + ": write failed");
-        }
+        write_outputs(a, g, arrays, nb, out_ext, *slice, summary_j);
     } catch (const std::exception& e) {
         std::cerr << "polyvol: " << e.what() << "\n";
         return Exit::usage;
@@ -516,7 +542,7 @@ int run_grid_command(const GridArgs& a) {
     if (a.json)
         std::cout << summary_j.dump(2) << "\n";
     else
-        std::cout << grid_summary_text(a.files, mesh_volumes, g, summary, union_problem, *unit);
+        std::cout << grid_summary_text(a.files, bodies.volumes, g, summary, union_problem, bodies.unit);
     return Exit::ok;
 }
 

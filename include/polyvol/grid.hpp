@@ -256,4 +256,16 @@ GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes&
 GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, const GridAxes& grid,
                                const GridBlock& block, const GridOutput& out, const GridOptions& options = {});
 
+// Volume fractions in place: `arrays` consecutive per-cell arrays (cells in
+// GridAxes::cell order) each divided by its cell's volume (cell_volume),
+// clamped to [0, 1] unless keep_signed. A body's volume in a cell is within
+// a few ulps of the cell's (docs/grid.md), so the clamp moves a fraction by
+// no more than that bound.
+void to_fractions(std::span<double> values, const GridAxes& grid, std::size_t arrays, bool keep_signed = false);
+
+// Each cell's centroid of the solid in it: first_moments / volume per axis
+// (3 values per cell, as GridOutput::first_moments holds them), NaN where the
+// volume is 0.
+std::vector<double> cell_centroids(std::span<const double> volumes, std::span<const double> first_moments);
+
 }  // namespace polyvol

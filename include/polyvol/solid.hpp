@@ -118,6 +118,19 @@ MeshSolid make_solid(Mesh& mesh, const SolidOptions& options = {});
 // among overlapping shells (a cavity's group is not decided by boxes).
 std::vector<Mesh> solid_as_union(const MeshView& mesh, const MeshSolid& solid);
 
+// One body for the grid (grid.hpp's grid_union_volumes takes each body as
+// the union of its parts): make_solid (with face_shells), then the solid as
+// solid_as_union's parts where it was resolved, else the mesh itself.
+struct SolidBody {
+    MeshSolid solid;          // the policy's verdict, message and notes
+    std::vector<Mesh> parts;  // the union's parts; empty: the mesh itself is the body
+    std::string not_split;    // why the resolved solid is not such a union ("" when it is)
+    double volume = 0;        // the body's volume: the solid's, or the mesh's signed_volume
+    // A body the grid can take: status ok and, where resolved, split.
+    bool ok() const { return solid.status == SolidStatus::ok && not_split.empty(); }
+};
+SolidBody solid_body(Mesh& mesh, SolidOptions options);
+
 // Where the solid differs from the shells' sum (MeshSolid::resolved, with
 // solid_moments): m's volume, mass and moments become the solid's (volume
 // and mass correctly rounded; centroid within 2^-51, inertia within its

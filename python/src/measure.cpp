@@ -211,25 +211,16 @@ void bind_measure(py::module_& m) {
         [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets,
            const py::dict& policy) {
             Mesh mesh = to_mesh(mesh_view(positions, indices, offsets));
-            SolidOptions p = solid_options(policy);
-            p.face_shells = true;
-            MeshSolid s;
-            std::vector<Mesh> parts;
-            std::string not_split;  // why the solid is not a union of bodies the grid takes
+            SolidBody body;
             {
                 py::gil_scoped_release release;
-                s = make_solid(mesh, p);
-                try {
-                    if (s.status == SolidStatus::ok && s.resolved()) parts = solid_as_union(mesh.view(), s);
-                } catch (const std::invalid_argument& e) {
-                    not_split = e.what();
-                }
+                body = solid_body(mesh, solid_options(policy));
             }
-            if (!not_split.empty())
-                return py::make_tuple(py::make_tuple("not_split", not_split, py::list()), py::list(), py::none());
-            if (parts.empty() && s.status == SolidStatus::ok) parts.push_back(std::move(mesh));
+            if (!body.not_split.empty())
+                return py::make_tuple(py::make_tuple("not_split", body.not_split, py::list()), py::list(), py::none());
+            if (body.parts.empty() && body.solid.status == SolidStatus::ok) body.parts.push_back(std::move(mesh));
             py::list arrays;
-            for (Mesh& part : parts) {
+            for (Mesh& part : body.parts) {
                 const auto n = static_cast<py::ssize_t>(part.vertex_count());
                 py::object part_offsets = part.face_offsets.empty()
                                          ? py::object(py::none())
@@ -238,8 +229,8 @@ void bind_measure(py::module_& m) {
                 arrays.append(py::make_tuple(adopt_array(std::move(part.positions), {n, 3}),
                                              adopt_array(std::move(part.indices), {ni}), part_offsets));
             }
-            const py::object volume = s.resolved() ? py::object(py::float_(s.solid->volume)) : py::none();
-            return py::make_tuple(solid_verdict(s), arrays, volume);
+            const py::object volume = body.solid.resolved() ? py::object(py::float_(body.volume)) : py::none();
+            return py::make_tuple(solid_verdict(body.solid), arrays, volume);
         },
         py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("policy"));
 
@@ -360,7 +351,7 @@ void bind_measure(py::module_& m) {
            bool within_shells) {
             const MeshView view = mesh_view(positions, indices, offsets);
             py::gil_scoped_release release;
-            return solid_volume(view, moments, within_shells);
+            return solid_volume(view, {.moments = moments, .within_shells = within_shells});
         },
         py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("moments"),
         py::arg("within_shells") = false);

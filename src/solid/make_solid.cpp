@@ -250,7 +250,7 @@ MeshSolid make_solid(Mesh& mesh, const SolidOptions& o) {
     const bool crosses_itself = r.self && r.self->pairs > 0;
     if (o.resolve_overlaps && r.closed) {
         r.overlap_checked = true;
-        if (several_parts || crosses_itself) r.solid = solid_volume(view, o.solid_moments, crosses_itself);
+        if (several_parts || crosses_itself) r.solid = solid_volume(view, {.moments = o.solid_moments, .within_shells = crosses_itself});
         if (r.solid && r.solid->status == BooleanStatus::shell_touches_itself) {
             note(SolidNote::Kind::self_unresolved,
                  self_crossing_sentence(*r.self) +
@@ -258,7 +258,7 @@ MeshSolid make_solid(Mesh& mesh, const SolidOptions& o) {
                      "the region it wraps by its winding number");
             r.self_unresolved = true;
             r.solid.reset();
-            if (several_parts) r.solid = solid_volume(view, o.solid_moments);
+            if (several_parts) r.solid = solid_volume(view, {.moments = o.solid_moments});
         }
         if (r.solid && r.solid->status != BooleanStatus::ok) {
             note(SolidNote::Kind::overlap_not_checked,
@@ -307,6 +307,24 @@ SolidMass measure_solid(Mesh& mesh, SolidOptions policy, const MeasureOptions& m
     r.mass = mass_properties(mesh.view(), measure);
     if (r.solid.resolved()) use_solid_properties(*r.solid.solid, measure.density, *r.mass);
     return r;
+}
+
+SolidBody solid_body(Mesh& mesh, SolidOptions options) {
+    options.face_shells = true;  // solid_as_union groups the shells
+    SolidBody b;
+    b.solid = make_solid(mesh, options);
+    if (b.solid.status != SolidStatus::ok) return b;
+    if (!b.solid.resolved()) {
+        b.volume = signed_volume(mesh.view());
+        return b;
+    }
+    try {
+        b.parts = solid_as_union(mesh.view(), b.solid);
+    } catch (const std::invalid_argument& e) {
+        b.not_split = e.what();
+    }
+    b.volume = b.solid.solid->volume;
+    return b;
 }
 
 BooleanVolumes solid_booleans(const MeshView& a, const MeshSolid& sa, const MeshView& b, const MeshSolid& sb) {
