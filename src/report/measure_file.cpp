@@ -170,14 +170,12 @@ bool reads_as_chain(const std::string& file) {
 
 }  // namespace
 
-FileReport measure_file(const std::string& file, const FileOptions& request, const std::string& member) {
-    if (streams(request, member))
-        if (auto s = stream_binary_stl(file, request))
-            if (request.keep_signed || !s->mass || s->mass->volume >= 0) return std::move(*s);  // inside out: loaded below
-    FileReport r;
-    r.file = member.empty() ? file : file + ":" + member;
-    const std::string& path = r.file;  // the name in every message
-    auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+// Reads the file (or archive member) into r.loaded; false with r's error and
+// exit code 2 when it cannot be read.
+bool load(FileReport& r, const std::string& file, const std::string& member) {
+    const auto t0 = std::chrono::steady_clock::now();
     try {
         r.loaded = member.empty() ? read_mesh_file(file) : read_archive_member(file, member);
     } catch (const ReadError& e) {
@@ -185,38 +183,41 @@ FileReport measure_file(const std::string& file, const FileOptions& request, con
         r.error = e.what();
         if (member.empty() && file != "-" && reads_as_chain(file))
             r.error += "; it reads as a boundary chain (.chain or qhull's output): `polyvol ndim` measures it";
-        return r;
+        return false;
     } catch (const std::bad_alloc&) {
         r.exit_code = Exit::unreadable;
-        r.error = path + ": out of memory while reading";
-        return r;
+        r.error = r.file + ": out of memory while reading";
+        return false;
     }
     r.seconds_read = seconds_since(t0);
     r.triangles = r.loaded->mesh.view().triangle_count();
-    t0 = std::chrono::steady_clock::now();
-    double length_error = 0;
-    if (const std::string why = plan_units(r, request, length_error); !why.empty()) {
-        r.exit_code = Exit::invalid;
-        r.error = path + ": " + why;
-        return r;
-    }
-    SolidOptions policy{.weld_tolerance = request.weld_tolerance,
-                        .orient = request.orient,
-                        // `check` judges the file as it is: inside-out shells are reported, not turned.
-                        .keep_signed = request.keep_signed || !request.need_mass,
-                        .allow_open = request.allow_open,
-                        .resolve_overlaps = request.check_overlap,
-                        .self_check_triangles = request.self_check_always ? SIZE_MAX : kSelfCheckTriangles,
-                        .solid_moments = request.need_mass && !request.volume_only,
-                        .closedness_by_fingerprint = !request.edge_counts,
-                        .shells = !request.table_only,
-                        .face_shells = request.need_mass && !request.table_only};
-    MeshSolid solid = make_solid(r.loaded->mesh, policy);
-    if (!request.need_mass) r.repairs = repairs_needed(solid);
-    const MeshView view = r.loaded->mesh.view();
+    return true;
+}
+
+// The solid policy for what is wanted (polyvol/solid.hpp): `check` judges
+// the file as it is (inside-out shells reported, not turned); the table's
+// figures need the closedness alone, not the shells.
+SolidOptions policy_for(const FileOptions& q) {
+    return SolidOptions{.weld_tolerance = q.weld_tolerance,
+                        .orient = q.orient,
+                        .keep_signed = q.keep_signed || !q.need_mass,
+                        .allow_open = q.allow_open,
+                        .resolve_overlaps = q.check_overlap,
+                        .self_check_triangles = q.self_check_always ? SIZE_MAX : kSelfCheckTriangles,
+                        .solid_moments = q.need_mass && !q.volume_only,
+                        .closedness_by_fingerprint = !q.edge_counts,
+                        .shells = !q.table_only,
+                        .face_shells = q.need_mass && !q.table_only};
+}
+
+// What the policy found, into the report; false (exit 3) when the mesh is
+// not a solid. `check` reports an open or misoriented surface in its table;
+// every other refusal is said in r.error.
+bool take_solid(FileReport& r, MeshSolid& solid, const FileOptions& q) {
+    if (!q.need_mass) r.repairs = repairs_needed(solid);
     if (solid.welded) {
         r.welded = solid.welded;
-        r.weld_tolerance = request.weld_tolerance;
+        r.weld_tolerance = q.weld_tolerance;
     }
     r.oriented = solid.oriented;
     r.turned_outward = solid.turned_outward;
@@ -228,38 +229,59 @@ FileReport measure_file(const std::string& file, const FileOptions& request, con
     r.self_unresolved = solid.self_unresolved;
     r.overlap_checked = solid.overlap_checked;
     r.solid = solid.solid;
-    const std::string notes = solid.notes_text(path);
+    const std::string notes = solid.notes_text(r.file);
     if (!notes.empty()) r.warning += (r.warning.empty() ? "" : "; ") + notes;
-    if (solid.status != SolidStatus::ok) {
-        r.exit_code = Exit::invalid;
-        // `check` reports an open or misoriented surface in its table; every other refusal is said here.
-        const bool in_report = !request.need_mass && r.topology;
-        if (!in_report) r.error = path + ": " + solid.message;
-        return r;
+    if (solid.status == SolidStatus::ok) {
+        if (!r.repairs.empty()) r.exit_code = Exit::invalid;  // `check`: a file that needs a repair is not a solid as it is
+        return true;
     }
-    const bool closed = solid.closed;
-    // `check`: a file that needs any repair is not a solid as it is.
-    if (!r.repairs.empty()) r.exit_code = Exit::invalid;
-    const bool pieces = request.need_mass && !request.table_only;  // per-shell and per-part figures
-    if (request.need_mass) {
-        r.mass = request.volume_only ? volume_only_properties(view, request.measure)
-                                     : mass_properties(view, request.measure);
-        if (solid.resolved()) use_solid_properties(*r.solid, request.measure.density, *r.mass);
-    }
+    r.exit_code = Exit::invalid;
+    if (q.need_mass || !r.topology) r.error = r.file + ": " + solid.message;
+    return false;
+}
+
+// The figures: the mesh's (the solid's where shells overlap), widened for
+// coordinates a reader computed, per shell and part, in the units asked for.
+void measure_figures(FileReport& r, const MeshSolid& solid, const FileOptions& q, double length_error) {
+    const MeshView view = r.loaded->mesh.view();
+    r.mass = q.volume_only ? volume_only_properties(view, q.measure) : mass_properties(view, q.measure);
+    if (solid.resolved()) use_solid_properties(*r.solid, q.measure.density, *r.mass);
     // Coordinates a reader computed (3MF transforms): every guarantee widened
     // to hold for the coordinates the file defines.
-    if (r.mass && r.loaded->coordinate_error > 0)
-        widen_for_coordinate_error(view, r.loaded->coordinate_error, request.measure.density, closed,
-                                   solid.resolved(), *r.mass);
-    if (r.mass && pieces && r.topology) piece_figures(r, request, view);
-    // In the units asked for: every figure times its power of the length factor.
-    const double density_error = request.density_relative_error;  // polyvol::density_in's
-    if (r.mass && (r.length_factor != 1 || length_error > 0 || density_error > 0)) {
+    if (r.loaded->coordinate_error > 0)
+        widen_for_coordinate_error(view, r.loaded->coordinate_error, q.measure.density, solid.closed, solid.resolved(),
+                                   *r.mass);
+    if (!q.table_only && r.topology) piece_figures(r, q, view);
+    // Every figure times its power of the length factor.
+    const double density_error = q.density_relative_error;  // polyvol::density_in's
+    if (r.length_factor != 1 || length_error > 0 || density_error > 0) {
         scale_mass_properties(*r.mass, r.length_factor, length_error, density_error);
         for (auto* list : {&r.shell_figures, &r.part_figures})
             for (FileReport::Piece& p : *list) scale_mass_properties(p.m, r.length_factor, length_error, density_error);
         if (r.solid) r.solid->winding_volume *= r.length_factor * r.length_factor * r.length_factor;
     }
+}
+
+}  // namespace
+
+// The route (streams), then read → units → the solid policy → the figures.
+FileReport measure_file(const std::string& file, const FileOptions& request, const std::string& member) {
+    if (streams(request, member))
+        if (auto s = stream_binary_stl(file, request))
+            if (request.keep_signed || !s->mass || s->mass->volume >= 0) return std::move(*s);  // inside out: loaded below
+    FileReport r;
+    r.file = member.empty() ? file : file + ":" + member;  // the name in every message
+    if (!load(r, file, member)) return r;
+    const auto t0 = std::chrono::steady_clock::now();
+    double length_error = 0;
+    if (const std::string why = plan_units(r, request, length_error); !why.empty()) {
+        r.exit_code = Exit::invalid;
+        r.error = r.file + ": " + why;
+        return r;
+    }
+    MeshSolid solid = make_solid(r.loaded->mesh, policy_for(request));
+    if (!take_solid(r, solid, request)) return r;
+    if (request.need_mass) measure_figures(r, solid, request, length_error);
     r.seconds_measure = seconds_since(t0);
     return r;
 }
