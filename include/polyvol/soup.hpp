@@ -21,31 +21,13 @@
 //   a closedness fingerprint (below).
 // Second moments, inertia and edge length need the welded mesh: NaN here.
 //
-// Closedness fingerprint. The surface is a closed 2-cycle iff every
-// undirected edge {a,b} (a, b distinct welded points: bit-identical float32
-// triples, -0.0 = +0.0) is used as often a→b as b→a (topology.hpp). With
-// H a keyed hash of a point into the field F_p, p = 2^31 - 1, each triangle
-// adds the Vandermonde determinant
-//     (H(b) - H(a)) (H(c) - H(a)) (H(c) - H(b))
-//   = Σ over its directed edges x→y of  H(x) H(y)^2 - H(x)^2 H(y)   (mod p).
-// The edge term is antisymmetric, so a balanced surface sums to exactly 0
-// (a degenerate triangle, two corners at one point, adds 0 as well).
-// Otherwise the sum is the polynomial Σ_{a→b} m_ab (H_a H_b^2 - H_a^2 H_b)
-// in the values H_v, m_ab the net use count of an unbalanced edge
-// (0 < |m_ab| < 2^31 for fewer than 2^31 triangles): the monomial H_a H_b^2
-// has coefficient m_ab ≢ 0, so the polynomial is nonzero, of degree 3. If H
-// behaves as a random function of the point — the 96 bits through three AES
-// rounds (or, below the AVX2 kernels, two multiply-xor rounds) keyed from
-// std::random_device at construction, so no input can be chosen against the
-// key — each H value takes any residue with probability <= 2^-30 (31 hash
-// bits, the all-ones pattern being ≡ 0), and the Schwartz–Zippel lemma bounds
-// the chance that an unclosed surface sums to 0 by 3 · 2^-30 per lane. Four
-// lanes (the four 32-bit words of the 128-bit hash, independent under the
-// same assumption):
-//     P(fingerprint == 0 | not a closed 2-cycle) <= 81 · 2^-120 < 2^-113.
-// A zero fingerprint is therefore "closed with overwhelming probability"; a
-// nonzero one is certain proof of an unbalanced edge (its count and an example
-// need the welded topology: polyvol::analyze_topology).
+// Closedness fingerprint: each triangle adds the Vandermonde determinant
+// (H(b) - H(a)) (H(c) - H(a)) (H(c) - H(b)) of a keyed hash H of its
+// points into F_p, p = 2^31 - 1, in four lanes. A closed 2-cycle sums to
+// exactly 0; an unclosed surface does with probability below 2^-113
+// (Schwartz–Zippel; the argument: docs/numerics.md, "The closedness
+// fingerprint"). A nonzero fingerprint proves an unbalanced edge; its count
+// and an example need the welded topology (polyvol::analyze_topology).
 //
 // Passes. The volume and the first moments are decided by a filter: pass 1
 // (float32-exact products, double-double terms and sums, error <= 512 u²

@@ -1,5 +1,5 @@
-// grid/column_scan.cpp — the reverse prefix sum down a column (DESIGN.md,
-// "The grid without flood fill").
+// grid/column_scan.cpp — the reverse prefix sum down a column (docs/grid.md,
+// "The method: clipping and a column scan, no flood fill").
 //
 // Divergence theorem on the solid's part in cell k (floor z_k, height h):
 //   F = (0, 0, z - z_k):          V      = Q + h A_top

@@ -1,6 +1,5 @@
 // grid/grid_volumes.cpp — polyvol/grid.hpp: the volume of each body in every
-// cell of a grid, by clipping and a column scan (DESIGN.md, "The grid
-// without flood fill"; docs/grid.md).
+// cell of a grid, by clipping and a column scan (docs/grid.md).
 //
 // The work is cut into tiles of T × T columns. Each triangle is listed for
 // the tiles its bounding box meets (a parallel counting sort that keeps the

@@ -1,21 +1,20 @@
 // Streaming binary STL (polyvol/io.hpp): the records of a file too large to
 // hold, handed over window by window.
 //
-// How (default): the whole file is mapped once; slabs of ~4 MB go to threads
-// (oneTBB), each walks its slab window by window (~200 KB) and then drops
-// the slab's pages from the process in whole 2 MiB units (madvise
+// How (default, options.map = false): pread(2) into one buffer per thread,
+// which turns a file shrinking under us into a ReadError at the offset
+// where the data stopped; posix_fadvise(SEQUENTIAL) asks for read-ahead
+// when the file is not cached.
+// With options.map: the whole file is mapped once; slabs of ~4 MB go to
+// threads (oneTBB), each walks its slab window by window (~200 KB) and then
+// drops the slab's pages from the process in whole 2 MiB units (madvise
 // DONTNEED: they stay in the page cache, so the resident set stays about
 // threads × slab_bytes, plus a few units shared by neighbouring slabs,
 // whatever the file size). No copy: with the page cache in large folios a
-// fault maps many pages at once, and pread's copy out of the cache was the
-// largest single cost of `polyvol volume` on an 8M-triangle file
-// (docs/benchmarks.md).
-// Mapping each window on its own costs more than either (a new mapping,
-// faults and an unmap with its TLB shootdown per window).
-// Fallback (options.map = false, or when mmap fails): pread(2) into one
-// buffer per thread, which turns a file shrinking under us into a ReadError
-// instead of SIGBUS. posix_fadvise(SEQUENTIAL) asks for read-ahead when the
-// file is not cached.
+// fault maps many pages at once. Mapping each window on its own costs more
+// than either (a new mapping, faults and an unmap with its TLB shootdown
+// per window). A mapping that fails falls back to pread; a file truncated
+// while mapped ends the process with SIGBUS, hence not the default.
 //
 // Detection is read_mesh_file's (detect.cpp), restricted to what decides
 // binary STL: gzip, zip and PLY content win over the size rule; then the

@@ -17,53 +17,10 @@
 // in x, y changes nothing; translating by h in z adds h · Σ (projected area),
 // which is 0 exactly for a closed surface and not otherwise.
 //
-// Error bound (u = 2^-53, γ_k = k u / (1 - k u), exact quantities starred).
-// Per triangle the computed differences are exact ones times (1+δ), so
-//   p = fl(dx1 dy2) = p*(1+θ3),  q = fl(dy1 dx2) = q*(1+θ3),
-//   A2 = fl(p - q):   |A2 - A2*| <= γ4 (|p*| + |q*|)      =: γ4 P*
-//   Z  = fl((z_a+z_b)+z_c): |Z - Z*| <= γ2 (|z_a|+|z_b|+|z_c|) =: γ2 Zabs
-//   t  = fl(Z A2):    |t - Z* A2*| <= ((1+γ2)(1+γ4)(1+u) - 1) Zabs P* <= γ7 Zabs P*.
-// The per-term bound e = γ7 · Zabs · (|p| + |q|) is evaluated from the
-// computed magnitudes; finish() covers the roundings of that evaluation, the
-// summation and the final division by 6 (see the block below).
-// Underflow: an underflowing product adds <= 2^-1075 absolutely; in a term it
-// is multiplied by at most |Z| <= Zabs (1+γ2), so the allowance
-// 2^-1060 · (1 + max Zabs) per term covers it with room.
-//
-// Correctly rounded (prism_volume_correctly_rounded): the exact sum of the
-// terms τ = Z* A* on the given doubles, divided by 6 and rounded once.
-// With every coordinate the fan triangles read in cone.hpp's safe range
-// ({0} ∪ [2^-160, 2^190]; NaN when one is not finite),
-// every value below is a multiple of 2^-1060 under 2^1000: the error-free
-// transformations are exact and no rounding underflows.
-//   Filter, per fan triangle, in double-double (ux + ux' = b_x - a_x exactly
-//   by two_sum, likewise uy, wx, wy for c - a; X = |ux wy| + |uy wx|;
-//   Zabs = |z_a| + |z_b| + |z_c|):
-//     p1 + p1' = ux wy, p2 + p2' = uy wx                 (two_prod, exact)
-//     c1 = fl(fl(ux wy') + fl(ux' wy)), c2 likewise: with the dropped ux' wy'
-//       (<= u² |ux wy|), |Ux Wy - (p1 + p1' + c1)| <= 5.01 u² |ux wy|
-//     s + s' = p1 - p2                                   (two_sum, exact)
-//     A_lo = fl(s' + fl(fl(p1' - p2') + fl(c1 - c2))): three roundings of
-//       values <= 4.05 u X:  |A* - (s + A_lo)| <= 17.3 u² X, |A_lo| <= 4.1 u X
-//     z1 + z1' = z_a + z_b, Z + z2' = z1 + z_c            (two_sum, exact)
-//     Z_lo = fl(z1' + z2'):  |Z* - (Z + Z_lo)| <= 2.02 u² Zabs, |Z_lo| <= 2.02 u Zabs
-//     t + t' = Z s                                        (two_prod, exact)
-//     T_lo = fl(fl(t' + fl(Z A_lo)) + fl(Z_lo s))
-//   |τ - (t + T_lo)| <= (17.4 [Z times A's error] + 2.03 [Z's error times A*]
-//     + 8.3 [the dropped Z_lo A_lo] + 6.14 [the two products] + 14.4 [the two
-//     sums]) u² Zabs X < 48.3 u² Zabs X.
-//   t and T_lo go into a superaccumulator (exact), fl(Zabs fl(|p1| + |p2|))
-//   into another; the bound used is 64 u² (1 + 2^-10) Σ Zabs X (64 covers 48.3
-//   and the roundings of the magnitudes; 1 + 2^-10 the rounding of their sum).
-//   The result is decided when Σ ± bound, divided by 6, round to the same
-//   double.
-//   Exact, when the filter cannot decide (e.g. an exact zero): A* expands
-//   without differences, A* = b_x c_y - b_x a_y - a_x c_y - b_y c_x + b_y a_x
-//   + a_y c_x (a_x a_y cancels); each product by two_prod, each of the 12
-//   parts times each of z_a, z_b, z_c by two_prod: 72 doubles per triangle
-//   whose exact sum is τ, into the superaccumulator.
-//   Outside the safe range (finite): GMP rationals, triangle by triangle.
-//   The range is checked in the filter's pass, on the coordinates it reads.
+// Error bound and the correctly rounded path's filter: docs/numerics.md,
+// "The prism rule's bounds" (a per-term bound γ7 Zabs (|p| + |q|); the
+// double-double filter within 64 u² Zabs X per triangle, else 72 exact
+// two_prod parts, else GMP outside cone.hpp's safe range).
 
 #include <algorithm>
 #include <cmath>

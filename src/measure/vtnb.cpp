@@ -1,8 +1,9 @@
 // measure/vtnb.cpp — Franklin's local-topology formulas for volume, area and
 // edge length.
 //
-// Source: W. R. Franklin's note on polyhedron volume (see DESIGN.md, "Sources
-// of the method", item 2). For every vertex–edge–face incidence (V, T, N, B):
+// Source: W. R. Franklin's note on polyhedron volume ("Polygon properties
+// calculated from the vertex neighborhoods", ACM SoCG 1987, and his note on
+// polyhedron volume). For every vertex–edge–face incidence (V, T, N, B):
 // V the vertex, T the unit tangent along the edge away from V, N the unit
 // normal to the edge in the face's plane pointing into the face, B the unit
 // normal of the face pointing into the solid,
@@ -43,37 +44,9 @@
 // volume, area and length of the given doubles. For an open surface they
 // refer to the formula about o.
 //
-// Error bound (u = 2^-53, γ_k = k u/(1 - k u); exact quantities unhatted,
-// computed ones hatted; ρ = |V| of the shifted vertex; norms via norm3(),
-// relative error <= γ5, divisions by a norm <= γ10 relative per component;
-// "tiny" = 2^-1070 covers unit-vector components that underflow):
-//   T̂: |T̂ - T| <= ε_T = 2u + γ10 + tiny  (rounded difference moves the
-//       direction by <= 2u: |x/|x| - y/|y|| <= 2|x - y|/max(|x|,|y|))
-//   B̂: |B̂ - B| <= ε_B = γ10 + 2 γ5 X (1+γ5)/ν̂ + tiny, where ν̂ = computed |n̂|
-//       and X = Σ |products| of the cross product, |n̂ - n| <= γ4 X plus
-//       <= 6 · 2^-1075 from underflowing products, < (γ5 - γ4) X when
-//       X >= 2^-1000 (the frame bound below is used only then);
-//   N̂ = fl(T̂ × B̂): |N̂ - N| <= ε_N = 1.5 γ2 (1+ε_T)(1+ε_B) + ε_T (1+ε_B) + ε_B + tiny;
-//   a dot product fl(V·X̂): |fl(V·X̂) - V·X| <= ρ α_X, α_X = ε_X + γ3 (1 + ε_X);
-//   a term fl(fl(âb̂)ĉ) against abc (|a|,|b|,|c| <= ρ):
-//       <= ρ³ β_V, β_V = (α_T+α_N+α_B+2u)(1+α_T)(1+α_N)(1+α_B)(1+u)²,
-//   and fl(âb̂) against ab: <= ρ² β_A, β_A = (α_T+α_N+u)(1+α_T)(1+α_N)(1+u)
-//   (Π(1+x_i) - 1 <= Σx_i Π(1+x_i)). Each vertex is in two incidences of a
-//   triangle, so a triangle's terms are off by <= 2 β_V Σ_k ρ_k³ (volume) and
-//   2 β_A Σ_k ρ_k² (area). This "frame" bound needs ε_B < 1 (which also
-//   proves n ≠ 0, since n = 0 would give ε_B >= 2 - o(1)) and X >= 2^-1000.
-//   Otherwise — and
-//   whenever it is smaller — the "fallback" bound holds: the exact raw sums
-//   of the triangle are -det(p0,p1,p2) and |n| (see above), bounded by
-//   ρ0 ((1+γ5) ν̂ + γ4 X) and (1+γ5) ν̂ + γ4 X, so the error is at most that
-//   plus Σ|computed terms|. Skipped triangles (n̂ = 0) add ρ0 γ4 X and γ4 X.
-//   LENGTH: each term V·T̂ is off by <= ρ α_T.
-// The per-triangle bounds are evaluated in floating point from computed
-// magnitudes; finish() covers their rounding, the summation and the final
-// scaling (-1/6, 1/2, -1/2). Underflow: the allowance per triangle (per edge
-// use for LENGTH) is 2^-1060 (1 + 2 max ρ̂)^p, p = 3, 2, 1: an underflowing
-// product or quotient adds <= 2^-1075 and is multiplied by at most two
-// further factors of size <= 2ρ.
+// Error bound: docs/numerics.md, "Franklin's formulas' bounds" (a "frame"
+// bound per triangle from the unit vectors' errors, or the fallback from
+// the triangle's exact cone volume and area, whichever is smaller).
 
 #include <algorithm>
 #include <cmath>

@@ -26,63 +26,9 @@
 // (the caller forms v - o in floating point), the caller passes a bound on
 // that rounding, which starts that column's eps (factor/replace `extra`).
 //
-// Fresh factorisation (Gaussian elimination with partial pivoting): Higham
-// 9.3 gives |E| <= gamma_n |L||U|, so ||E e_c|| <= gamma_n || |L| |U e_c| ||
-// <= gamma_n ||L||_F ||U e_c||_2.
-//
-// Column replacement at position j by a: w = L^{-1} P a by forward
-// substitution satisfies (L + dL) w = P a, |dL| <= gamma_n |L| (Higham 8.5),
-// so L w = P a + d with ||d|| <= gamma_n ||L||_F ||w||. U with column j
-// replaced by w, and that column moved last (every position > j moves down
-// one), gives L H = P A' + E' with H upper Hessenberg from column j and E'
-// the old columns of E (shifted) plus d in the last place: (*) holds for H.
-//
-// Restoring triangularity, for k = j .. n-2, with d = H[k][k], h = H[k+1][k],
-// l = L[k+1][k] (the 2x2 block of L is [1 0; l 1], so the pair's local
-// product has column (d, l d + h)):
-//   keep (|d| >= |l d + h|):  g = h/d; row k+1 of U -= g row k; column k of L
-//       += g column k+1. The new L[k+1][k] = (l d + h)/d has modulus <= 1.
-//   swap (otherwise): rows k, k+1 of L and P are interchanged, and with
-//       s = l d + h, x = d/s the exact 2x2 transformation
-//         U rows:    row_k' = l row_k + row_{k+1},  row_{k+1}' = row_k - x row_k'
-//         L columns: col_{k+1}' = col_k - l col_{k+1},  col_k' = col_{k+1} + x col_{k+1}'
-//       leaves the block of L exactly [1 0; x 1] with |x| <= 1 and H[k+1][k] = 0.
-// Both are L U = (L G^-1)(G U) exactly for an invertible G (times a row
-// interchange in the swap case, which permutes the rows of E and keeps its
-// column norms). In floating point each computed entry is fl(y ± fl(b c)),
-// whose error is <= 3u (|y| + |fl(b c)|); the zeroed entry H[k+1][k] has
-// error <= u|h| (keep: h - fl(h/d) d = -h delta) resp. <= u|d| + |x| f (swap).
-// With F_U, F_L the differences between the computed new factors L', U' and
-// the exact transforms, L'U' - (L G^-1)(G U) = L' F_U + F_L U' - F_L F_U; F_U
-// lives in rows k, k+1 and F_L in columns k, k+1, so column c of the new error
-// is bounded by
-//   ||L' e_k|| f_U[k][c] + ||L' e_{k+1}|| f_U[k+1][c]
-//     + |F_L e_k|_1 (|U'[k][c]| + f_U[k][c]) + |F_L e_{k+1}|_1 (|U'[k+1][c]| + f_U[k+1][c])
-// which is added to eps[c] for c >= k (columns < k are untouched). The swap
-// case's second row/column use the first's computed values, so their bounds
-// carry |x| times the first's (see lu_update.cpp).
-//
-// Determinant. det(L U) = prod U[i][i] exactly (L has an exact unit
-// diagonal) and det(P A + E) - det(P A) = sum over nonempty sets S of columns
-// of det(A with the columns in S taken from E), so by Hadamard's inequality
-//   |det(L U) - det(P A)| <= prod_c (||a_c|| + eps_c) - prod_c ||a_c||
-//                         <= prod_c ||a_c|| * expm1(sum_c eps_c / ||a_c||)
-// (1 + t <= e^t; the first form when some a_c = 0), plus gamma_n |det| for the
-// rounded product of the diagonal. The bounds themselves are computed in
-// floating point from non-negative quantities: each is a sum of fewer than
-// 2^30 terms (the caller refactors at least every 2^20 updates, and an update
-// adds at most n <= 65 terms to an eps) of products of at most 8 computed
-// factors, so its relative error is below 2^-20; the results are multiplied
-// by kSlack = 1 + 2^-18 to cover it (also the rounding of the norms ||a_c||
-// and of 1/||a_c||). This assumes no underflow: a determinant below 2^-960
-// in magnitude gets 2^-960 added to its bound, and non-finite values make the
-// bound infinite.
-//
-// The stability check is the bound itself: eta = sum_c eps_c / ||a_c|| (the
-// relative backward error, columns with a_c = 0 excepted: their U column is
-// exactly zero and stays so) is compared by the caller against a multiple of
-// its value after the last fresh factorisation (volume.cpp adds a test on the
-// columns' lengths).
+// Why (*) holds after a fresh factorisation and after each column
+// replacement, the determinant's bound from the eps, and the stability
+// check: docs/numerics.md, "The rank-one LU walk's bounds".
 #pragma once
 
 #include <cstdint>
