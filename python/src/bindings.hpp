@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 
 #include "polyvol/measure.hpp"
+#include "polyvol/units.hpp"
 
 namespace polyvol::python {
 
@@ -13,6 +14,10 @@ namespace polyvol::python {
 // CLI spells them; anything else is a ValueError naming the choices.
 Method parse_method(const std::string& s);
 Accuracy parse_accuracy(const std::string& s);
+// A density keyword: a number (mass per unit³) or a text with its unit
+// ('2700kg/m3', '1.24g/cm3'), checked with mass_unit ('kg', 'g', 'lb'; not
+// 'kg' only with a unit) as --density and --mass-unit are; ValueError else.
+Density parse_density_arg(const py::object& density, const std::string& mass_unit);
 
 void bind_io(pybind11::module_& m);       // io.hpp, grid_io.hpp: reading meshes, writing grids
 void bind_measure(pybind11::module_& m);  // measure.hpp, topology.hpp, boolean.hpp

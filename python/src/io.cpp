@@ -48,25 +48,15 @@ py::object to_python(const nlohmann::json& j) {
     }
 }
 
-// measure_file's density: a number (mass per unit³), or a text with its
-// unit ('2700kg/m3', '1.24g/cm3') converted as `--density` and
-// `--mass-unit` convert it (polyvol/units.hpp).
+// measure_file's density (parse_density_arg) in FileOptions: with a unit,
+// converted to mass_unit per `to`³ (metres by default) as `--density` is.
 void set_density(FileOptions& o, const py::object& density, const std::string& mass_unit) {
-    if (!mass_units_per_kg(mass_unit)) throw py::value_error("mass_unit must be 'kg', 'g' or 'lb'");
-    if (!py::isinstance<py::str>(density)) {
-        o.measure.density = density.cast<double>();
-        if (mass_unit != "kg") throw py::value_error("mass_unit='" + mass_unit + "' needs a density with a unit");
-        return;
-    }
-    const std::optional<Density> d = parse_density(density.cast<std::string>());
-    if (!d)
-        throw py::value_error("density must be a positive number, optionally with kg/m3 or g/cm3, not '" +
-                              density.cast<std::string>() + "'");
-    o.measure.density = d->value;
-    if (!d->si) return;
-    const DensityIn in = density_in(*d, *length_unit(o.to.empty() ? "m" : o.to), mass_unit);
+    const Density d = parse_density_arg(density, mass_unit);
+    o.measure.density = d.value;
+    if (!d.si) return;
+    const DensityIn in = density_in(d, *length_unit(o.to.empty() ? "m" : o.to), mass_unit);
     o.measure.density = in.value;
-    o.density_kg_m3 = d->kg_per_m3;
+    o.density_kg_m3 = d.kg_per_m3;
     o.density_relative_error = in.relative_error;
     o.mass_unit = mass_unit;
 }

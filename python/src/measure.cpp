@@ -23,6 +23,25 @@ Method parse_method(const std::string& s) {
     throw std::invalid_argument("method must be 'cone', 'prism', 'pyramid' or 'vtnb', not '" + s + "'");
 }
 
+Density parse_density_arg(const py::object& density, const std::string& mass_unit) {
+    if (!mass_units_per_kg(mass_unit)) throw py::value_error("mass_unit must be 'kg', 'g' or 'lb'");
+    Density d;
+    if (py::isinstance<py::str>(density)) {
+        const std::optional<Density> typed = parse_density(density.cast<std::string>());
+        if (!typed)
+            throw py::value_error("density must be a positive number, optionally with kg/m3 or g/cm3, not '" +
+                                  density.cast<std::string>() + "'");
+        d = *typed;
+    } else {
+        d.value = density.cast<double>();
+    }
+    if (mass_unit != "kg" && !d.si)
+        throw py::value_error("mass_unit='" + mass_unit +
+                              "' needs a density with a unit (e.g. '1.24g/cm3'): a plain number is already mass per "
+                              "volume");
+    return d;
+}
+
 Accuracy parse_accuracy(const std::string& s) {
     if (s == "correctly-rounded") return Accuracy::correctly_rounded;
     if (s == "fast") return Accuracy::fast;
@@ -119,22 +138,8 @@ void bind_measure(py::module_& m) {
             o.accuracy = parse_accuracy(accuracy);
             o.second_moments = second_moments;
             o.edge_length = edge_length;
-            Density d;
-            if (py::isinstance<py::str>(density)) {
-                const std::optional<Density> typed = parse_density(density.cast<std::string>());
-                if (!typed)
-                    throw py::value_error("density must be a positive number, optionally with kg/m3 or g/cm3, not '" +
-                                          density.cast<std::string>() + "'");
-                d = *typed;
-            } else {
-                d.value = density.cast<double>();
-            }
             const std::string mass_unit = units["mass_unit"].cast<std::string>();
-            if (!mass_units_per_kg(mass_unit)) throw py::value_error("mass_unit must be 'kg', 'g' or 'lb'");
-            if (mass_unit != "kg" && !d.si)
-                throw py::value_error("mass_unit='" + mass_unit +
-                                      "' needs a density with a unit (e.g. '1.24g/cm3'): a plain number is already "
-                                      "mass per volume");
+            const Density d = parse_density_arg(density, mass_unit);
             const UnitsPlan plan = plan_units(units["declared"].cast<std::string>(),
                                               UnitsRequest{.units = units["units"].cast<std::string>(),
                                                            .to = units["to"].cast<std::string>(),
