@@ -15,11 +15,9 @@
 #include <map>
 #include <string>
 
-// ParseOptions (selects the serial or parallel readers) lives in a private
-// header that includes only public ones.
-#include "../src/io/chunks.hpp"
 #include "common/generate.hpp"
 #include "polyvol/io.hpp"
+#include "polyvol/parse_options.hpp"  // the serial or the parallel readers
 
 namespace {
 

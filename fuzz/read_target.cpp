@@ -13,7 +13,7 @@
 #include <string>
 #include <string_view>
 
-#include "io/chunks.hpp"
+#include "polyvol/parse_options.hpp"
 #include "io/readers.hpp"
 #include "polyvol/chain_io.hpp"
 #include "polyvol/io.hpp"

@@ -155,4 +155,25 @@ TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& opt
 Closedness fingerprint_closedness(const MeshView& mesh);
 Closedness fingerprint_closedness(const MeshView& mesh, uint64_t seed);
 
+// The one closedness gate, which every entry point takes (volume, measure,
+// check, overlap, grid, the booleans, Python): the face arrays checked
+// (std::invalid_argument names the first bad index), then the fingerprint
+// in one pass; the edge table (analyze_topology with `report`) is built only
+// when the fingerprint does not say "closed", or when `fingerprint` is false
+// because the caller wants the counts anyway. So a surface found open always
+// has its edges counted and an example to name (polyvol/solid.hpp's
+// unbalanced_message words it), and a closed one costs one pass.
+struct ClosednessOptions {
+    bool fingerprint = true;
+    TopologyOptions report{.shells = false, .face_shells = false};
+};
+
+struct ClosednessCheck {
+    bool closed = false;
+    bool by_fingerprint = false;             // closed, decided by the fingerprint alone
+    std::optional<TopologyReport> topology;  // the edges' report, unless by_fingerprint
+};
+
+ClosednessCheck check_closed(const MeshView& mesh, const ClosednessOptions& options = {});
+
 }  // namespace polyvol

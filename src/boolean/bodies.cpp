@@ -5,7 +5,6 @@
 #include <tuple>
 #include <vector>
 
-#include "topology/edges.hpp"
 #include "core/union_find.hpp"
 
 namespace polyvol::boolean {
@@ -50,9 +49,7 @@ topology::ShellLabels bodies_of(const topology::WeldedMesh& wm) {
              ++j)
             balance += edges[j].dir;
         if (balance != 0) {
-            core::UnionFind shells(wm.polygons);
-            topology::build_edge_table(wm, &shells);
-            return topology::label_shells(shells);
+            return topology::edge_connected_shells(wm);
         }
         i = j;
     }

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "polyvol/boolean.hpp"
-#include "topology/shells.hpp"
+#include "topology/parts.hpp"
 #include "topology/welded.hpp"
 
 namespace polyvol::boolean {

@@ -37,7 +37,6 @@
 
 #include "boolean/exact_terms.hpp"
 #include "boolean/operand.hpp"
-#include "measure/cone.hpp"
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "exact/expansion.hpp"
@@ -231,12 +230,10 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
         r.area_error_bound = nan;
         return r;
     };
-    // Closed 2-cycles first: analyze_topology also checks the arrays (an
+    // Closed 2-cycles first, by the one gate (it also checks the arrays: an
     // index out of range throws std::invalid_argument before anything reads it).
-    TopologyOptions edges_only;
-    edges_only.shells = false;
-    if (!analyze_topology(a_view, edges_only).closed_2_cycle) return fail(BooleanStatus::a_not_closed);
-    if (!analyze_topology(b_view, edges_only).closed_2_cycle) return fail(BooleanStatus::b_not_closed);
+    if (!check_closed(a_view).closed) return fail(BooleanStatus::a_not_closed);
+    if (!check_closed(b_view).closed) return fail(BooleanStatus::b_not_closed);
     const Operand A = make_operand(a_view, 0), B = make_operand(b_view, 1);
     r.triangles_a = A.triangles();
     r.triangles_b = B.triangles();

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "exact/rational.hpp"
-#include "measure/cone.hpp"
+#include "measure/sums.hpp"
 
 namespace polyvol::boolean {
 

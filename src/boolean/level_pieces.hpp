@@ -1,5 +1,6 @@
-// boolean/level_pieces.hpp — private: the boundaries of the union and of the
-// intersection of several solids, as pieces for the grid to clip.
+// boolean/level_pieces.hpp — boolean's internal interface for grid: the
+// boundaries of the union and of the intersection of several solids, as
+// pieces for the grid to clip (a boundary source, as a file's triangles are).
 //
 // With bodies B_1..B_n (closed, each not crossing itself) and W the sum of
 // their winding numbers, level m is the solid {W >= m}: m = 1 the union,

@@ -32,7 +32,7 @@
 #include "boolean/exact_terms.hpp"
 #include "boolean/operand.hpp"
 #include "boolean/symbolic.hpp"
-#include "measure/cone.hpp"
+#include "measure/sums.hpp"
 
 namespace polyvol::boolean {
 

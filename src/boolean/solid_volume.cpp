@@ -21,14 +21,13 @@
 #include "boolean/predicates.hpp"
 #include "boolean/solid_pieces.hpp"
 #include "boolean/solid_sums.hpp"
-#include "measure/cone.hpp"
+#include "measure/sums.hpp"
 #include "exact/eft.hpp"
 #include "exact/expansion.hpp"
 #include "polyvol/boolean.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/topology.hpp"
-#include "topology/edges.hpp"
-#include "topology/shells.hpp"
+#include "topology/parts.hpp"
 #include "core/union_find.hpp"
 #include "topology/welded.hpp"
 
@@ -112,9 +111,7 @@ SolidVolume solid_sums(const MeshView& mesh, const SolidWants& wants, SolidSums&
         r.volume = r.winding_volume = nan;
         return r;
     };
-    TopologyOptions edges_only;
-    edges_only.shells = false;
-    if (!analyze_topology(mesh, edges_only).closed_2_cycle) return fail(BooleanStatus::a_not_closed);
+    if (!check_closed(mesh).closed) return fail(BooleanStatus::a_not_closed);
 
     // The bodies: the parts as the file joins them by vertex indices, when
     // each of them is a closed 2-cycle (parts that touch or coincide stay

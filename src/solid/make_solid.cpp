@@ -54,7 +54,7 @@ double closing_tolerance(const MeshView& view) {
     } catch (const std::invalid_argument&) {
         return 0;
     }
-    return analyze_topology(copy.view(), TopologyOptions{.shells = false}).closed_2_cycle ? tolerance : 0;
+    return check_closed(copy.view()).closed ? tolerance : 0;
 }
 
 // The part (faces joined through shared vertex indices) of every vertex, as
@@ -186,9 +186,11 @@ MeshSolid make_solid(Mesh& mesh, const SolidOptions& o) {
     }
     const MeshView view = mesh.view();
     const TopologyOptions topology_options{.shells = o.shells, .face_shells = o.shells && o.face_shells};
-    r.closed_by_fingerprint = o.closedness_by_fingerprint && fingerprint_closedness(view) == Closedness::closed;
-    if (!r.closed_by_fingerprint) r.topology = analyze_topology(view, topology_options);
-    r.closed = r.closed_by_fingerprint || r.topology->closed_2_cycle;
+    ClosednessCheck closedness =
+        check_closed(view, ClosednessOptions{.fingerprint = o.closedness_by_fingerprint, .report = topology_options});
+    r.closed = closedness.closed;
+    r.closed_by_fingerprint = closedness.by_fingerprint;
+    r.topology = std::move(closedness.topology);
     if (!r.closed) {
         const TopologyReport& t = *r.topology;
         if (o.allow_open) {

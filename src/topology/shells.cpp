@@ -27,6 +27,12 @@ ShellLabels label_shells(core::UnionFind& polygon_sets) {
     return s;
 }
 
+ShellLabels edge_connected_shells(const WeldedMesh& mesh) {
+    core::UnionFind polygon_sets(mesh.polygons);
+    build_edge_table(mesh, &polygon_sets);
+    return label_shells(polygon_sets);
+}
+
 ShellTriangles gather_shell_triangles(const WeldedMesh& m, const ShellLabels& shells) {
     ShellTriangles t;
     t.offsets.assign(shells.count + 1, 0);

@@ -8,19 +8,12 @@
 #include <vector>
 
 #include "polyvol/topology.hpp"
-#include "topology/edges.hpp"
 #include "core/union_find.hpp"
+#include "topology/edges.hpp"
+#include "topology/parts.hpp"
 #include "topology/welded.hpp"
 
 namespace polyvol::topology {
-
-struct ShellLabels {
-    std::vector<uint32_t> of_polygon;  // shell of polygon p; shells numbered by their first polygon
-    std::size_t count = 0;
-};
-
-// Reads the polygon sets joined by build_edge_table.
-ShellLabels label_shells(core::UnionFind& polygon_sets);
 
 // The fan triangles (dense vertex ids) grouped by shell, face order kept
 // within a shell: shell s owns tris[offsets[s] .. offsets[s+1]).

@@ -1,5 +1,6 @@
-// The mesh as topology sees it: polygons (faces with at least 3 vertices)
-// over dense ids of the welded vertices they reference.
+// topology/welded.hpp — topology's internal interface for boolean (with
+// topology/parts.hpp): the mesh as topology sees it, polygons (faces with at
+// least 3 vertices) over dense ids of the welded vertices they reference.
 #pragma once
 
 #include <cstddef>

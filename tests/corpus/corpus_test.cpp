@@ -16,7 +16,7 @@
 
 #include "common/manifest.hpp"
 #include "common/topology_compare.hpp"
-#include "io/chunks.hpp"
+#include "polyvol/parse_options.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/topology.hpp"
