@@ -45,7 +45,7 @@ void SolidTenSpheres(benchmark::State& state) {
     double v = 0;
     for (auto _ : state) {
         if (state.range(1) != 0) {
-            v = polyvol::solid_volume(ten.view()).volume;
+            v = polyvol::solid_volume(ten.view()).properties.volume;
         } else {
             benchmark::DoNotOptimize(polyvol::analyze_topology(ten.view()).closed_2_cycle);
             v = polyvol::mass_properties(ten.view()).volume;
@@ -83,7 +83,7 @@ void SolidSelfCrossing(benchmark::State& state) {
             const polyvol::SolidVolume s = state.range(1) == 1 ? polyvol::solid_volume(j.one.view(), {.within_shells = true})
                                                                : polyvol::solid_volume(j.three.view());
             if (s.status != polyvol::BooleanStatus::ok) state.SkipWithError("no solid");
-            v = s.volume;
+            v = s.properties.volume;
         }
         benchmark::DoNotOptimize(v);
     }

@@ -490,8 +490,8 @@ std::string check_report(const FileResult& r) {
             << " crossing triangle pairs";
         if (r.solid->crossing_example)
             out << " (e.g. faces " << (*r.solid->crossing_example)[0] << " and " << (*r.solid->crossing_example)[1] << ")";
-        out << "; the solid (winding number >= 1) has volume " << shortest(r.solid->volume) << ", the shells add up to "
-            << shortest(r.solid->winding_volume) << "\n";
+        out << "; the solid (winding number >= 1) has volume " << shortest(r.solid->properties.volume)
+            << ", the shells add up to " << shortest(r.solid->winding_volume) << "\n";
     }
     if (r.self) out << "  self-crossing   " << self_crossing_line(r) << "\n";
     if (t.cavities || t.inside_out_shells || t.nested_shells)

@@ -28,6 +28,7 @@
 #include <optional>
 #include <vector>
 
+#include "polyvol/measure.hpp"
 #include "polyvol/mesh.hpp"
 #include "polyvol/units.hpp"
 
@@ -109,7 +110,15 @@ BooleanVolumes solid_boolean_volumes(const MeshView& a, const MeshView& b, bool 
 struct SolidVolume {
     BooleanStatus status = BooleanStatus::ok;  // a_not_closed (the mesh), invalid_coordinates, shell_crosses_itself,
                                                // shell_touches_itself
-    double volume = 0;          // |{winding >= 1}|, correctly rounded
+    // The solid |{winding >= 1}| as measure.hpp's MassProperties, density 1:
+    // the volume and mass correctly rounded. With moments (SolidVolumeOptions),
+    // the first and second moments correctly rounded too, the centroid within
+    // 2^-51 relative, the inertia within moments_relative_error, and the area
+    // of the solid's boundary (where the winding number steps from 0 to 1)
+    // within area_relative_error; without moments those are NaN. The edge
+    // length is NaN: the solid's edges are not formed.
+    MassProperties properties;
+    bool moments = false;       // properties has the moments and the area
     double winding_volume = 0;  // Σ of the shells' signed volumes = ∫ winding number (the cone rule's sum), correctly rounded
     std::size_t shells = 0;
     std::size_t overlapping_shells = 0;  // crossing another shell, or outward and inside another solid shell
@@ -127,18 +136,6 @@ struct SolidVolume {
     std::size_t self_crossing_pairs = 0;
     std::size_t shells_crossing_themselves = 0;
     std::optional<std::array<std::size_t, 2>> self_crossing_example;
-    // With moments (solid_volume's second argument), of the solid, density 1
-    // (measure.hpp's conventions: {xx, yy, zz, xy, yz, zx}):
-    bool moments = false;
-    std::array<double, 3> first_moments{};   // ∫x_i, correctly rounded
-    std::array<double, 6> second_moments{};  // ∫x_i x_j about the origin, correctly rounded
-    std::array<double, 3> centroid{};        // first_moments / volume in double: relative error < 2^-51 (NaN when V = 0)
-    std::array<double, 6> inertia_centroid{};// about the centroid, in double
-    double inertia_relative_error = 0;       // bound, relative to its largest magnitude
-    // With moments: the area of the solid's boundary (the shells' surface
-    // where the winding number steps from 0 to 1), within area_error_bound.
-    double area = std::numeric_limits<double>::quiet_NaN();
-    double area_error_bound = std::numeric_limits<double>::quiet_NaN();
 
     // Whether the solid differs from the shells' sum: shells overlap, or a
     // shell's own crossings were resolved.

@@ -199,7 +199,7 @@ void bind_measure(py::module_& m) {
             }
             py::dict solid;  // as `polyvol check --json` gives it, when solid_volume ran
             if (s.solid) {
-                solid["solid_volume"] = s.solid->volume;
+                solid["solid_volume"] = s.solid->properties.volume;
                 solid["winding_volume"] = s.solid->winding_volume;
                 solid["overlapping_shells"] = s.solid->overlapping_shells;
                 solid["crossing_pairs"] = s.solid->crossing_pairs;
@@ -329,7 +329,7 @@ void bind_measure(py::module_& m) {
         .def_property_readonly("status", [](const SolidVolume& s) { return std::string(status_name(s.status)); })
         .def_property_readonly("message",
                                [](const SolidVolume& s) { return std::string(boolean_status_message(s.status)); })
-        .def_readonly("volume", &SolidVolume::volume)
+        .def_property_readonly("volume", [](const SolidVolume& s) { return s.properties.volume; })
         .def_readonly("winding_volume", &SolidVolume::winding_volume)
         .def_readonly("shells", &SolidVolume::shells)
         .def_readonly("overlapping_shells", &SolidVolume::overlapping_shells)
@@ -345,11 +345,13 @@ void bind_measure(py::module_& m) {
                                                               {static_cast<py::ssize_t>(s.face_crosses.size())});
                                })
         .def_readonly("moments", &SolidVolume::moments)
-        .def_property_readonly("first_moments", [](const SolidVolume& s) { return vec(s.first_moments); })
-        .def_property_readonly("second_moments", [](const SolidVolume& s) { return symmetric3(s.second_moments); })
-        .def_property_readonly("centroid", [](const SolidVolume& s) { return vec(s.centroid); })
-        .def_property_readonly("inertia", [](const SolidVolume& s) { return symmetric3(s.inertia_centroid); })
-        .def_readonly("inertia_relative_error", &SolidVolume::inertia_relative_error);
+        .def_property_readonly("first_moments", [](const SolidVolume& s) { return vec(s.properties.first_moments); })
+        .def_property_readonly("second_moments",
+                               [](const SolidVolume& s) { return symmetric3(s.properties.second_moments); })
+        .def_property_readonly("centroid", [](const SolidVolume& s) { return vec(s.properties.centroid); })
+        .def_property_readonly("inertia", [](const SolidVolume& s) { return symmetric3(s.properties.inertia_centroid); })
+        .def_property_readonly("inertia_relative_error",
+                               [](const SolidVolume& s) { return s.properties.moments_relative_error; });
     m.def(
         "solid_volume",
         [](const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets, bool moments,

@@ -108,7 +108,7 @@ SolidVolume solid_sums(const MeshView& mesh, const SolidWants& wants, SolidSums&
     const double nan = std::numeric_limits<double>::quiet_NaN();
     auto fail = [&](BooleanStatus s) {
         r.status = s;
-        r.volume = r.winding_volume = nan;
+        r.properties.volume = r.properties.mass = r.winding_volume = nan;
         return r;
     };
     if (!check_closed(mesh).closed) return fail(BooleanStatus::a_not_closed);
@@ -290,36 +290,55 @@ SolidVolume solid_volume(const MeshView& mesh, const SolidVolumeOptions& options
         }
         if (v.empty()) v = round_combinations(pieces[0], e0, one, r.refinements);
     }
-    r.volume = v[0];
-    if (!moments) return r;
+    MassProperties& p = r.properties;
+    p.volume = p.mass = v[0];
+    p.volume_correctly_rounded = true;
+    p.volume_error_bound = 0;
+    p.edge_length = p.edge_length_relative_error = nan;
+    if (!moments) {
+        p.first_moments.fill(nan);
+        p.centroid.fill(nan);
+        p.second_moments.fill(nan);
+        p.inertia_origin.fill(nan);
+        p.inertia_centroid.fill(nan);
+        p.area = p.area_relative_error = p.moments_relative_error = nan;
+        return r;
+    }
     int refinements = 0;
     for (int k = 1; k < kSums; ++k) {
         const int degree = k <= measure::cone::kMz ? 4 : 5;
         const double m = round_combinations(pieces[k], e0, one, refinements, degree, measure::cone::divisor(k))[0];
-        (k <= measure::cone::kMz ? r.first_moments[k - 1] : r.second_moments[k - 4]) = m;
+        (k <= measure::cone::kMz ? p.first_moments[k - 1] : p.second_moments[k - 4]) = m;
     }
     r.moments = true;
-    // The area: the exact sum of the terms, halved and rounded once.
-    r.area = sums.area.sum.round_div(2);
-    r.area_error_bound = (sums.area.bound / 2 + 0x1p-53 * std::fabs(r.area)) * (1 + 0x1p-40);
+    // The area: the exact sum of the terms, halved and rounded once; its
+    // absolute bound carried as a relative one rounded up.
+    p.area = sums.area.sum.round_div(2);
+    const double area_bound = (sums.area.bound / 2 + 0x1p-53 * std::fabs(p.area)) * (1 + 0x1p-40);
+    p.area_relative_error = p.area > 0 ? area_bound / p.area * (1 + 0x1p-50) : (area_bound > 0 ? INFINITY : 0.0);
     // Centroid F / V in double: F and V each within half an ulp, so within
     // 1.5 ulp + rounding of the quotient: a relative error below 2^-51.
-    for (int i = 0; i < 3; ++i) r.centroid[i] = r.volume != 0 ? r.first_moments[i] / r.volume : nan;
+    for (int i = 0; i < 3; ++i) p.centroid[i] = p.volume != 0 ? p.first_moments[i] / p.volume : nan;
+    p.inertia_origin = inertia_from_second_moments(p.second_moments);
     // Inertia about the centroid: Σ_c = S - V c c^T, then the tensor.
-    std::array<double, 6> central = r.second_moments;
+    std::array<double, 6> central = p.second_moments;
     static constexpr int kPairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
     double scale_of_terms = 0;
     for (int k = 0; k < 6; ++k) {
-        const double shift = r.first_moments[kPairs[k][0]] * r.centroid[kPairs[k][1]];
+        const double shift = p.first_moments[kPairs[k][0]] * p.centroid[kPairs[k][1]];
         central[k] -= shift;
-        scale_of_terms = std::max({scale_of_terms, std::fabs(r.second_moments[k]), std::fabs(shift)});
+        scale_of_terms = std::max({scale_of_terms, std::fabs(p.second_moments[k]), std::fabs(shift)});
     }
-    r.inertia_centroid = inertia_from_second_moments(central);
+    p.inertia_centroid = inertia_from_second_moments(central);
     double largest = 0;
-    for (double x : r.inertia_centroid) largest = std::max(largest, std::fabs(x));
+    for (double x : p.inertia_centroid) largest = std::max(largest, std::fabs(x));
     // Each central moment: two terms within 2 ulp each, one subtraction, one
-    // addition in the tensor: |error| <= 16 u of the largest term.
-    r.inertia_relative_error = largest > 0 ? 16 * 0x1p-53 * 2 * scale_of_terms / largest : INFINITY;
+    // addition in the tensor: |error| <= 16 u of the largest term. The first
+    // and second moments are correctly rounded, the centroid within 2^-51,
+    // the inertia about the origin within 3 u of its largest entry.
+    const double inertia_error = largest > 0 ? 16 * 0x1p-53 * 2 * scale_of_terms / largest : INFINITY;
+    p.moments_correctly_rounded = false;
+    p.moments_relative_error = std::max(0x1p-51, inertia_error);
     return r;
 }
 

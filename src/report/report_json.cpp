@@ -122,7 +122,7 @@ nlohmann::json report_json(const FileReport& r, const FileOptions& request) {
     }
     if (!request.need_mass && r.loaded) {  // `check`: the solid, and whether the file is one as it is
         if (r.solid) {
-            j["solid_volume"] = json_number(r.solid->volume);
+            j["solid_volume"] = json_number(r.solid->properties.volume);
             j["winding_volume"] = json_number(r.solid->winding_volume);
             j["overlapping_shells"] = r.solid->overlapping_shells;
             j["crossing_pairs"] = r.solid->crossing_pairs;

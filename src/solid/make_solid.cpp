@@ -278,27 +278,27 @@ MeshSolid make_solid(Mesh& mesh, const SolidOptions& o) {
 }
 
 void use_solid_properties(const SolidVolume& s, double density, MassProperties& m) {
-    m.volume = s.volume;
+    const MassProperties& p = s.properties;
+    m.volume = p.volume;
     m.volume_correctly_rounded = true;
     m.volume_error_bound = 0;
-    m.mass = density * s.volume;
+    m.mass = density * p.volume;
     if (!s.moments) return;
     for (int i = 0; i < 3; ++i) {
-        m.first_moments[i] = density * s.first_moments[i];
-        m.centroid[i] = s.centroid[i];
+        m.first_moments[i] = density * p.first_moments[i];
+        m.centroid[i] = p.centroid[i];
     }
     for (int k = 0; k < 6; ++k) {
-        m.second_moments[k] = density * s.second_moments[k];
-        m.inertia_centroid[k] = density * s.inertia_centroid[k];
+        m.second_moments[k] = density * p.second_moments[k];
+        m.inertia_origin[k] = density * p.inertia_origin[k];
+        m.inertia_centroid[k] = density * p.inertia_centroid[k];
     }
-    m.inertia_origin = inertia_from_second_moments(m.second_moments);
-    // The centroid is within 2^-51 relative, the second moments correctly
-    // rounded (before the density), the central inertia within its bound.
+    // A density other than 1 rounds each product once more.
     m.moments_correctly_rounded = false;
-    m.moments_relative_error = std::max(0x1p-51, s.inertia_relative_error) + (density != 1 ? 0x1p-52 : 0.0);
-    if (std::isfinite(s.area)) {
-        m.area = s.area;
-        m.area_relative_error = s.area > 0 ? s.area_error_bound / s.area : 0.0;
+    m.moments_relative_error = p.moments_relative_error + (density != 1 ? 0x1p-52 : 0.0);
+    if (std::isfinite(p.area)) {
+        m.area = p.area;
+        m.area_relative_error = p.area_relative_error;
     }
 }
 
@@ -325,7 +325,7 @@ SolidBody solid_body(Mesh& mesh, SolidOptions options) {
     } catch (const std::invalid_argument& e) {
         b.not_split = e.what();
     }
-    b.volume = b.solid.solid->volume;
+    b.volume = b.solid.solid->properties.volume;
     return b;
 }
 

@@ -41,7 +41,7 @@ TEST(SelfCrossings, TetrahedronThroughTheBoxItSharesAnEdgeWith) {
     // solid_volume takes them as one body: its volume counts the overlap twice.
     const SolidVolume v = solid_volume(m.view());
     EXPECT_EQ(v.crossing_pairs, 0u);
-    EXPECT_EQ(v.volume, v.winding_volume);
+    EXPECT_EQ(v.properties.volume, v.winding_volume);
 }
 
 // A vertex of the tetrahedron lying on the box's top face, inside it: the two
@@ -76,7 +76,7 @@ TEST(SelfCrossings, PartsSharingAVertexAreSolidVolumesBodies) {
     EXPECT_EQ(self_crossings(m.view()).pairs, 0u);
     const SolidVolume v = solid_volume(m.view());
     EXPECT_EQ(v.crossing_pairs, 5u);  // the box's face x = 2 and the tetrahedron's sides
-    EXPECT_LT(v.volume, v.winding_volume);
+    EXPECT_LT(v.properties.volume, v.winding_volume);
 }
 
 TEST(SelfCrossings, NoneOnSurfacesThatDoNotCrossThemselves) {

@@ -35,12 +35,12 @@ void expect_same_solid(const Mesh& one, const Mesh& three, bool moments) {
     EXPECT_TRUE(s.within_checked);
     EXPECT_GT(s.self_crossing_pairs, 0u);
     EXPECT_EQ(s.shells_crossing_themselves, 1u);
-    EXPECT_EQ(s.volume, r.volume);
+    EXPECT_EQ(s.properties.volume, r.properties.volume);
     EXPECT_EQ(s.winding_volume, r.winding_volume);
-    EXPECT_LT(s.volume, s.winding_volume);  // the overlap of A and B counts once
+    EXPECT_LT(s.properties.volume, s.winding_volume);  // the overlap of A and B counts once
     if (moments) {
-        for (int i = 0; i < 3; ++i) EXPECT_EQ(s.first_moments[i], r.first_moments[i]) << i;
-        for (int k = 0; k < 6; ++k) EXPECT_EQ(s.second_moments[k], r.second_moments[k]) << k;
+        for (int i = 0; i < 3; ++i) EXPECT_EQ(s.properties.first_moments[i], r.properties.first_moments[i]) << i;
+        for (int k = 0; k < 6; ++k) EXPECT_EQ(s.properties.second_moments[k], r.properties.second_moments[k]) << k;
     }
 }
 
@@ -81,7 +81,8 @@ Mesh flat_capped_sphere(uint32_t rings, uint32_t segments, double r, double cx, 
 TEST(SelfSolid, FlatCapsCrossingTheOtherSphere) {
     const Mesh a = flat_capped_sphere(10, 20, 1.0, 0, 0, 0);
     const Mesh b = flat_capped_sphere(9, 18, 0.8, 0.9, 0.0625, 0.4);  // its south cap crosses a
-    ASSERT_EQ(solid_volume(a.view()).volume, solid_volume(a.view(), {.within_shells = true}).volume);
+    ASSERT_EQ(solid_volume(a.view()).properties.volume,
+              solid_volume(a.view(), {.within_shells = true}).properties.volume);
     const generate::Joined j = generate::join_by_tube(a, b);
     expect_same_solid(j.one, j.three, true);
 }
@@ -105,7 +106,7 @@ TEST(SelfSolid, AmongOtherShellsAndAsACavity) {
         const SolidVolume s = solid_volume(one.view(), {.within_shells = true});
         const SolidVolume r = solid_volume(three.view());
         ASSERT_EQ(s.status, BooleanStatus::ok) << boolean_status_message(s.status);
-        EXPECT_EQ(s.volume, r.volume);
+        EXPECT_EQ(s.properties.volume, r.properties.volume);
         EXPECT_GT(s.crossing_pairs, 0u);  // S and the third sphere
     }
     const Mesh big = generate::uv_sphere(16, 32, 4.0, 0.4, 0.0, 0.0);
@@ -116,12 +117,13 @@ TEST(SelfSolid, AmongOtherShellsAndAsACavity) {
     const SolidVolume r = solid_volume(hollow_three.view(), {.moments = true});
     ASSERT_EQ(s.status, BooleanStatus::ok) << boolean_status_message(s.status);
     ASSERT_EQ(r.status, BooleanStatus::ok);
-    EXPECT_EQ(s.volume, r.volume);
-    for (int i = 0; i < 3; ++i) EXPECT_EQ(s.first_moments[i], r.first_moments[i]);
+    EXPECT_EQ(s.properties.volume, r.properties.volume);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(s.properties.first_moments[i], r.properties.first_moments[i]);
     // The cavity removes the solid S bounds: |big| - |{W_S >= 1}|.
     const SolidVolume solid_s = solid_volume(j.one.view(), {.within_shells = true});
     const SolidVolume solid_big = solid_volume(big.view());
-    EXPECT_NEAR(s.volume, solid_big.volume - solid_s.volume, 1e-12 * solid_big.volume);
+    EXPECT_NEAR(s.properties.volume, solid_big.properties.volume - solid_s.properties.volume,
+                1e-12 * solid_big.properties.volume);
 }
 
 // Scaling by 2 is exact and commutes with rounding: 8 times the volume, bit for bit.
@@ -133,7 +135,7 @@ TEST(SelfSolid, ScalingByTwoGivesEightTimesTheVolume) {
     const SolidVolume t = solid_volume(doubled.view(), {.within_shells = true});
     ASSERT_EQ(s.status, BooleanStatus::ok);
     ASSERT_EQ(t.status, BooleanStatus::ok);
-    EXPECT_EQ(8 * s.volume, t.volume);
+    EXPECT_EQ(8 * s.properties.volume, t.properties.volume);
 }
 
 // Without within_shells nothing is looked for: the shell's sum stands.
@@ -142,7 +144,7 @@ TEST(SelfSolid, NotLookedForUnlessAsked) {
     const SolidVolume s = solid_volume(j.one.view());
     ASSERT_EQ(s.status, BooleanStatus::ok);
     EXPECT_FALSE(s.within_checked);
-    EXPECT_EQ(s.volume, s.winding_volume);
+    EXPECT_EQ(s.properties.volume, s.winding_volume);
 }
 
 // A shell that does not cross itself is left as it is (and costs the search).
@@ -152,7 +154,7 @@ TEST(SelfSolid, ShellsThatDoNotCrossThemselves) {
     ASSERT_EQ(s.status, BooleanStatus::ok);
     EXPECT_TRUE(s.within_checked);
     EXPECT_EQ(s.self_crossing_pairs, 0u);
-    EXPECT_EQ(s.volume, solid_volume(m.view()).volume);
+    EXPECT_EQ(s.properties.volume, solid_volume(m.view()).properties.volume);
 }
 
 // The box [0, 2]^3 and a tetrahedron o p q r on its bottom front edge o p,
@@ -164,7 +166,7 @@ TEST(SelfSolid, ShellsThatDoNotCrossThemselves) {
 TEST(SelfSolid, AnEdgeOfFourTrianglesIsTwoSheets) {
     const SolidVolume s = solid_volume(test::box_and_tetrahedron_on_its_edge(0.8).view(), {.moments = true, .within_shells = true});
     ASSERT_EQ(s.status, BooleanStatus::ok) << boolean_status_message(s.status);
-    EXPECT_EQ(s.volume, 1108.0 / 135);
+    EXPECT_EQ(s.properties.volume, 1108.0 / 135);
     EXPECT_EQ(s.winding_volume, 8.8);
     EXPECT_EQ(s.self_crossing_pairs, 6u);
 }
@@ -175,7 +177,7 @@ TEST(SelfSolid, AnEdgeOfFourTrianglesIsTwoSheets) {
 TEST(SelfSolid, AFoldThroughAVertexIsAStatus) {
     const SolidVolume s = solid_volume(test::box_and_tetrahedron_on_its_edge(-0.5).view(), {.within_shells = true});
     EXPECT_EQ(s.status, BooleanStatus::shell_touches_itself);
-    EXPECT_TRUE(std::isnan(s.volume));
+    EXPECT_TRUE(std::isnan(s.properties.volume));
 }
 
 }  // namespace

@@ -101,10 +101,11 @@ TEST(SolidBooleans, TheSolidsAreaOfTwoBoxesInGeneralPosition) {
         ASSERT_EQ(s.status, BooleanStatus::ok);
         const Box k = common(a1, a2);
         const bool meet = volume_of(k) > 0;
-        EXPECT_NEAR(s.area, area_of(a1) + area_of(a2) - (meet ? area_of(k) : 0.0), s.area_error_bound)
-            << n << ": bound " << s.area_error_bound;
-        EXPECT_LT(s.area_error_bound, 1e-12 * s.area);
-        EXPECT_EQ(s.volume, volume_of(a1) + volume_of(a2) - volume_of(k));
+        const double area_bound = s.properties.area_relative_error * s.properties.area;
+        EXPECT_NEAR(s.properties.area, area_of(a1) + area_of(a2) - (meet ? area_of(k) : 0.0), area_bound)
+            << n << ": bound " << area_bound;
+        EXPECT_LT(s.properties.area_relative_error, 1e-12);
+        EXPECT_EQ(s.properties.volume, volume_of(a1) + volume_of(a2) - volume_of(k));
     }
 }
 

@@ -63,7 +63,7 @@ void expect_counted(const std::vector<LatticeBox>& boxes, int n, double unit) {
     const Mesh m = mesh_of(boxes, unit);
     const SolidVolume r = solid_volume(m.view());
     ASSERT_EQ(r.status, BooleanStatus::ok);
-    EXPECT_EQ(r.volume, solid);
+    EXPECT_EQ(r.properties.volume, solid);
     EXPECT_EQ(r.winding_volume, winding);
     EXPECT_EQ(r.shells, boxes.size());
 }
@@ -90,7 +90,7 @@ TEST(SolidVolume, TwoOverlappingCubesAreFifteenNotSixteen) {
     const std::vector<LatticeBox> boxes = {{{0, 0, 0, 2, 2, 2}}, {{1, 1, 1, 3, 3, 3}}};
     const SolidVolume r = solid_volume(mesh_of(boxes, 1).view());
     ASSERT_EQ(r.status, BooleanStatus::ok);
-    EXPECT_EQ(r.volume, 15.0);
+    EXPECT_EQ(r.properties.volume, 15.0);
     EXPECT_EQ(r.winding_volume, 16.0);
     EXPECT_EQ(r.overlapping_shells, 2u);
     EXPECT_GT(r.crossing_pairs, 0u);
@@ -144,11 +144,11 @@ void expect_counted_moments(const std::vector<LatticeBox>& boxes, int n, double 
     ASSERT_TRUE(r.moments);
     for (int i = 0; i < 3; ++i) {
         const mpq_class v = f[i] * u4;
-        EXPECT_EQ(r.first_moments[i], exact::round_to_double(v.get_mpq_t())) << i;
+        EXPECT_EQ(r.properties.first_moments[i], exact::round_to_double(v.get_mpq_t())) << i;
     }
     for (int k = 0; k < 6; ++k) {
         const mpq_class v = s[k] * u5;
-        EXPECT_EQ(r.second_moments[k], exact::round_to_double(v.get_mpq_t())) << k;
+        EXPECT_EQ(r.properties.second_moments[k], exact::round_to_double(v.get_mpq_t())) << k;
     }
 }
 
@@ -170,10 +170,10 @@ TEST(SolidVolume, MomentsOfApartShellsAreTheMeshMoments) {
     const SolidVolume r = solid_volume(m.view(), {.moments = true});
     const MassProperties p = mass_properties(m.view());
     ASSERT_EQ(r.status, BooleanStatus::ok);
-    EXPECT_EQ(r.volume, p.volume);
-    for (int i = 0; i < 3; ++i) EXPECT_EQ(r.first_moments[i], p.first_moments[i]);
-    for (int k = 0; k < 6; ++k) EXPECT_EQ(r.second_moments[k], p.second_moments[k]);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.centroid[i], p.centroid[i], 0x1p-50 * std::fabs(p.centroid[i]));
+    EXPECT_EQ(r.properties.volume, p.volume);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(r.properties.first_moments[i], p.first_moments[i]);
+    for (int k = 0; k < 6; ++k) EXPECT_EQ(r.properties.second_moments[k], p.second_moments[k]);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.properties.centroid[i], p.centroid[i], 0x1p-50 * std::fabs(p.centroid[i]));
 }
 
 TEST(SolidVolume, TwoSpheresInOneFileAreTheirUnion) {
@@ -183,7 +183,7 @@ TEST(SolidVolume, TwoSpheresInOneFileAreTheirUnion) {
     a.append(b);
     const SolidVolume r = solid_volume(a.view());
     ASSERT_EQ(r.status, BooleanStatus::ok);
-    EXPECT_EQ(r.volume, pair.union_volume);
+    EXPECT_EQ(r.properties.volume, pair.union_volume);
     EXPECT_EQ(r.overlapping_shells, 2u);
     EXPECT_EQ(r.crossing_pairs, pair.crossing_pairs);
 }

@@ -327,10 +327,10 @@ TEST(BooleanCgalOracle, OverlappingPartsOfOneFileAreTheirUnion) {
     ASSERT_EQ(r.status, BooleanStatus::ok) << boolean_status_message(r.status);
     EXPECT_EQ(r.shells, 4u);
     EXPECT_EQ(r.overlapping_shells, 4u);
-    expect_rounded("|A ∪ B ∪ C ∪ D|", r.volume, exact_volume(*u));
+    expect_rounded("|A ∪ B ∪ C ∪ D|", r.properties.volume, exact_volume(*u));
     expect_rounded("winding integral", r.winding_volume, winding);
-    std::printf("    solid %s, winding %s, crossing pairs %zu\n", g17(r.volume).c_str(), g17(r.winding_volume).c_str(),
-                r.crossing_pairs);
+    std::printf("    solid %s, winding %s, crossing pairs %zu\n", g17(r.properties.volume).c_str(),
+                g17(r.winding_volume).c_str(), r.crossing_pairs);
 }
 
 // Corpus meshes (closed 2-cycles in the manifest, one edge-connected
