@@ -5,6 +5,8 @@ not UTF-8 work, and what the arguments cannot mean is refused clearly."""
 import json
 import math
 import os
+import pathlib
+import re
 import subprocess
 import tracemalloc
 
@@ -142,3 +144,49 @@ def test_numpy_inputs_cross_into_cpp_without_a_copy():
         _, peak = tracemalloc.get_traced_memory()
         tracemalloc.stop()
         assert peak < v.nbytes / 10, peak
+
+
+def result_classes():
+    return {name: cls for name, cls in vars(polyvol).items()
+            if isinstance(cls, type) and issubclass(cls, polyvol._Result) and cls._fields}
+
+
+def test_every_result_and_field_is_in_the_docs_table():
+    """docs/python.md's "Results and their fields" lists each result's fields,
+    exactly: a field added, renamed or dropped in one place fails here."""
+    doc = (pathlib.Path(__file__).resolve().parents[2] / "docs" / "python.md").read_text()
+    section = doc.split("## Results and their fields", 1)[1].split("\n## ", 1)[0]
+    rows = {}
+    for line in section.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 4 and cells[0].startswith("`"):
+            rows[cells[0].strip("`")] = tuple(re.findall(r"`([a-z_0-9]+)`", cells[2]))
+    classes = result_classes()
+    assert set(rows) == set(classes), set(rows) ^ set(classes)
+    for name, cls in classes.items():
+        assert rows[name] == cls._fields, (name, set(rows[name]) ^ set(cls._fields))
+
+
+def test_mass_properties_has_the_keys_and_values_of_polyvol_measure(tmp_path):
+    v, f = box((0, 0, 0), (2, 2, 2))
+    w, g = box((1, 1, 1), (3, 3, 3))
+    files = [off_file(tmp_path / "two.off", np.vstack([v, w]), np.vstack([f, g + 8])),
+             off_file(tmp_path / "sphere.off", *uv_sphere(12, 24, 1.5, (0.25, 0.5, 0.75)))]
+    for path in files:
+        cli = cli_json("measure", path, "--density", "2.5")[0]
+        d = polyvol.mass_properties(polyvol.load(path), density=2.5).to_dict()
+        assert set(d) <= set(cli), set(d) - set(cli)
+        for key in d:
+            assert same(d[key], cli[key]), (path.name, key)
+    assert polyvol.mass_properties(polyvol.load(files[0])).volume == 15.0
+
+
+def test_polygon_area_has_the_keys_and_values_of_polyvol_area(tmp_path):
+    path = tmp_path / "square_with_hole.txt"
+    path.write_text("0 0 4 0 4 4 0 4\n1 1 1 2 2 2 2 1\n")
+    cli = cli_json("area", path)[0]
+    d = polyvol.polygon_area(polyvol.load_polygons(path)).to_dict()
+    assert set(d) <= set(cli), set(d) - set(cli)
+    for key in d:
+        assert same(d[key], cli[key]), key
+    assert d["area"] == 15.0
