@@ -34,7 +34,8 @@ INTERFACES = {
 }
 # The module that implements each public header.
 PUBLIC_OWNER = {
-    "mesh.hpp": "core", "units.hpp": "core",
+    "mesh.hpp": "core", "units.hpp": "core", "cell_mesh.hpp": "core",
+    "cell_mesh_io.hpp": "io", "cells.hpp": "cells",
     "chain.hpp": "core",  # plain arrays, as mesh.hpp
     "io.hpp": "io", "parse_options.hpp": "io", "chain_io.hpp": "io", "grid_io.hpp": "io",
     "measure.hpp": "measure", "soup.hpp": "measure",

@@ -1,0 +1,68 @@
+// polyvol/cell_mesh.hpp — a mesh of polyhedral cells as plain arrays, in
+// OpenFOAM's face-based form (polyMesh), which VTK unstructured grids and
+// corner-point grids are also turned into.
+//
+// Conventions (Geometric Tools style, in three lines):
+//   * points: point p is (points[3p], points[3p+1], points[3p+2]), doubles as read;
+//   * face f is the polygon face_points[face_offsets[f] .. face_offsets[f+1]),
+//     wound counter-clockwise seen from the side its normal points to: out of
+//     owner[f], into neighbour[f] (kNoCell for a boundary face);
+//   * a cell is the closed surface of its faces (its owner faces as wound,
+//     its neighbour faces reversed); every face a cell uses appears once.
+// Faces that are not planar are split into triangles by one rule, the fan
+// from the face's point of smallest index (`face_triangles`), so the two
+// cells sharing a face split it alike and the cells tile space exactly
+// (docs/cells.md compares this with OpenFOAM's face-centre decomposition).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace polyvol {
+
+inline constexpr uint32_t kNoCell = 0xFFFFFFFFu;
+
+struct CellMeshView {
+    std::span<const double> points;
+    std::span<const uint32_t> face_offsets;  // face_count() + 1 entries, the first 0
+    std::span<const uint32_t> face_points;
+    std::span<const uint32_t> owner;      // per face
+    std::span<const uint32_t> neighbour;  // per face; kNoCell on the boundary
+    std::size_t cells = 0;
+
+    std::size_t point_count() const { return points.size() / 3; }
+    std::size_t face_count() const { return face_offsets.empty() ? 0 : face_offsets.size() - 1; }
+    std::size_t cell_count() const { return cells; }
+    std::span<const uint32_t> face(std::size_t f) const {
+        return face_points.subspan(face_offsets[f], face_offsets[f + 1] - face_offsets[f]);
+    }
+};
+
+struct CellMesh {
+    std::vector<double> points;
+    std::vector<uint32_t> face_offsets{0};
+    std::vector<uint32_t> face_points;
+    std::vector<uint32_t> owner, neighbour;
+    std::size_t cells = 0;
+
+    CellMeshView view() const { return {points, face_offsets, face_points, owner, neighbour, cells}; }
+};
+
+// The triangles face f is split into, as point indices, in the face's
+// winding: with m the position of the face's smallest point index and k its
+// size, (v[m], v[m+i], v[m+i+1]) for i = 1 .. k-2 (indices mod k). Calls
+// fn(a, b, c) for each.
+template <class Fn>
+void face_triangles(std::span<const uint32_t> face, Fn&& fn) {
+    const std::size_t k = face.size();
+    if (k < 3) return;
+    std::size_t m = 0;
+    for (std::size_t i = 1; i < k; ++i)
+        if (face[i] < face[m]) m = i;
+    for (std::size_t i = 1; i + 1 < k; ++i) fn(face[m], face[(m + i) % k], face[(m + i + 1) % k]);
+}
+
+}  // namespace polyvol

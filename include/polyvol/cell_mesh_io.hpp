@@ -1,0 +1,36 @@
+// polyvol/cell_mesh_io.hpp — reading meshes of cells (polyvol/cell_mesh.hpp).
+//
+// OpenFOAM polyMesh: a case directory (its constant/polyMesh) or the
+// polyMesh directory itself, holding points, faces, owner and neighbour,
+// each plain or gzip-compressed (NAME.gz); ASCII or binary (`format`),
+// 32- or 64-bit labels and 64- or 32-bit scalars (`arch`); faces as a
+// faceList or a faceCompactList. Points are in metres (OpenFOAM's unit).
+//
+// Errors throw ReadError (polyvol/io.hpp) naming the file, the 1-based line
+// (ASCII) or the byte offset (binary) and what was expected: a face naming a
+// missing point, owner and neighbour counts that disagree with the faces, a
+// count larger than the bytes that follow. No count is trusted before it is
+// checked against the bytes that are there.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "polyvol/cell_mesh.hpp"
+
+namespace polyvol {
+
+struct LoadedCellMesh {
+    CellMesh mesh;
+    std::string format;    // "openfoam"
+    std::string encoding;  // "ascii" or "binary" (of the points file)
+    bool gzip = false;     // some file was gzip-compressed
+    std::string unit;      // the length unit of the points ("m" for OpenFOAM)
+    std::string location;  // the directory the files were read from
+    std::vector<std::string> notes;
+};
+
+// Reads an OpenFOAM polyMesh (above). Throws ReadError.
+LoadedCellMesh read_polymesh(const std::string& path);
+
+}  // namespace polyvol

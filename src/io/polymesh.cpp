@@ -1,0 +1,396 @@
+// io/polymesh.cpp — read_polymesh (polyvol/cell_mesh_io.hpp): OpenFOAM's
+// constant/polyMesh files.
+//
+// Each file is a FoamFile header dictionary (format, class, arch) and one
+// list (faceCompactList: two, the offsets then the point labels):
+//   ASCII   N ( item item ... )   or N{item} (every item equal), items being
+//           labels, vectors "(x y z)" or faces "k(a b c ...)";
+//   binary  N ( <N raw little-endian items> ), labels of 32 or 64 bits and
+//           scalars of 64 or 32 bits as `arch` says ("LSB;label=32;scalar=64").
+// Comments (// and /* */) may come anywhere whitespace may in ASCII.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/readers.hpp"
+#include "io/text.hpp"
+#include "polyvol/cell_mesh_io.hpp"
+
+namespace polyvol {
+namespace {
+
+namespace fs = std::filesystem;
+
+// One polyMesh file's bytes (gunzipped), with a cursor that knows its line.
+class FoamFile {
+public:
+    FoamFile(std::vector<std::byte> bytes, std::string name) : bytes_(std::move(bytes)), name_(std::move(name)) {
+        text_ = io::text::as_text(bytes_);
+    }
+    const std::string& name() const { return name_; }
+
+    [[noreturn]] void fail(const std::string& what) const {
+        if (in_binary_) throw ReadError::at_byte(name_, pos_, what);
+        throw ReadError(name_, line_, what);
+    }
+    // A defect of the file as a whole, found after reading it.
+    [[noreturn]] void fail_whole(const std::string& what) const { throw ReadError::whole_file(name_, what); }
+
+    // Whitespace and comments.
+    void skip() {
+        while (pos_ < text_.size()) {
+            const char c = text_[pos_];
+            if (c == '\n') {
+                ++line_;
+                ++pos_;
+            } else if (io::text::is_space(c)) {
+                ++pos_;
+            } else if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '/') {
+                while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+            } else if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '*') {
+                const std::size_t end = text_.find("*/", pos_ + 2);
+                if (end == std::string_view::npos) fail("a comment /* that is never closed");
+                for (std::size_t i = pos_; i < end; ++i) line_ += text_[i] == '\n';
+                pos_ = end + 2;
+            } else {
+                return;
+            }
+        }
+    }
+    bool at(char c) {
+        skip();
+        return pos_ < text_.size() && text_[pos_] == c;
+    }
+    void expect(char c, const char* what) {
+        if (!at(c)) fail(std::string("expected '") + c + "' " + what);
+        ++pos_;
+    }
+    // A word or number token (up to whitespace, ';', parentheses or braces).
+    std::string_view token() {
+        skip();
+        const std::size_t start = pos_;
+        while (pos_ < text_.size()) {
+            const char c = text_[pos_];
+            if (io::text::is_space(c) || c == ';' || c == '(' || c == ')' || c == '{' || c == '}') break;
+            ++pos_;
+        }
+        return text_.substr(start, pos_ - start);
+    }
+    uint64_t count(const char* what) {
+        const std::string_view t = token();
+        uint64_t v = 0;
+        if (t.empty() || t.size() > 19) fail(std::string("expected ") + what);
+        for (const char c : t) {
+            if (c < '0' || c > '9') fail(std::string("expected ") + what + ", found '" + std::string(t) + "'");
+            v = 10 * v + static_cast<uint64_t>(c - '0');
+        }
+        return v;
+    }
+    double number(const char* what) {
+        const std::string_view t = token();
+        double v = 0;
+        if (!io::text::parse_double(t, v) || !std::isfinite(v))
+            fail(std::string("expected ") + what + ", found '" + std::string(t) + "'");
+        return v;
+    }
+
+    // The header: FoamFile { key value; ... } — the values of format, class, arch.
+    void header() {
+        if (token() != "FoamFile") fail("expected the FoamFile header");
+        expect('{', "after FoamFile");
+        while (!at('}')) {
+            const std::string key(token());
+            if (key.empty()) fail("expected a header entry or '}'");
+            skip();
+            std::string value;
+            if (pos_ < text_.size() && text_[pos_] == '"') {
+                const std::size_t end = text_.find('"', pos_ + 1);
+                if (end == std::string_view::npos) fail("a quoted header value that is never closed");
+                value = std::string(text_.substr(pos_ + 1, end - pos_ - 1));
+                pos_ = end + 1;
+            } else {
+                value = std::string(token());
+            }
+            expect(';', "after a header entry");
+            if (key == "format") format_ = value;
+            if (key == "class") class_ = value;
+            if (key == "arch") arch_ = value;
+        }
+        ++pos_;
+        if (format_ != "ascii" && format_ != "binary") fail("format is '" + format_ + "': expected ascii or binary");
+        if (arch_.find("label=64") != std::string::npos) label_bytes_ = 8;
+        if (arch_.find("scalar=32") != std::string::npos) scalar_bytes_ = 4;
+        if (arch_.find("MSB") != std::string::npos) fail("big-endian (MSB) binary files are not read");
+    }
+    bool binary() const { return format_ == "binary"; }
+    const std::string& list_class() const { return class_; }
+
+    // The start of a list: its count, then '(' (or '{' for a uniform ASCII
+    // list). Returns the count; sets uniform.
+    uint64_t list_start(const char* what, bool& uniform) {
+        skip();
+        uniform = false;
+        const uint64_t n = at('(') ? kUnknown : count(what);
+        if (at('{') && !binary()) {
+            ++pos_;
+            uniform = true;
+            return n;
+        }
+        expect('(', "to open the list");
+        return n;
+    }
+
+    // A binary list body of n items of `size` bytes, then ')'.
+    std::string_view raw(uint64_t n, std::size_t size) {
+        in_binary_ = true;
+        const std::size_t left = text_.size() - pos_;
+        if (n > left / size) fail("the list claims " + std::to_string(n) + " items of " + std::to_string(size) +
+                                  " bytes, more than the " + std::to_string(left) + " bytes left");
+        const std::string_view body = text_.substr(pos_, n * size);
+        pos_ += n * size;
+        if (pos_ >= text_.size() || text_[pos_] != ')') fail("expected ')' after the binary list");
+        ++pos_;
+        in_binary_ = false;
+        return body;
+    }
+
+    // A list of labels (each < limit), ASCII or binary.
+    // At most max_items of them (a uniform list allocates from its count).
+    std::vector<uint32_t> labels(const char* what, uint64_t limit, uint64_t max_items = kUnknown) {
+        bool uniform = false;
+        const uint64_t n = list_start("the number of labels", uniform);
+        std::vector<uint32_t> out;
+        auto check = [&](uint64_t v) {
+            if (v >= limit) fail(std::string(what) + " " + std::to_string(v) + " is out of range");
+            return static_cast<uint32_t>(v);
+        };
+        if (uniform) {
+            const uint32_t v = check(count(what));
+            expect('}', "to close the uniform list");
+            if (n == kUnknown || n > max_items || n >= kNoCell)
+                fail("a uniform list of " + (n == kUnknown ? std::string("no") : std::to_string(n)) +
+                     " items: expected a count of at most " + std::to_string(std::min<uint64_t>(max_items, kNoCell - 1)));
+            out.assign(n, v);
+            return out;
+        }
+        if (binary()) {
+            if (n == kUnknown) fail("a binary list needs a count");
+            const std::string_view body = raw(n, label_bytes_);
+            out.resize(n);
+            for (uint64_t i = 0; i < n; ++i) {
+                uint64_t v = 0;
+                if (label_bytes_ == 4) {
+                    int32_t x;
+                    std::memcpy(&x, body.data() + 4 * i, 4);
+                    if (x < 0) fail(std::string("a negative ") + what);
+                    v = static_cast<uint64_t>(x);
+                } else {
+                    int64_t x;
+                    std::memcpy(&x, body.data() + 8 * i, 8);
+                    if (x < 0) fail(std::string("a negative ") + what);
+                    v = static_cast<uint64_t>(x);
+                }
+                out[i] = check(v);
+            }
+            return out;
+        }
+        if (n != kUnknown && n > (text_.size() - pos_) / 2)
+            fail("the list claims " + std::to_string(n) + " labels, more than the rest of the file holds");
+        if (n != kUnknown) out.reserve(n);
+        while (!at(')')) out.push_back(check(count(what)));
+        ++pos_;
+        if (n != kUnknown && out.size() != n)
+            fail("the list holds " + std::to_string(out.size()) + " labels, its count says " + std::to_string(n));
+        return out;
+    }
+
+    std::vector<double> vectors() {
+        bool uniform = false;
+        const uint64_t n = list_start("the number of points", uniform);
+        if (uniform) fail("a uniform list of points");
+        std::vector<double> out;
+        if (binary()) {
+            if (n == kUnknown) fail("a binary list needs a count");
+            const std::string_view body = raw(n, 3 * scalar_bytes_);
+            out.resize(3 * n);
+            for (uint64_t i = 0; i < 3 * n; ++i) {
+                double v;
+                if (scalar_bytes_ == 8) {
+                    std::memcpy(&v, body.data() + 8 * i, 8);
+                } else {
+                    float f;
+                    std::memcpy(&f, body.data() + 4 * i, 4);
+                    v = f;
+                }
+                if (!std::isfinite(v)) {
+                    pos_ = static_cast<std::size_t>(body.data() - text_.data()) + scalar_bytes_ * i;
+                    in_binary_ = true;
+                    fail("a coordinate that is not finite");
+                }
+                out[i] = v;
+            }
+            return out;
+        }
+        if (n != kUnknown && n > (text_.size() - pos_) / 8)
+            fail("the list claims " + std::to_string(n) + " points, more than the rest of the file holds");
+        if (n != kUnknown) out.reserve(3 * n);
+        while (!at(')')) {
+            expect('(', "to open a point");
+            for (int k = 0; k < 3; ++k) out.push_back(number("a coordinate"));
+            expect(')', "after a point's three coordinates");
+        }
+        ++pos_;
+        if (n != kUnknown && out.size() != 3 * n)
+            fail("the list holds " + std::to_string(out.size() / 3) + " points, its count says " + std::to_string(n));
+        return out;
+    }
+
+    // faceList (ASCII: k(a b c ...) items) or faceCompactList (two label
+    // lists: offsets, then the points), into offsets and points.
+    void faces(uint64_t points, std::vector<uint32_t>& offsets, std::vector<uint32_t>& face_points) {
+        if (class_ == "faceCompactList") {
+            const std::size_t offsets_line = line_;
+            offsets = labels("face offset", std::numeric_limits<uint32_t>::max());
+            face_points = labels("point label", points);
+            if (offsets.empty() || offsets.front() != 0) {
+                line_ = offsets_line;
+                fail("the face offsets must start with 0");
+            }
+            for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
+                if (offsets[f + 1] < offsets[f] + 3 || offsets[f + 1] > face_points.size())
+                    fail("face " + std::to_string(f) + ": its offsets " + std::to_string(offsets[f]) + ".." +
+                         std::to_string(offsets[f + 1]) + " do not give 3 or more of the " +
+                         std::to_string(face_points.size()) + " point labels");
+            if (offsets.back() != face_points.size())
+                fail("the face offsets end at " + std::to_string(offsets.back()) + ", the point labels number " +
+                     std::to_string(face_points.size()));
+            return;
+        }
+        if (binary()) fail("a binary faceList: expected a faceCompactList");
+        bool uniform = false;
+        const uint64_t n = list_start("the number of faces", uniform);
+        if (uniform) fail("a uniform list of faces");
+        if (n != kUnknown && n > (text_.size() - pos_) / 8)
+            fail("the list claims " + std::to_string(n) + " faces, more than the rest of the file holds");
+        offsets.assign(1, 0);
+        while (!at(')')) {
+            const uint64_t k = count("a face's number of points");
+            if (k < 3) fail("a face of " + std::to_string(k) + " points: expected 3 or more");
+            expect('(', "to open a face");
+            for (uint64_t i = 0; i < k; ++i) {
+                const uint64_t v = count("a point label");
+                if (v >= points)
+                    fail("face " + std::to_string(offsets.size() - 1) + " names point " + std::to_string(v) +
+                         ", but there are " + std::to_string(points) + " points");
+                face_points.push_back(static_cast<uint32_t>(v));
+            }
+            expect(')', "after the face's point labels");
+            offsets.push_back(static_cast<uint32_t>(face_points.size()));
+        }
+        ++pos_;
+        if (n != kUnknown && offsets.size() - 1 != n)
+            fail("the list holds " + std::to_string(offsets.size() - 1) + " faces, its count says " +
+                 std::to_string(n));
+    }
+
+private:
+    static constexpr uint64_t kUnknown = std::numeric_limits<uint64_t>::max();
+    std::vector<std::byte> bytes_;
+    std::string name_;
+    std::string_view text_;
+    std::size_t pos_ = 0;
+    uint64_t line_ = 1;
+    bool in_binary_ = false;
+    std::string format_, class_, arch_;
+    std::size_t label_bytes_ = 4, scalar_bytes_ = 8;
+};
+
+// The directory holding the polyMesh files: path itself, or path/constant/polyMesh.
+fs::path polymesh_directory(const std::string& path) {
+    const fs::path p(path);
+    auto has_points = [](const fs::path& d) {
+        std::error_code ec;
+        return fs::exists(d / "points", ec) || fs::exists(d / "points.gz", ec);
+    };
+    if (has_points(p)) return p;
+    if (has_points(p / "constant" / "polyMesh")) return p / "constant" / "polyMesh";
+    std::error_code ec;
+    if (!fs::is_directory(p, ec))
+        throw ReadError::whole_file(path, "not a directory: an OpenFOAM case or its constant/polyMesh is one");
+    throw ReadError::whole_file(path, "no OpenFOAM mesh here: expected constant/polyMesh/points (or points in it)");
+}
+
+// One file (NAME or NAME.gz), its header read.
+FoamFile open_foam_file(const fs::path& dir, const char* name, bool& gzip) {
+    fs::path p = dir / name;
+    std::error_code ec;
+    const bool compressed = !fs::exists(p, ec) && fs::exists(dir / (std::string(name) + ".gz"), ec);
+    if (compressed) p = dir / (std::string(name) + ".gz");
+    std::string shown;
+    std::vector<std::byte> bytes = io::read_whole_input(p.string(), shown);
+    if (compressed) {
+        bytes = io::gunzip(bytes, shown, io::decompression_limit(bytes.size()));
+        gzip = true;
+    }
+    FoamFile f(std::move(bytes), shown);
+    f.header();
+    return f;
+}
+
+}  // namespace
+
+LoadedCellMesh read_polymesh(const std::string& path) {
+    const fs::path dir = polymesh_directory(path);
+    LoadedCellMesh r;
+    r.format = "openfoam";
+    r.unit = "m";
+    r.location = dir.string();
+    CellMesh& m = r.mesh;
+
+    FoamFile points = open_foam_file(dir, "points", r.gzip);
+    r.encoding = points.binary() ? "binary" : "ascii";
+    m.points = points.vectors();
+    const uint64_t point_count = m.points.size() / 3;
+    if (point_count >= kNoCell) points.fail_whole("more than 2^32 - 2 points");
+
+    FoamFile faces = open_foam_file(dir, "faces", r.gzip);
+    faces.faces(point_count, m.face_offsets, m.face_points);
+    const std::size_t face_count = m.face_offsets.size() - 1;
+
+    FoamFile owner = open_foam_file(dir, "owner", r.gzip);
+    m.owner = owner.labels("owner cell", kNoCell, face_count);
+    if (m.owner.size() != face_count)
+        owner.fail_whole("owner lists " + std::to_string(m.owner.size()) + " cells, but there are " +
+                   std::to_string(face_count) + " faces (" + faces.name() + ")");
+
+    FoamFile neighbour = open_foam_file(dir, "neighbour", r.gzip);
+    std::vector<uint32_t> internal = neighbour.labels("neighbour cell", kNoCell, face_count);
+    if (internal.size() > face_count)
+        neighbour.fail_whole("neighbour lists " + std::to_string(internal.size()) + " cells, more than the " +
+                       std::to_string(face_count) + " faces (" + faces.name() + ")");
+    // OpenFOAM numbers the internal faces first: neighbour has one entry each.
+    m.neighbour.assign(face_count, kNoCell);
+    std::copy(internal.begin(), internal.end(), m.neighbour.begin());
+
+    uint32_t last = 0;
+    bool any = false;
+    for (std::size_t f = 0; f < face_count; ++f) {
+        last = std::max(last, m.owner[f]);
+        any = true;
+        if (m.neighbour[f] != kNoCell) {
+            if (m.neighbour[f] == m.owner[f])
+                neighbour.fail_whole("face " + std::to_string(f) + " has cell " + std::to_string(m.owner[f]) +
+                               " on both sides");
+            last = std::max(last, m.neighbour[f]);
+        }
+    }
+    m.cells = any ? std::size_t{last} + 1 : 0;
+    return r;
+}
+
+}  // namespace polyvol
