@@ -1,7 +1,7 @@
 // polyvol/cells.hpp — volumes in the cells of a mesh of polyhedral cells
 // (polyvol/cell_mesh.hpp: OpenFOAM polyMesh, VTK unstructured, corner-point
-// grids): the cells' own volumes now; the volume of bodies in every cell is
-// built on these (docs/cells.md says the plan and where it stands).
+// grids): the cells' own volumes, and the volume of a body in every cell
+// (docs/cells.md says how, and what is still to come).
 //
 // A cell is the closed surface of its face triangles (cell_mesh.hpp's
 // face_triangles rule), its volume the cone rule's sum
@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "polyvol/cell_mesh.hpp"
+#include "polyvol/mesh.hpp"
 
 namespace polyvol {
 
@@ -48,5 +49,36 @@ struct CellVolumes {
 // defective mesh, and for a coordinate outside 0 and 2^-160 .. 2^190 in
 // magnitude (the exact arithmetic's range).
 CellVolumes cell_volumes(const CellMeshView& mesh);
+
+// A body's volume in every cell: |B ∩ c| for each cell c, correctly rounded.
+//   * Cells whose box meets the box of one of the body's triangles are
+//     "touched": each is intersected with the body exactly (boolean_volumes
+//     with the cell's closed surface of face triangles as A).
+//   * The other cells are full or empty. Two such cells sharing a face are
+//     alike (no part of the body's surface can lie between them), so each
+//     connected region of them takes one exact decision.
+//   * total: |B ∩ M|, M the region the mesh's boundary faces enclose (which
+//     the cells tile exactly), correctly rounded: the exact sum of the
+//     cells' exact values rounded once. For a body inside the mesh it is
+//     the body's volume, bit for bit.
+// The body must be what boolean_volumes takes: a closed 2-cycle, outward,
+// not overlapping itself (polyvol/solid.hpp turns a file into that); the
+// cells must be wound outward (no negative cell). Throws
+// std::invalid_argument naming the defect otherwise.
+// This is the exact reference: each touched cell costs a boolean against
+// the whole body. docs/cells.md gives the design that replaces it with one
+// pass over the crossings.
+enum class CellClass : uint8_t { empty = 0, full = 1, cut = 2 };
+
+struct BodyInCells {
+    std::vector<double> volumes;       // per cell, correctly rounded
+    std::vector<CellClass> cell_class; // cut: the body's surface enters the cell
+    double total = 0;                  // |B ∩ M|, correctly rounded
+    double body_volume = 0;            // |B|, correctly rounded
+    std::size_t full_cells = 0, cut_cells = 0, empty_cells = 0;
+    std::size_t touched_cells = 0;     // intersected exactly one by one
+};
+
+BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body);
 
 }  // namespace polyvol

@@ -18,6 +18,8 @@
 #include "polyvol/cell_mesh_io.hpp"
 #include "polyvol/cells.hpp"
 #include "polyvol/io.hpp"
+#include "common/generate.hpp"
+#include "common/shapes.hpp"
 #include "polyvol/measure.hpp"
 
 namespace fs = std::filesystem;
@@ -230,4 +232,112 @@ TEST(PolyMesh, BadFilesNameTheFileAndTheLineOrByte) {
     // Not a mesh directory.
     m = message(scratch("empty"));
     EXPECT_NE(m.find("no OpenFOAM mesh here"), std::string::npos) << m;
+}
+
+// ---- A body in the cells ----
+
+namespace {
+
+// The volume of [lo, hi] ∩ [a, b] per axis, exactly.
+mpq_class overlap(const double* lo, const double* hi, const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    mpq_class v = 1;
+    for (int k = 0; k < 3; ++k) {
+        const double l = std::max(lo[k], a[k]), h = std::min(hi[k], b[k]);
+        if (!(h > l)) return 0;
+        v *= mpq_class(h) - mpq_class(l);
+    }
+    return v;
+}
+
+}  // namespace
+
+TEST(BodyInCells, ABoxInGradedBoxCellsIsTheirOverlapCorrectlyRounded) {
+    const LoadedCellMesh loaded = read_polymesh(kData + "graded_box");
+    const CellMeshView m = loaded.mesh.view();
+    // A box crossing cell walls and sticking out of the mesh at the top.
+    const std::array<double, 3> a{0.05, 0.03, 0.02}, b{0.21, 0.17, 0.2};
+    const Mesh body = polyvol::test::box(a, b);
+    const BodyInCells r = body_in_cells(m, body.view());
+    const CellVolumes own = cell_volumes(m);
+    mpq_class sum = 0;
+    std::size_t cut = 0;
+    for (std::size_t c = 0; c < m.cell_count(); ++c) {
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (std::size_t f = 0; f < m.face_count(); ++f)
+            if (m.owner[f] == c || m.neighbour[f] == c)
+                for (const uint32_t p : m.face(f))
+                    for (int k = 0; k < 3; ++k) {
+                        lo[k] = std::min(lo[k], m.points[3 * p + k]);
+                        hi[k] = std::max(hi[k], m.points[3 * p + k]);
+                    }
+        const mpq_class exact = overlap(lo, hi, a, b);
+        sum += exact;
+        EXPECT_EQ(r.volumes[c], exact::round_to_double(exact.get_mpq_t())) << "cell " << c;
+        const bool is_cut = r.volumes[c] != 0 && r.volumes[c] != own.volumes[c];
+        cut += is_cut;
+        EXPECT_EQ(r.cell_class[c], is_cut ? CellClass::cut : r.volumes[c] == 0 ? CellClass::empty : CellClass::full);
+    }
+    EXPECT_EQ(r.total, exact::round_to_double(sum.get_mpq_t()));  // the cells' exact sum, rounded once
+    EXPECT_EQ(r.body_volume, signed_volume(body.view()));
+    EXPECT_EQ(r.cut_cells, cut);
+    EXPECT_GT(r.cut_cells, 0u);
+    EXPECT_GT(r.full_cells + r.empty_cells, 0u);
+    EXPECT_EQ(r.full_cells + r.cut_cells + r.empty_cells, m.cell_count());
+}
+
+TEST(BodyInCells, ASphereInsideWarpedCellsAddsUpToItsVolume) {
+    const LoadedCellMesh loaded = read_polymesh(kData + "warped_ascii");
+    const CellMeshView m = loaded.mesh.view();
+    const Mesh sphere = polyvol::generate::uv_sphere(12, 24, 0.7, 1.55, 1.05, 1.1);
+    const BodyInCells r = body_in_cells(m, sphere.view());
+    const CellVolumes own = cell_volumes(m);
+    // Inside the mesh: the total is the body's volume, bit for bit.
+    EXPECT_EQ(r.total, signed_volume(sphere.view()));
+    EXPECT_EQ(r.body_volume, r.total);
+    double naive = 0;
+    for (std::size_t c = 0; c < m.cell_count(); ++c) {
+        EXPECT_GE(r.volumes[c], 0);
+        EXPECT_LE(r.volumes[c], own.volumes[c]);
+        naive += r.volumes[c];
+    }
+    EXPECT_NEAR(naive, r.total, 1e-14 * r.total);
+    EXPECT_GT(r.cut_cells, 4u);
+}
+
+TEST(BodyInCells, AMeshInsideTheBodyIsFullAndAFarBodyLeavesItEmpty) {
+    const LoadedCellMesh loaded = read_polymesh(kData + "warped_ascii");
+    const CellMeshView m = loaded.mesh.view();
+    const CellVolumes own = cell_volumes(m);
+    const BodyInCells in = body_in_cells(m, polyvol::test::box({-1, -1, -1}, {5, 5, 5}).view());
+    EXPECT_EQ(in.volumes, own.volumes);
+    EXPECT_EQ(in.full_cells, m.cell_count());
+    EXPECT_EQ(in.total, own.total);
+    EXPECT_EQ(in.touched_cells, 0u);
+    const BodyInCells far = body_in_cells(m, polyvol::test::box({10, 10, 10}, {11, 11, 11}).view());
+    EXPECT_EQ(far.empty_cells, m.cell_count());
+    EXPECT_EQ(far.total, 0.0);
+}
+
+TEST(BodyInCells, AnOpenBodyOrAnInwardCellIsRefused) {
+    const LoadedCellMesh loaded = read_polymesh(kData + "warped_ascii");
+    const CellMeshView m = loaded.mesh.view();
+    Mesh open = polyvol::test::box({0.5, 0.5, 0.5}, {1, 1, 1});
+    open.indices.resize(open.indices.size() - 3);
+    try {
+        body_in_cells(m, open.view());
+        FAIL() << "no error";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("not a closed surface"), std::string::npos) << e.what();
+    }
+    CellMesh inward = read_polymesh(kData + "warped_ascii").mesh;
+    for (std::size_t f = 0; f + 1 < inward.face_offsets.size(); ++f)  // every face wound the other way
+        std::reverse(inward.face_points.begin() + inward.face_offsets[f],
+                     inward.face_points.begin() + inward.face_offsets[f + 1]);
+    ASSERT_FALSE(check_cell_mesh(inward.view()));  // still closed cells, but inside out
+    try {
+        body_in_cells(inward.view(), polyvol::test::box({0.5, 0.5, 0.5}, {1, 1, 1}).view());
+        FAIL() << "no error";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("cell 0 is wound inward"), std::string::npos) << e.what();
+    }
 }
