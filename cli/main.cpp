@@ -8,6 +8,7 @@
 //   polyvol grid MESH...     volume of the solid(s) in every cell of a grid
 //   polyvol implicit EXPR    volume of {F <= 0} in R^n from a PL surface
 //   polyvol overlap A B      volumes of A∩B, A∪B, A−B, B−A without building them
+//   polyvol cells MESH BODY  volume of each body in every cell of an OpenFOAM mesh
 // One file per command under cli/commands/ (volume, measure and check share
 // commands/measure.cpp); this file only wires them to the grammar.
 //
@@ -19,6 +20,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "commands/cells.hpp"
 #include "commands/grid.hpp"
 #include "commands/implicit.hpp"
 #include "commands/measure.hpp"
@@ -47,6 +49,8 @@ int main(int argc, char** argv) {
     auto* implicit = add_implicit_command(app, implicit_args);
     OverlapArgs overlap_args;
     auto* overlap = add_overlap_command(app, overlap_args);
+    CellsArgs cells_args;
+    auto* cells = add_cells_command(app, cells_args);
 
     if (const int code = answer_before_parse(app, argc, argv); code >= 0) return code;
     try {
@@ -63,6 +67,7 @@ int main(int argc, char** argv) {
         if (*grid) return run_grid_command(grid_args);
         if (*implicit) return run_implicit_command(implicit_args);
         if (*overlap) return run_overlap_command(overlap_args);
+        if (*cells) return run_cells_command(cells_args);
         return run_measure_commands(measure_commands);
     } catch (const std::bad_alloc&) {
         std::cerr << "polyvol: out of memory: the input or the request needs more memory than this machine "

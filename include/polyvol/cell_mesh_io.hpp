@@ -13,6 +13,7 @@
 // checked against the bytes that are there.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,5 +33,25 @@ struct LoadedCellMesh {
 
 // Reads an OpenFOAM polyMesh (above). Throws ReadError.
 LoadedCellMesh read_polymesh(const std::string& path);
+
+// An OpenFOAM mesh's patches (constant/polyMesh/boundary), in order.
+struct FoamPatch {
+    std::string name, type;
+};
+std::vector<FoamPatch> read_foam_patches(const std::string& polymesh_dir);
+
+// Writes the dimensionless volScalarField `name` into the case that holds
+// polymesh_dir (LoadedCellMesh::location, CASE/constant/polyMesh), at
+// CASE/<time>/<name>: the internalField one value per cell, each with 17
+// significant digits (the doubles exactly); the boundaryField kept verbatim
+// from an existing file of that name (its boundary conditions are the
+// user's), else zeroGradient on every patch (empty, wedge, symmetry,
+// symmetryPlane, cyclic and processor patches get their own type). The file
+// is written beside and renamed, so a failure leaves the old one. Returns
+// the path written. Throws ReadError for an unreadable boundary file and
+// std::runtime_error when the mesh is not in a case or the file cannot be
+// written.
+std::string write_foam_field(const std::string& polymesh_dir, const std::string& name, std::span<const double> values,
+                             const std::string& time = "0");
 
 }  // namespace polyvol

@@ -61,8 +61,8 @@ CellVolumes cell_volumes(const CellMeshView& mesh);
 //     the cells tile exactly), correctly rounded: the exact sum of the
 //     cells' exact values rounded once. For a body inside the mesh it is
 //     the body's volume, bit for bit.
-// The body must be what boolean_volumes takes: a closed 2-cycle, outward,
-// not overlapping itself (polyvol/solid.hpp turns a file into that); the
+// The body must be a closed 2-cycle, outward (polyvol/solid.hpp turns a
+// file into that; shells that overlap: below); the
 // cells must be wound outward (no negative cell). Throws
 // std::invalid_argument naming the defect otherwise.
 // This is the exact reference: each touched cell costs a boolean against
@@ -79,6 +79,13 @@ struct BodyInCells {
     std::size_t touched_cells = 0;     // intersected exactly one by one
 };
 
-BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body);
+// The body's solid where its shells overlap or cross themselves
+// (polyvol/solid.hpp's MeshSolid::resolved): each boolean is then
+// solid_boolean_volumes, within_shells resolving a shell's own crossings.
+struct BodyInCellsOptions {
+    bool overlapping_shells = false;
+    bool within_shells = false;
+};
+BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body, const BodyInCellsOptions& options = {});
 
 }  // namespace polyvol

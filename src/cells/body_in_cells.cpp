@@ -143,8 +143,12 @@ private:
 };
 
 // |B ∩ c| exactly, or the defect that stops it.
-double intersect(const Mesh& cell, const MeshView& body, std::size_t c) {
-    const BooleanVolumes r = boolean_volumes(cell.view(), body);
+BooleanVolumes booleans(const MeshView& a, const MeshView& body, const BodyInCellsOptions& o) {
+    return o.overlapping_shells ? solid_boolean_volumes(a, body, o.within_shells) : boolean_volumes(a, body);
+}
+
+double intersect(const Mesh& cell, const MeshView& body, const BodyInCellsOptions& o, std::size_t c) {
+    const BooleanVolumes r = booleans(cell.view(), body, o);
     switch (r.status) {
         case BooleanStatus::ok: return r.intersection;
         case BooleanStatus::a_not_closed:
@@ -159,7 +163,7 @@ double intersect(const Mesh& cell, const MeshView& body, std::size_t c) {
 
 }  // namespace
 
-BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body) {
+BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
     const CellVolumes own = cell_volumes(m);  // checks the mesh
     if (own.negative_cells > 0) {
         const auto c = std::find_if(own.volumes.begin(), own.volumes.end(), [](double v) { return v < 0; });
@@ -174,7 +178,7 @@ BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body) {
 
     // The whole: |B ∩ M| and |B| (also checks the body).
     const Mesh outside = boundary_surface(m);
-    const BooleanVolumes whole = boolean_volumes(outside.view(), body);
+    const BooleanVolumes whole = booleans(outside.view(), body, options);
     if (whole.status == BooleanStatus::b_not_closed) throw std::invalid_argument("the body is not a closed surface");
     if (whole.status == BooleanStatus::b_inside_out) throw std::invalid_argument("the body is inside out");
     if (whole.status != BooleanStatus::ok)
@@ -199,7 +203,7 @@ BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body) {
     r.touched_cells = touched_cells.size();
     tbb::parallel_for(std::size_t{0}, touched_cells.size(), [&](std::size_t i) {
         const uint32_t c = touched_cells[i];
-        r.volumes[c] = intersect(cell_surface(m, cf, c), body, c);
+        r.volumes[c] = intersect(cell_surface(m, cf, c), body, options, c);
     });
 
     // Untouched cells: alike across a face between two of them; one exact
@@ -215,7 +219,7 @@ BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body) {
         const uint32_t root = regions.find(static_cast<uint32_t>(c));
         if (inside_of_root[root] < 0) {
             double v = 0;
-            if (meet(box[c], triangles.bounds())) v = intersect(cell_surface(m, cf, c), body, c);
+            if (meet(box[c], triangles.bounds())) v = intersect(cell_surface(m, cf, c), body, options, c);
             if (v != 0 && v != own.volumes[c])
                 throw std::logic_error("cell " + std::to_string(c) + " is neither inside nor outside the body");
             inside_of_root[root] = v != 0 ? 1 : 0;

@@ -9,8 +9,11 @@
 //           scalars of 64 or 32 bits as `arch` says ("LSB;label=32;scalar=64").
 // Comments (// and /* */) may come anywhere whitespace may in ASCII.
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -298,6 +301,38 @@ public:
                  std::to_string(n));
     }
 
+    // The boundary file's list: name { type T; ... } per patch.
+    std::vector<FoamPatch> patches() {
+        bool uniform = false;
+        list_start("the number of patches", uniform);
+        std::vector<FoamPatch> out;
+        while (!at(')')) {
+            FoamPatch p;
+            p.name = std::string(token());
+            if (p.name.empty()) fail("expected a patch name");
+            skip();
+            if (pos_ >= text_.size() || text_[pos_] != '{') fail("expected '{' after patch " + p.name);
+            int depth = 0;
+            const std::size_t open = pos_;
+            for (; pos_ < text_.size(); ++pos_) {
+                line_ += text_[pos_] == '\n';
+                if (text_[pos_] == '{') ++depth;
+                if (text_[pos_] == '}' && --depth == 0) break;
+            }
+            if (depth != 0) fail("patch " + p.name + ": '{' never closed");
+            const std::string_view body = text_.substr(open, pos_ - open);
+            ++pos_;
+            std::size_t t = body.find("type");
+            while (t != std::string_view::npos && t + 4 < body.size() && !io::text::is_space(body[t + 4]))
+                t = body.find("type", t + 4);
+            if (t == std::string_view::npos) fail("patch " + p.name + " has no type");
+            const std::size_t end = body.find(';', t);
+            p.type = std::string(io::text::trim(body.substr(t + 4, end - t - 4)));
+            out.push_back(std::move(p));
+        }
+        return out;
+    }
+
 private:
     static constexpr uint64_t kUnknown = std::numeric_limits<uint64_t>::max();
     std::vector<std::byte> bytes_;
@@ -391,6 +426,89 @@ LoadedCellMesh read_polymesh(const std::string& path) {
     }
     m.cells = any ? std::size_t{last} + 1 : 0;
     return r;
+}
+
+}  // namespace polyvol
+
+namespace polyvol {
+namespace {
+
+// The brace-balanced block that starts at text[open] == '{', through its '}'.
+std::string_view braced(std::string_view text, std::size_t open) {
+    int depth = 0;
+    for (std::size_t i = open; i < text.size(); ++i) {
+        if (text[i] == '{') ++depth;
+        if (text[i] == '}' && --depth == 0) return text.substr(open, i + 1 - open);
+    }
+    return {};
+}
+
+// The patch types whose fields take the same type (a zeroGradient there is an error).
+bool constrained_patch(const std::string& type) {
+    for (const char* t : {"empty", "wedge", "symmetry", "symmetryPlane", "cyclic", "cyclicAMI", "processor"})
+        if (type == t) return true;
+    return false;
+}
+
+}  // namespace
+
+std::vector<FoamPatch> read_foam_patches(const std::string& polymesh_dir) {
+    bool gzip = false;
+    FoamFile file = open_foam_file(fs::path(polymesh_dir), "boundary", gzip);
+    return file.patches();
+}
+
+std::string write_foam_field(const std::string& polymesh_dir, const std::string& name, std::span<const double> values,
+                             const std::string& time) {
+    const fs::path mesh_dir = fs::absolute(fs::path(polymesh_dir)).lexically_normal();
+    const fs::path constant = mesh_dir.parent_path();
+    if (mesh_dir.filename() != "polyMesh" || constant.filename() != "constant")
+        throw std::runtime_error(polymesh_dir + ": the mesh is not in an OpenFOAM case (CASE/constant/polyMesh), "
+                                                "so there is no case to write a field into");
+    const fs::path dir = constant.parent_path() / time;
+    const fs::path target = dir / name;
+    // The boundary conditions: the existing file's, else one per patch.
+    std::string boundary;
+    std::error_code ec;
+    if (fs::exists(target, ec)) {
+        std::string shown;
+        const std::vector<std::byte> old = io::read_whole_input(target.string(), shown);
+        const std::string_view text = io::text::as_text(old);
+        const std::size_t at = text.find("boundaryField");
+        const std::size_t open = at == std::string_view::npos ? at : text.find('{', at);
+        const std::string_view block = open == std::string_view::npos ? std::string_view() : braced(text, open);
+        if (block.empty())
+            throw ReadError::whole_file(shown, "no boundaryField { ... } to keep in the existing field file");
+        boundary = "boundaryField\n" + std::string(block) + "\n";
+    } else {
+        boundary = "boundaryField\n{\n";
+        for (const FoamPatch& p : read_foam_patches(mesh_dir.string()))
+            boundary += "    " + p.name + "\n    {\n        type            " +
+                        (constrained_patch(p.type) ? p.type : std::string("zeroGradient")) + ";\n    }\n";
+        boundary += "}\n";
+    }
+    fs::create_directories(dir, ec);
+    const fs::path temporary = dir / (name + ".polyvol-tmp");
+    {
+        std::FILE* f = std::fopen(temporary.c_str(), "wb");
+        if (f == nullptr)
+            throw std::runtime_error(temporary.string() + ": cannot write: " + std::strerror(errno));
+        std::string head = "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
+                           "    class       volScalarField;\n    location    \"" + time + "\";\n    object      " + name +
+                           ";\n}\n// written by polyvol cells\n\ndimensions      [0 0 0 0 0 0 0];\n\n"
+                           "internalField   nonuniform List<scalar>\n" + std::to_string(values.size()) + "\n(\n";
+        bool ok = std::fputs(head.c_str(), f) >= 0;
+        char buf[40];
+        for (const double v : values) {
+            std::snprintf(buf, sizeof buf, "%.17g\n", v);
+            ok = ok && std::fputs(buf, f) >= 0;
+        }
+        ok = ok && std::fputs(")\n;\n\n", f) >= 0 && std::fputs(boundary.c_str(), f) >= 0;
+        ok = std::fclose(f) == 0 && ok;
+        if (!ok) throw std::runtime_error(temporary.string() + ": cannot write: " + std::strerror(errno));
+    }
+    fs::rename(temporary, target);
+    return target.string();
 }
 
 }  // namespace polyvol

@@ -52,3 +52,50 @@ def uv_sphere(rings=32, segments=64, r=1.0, centre=(0.0, 0.0, 0.0)):
 @pytest.fixture(scope="session")
 def corpus():
     return manifest()
+
+
+def write_polymesh(case, lo=-1.0, hi=1.0, n=2):
+    """An OpenFOAM case (CASE/constant/polyMesh, ASCII) of n^3 cubic cells
+    over [lo, hi]^3: internal faces first, each pointing out of its owner."""
+    mesh = pathlib.Path(case) / "constant" / "polyMesh"
+    mesh.mkdir(parents=True, exist_ok=True)
+    x = [lo + (hi - lo) * i / n for i in range(n + 1)]
+    p = lambda i, j, k: i + (n + 1) * (j + (n + 1) * k)
+    c = lambda i, j, k: i + n * (j + n * k)
+    # The face at plane `at` of `axis` through the cell (i, j, k) corner, normal +axis.
+    def plus(axis, i, j, k):
+        if axis == 0:
+            return [p(i, j, k), p(i, j + 1, k), p(i, j + 1, k + 1), p(i, j, k + 1)]
+        if axis == 1:
+            return [p(i, j, k), p(i, j, k + 1), p(i + 1, j, k + 1), p(i + 1, j, k)]
+        return [p(i, j, k), p(i + 1, j, k), p(i + 1, j + 1, k), p(i, j + 1, k)]
+    faces, owner, neighbour, boundary = [], [], [], []
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                for axis, (di, dj, dk) in enumerate(((1, 0, 0), (0, 1, 0), (0, 0, 1))):
+                    if (i + di, j + dj, k + dk)[axis] < n:
+                        faces.append(plus(axis, i + di, j + dj, k + dk))
+                        owner.append(c(i, j, k))
+                        neighbour.append(c(i + di, j + dj, k + dk))
+                    if (i, j, k)[axis] == 0:
+                        boundary.append((plus(axis, i, j, k)[::-1], c(i, j, k)))
+                    if (i + di, j + dj, k + dk)[axis] == n:
+                        boundary.append((plus(axis, i + di, j + dj, k + dk), c(i, j, k)))
+    faces += [f for f, _ in boundary]
+    owner += [o for _, o in boundary]
+
+    def write(name, cls, items):
+        (mesh / name).write_text("FoamFile\n{\n    version 2.0;\n    format ascii;\n    class " + cls +
+                                 ";\n    object " + name + ";\n}\n" + f"{len(items)}\n(\n" +
+                                 "".join(f"{it}\n" for it in items) + ")\n")
+    write("points", "vectorField", [f"({x[i]!r} {x[j]!r} {x[k]!r})" for k in range(n + 1) for j in range(n + 1)
+                                    for i in range(n + 1)])
+    write("faces", "faceList", ["4(" + " ".join(map(str, f)) + ")" for f in faces])
+    write("owner", "labelList", owner)
+    write("neighbour", "labelList", neighbour)
+    (mesh / "boundary").write_text("FoamFile\n{\n    version 2.0;\n    format ascii;\n    class polyBoundaryMesh;\n"
+                                   "    object boundary;\n}\n1\n(\n    walls\n    {\n        type wall;\n"
+                                   f"        nFaces {len(boundary)};\n        startFace {len(faces) - len(boundary)};\n"
+                                   "    }\n)\n")
+    return pathlib.Path(case)

@@ -1,9 +1,9 @@
 """One answer from every door: the same file gives the same solid through
 `polyvol volume`, `measure`, `check`, `overlap` (as A and as B), `grid` (one
-body, and with --union) and Python's mass_properties, volume, overlap, grid,
+body, and with --union), `cells` (an OpenFOAM mesh around it) and Python's mass_properties, volume, overlap, grid,
 check and measure_file — or every door refuses it for the same reason
-(polyvol/solid.hpp, the one policy). A new entry point (such as `cells`)
-is added here, to DOORS."""
+(polyvol/solid.hpp, the one policy). A new entry point is added here, to
+DOORS."""
 import json
 import pathlib
 import subprocess
@@ -13,7 +13,7 @@ import zipfile
 import pytest
 
 import polyvol
-from conftest import CLI
+from conftest import CLI, write_polymesh
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
@@ -127,8 +127,11 @@ def py(call):
 
 @pytest.fixture(scope="module")
 def big_box(tmp_path_factory):
-    """A box containing every case: A ∩ box and box ∩ A are the solid."""
-    return write_obj(tmp_path_factory.mktemp("box") / "box.obj", [((-10.0, -10.0, -10.0), 30.0)])
+    """A box containing every case: A ∩ box and box ∩ A are the solid; beside
+    it, box.parent / "case", an OpenFOAM mesh of 3^3 cells over the same box."""
+    d = tmp_path_factory.mktemp("box")
+    write_polymesh(d / "case", -10.0, 20.0, 3)
+    return write_obj(d / "box.obj", [((-10.0, -10.0, -10.0), 30.0)])
 
 
 DOORS = {
@@ -139,6 +142,8 @@ DOORS = {
     "grid": lambda f, box, d: cli_volume(["grid", f, "--cells", 8, "--json"], lambda j: j["body_volumes"][0]),
     "grid --union": lambda f, box, d: cli_volume(["grid", f, "--cells", 8, "--json", "--union", d / "u.npy"],
                                                  lambda j: j["union_volume"]),
+    "cells": lambda f, box, d: cli_volume(["cells", box.parent / "case", f, "--mesh-units", "mm", "--json"],
+                                          lambda j: j["bodies"][0]["inside_mesh"]),
     "py mass_properties": lambda f, box, d: py(lambda: polyvol.mass_properties(polyvol.load(f)).volume),
     "py volume": lambda f, box, d: py(lambda: polyvol.volume(polyvol.load(f))),
     "py overlap": lambda f, box, d: py(lambda: polyvol.overlap(polyvol.load(f), polyvol.load(box)).intersection),

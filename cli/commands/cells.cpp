@@ -1,0 +1,235 @@
+// `polyvol cells MESH [BODY...] [--json] [-o OUT.npy|OUT.json] [--fractions]
+//   [--field NAME] [--units U] [--mesh-units U]`
+//
+// Reads the mesh of cells (an OpenFOAM case or its constant/polyMesh; exit
+// 2 if unreadable), checks that every cell closes (exit 3), reads each body
+// as the solid it means (exit 2 / 3 as `volume`), puts it in the mesh's
+// unit, and gives each body's volume in every cell (polyvol/cells.hpp),
+// correctly rounded:
+//   OUT.npy     float64, shape (cells,) or (bodies, cells): the volumes, or
+//               the fractions with --fractions; without a body, the cells'
+//               own volumes
+//   --field N   the fractions as the OpenFOAM field CASE/0/N (one body),
+//               keeping the boundary conditions of an existing 0/N
+//   OUT.json    the summary only (as --json prints it)
+#include "commands/cells.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "output/format.hpp"
+#include "polyvol/cell_mesh_io.hpp"
+#include "polyvol/cells.hpp"
+#include "polyvol/grid_io.hpp"
+#include "polyvol/io.hpp"
+#include "polyvol/solid.hpp"
+#include "polyvol/units.hpp"
+#include "read_input.hpp"
+
+namespace polyvol::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Body {
+    std::string file;
+    BodyInCells cells;
+    std::vector<double> fractions;
+};
+
+std::string extension(const std::string& path) {
+    std::string e = std::filesystem::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return e;
+}
+
+int usage_error(const std::string& message) {
+    std::cerr << "polyvol cells: " << message << "\n";
+    return Exit::usage;
+}
+
+int check_arguments(const CellsArgs& a) {
+    if (!a.out.empty() && extension(a.out) != ".npy" && extension(a.out) != ".json")
+        return usage_error("-o " + a.out + ": expected a .npy or .json file");
+    if (!a.field.empty() && a.bodies.size() != 1) return usage_error("--field needs exactly one body");
+    if (a.fractions && a.bodies.empty()) return usage_error("--fractions needs a body");
+    for (const std::string* u : {&a.units, &a.mesh_units})
+        if (!u->empty() && !length_unit(*u))
+            return usage_error("unknown unit '" + *u + "': expected " + kLengthUnitNames);
+    return Exit::ok;
+}
+
+// A body read, made the solid it means and put in the mesh's unit; nothing
+// after printing why not (exit in `code`).
+std::optional<LoadedMesh> read_body(const std::string& file, const CellsArgs& a, const std::string& mesh_unit,
+                                    std::optional<MeshSolid>& solid, int& code) {
+    auto body = read_or_report(file, [&] { return read_mesh_file(file); });
+    if (!body) {
+        code = Exit::unreadable;
+        return std::nullopt;
+    }
+    const std::string unit = !body->unit.empty() ? body->unit : a.units;
+    if (unit.empty()) {
+        std::cerr << "polyvol: warning: " << file << ": no unit stated: taken in the mesh's unit (" << mesh_unit
+                  << "); --units gives it (" << kLengthUnitNames << ")\n";
+    } else if (unit != mesh_unit) {
+        const LengthFactor f = length_factor(*length_unit(unit), *length_unit(mesh_unit));
+        body->coordinate_error = scale_coordinates(body->mesh, f, body->coordinate_error);
+        if (body->coordinate_error > 0)
+            std::cerr << "polyvol: warning: " << file << ": converted from " << unit << " to " << mesh_unit
+                      << ", each coordinate rounded once: the cells' volumes are exact for the converted body\n";
+    }
+    solid = solid_or_report(file, body->mesh, a.solid_flags.policy());
+    if (!solid) {
+        code = Exit::invalid;
+        return std::nullopt;
+    }
+    return body;
+}
+
+// Volume over the cell's own volume, within [0, 1] (each is correctly
+// rounded, so the quotient is within 1.5 ulp of the exact fraction).
+std::vector<double> fractions_of(const std::vector<double>& volumes, const std::vector<double>& own) {
+    std::vector<double> f(volumes.size());
+    for (std::size_t c = 0; c < f.size(); ++c) f[c] = own[c] > 0 ? std::clamp(volumes[c] / own[c], 0.0, 1.0) : 0.0;
+    return f;
+}
+
+nlohmann::json summary(const CellsArgs& a, const LoadedCellMesh& mesh, const std::string& unit,
+                       const CellVolumes& own, const std::vector<Body>& bodies, double seconds) {
+    nlohmann::json j;
+    const CellMeshView m = mesh.mesh.view();
+    j["mesh"] = {{"file", a.mesh},
+                 {"format", mesh.format},
+                 {"encoding", mesh.encoding},
+                 {"unit", unit},
+                 {"cells", m.cell_count()},
+                 {"faces", m.face_count()},
+                 {"points", m.point_count()},
+                 {"volume", json_number(own.total)}};
+    j["accuracy"] = "correctly-rounded";  // every cell's volume, and every total
+    nlohmann::json list = nlohmann::json::array();
+    for (const Body& b : bodies)
+        list.push_back({{"file", b.file},
+                        {"volume", json_number(b.cells.body_volume)},
+                        {"inside_mesh", json_number(b.cells.total)},
+                        {"full_cells", b.cells.full_cells},
+                        {"cut_cells", b.cells.cut_cells},
+                        {"empty_cells", b.cells.empty_cells},
+                        {"cells_intersected", b.cells.touched_cells}});
+    j["bodies"] = list;
+    j["seconds"] = seconds;
+    return j;
+}
+
+void print_table(const nlohmann::json& j) {
+    const auto& m = j["mesh"];
+    const std::string unit = m["unit"].get<std::string>();
+    std::cout << m["file"].get<std::string>() << ": " << m["cells"].get<std::size_t>() << " cells, "
+              << m["faces"].get<std::size_t>() << " faces, " << m["points"].get<std::size_t>()
+              << " points; volume " << shortest(m["volume"].get<double>()) << " " << unit << "3\n";
+    for (const auto& b : j["bodies"])
+        std::cout << b["file"].get<std::string>() << ": volume " << shortest(b["volume"].get<double>())
+                  << ", inside the mesh " << shortest(b["inside_mesh"].get<double>()) << " " << unit << "3; cells "
+                  << b["full_cells"].get<std::size_t>() << " full, " << b["cut_cells"].get<std::size_t>()
+                  << " cut, " << b["empty_cells"].get<std::size_t>() << " empty\n";
+    std::cout << "volumes: correctly rounded, every cell and every total\n";
+}
+
+int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolumes& own,
+                  const std::vector<Body>& bodies, const nlohmann::json& j) {
+    try {
+        if (extension(a.out) == ".npy") {
+            std::vector<double> data;
+            if (bodies.empty()) data = own.volumes;
+            for (const Body& b : bodies) {
+                const std::vector<double>& v = a.fractions ? b.fractions : b.cells.volumes;
+                data.insert(data.end(), v.begin(), v.end());
+            }
+            std::vector<std::size_t> shape;
+            if (bodies.size() > 1) shape.push_back(bodies.size());
+            shape.push_back(own.volumes.size());
+            write_npy(a.out, data, shape);
+        } else if (extension(a.out) == ".json") {
+            std::ofstream(a.out) << j.dump(2) << "\n";
+        }
+        if (!a.field.empty()) {
+            const std::string path = write_foam_field(mesh.location, a.field, bodies[0].fractions);
+            std::cerr << "polyvol: wrote " << path << "\n";
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "polyvol cells: " << e.what() << "\n";
+        return Exit::usage;
+    }
+    return Exit::ok;
+}
+
+}  // namespace
+
+CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
+    auto* cmd = app.add_subcommand("cells",
+                                   "Volume of each body in every cell of a mesh of polyhedral cells (an OpenFOAM "
+                                   "case), correctly rounded, and the cells' own volumes");
+    cmd->add_option("mesh", a.mesh, "An OpenFOAM case directory, or its constant/polyMesh")->required();
+    cmd->add_option("bodies", a.bodies, "Closed meshes (any format polyvol reads), each the solid it means");
+    cmd->add_flag("--json", a.json, "Print the summary as JSON");
+    cmd->add_option("-o,--output", a.out,
+                    "OUT.npy: per-cell volumes (or fractions), shape (cells,) or (bodies, cells); "
+                    "OUT.json: the summary");
+    cmd->add_flag("--fractions", a.fractions, "Write each cell's fraction inside the body, not its volume");
+    cmd->add_option("--field", a.field,
+                    "Write the fractions as the OpenFOAM field CASE/0/NAME (e.g. alpha.water), keeping the "
+                    "boundary conditions of an existing one (one body)");
+    cmd->add_option("--units", a.units, std::string("The bodies' unit where a file states none: ") + kLengthUnitNames);
+    cmd->add_option("--mesh-units", a.mesh_units, "The mesh's unit (OpenFOAM: m)");
+    add_solid_flags(cmd, a.solid_flags);
+    return cmd;
+}
+
+int run_cells_command(const CellsArgs& a) {
+    if (const int code = check_arguments(a); code != Exit::ok) return code;
+    auto mesh = read_or_report(a.mesh, [&] { return read_polymesh(a.mesh); });
+    if (!mesh) return Exit::unreadable;
+    const std::string unit = !a.mesh_units.empty() ? length_unit(a.mesh_units)->name : mesh->unit;
+    const CellMeshView view = mesh->mesh.view();
+    if (const auto defect = check_cell_mesh(view)) {
+        std::cerr << "polyvol: " << a.mesh << ": " << defect->message << "\n";
+        return Exit::invalid;
+    }
+    const auto t0 = Clock::now();
+    const CellVolumes own = cell_volumes(view);
+    std::vector<Body> bodies;
+    for (const std::string& file : a.bodies) {
+        int code = Exit::ok;
+        std::optional<MeshSolid> solid;
+        const auto body = read_body(file, a, unit, solid, code);
+        if (!body) return code;
+        Body b{file, {}, {}};
+        try {
+            const bool within = solid->solid && solid->solid->shells_crossing_themselves > 0;
+            b.cells = body_in_cells(view, body->mesh.view(),
+                                    {.overlapping_shells = solid->resolved(), .within_shells = within});
+        } catch (const std::invalid_argument& e) {
+            std::cerr << "polyvol: " << file << " in " << a.mesh << ": " << e.what() << "\n";
+            return Exit::invalid;
+        }
+        b.fractions = fractions_of(b.cells.volumes, own.volumes);
+        bodies.push_back(std::move(b));
+    }
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const nlohmann::json j = summary(a, *mesh, unit, own, bodies, seconds);
+    if (const int code = write_outputs(a, *mesh, own, bodies, j); code != Exit::ok) return code;
+    if (a.json)
+        std::cout << j.dump(2) << "\n";
+    else
+        print_table(j);
+    return Exit::ok;
+}
+
+}  // namespace polyvol::cli

@@ -1,0 +1,33 @@
+// `polyvol cells MESH [BODY...]`: the volume of each body in every cell of
+// a mesh of polyhedral cells (an OpenFOAM case), and the cells' own volumes
+// (polyvol/cells.hpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "grammar.hpp"
+
+namespace polyvol::cli {
+
+struct CellsArgs {
+    std::string mesh;
+    std::vector<std::string> bodies;
+    SolidFlags solid_flags;  // --orient, --weld-tolerance, --signed: each body the solid it means
+    std::string units;       // the bodies' unit, where a file states none
+    std::string mesh_units;  // the mesh's unit (OpenFOAM: metres)
+    std::string out;         // -o OUT.npy or OUT.json
+    std::string field;       // --field NAME: an OpenFOAM volScalarField of the fractions
+    bool fractions = false;
+    bool json = false;
+};
+
+CLI::App* add_cells_command(CLI::App& app, CellsArgs& args);
+
+// Exit codes: 0 ok, 1 usage, 2 unreadable mesh or body, 3 a mesh whose
+// cells do not close or a body that is not a solid.
+int run_cells_command(const CellsArgs& args);
+
+}  // namespace polyvol::cli
