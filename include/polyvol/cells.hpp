@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "polyvol/cell_class.hpp"
 #include "polyvol/cell_mesh.hpp"
 #include "polyvol/mesh.hpp"
 
@@ -68,8 +69,6 @@ CellVolumes cell_volumes(const CellMeshView& mesh);
 // This is the exact reference: each touched cell costs a boolean against
 // the whole body. docs/cells.md gives the design that replaces it with one
 // pass over the crossings.
-enum class CellClass : uint8_t { empty = 0, full = 1, cut = 2 };
-
 struct BodyInCells {
     std::vector<double> volumes;       // per cell, correctly rounded
     std::vector<CellClass> cell_class; // cut: the body's surface enters the cell

@@ -86,6 +86,7 @@
 #include <span>
 #include <vector>
 
+#include "polyvol/cell_class.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace polyvol {
@@ -139,13 +140,8 @@ struct GridSpec {
 // bounds, non-finite coordinates, or counts above 2^20 per axis.
 GridAxes make_grid(std::span<const MeshView> bodies, const GridSpec& spec);
 
-// Per-cell class of the union of the bodies (GridOutput::cell_class).
-enum class CellClass : uint8_t {
-    empty = 0,    // no surface enters the cell and no body fills it
-    full = 1,     // some body fills the cell (the union is the cell)
-    cut = 2,      // exactly one body's surface enters the cell (the union is that body's part)
-    contact = 3,  // two or more bodies' surfaces enter it (the union's own pieces decide it)
-};
+// Per-cell class of the union of the bodies (GridOutput::cell_class):
+// polyvol/cell_class.hpp.
 
 // Caller-sized outputs (habit: callers own bulk arrays). Empty spans are not
 // computed. Sizes are checked (std::invalid_argument).

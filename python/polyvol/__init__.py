@@ -31,6 +31,7 @@ from . import _polyvol as _core
 __all__ = [
     "Mesh", "load", "load_bytes", "measure_file", "orient", "mass_properties", "volume", "check", "solid", "overlap", "self_crossings",
     "grid", "Grid", "chain_volume", "polygon_area", "load_chain", "load_polygons", "implicit",
+    "CellMesh", "load_cells", "cell_volumes", "cells", "Cells", "write_foam_field",
     "ReadError", "ImplicitError", "ExpressionError", "NotASolidError", "__version__",
 ]
 
@@ -634,3 +635,14 @@ def implicit(f, dim, box, h=None, *, coarse_cells=0, error_estimate=True, box_ru
 
 def _warn(message):
     _warnings.warn(message, stacklevel=3)
+
+
+class Cells(_Result):
+    """Bodies in the cells of a mesh (`polyvol cells`): every volume correctly
+    rounded; see polyvol.cells."""
+
+    _fields = ("unit", "total", "cell_volumes", "volumes", "fractions", "cell_class", "inside_mesh", "body_volumes",
+               "full_cells", "cut_cells", "empty_cells")
+
+
+from ._cells import CellMesh, cell_volumes, cells, load_cells, write_foam_field  # noqa: E402

@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 
 #include "polyvol/measure.hpp"
+#include "polyvol/solid.hpp"
 #include "polyvol/units.hpp"
 
 namespace polyvol::python {
@@ -19,9 +20,15 @@ Accuracy parse_accuracy(const std::string& s);
 // 'kg' only with a unit) as --density and --mass-unit are; ValueError else.
 Density parse_density_arg(const py::object& density, const std::string& mass_unit);
 
+// The solid policy's options from Python's keywords (signed, allow_open,
+// orient, weld_tolerance, solid), and what it found: (status, message, notes).
+SolidOptions solid_options(const pybind11::dict& keywords);
+pybind11::tuple solid_verdict(const MeshSolid& solid);
+
 void bind_io(pybind11::module_& m);       // io.hpp, grid_io.hpp: reading meshes, writing grids
 void bind_measure(pybind11::module_& m);  // measure.hpp, topology.hpp, boolean.hpp
 void bind_grid(pybind11::module_& m);     // grid.hpp
 void bind_chain(pybind11::module_& m);    // chain.hpp, simplicial.hpp, implicit.hpp
+void bind_cells(pybind11::module_& m);    // cell_mesh.hpp, cell_mesh_io.hpp, cells.hpp
 
 }  // namespace polyvol::python

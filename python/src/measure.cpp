@@ -77,6 +77,13 @@ const char* solid_status_name(SolidStatus s) {
     return "ok";
 }
 
+template <std::size_t N>
+py::array_t<double> vec(const std::array<double, N>& a) {
+    return copy_array<double>(std::span<const double>(a.data(), N), {static_cast<py::ssize_t>(N)});
+}
+
+}  // namespace
+
 // The policy's options from Python's keywords (polyvol/solid.hpp).
 SolidOptions solid_options(const py::dict& k) {
     SolidOptions o;
@@ -94,13 +101,6 @@ py::tuple solid_verdict(const MeshSolid& s) {
     for (const SolidNote& n : s.notes) notes.append(n.text);
     return py::make_tuple(solid_status_name(s.status), s.message, notes);
 }
-
-template <std::size_t N>
-py::array_t<double> vec(const std::array<double, N>& a) {
-    return copy_array<double>(std::span<const double>(a.data(), N), {static_cast<py::ssize_t>(N)});
-}
-
-}  // namespace
 
 void bind_measure(py::module_& m) {
     py::class_<MassProperties>(m, "MassProperties")

@@ -103,4 +103,5 @@ PYBIND11_MODULE(_polyvol, m) {
     bind_measure(m);
     bind_grid(m);
     bind_chain(m);
+    bind_cells(m);
 }

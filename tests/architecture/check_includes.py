@@ -12,7 +12,8 @@ with its DEPS) may include
     that module: a header another module above it needs, which includes
     only public, foundation and interface headers, so nothing private
     comes along.
-The command line (cli/), the Python bindings (python/) and the benchmarks
+No public type is defined in two public headers. The command line (cli/),
+the Python bindings (python/) and the benchmarks
 (bench/) include only public headers and their own; Python never includes
 cli/. The tests (tests/<m>/) and fuzz targets are white-box and may include
 the private headers of what they test.
@@ -34,7 +35,7 @@ INTERFACES = {
 }
 # The module that implements each public header.
 PUBLIC_OWNER = {
-    "mesh.hpp": "core", "units.hpp": "core", "cell_mesh.hpp": "core",
+    "mesh.hpp": "core", "units.hpp": "core", "cell_mesh.hpp": "core", "cell_class.hpp": "core",
     "cell_mesh_io.hpp": "io", "cells.hpp": "cells",
     "chain.hpp": "core",  # plain arrays, as mesh.hpp
     "io.hpp": "io", "parse_options.hpp": "io", "chain_io.hpp": "io", "grid_io.hpp": "io",
@@ -129,6 +130,14 @@ def main():
                     errors.append(f"{rel}: includes {inc}, a private header of the library")
                 if folder == "python" and (top == "cli" or inc.startswith("../cli/") or top in {"output", "commands"}):
                     errors.append(f"{rel}: includes {inc}: Python binds the library, not the command line")
+    # A public type is defined in one header (two definitions of one name in
+    # namespace polyvol break the one-definition rule when both are linked).
+    defined = {}
+    for path in sorted((ROOT / "include/polyvol").glob("*.hpp")):
+        for name in re.findall(r"^(?:enum class|struct|class)\s+(\w+)\s*(?::[^{;]*)?\{", path.read_text(), re.M):
+            if name in defined:
+                errors.append(f"include/polyvol/{path.name}: {name} is also defined in {defined[name]}")
+            defined[name] = f"include/polyvol/{path.name}"
     for e in errors:
         print(e)
     checked = sum(1 for m in modules for _ in sources(f"src/{m}"))

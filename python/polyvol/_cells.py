@@ -1,0 +1,80 @@
+"""The volume of bodies in every cell of a mesh of polyhedral cells (an
+OpenFOAM case): polyvol/cells.hpp, as `polyvol cells` gives it."""
+
+import numpy as np
+
+from . import _polyvol as _core
+from . import _arrays
+
+CellMesh = _core.CellMesh
+CellMesh.__doc__ = """A mesh of polyhedral cells in OpenFOAM's form (polyvol/cell_mesh.hpp):
+``points`` (n, 3), faces as ``face_offsets`` and ``face_points``, ``owner``
+and ``neighbour`` per face (-1 on the boundary), ``cell_count``,
+``format``, ``encoding``, ``unit`` (metres for OpenFOAM), ``location``."""
+
+
+def load_cells(path):
+    """An OpenFOAM mesh: a case directory or its constant/polyMesh (ASCII or
+    binary, .gz files). Raises ReadError naming the file and the line or byte."""
+    return _core.read_polymesh(str(path))
+
+
+def cell_volumes(mesh):
+    """Each cell's volume, correctly rounded (float64, one per cell), and the
+    cells' exact total rounded once. ValueError names a cell whose faces do
+    not close."""
+    return _core.cell_volumes(mesh)
+
+
+def write_foam_field(mesh, name, values, time="0"):
+    """Writes the values (one per cell) as the dimensionless volScalarField
+    CASE/<time>/<name>, keeping the boundaryField of one that exists.
+    Returns the path written."""
+    values = np.ascontiguousarray(values, dtype=np.float64).reshape(-1)
+    return _core.write_foam_field(mesh, str(name), values, str(time))
+
+
+def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=False, weld_tolerance=0.0):
+    """The volume of each body in every cell of ``mesh`` (a CellMesh, or a
+    path for load_cells), correctly rounded, as `polyvol cells` gives it.
+
+    bodies: a mesh or a list of them (polyvol.Mesh, or objects with
+    .vertices and .faces), each the solid it means as mass_properties takes
+    it (NotASolidError for an open or misoriented one; signed, orient,
+    weld_tolerance as there). units: the bodies' unit where a Mesh states
+    none; mesh_units: the mesh's (OpenFOAM: metres); a body in another unit
+    is converted, each coordinate rounded once (a warning says so).
+
+    Returns Cells: ``cell_volumes`` (cells,), ``volumes`` and ``fractions``
+    (bodies, cells), ``cell_class`` (bodies, cells: 0 empty, 1 full, 2 cut),
+    ``inside_mesh`` per body (the exact sum of its cells rounded once: for a
+    body inside the mesh, its volume bit for bit), ``body_volumes``,
+    ``full_cells``, ``cut_cells``, ``empty_cells`` per body, ``total`` (the
+    mesh's volume) and ``unit``."""
+    from . import Mesh, _policy, _solid_verdict, _warn, Cells  # noqa: E402 (defined before this module is imported)
+    if not isinstance(mesh, CellMesh):
+        mesh = load_cells(mesh)
+    own, total = _core.cell_volumes(mesh)
+    unit = mesh_units or mesh.unit
+    if isinstance(bodies, Mesh) or hasattr(bodies, "vertices"):
+        bodies = [bodies]
+    results = []
+    for i, body in enumerate(bodies):
+        name = f"body {i}" if len(bodies) > 1 else "body"
+        p, ix, off = _arrays.mesh(body)
+        declared = (body.unit or "") if isinstance(body, Mesh) else ""
+        verdict, r, notes = _core.body_in_cells(mesh, p, ix, off, _policy(signed, False, orient, weld_tolerance),
+                                                declared, units or "", unit)
+        for note in notes:
+            _warn(f"{name}: {note}")
+        _solid_verdict(verdict, name)
+        results.append(r)
+    n = len(own)
+    volumes = np.array([r["volumes"] for r in results]).reshape(len(results), n)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        fractions = np.clip(np.where(own > 0, volumes / own, 0.0), 0.0, 1.0)
+    return Cells(unit=unit, cell_volumes=own, total=total, volumes=volumes, fractions=fractions,
+                 cell_class=np.array([r["cell_class"] for r in results], dtype=np.uint8).reshape(len(results), n),
+                 inside_mesh=[r["inside_mesh"] for r in results], body_volumes=[r["volume"] for r in results],
+                 full_cells=[r["full_cells"] for r in results], cut_cells=[r["cut_cells"] for r in results],
+                 empty_cells=[r["empty_cells"] for r in results])

@@ -1,0 +1,139 @@
+// python/src/cells.cpp — meshes of cells (polyvol/cell_mesh_io.hpp) and the
+// volume of bodies in every cell (polyvol/cells.hpp).
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <pybind11/stl.h>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "polyvol/cell_mesh_io.hpp"
+#include "polyvol/cells.hpp"
+#include "polyvol/units.hpp"
+
+namespace polyvol::python {
+
+namespace {
+
+py::array_t<uint32_t> u32(py::object self, const std::vector<uint32_t>& v) {
+    return view_array<uint32_t>(v.data(), {static_cast<py::ssize_t>(v.size())}, self);
+}
+
+}  // namespace
+
+void bind_cells(py::module_& m) {
+    py::class_<LoadedCellMesh, std::shared_ptr<LoadedCellMesh>>(m, "CellMesh")
+        .def_property_readonly("points",
+                               [](py::object self) {
+                                   const auto& l = self.cast<const LoadedCellMesh&>();
+                                   return view_array<double>(l.mesh.points.data(),
+                                                             {static_cast<py::ssize_t>(l.mesh.points.size() / 3), 3},
+                                                             self);
+                               })
+        .def_property_readonly("face_offsets",
+                               [](py::object self) { return u32(self, self.cast<const LoadedCellMesh&>().mesh.face_offsets); })
+        .def_property_readonly("face_points",
+                               [](py::object self) { return u32(self, self.cast<const LoadedCellMesh&>().mesh.face_points); })
+        .def_property_readonly("owner",
+                               [](py::object self) { return u32(self, self.cast<const LoadedCellMesh&>().mesh.owner); })
+        .def_property_readonly("neighbour",
+                               [](const LoadedCellMesh& l) {
+                                   // -1 on the boundary, as numpy users expect.
+                                   std::vector<int64_t> n(l.mesh.neighbour.begin(), l.mesh.neighbour.end());
+                                   for (int64_t& x : n)
+                                       if (x == kNoCell) x = -1;
+                                   const auto size = static_cast<py::ssize_t>(n.size());
+                                   return adopt_array(std::move(n), {size});
+                               })
+        .def_property_readonly("cell_count", [](const LoadedCellMesh& l) { return l.mesh.cells; })
+        .def_property_readonly("face_count", [](const LoadedCellMesh& l) { return l.mesh.face_offsets.size() - 1; })
+        .def_readonly("format", &LoadedCellMesh::format)
+        .def_readonly("encoding", &LoadedCellMesh::encoding)
+        .def_readonly("gzip", &LoadedCellMesh::gzip)
+        .def_readonly("unit", &LoadedCellMesh::unit)
+        .def_readonly("location", &LoadedCellMesh::location);
+
+    m.def(
+        "read_polymesh",
+        [](const std::string& path) {
+            py::gil_scoped_release release;
+            return std::make_shared<LoadedCellMesh>(read_polymesh(path));
+        },
+        py::arg("path"));
+
+    // The cells' own volumes and their total; check_cell_mesh's defect as a ValueError.
+    m.def(
+        "cell_volumes",
+        [](const LoadedCellMesh& l) {
+            CellVolumes v;
+            {
+                py::gil_scoped_release release;
+                v = cell_volumes(l.mesh.view());
+            }
+            const auto n = static_cast<py::ssize_t>(v.volumes.size());
+            return py::make_tuple(adopt_array(std::move(v.volumes), {n}), v.total);
+        },
+        py::arg("mesh"));
+
+    // One body (positions, indices, offsets) in every cell, as `polyvol cells`
+    // takes it: the solid policy, the body put in the mesh's unit (`unit`)
+    // from `declared` or `units`. Returns (verdict, result dict or None, notes).
+    m.def(
+        "body_in_cells",
+        [](const LoadedCellMesh& l, const Doubles& positions, const Indices& indices,
+           const std::optional<Indices>& offsets, const py::dict& policy, const std::string& declared,
+           const std::string& units, const std::string& unit) {
+            Mesh body = to_mesh(mesh_view(positions, indices, offsets));
+            py::list notes;
+            const std::string body_unit = !declared.empty() ? declared : units;
+            if (body_unit.empty()) {
+                notes.append("no unit stated: taken in the mesh's unit (" + unit + "); units= gives it");
+            } else if (body_unit != unit) {
+                const auto from = length_unit(body_unit), to = length_unit(unit);
+                if (!from || !to) throw py::value_error("unknown unit: expected " + std::string(kLengthUnitNames));
+                if (scale_coordinates(body, length_factor(*from, *to), 0) > 0)
+                    notes.append("converted from " + body_unit + " to " + unit +
+                                 ", each coordinate rounded once: the cells' volumes are exact for the converted body");
+            }
+            MeshSolid solid;
+            std::optional<BodyInCells> r;
+            {
+                py::gil_scoped_release release;
+                solid = make_solid(body, solid_options(policy));
+                if (solid.status == SolidStatus::ok) {
+                    const bool within = solid.solid && solid.solid->shells_crossing_themselves > 0;
+                    r = body_in_cells(l.mesh.view(), body.view(),
+                                      {.overlapping_shells = solid.resolved(), .within_shells = within});
+                }
+            }
+            if (!r) return py::make_tuple(solid_verdict(solid), py::none(), notes);
+            py::dict d;
+            const auto n = static_cast<py::ssize_t>(r->volumes.size());
+            std::vector<uint8_t> cls(r->cell_class.size());
+            for (std::size_t c = 0; c < cls.size(); ++c) cls[c] = static_cast<uint8_t>(r->cell_class[c]);
+            d["volumes"] = adopt_array(std::move(r->volumes), {n});
+            d["cell_class"] = adopt_array(std::move(cls), {n});
+            d["inside_mesh"] = r->total;
+            d["volume"] = r->body_volume;
+            d["full_cells"] = r->full_cells;
+            d["cut_cells"] = r->cut_cells;
+            d["empty_cells"] = r->empty_cells;
+            d["cells_intersected"] = r->touched_cells;
+            return py::make_tuple(solid_verdict(solid), d, notes);
+        },
+        py::arg("mesh"), py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("policy"),
+        py::arg("declared"), py::arg("units"), py::arg("unit"));
+
+    m.def(
+        "write_foam_field",
+        [](const LoadedCellMesh& l, const std::string& name, const Doubles& values, const std::string& time) {
+            if (static_cast<std::size_t>(values.size()) != l.mesh.cells)
+                throw py::value_error("write_foam_field: one value per cell (" + std::to_string(l.mesh.cells) +
+                                      "), not " + std::to_string(values.size()));
+            return write_foam_field(l.location, name, span_of(values), time);
+        },
+        py::arg("mesh"), py::arg("name"), py::arg("values"), py::arg("time"));
+}
+
+}  // namespace polyvol::python
