@@ -81,9 +81,12 @@ struct BodyInCells {
 // The body's solid where its shells overlap or cross themselves
 // (polyvol/solid.hpp's MeshSolid::resolved): each boolean is then
 // solid_boolean_volumes, within_shells resolving a shell's own crossings.
+// reference: a boolean against the whole body per touched cell (the oracle
+// the tests compare the default with; shells that overlap take it too).
 struct BodyInCellsOptions {
     bool overlapping_shells = false;
     bool within_shells = false;
+    bool reference = false;
 };
 BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body, const BodyInCellsOptions& options = {});
 

@@ -332,3 +332,32 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
 }
 
 }  // namespace polyvol
+
+namespace polyvol::boolean {
+
+double intersection_given_windings(const Operand& A, const Operand& B, const std::vector<int32_t>& wb, int e0,
+                                   double max_coordinate) {
+    const Crossings cross = find_crossings(A, B);
+    const std::vector<int32_t> wa = vertex_windings(B, A, cross.b_hits);
+    WholeSums whole_a = whole_triangles(A, wb), whole_b = whole_triangles(B, wa);
+    PieceSum pieces;
+    AreaSum a_in_b = whole_a.area_inside, b_in_a = whole_b.area_inside;
+    sum_pieces(Inputs{A, B, cross, wa, wb, Scale{e0}, max_coordinate}, pieces, a_in_b, b_in_a);
+    // 6 |A ∩ B| is the pieces' sum, the whole triangles' part filtered first.
+    int refinements = 0;
+    for (bool exactly : {false, true}) {
+        if (exactly) {
+            whole_a.volume_inside = operand_volume_sum(A, &whole_a.inside, true);
+            whole_b.volume_inside = operand_volume_sum(B, &whole_b.inside, true);
+        }
+        pieces.whole = whole_a.volume_inside.sum;
+        pieces.whole.merge(whole_b.volume_inside.sum);
+        pieces.whole_bound = whole_a.volume_inside.bound + whole_b.volume_inside.bound;
+        const Combination intersection[1] = {{nullptr, +1}};
+        const std::vector<double> out = round_combinations(pieces, e0, intersection, refinements);
+        if (!out.empty()) return out[0];
+    }
+    throw std::logic_error("intersection_given_windings: the exact sums left the rounding undecided");
+}
+
+}  // namespace polyvol::boolean

@@ -117,6 +117,13 @@ enum class Pairs {
 // a_hits and b_hits then both index that operand).
 Crossings find_crossings(const Operand& a, const Operand& b, Pairs pairs = Pairs::other_bodies);
 
+// |A ∩ B| correctly rounded (A at shift 0, B moved by δ), given B's winding
+// at A's vertices (0 or 1; B need not be closed where A's box does not
+// reach: every B triangle meeting A's box must be there); e0 and
+// max_coordinate over both (boolean_volumes' scale). boolean_volumes.cpp.
+double intersection_given_windings(const Operand& A, const Operand& B, const std::vector<int32_t>& wb, int e0,
+                                   double max_coordinate);
+
 // Winding number at every vertex of `self` of the other operand's bodies
 // other than the vertex's own (with &self == &other: of the other bodies of
 // the same operand); vertices no face uses get 0. hits: every crossing of

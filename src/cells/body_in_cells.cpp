@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <tbb/parallel_for.h>
 
+#include "boolean/prepared_body.hpp"
 #include "cells/cell_faces.hpp"
 #include "core/union_find.hpp"
 #include "polyvol/boolean.hpp"
@@ -163,7 +165,8 @@ double intersect(const Mesh& cell, const MeshView& body, const BodyInCellsOption
 
 }  // namespace
 
-BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
+// The exact reference: a boolean against the whole body per touched cell.
+static BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
     const CellVolumes own = cell_volumes(m);  // checks the mesh
     if (own.negative_cells > 0) {
         const auto c = std::find_if(own.volumes.begin(), own.volumes.end(), [](double v) { return v < 0; });
@@ -232,6 +235,121 @@ BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body, const Bod
         (v == 0 ? r.empty_cells : v == own.volumes[c] ? r.full_cells : r.cut_cells) += 1;
     }
     return r;
+}
+
+namespace {
+
+// Cell c's face triangles over the mesh's points (outward from c).
+void cell_triangles(const CellMeshView& m, const cells::CellFaces& cf, std::size_t c, std::vector<uint32_t>& out) {
+    for (const uint32_t entry : cf.of(c)) {
+        const bool reversed = (entry & 1u) != 0;
+        face_triangles(m.face(entry >> 1), [&](uint32_t a, uint32_t b, uint32_t d) {
+            if (reversed)
+                out.insert(out.end(), {a, d, b});
+            else
+                out.insert(out.end(), {a, b, d});
+        });
+    }
+}
+
+// |B ∩ c| from B prepared once: the windings at the touched cells' points in
+// one pass, then each touched cell with the body's triangles near it.
+BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body) {
+    const CellVolumes own = cell_volumes(m);
+    if (own.negative_cells > 0) {
+        const auto c = std::find_if(own.volumes.begin(), own.volumes.end(), [](double v) { return v < 0; });
+        throw std::invalid_argument("cell " + std::to_string(c - own.volumes.begin()) +
+                                    " is wound inward (negative volume)");
+    }
+    const std::shared_ptr<const boolean::PreparedBody> held = boolean::prepare_body(body);
+    const boolean::PreparedBody& prepared = *held;
+    const cells::CellFaces cf = cells::cell_faces(m);
+    const std::size_t n = m.cell_count();
+    BodyInCells r;
+    r.volumes.assign(n, 0);
+    r.cell_class.assign(n, CellClass::empty);
+    const Mesh outside = boundary_surface(m);
+    const BooleanVolumes whole = boolean_volumes(outside.view(), body);
+    if (whole.status != BooleanStatus::ok)
+        throw std::invalid_argument(std::string("the mesh's boundary: ") + boolean_status_message(whole.status));
+    r.total = whole.intersection;
+    r.body_volume = whole.volume_b;
+
+    // Touched cells: their box meets a body triangle's box.
+    std::vector<uint8_t> touched(n, 0);
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t c) {
+        Box b = empty_box();
+        for (const uint32_t entry : cf.of(c))
+            for (const uint32_t p : m.face(entry >> 1)) grow(b, &m.points[3 * std::size_t{p}]);
+        touched[c] = boolean::meets_box(prepared, b) ? 1 : 0;
+    });
+    std::vector<uint32_t> touched_cells;
+    for (std::size_t c = 0; c < n; ++c)
+        if (touched[c] != 0) touched_cells.push_back(static_cast<uint32_t>(c));
+    r.touched_cells = touched_cells.size();
+    // The body's winding at every point of the touched cells, in one pass over their faces.
+    std::vector<uint32_t> faces_of_touched;
+    for (std::size_t f = 0; f < m.face_count(); ++f)
+        if (touched[m.owner[f]] != 0 || (m.neighbour[f] != kNoCell && touched[m.neighbour[f]] != 0))
+            face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+                faces_of_touched.insert(faces_of_touched.end(), {a, b, d});
+            });
+    const std::vector<int32_t> winding = boolean::windings_at(prepared, m.points, faces_of_touched);
+    tbb::parallel_for(std::size_t{0}, touched_cells.size(), [&](std::size_t i) {
+        const uint32_t c = touched_cells[i];
+        std::vector<uint32_t> tris;
+        cell_triangles(m, cf, c, tris);
+        // The cell's own points, numbered from 0, with their windings.
+        std::vector<uint32_t> global;
+        std::vector<double> points;
+        std::vector<int32_t> w;
+        for (uint32_t& v : tris) {
+            const auto at = std::find(global.begin(), global.end(), v);
+            if (at != global.end()) {
+                v = static_cast<uint32_t>(at - global.begin());
+                continue;
+            }
+            global.push_back(v);
+            points.insert(points.end(), &m.points[3 * std::size_t{v}], &m.points[3 * std::size_t{v} + 3]);
+            w.push_back(winding[v]);
+            v = static_cast<uint32_t>(global.size() - 1);
+        }
+        for (const int32_t x : w)
+            if (x != 0 && x != 1) throw std::invalid_argument("the body overlaps itself (a winding number above 1)");
+        r.volumes[c] = boolean::cell_intersection(prepared, points, tris, w);
+    });
+
+    // Untouched cells: alike across a face between two of them; one ray per region.
+    core::UnionFind regions(n);
+    for (std::size_t f = 0; f < m.face_count(); ++f) {
+        const uint32_t a = m.owner[f], b = m.neighbour[f];
+        if (b != kNoCell && touched[a] == 0 && touched[b] == 0) regions.unite(a, b);
+    }
+    std::vector<int8_t> inside_of_root(n, -1);
+    for (std::size_t c = 0; c < n; ++c) {
+        if (touched[c] != 0) continue;
+        const uint32_t root = regions.find(static_cast<uint32_t>(c));
+        if (inside_of_root[root] < 0) {
+            std::vector<uint32_t> tris;
+            cell_triangles(m, cf, c, tris);
+            const std::vector<int32_t> w = boolean::windings_at(prepared, m.points, tris);
+            inside_of_root[root] = w[tris[0]] != 0 ? 1 : 0;
+        }
+        r.volumes[c] = inside_of_root[root] != 0 ? own.volumes[c] : 0.0;
+    }
+    for (std::size_t c = 0; c < n; ++c) {
+        const double v = r.volumes[c];
+        r.cell_class[c] = v == 0 ? CellClass::empty : v == own.volumes[c] ? CellClass::full : CellClass::cut;
+        (v == 0 ? r.empty_cells : v == own.volumes[c] ? r.full_cells : r.cut_cells) += 1;
+    }
+    return r;
+}
+
+}  // namespace
+
+BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
+    if (options.reference || options.overlapping_shells) return reference_volumes(m, body, options);
+    return prepared_volumes(m, body);
 }
 
 }  // namespace polyvol

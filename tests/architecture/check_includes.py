@@ -31,7 +31,8 @@ FOUNDATION = {"core", "exact"}
 INTERFACES = {
     "measure": {"measure/sums.hpp"},                           # the cone sums, for boolean
     "topology": {"topology/welded.hpp", "topology/parts.hpp"},  # welded polygons and shells, for boolean
-    "boolean": {"boolean/level_pieces.hpp"},                   # the union's boundary pieces, for grid
+    "boolean": {"boolean/level_pieces.hpp",                    # the union's boundary pieces, for grid
+                "boolean/prepared_body.hpp"},                  # one body against many cells, for cells
 }
 # The module that implements each public header.
 PUBLIC_OWNER = {

@@ -1,0 +1,167 @@
+// boolean/prepared_body.cpp — prepared_body.hpp: the body welded and
+// bucketed once, the windings at many cells' points in one pass.
+#include "boolean/prepared_body.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "boolean/exact_terms.hpp"
+#include "boolean/operand.hpp"
+#include "polyvol/measure.hpp"
+#include "polyvol/topology.hpp"
+
+namespace polyvol::boolean {
+
+struct PreparedBody {
+    Operand body;  // welded, moved by δ (shift 1)
+    int e0 = 0;    // the lowest bit exponent of its coordinates
+    double max_coordinate = 0;
+    int n = 1;     // buckets per axis over body.bounds, holding each triangle whose box meets them
+    std::vector<uint32_t> offsets, items;
+
+    // The triangles whose box meets `box`, increasing.
+    void triangles_meeting(const std::array<double, 6>& box, std::vector<uint32_t>& out) const;
+};
+
+namespace {
+
+int bucket_of(double x, double lo, double hi, int n) {
+    if (!(hi > lo)) return 0;
+    return std::clamp(static_cast<int>(std::floor((x - lo) / (hi - lo) * n)), 0, n - 1);
+}
+
+}  // namespace
+
+void PreparedBody::triangles_meeting(const std::array<double, 6>& b, std::vector<uint32_t>& out) const {
+    out.clear();
+    const std::array<double, 6>& all = body.bounds;
+    for (int k = 0; k < 3; ++k)
+        if (b[k] > all[3 + k] || all[k] > b[3 + k]) return;
+    int lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+        lo[k] = bucket_of(b[k], all[k], all[3 + k], n);
+        hi[k] = bucket_of(b[3 + k], all[k], all[3 + k], n);
+    }
+    for (int i = lo[0]; i <= hi[0]; ++i)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int k = lo[2]; k <= hi[2]; ++k) {
+                const std::size_t bucket = (static_cast<std::size_t>(i) * n + j) * n + k;
+                for (uint32_t x = offsets[bucket]; x < offsets[bucket + 1]; ++x) {
+                    const double* t = &body.box[6 * std::size_t{items[x]}];
+                    if (t[0] <= b[3] && b[0] <= t[3] && t[1] <= b[4] && b[1] <= t[4] && t[2] <= b[5] && b[2] <= t[5])
+                        out.push_back(items[x]);
+                }
+            }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+bool meets_box(const PreparedBody& body, const std::array<double, 6>& box) {
+    std::vector<uint32_t> near;
+    body.triangles_meeting(box, near);
+    return !near.empty();
+}
+
+std::shared_ptr<const PreparedBody> prepare_body(const MeshView& view) {
+    if (!check_closed(view).closed) throw std::invalid_argument("the body is not a closed surface");
+    if (signed_volume(view) < 0) throw std::invalid_argument("the body is inside out (negative volume)");
+    auto prepared = std::make_shared<PreparedBody>();
+    PreparedBody& p = *prepared;
+    p.body = make_operand(view, 1);
+    int e0 = std::numeric_limits<int>::max();
+    for (const uint32_t v : p.body.tri)
+        for (int k = 0; k < 3; ++k) {
+            const double x = p.body.point(v)[k];
+            if (!in_predicate_range(x))
+                throw std::invalid_argument("a coordinate of the body is not finite or outside 0 and 2^-160 .. 2^180");
+            if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
+            p.max_coordinate = std::max(p.max_coordinate, std::fabs(x));
+        }
+    p.e0 = e0 == std::numeric_limits<int>::max() ? 0 : e0;
+    // Buckets: about one triangle each, per axis the cube root.
+    const std::size_t nt = p.body.triangles();
+    p.n = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(nt))));
+    const int n = p.n;
+    const auto& all = p.body.bounds;
+    auto for_each_bucket = [&](auto&& fn) {
+        for (uint32_t t = 0; t < nt; ++t) {
+            const double* b = &p.body.box[6 * std::size_t{t}];
+            int lo[3], hi[3];
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = bucket_of(b[k], all[k], all[3 + k], n);
+                hi[k] = bucket_of(b[3 + k], all[k], all[3 + k], n);
+            }
+            for (int i = lo[0]; i <= hi[0]; ++i)
+                for (int j = lo[1]; j <= hi[1]; ++j)
+                    for (int k = lo[2]; k <= hi[2]; ++k) fn((static_cast<std::size_t>(i) * n + j) * n + k, t);
+        }
+    };
+    std::vector<uint32_t> count(static_cast<std::size_t>(n) * n * n + 1, 0);
+    for_each_bucket([&](std::size_t bucket, uint32_t) { ++count[bucket + 1]; });
+    for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
+    p.offsets = count;
+    p.items.resize(count.back());
+    for_each_bucket([&](std::size_t bucket, uint32_t t) { p.items[count[bucket]++] = t; });
+    return prepared;
+}
+
+std::vector<int32_t> windings_at(const PreparedBody& body, std::span<const double> points,
+                                 std::span<const uint32_t> triangles) {
+    Operand s;
+    s.mesh.positions.assign(points.begin(), points.end());
+    s.mesh.indices.assign(triangles.begin(), triangles.end());
+    s.tri = s.mesh.indices;
+    s.body_shift = {0};
+    for (const uint32_t v : s.tri)
+        for (int k = 0; k < 3; ++k)
+            if (!in_predicate_range(s.point(v)[k]))
+                throw std::invalid_argument("a coordinate of the mesh is not finite or outside 0 and 2^-160 .. 2^180");
+    finish_operand(s);
+    const Crossings cross = find_crossings(s, body.body);
+    return vertex_windings(s, body.body, cross.a_hits);
+}
+
+constexpr uint32_t kNoVertex = 0xFFFFFFFFu;
+
+double cell_intersection(const PreparedBody& body, std::span<const double> points, std::span<const uint32_t> triangles,
+                         std::span<const int32_t> winding) {
+    // A: the cell, unmoved; B: the body's triangles near it, moved by δ as in boolean_volumes.
+    Operand A;
+    A.mesh.positions.assign(points.begin(), points.end());
+    A.mesh.indices.assign(triangles.begin(), triangles.end());
+    A.tri = A.mesh.indices;
+    A.body_shift = {0};
+    finish_operand(A);
+    std::vector<uint32_t> near;
+    body.triangles_meeting(A.bounds, near);
+    Operand B;
+    B.body_shift = {1};
+    std::vector<uint32_t> local(body.body.mesh.vertex_count(), kNoVertex);
+    for (const uint32_t t : near)
+        for (int i = 0; i < 3; ++i) {
+            const uint32_t v = body.body.tri[3 * std::size_t{t} + i];
+            if (local[v] == kNoVertex) {
+                local[v] = static_cast<uint32_t>(B.mesh.vertex_count());
+                B.mesh.positions.insert(B.mesh.positions.end(), body.body.point(v), body.body.point(v) + 3);
+            }
+            B.tri.push_back(local[v]);
+        }
+    B.mesh.indices = B.tri;
+    finish_operand(B);
+
+    int e0 = body.e0;
+    double max_coordinate = body.max_coordinate;
+    for (const uint32_t v : A.tri)
+        for (int k = 0; k < 3; ++k) {
+            const double x = A.point(v)[k];
+            if (!in_predicate_range(x))
+                throw std::invalid_argument("a coordinate of the mesh is not finite or outside 0 and 2^-160 .. 2^180");
+            if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
+            max_coordinate = std::max(max_coordinate, std::fabs(x));
+        }
+    return intersection_given_windings(A, B, std::vector<int32_t>(winding.begin(), winding.end()), e0, max_coordinate);
+}
+
+}  // namespace polyvol::boolean
