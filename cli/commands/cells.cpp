@@ -214,7 +214,8 @@ int run_cells_command(const CellsArgs& a) {
         try {
             const bool within = solid->solid && solid->solid->shells_crossing_themselves > 0;
             b.cells = body_in_cells(view, body->mesh.view(),
-                                    {.overlapping_shells = solid->resolved(), .within_shells = within});
+                                    {.overlapping_shells = solid->resolved(), .within_shells = within,
+                                     .reference = false, .own = own.volumes});
         } catch (const std::invalid_argument& e) {
             std::cerr << "polyvol: " << file << " in " << a.mesh << ": " << e.what() << "\n";
             return Exit::invalid;

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -83,10 +84,13 @@ struct BodyInCells {
 // solid_boolean_volumes, within_shells resolving a shell's own crossings.
 // reference: a boolean against the whole body per touched cell (the oracle
 // the tests compare the default with; shells that overlap take it too).
+// own: the cells' own volumes (cell_volumes(mesh).volumes) when the caller
+// has them, so that several bodies do not compute them again; empty: computed.
 struct BodyInCellsOptions {
     bool overlapping_shells = false;
     bool within_shells = false;
     bool reference = false;
+    std::span<const double> own{};
 };
 BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body, const BodyInCellsOptions& options = {});
 

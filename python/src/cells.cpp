@@ -104,7 +104,8 @@ void bind_cells(py::module_& m) {
                 if (solid.status == SolidStatus::ok) {
                     const bool within = solid.solid && solid.solid->shells_crossing_themselves > 0;
                     r = body_in_cells(l.mesh.view(), body.view(),
-                                      {.overlapping_shells = solid.resolved(), .within_shells = within});
+                                      {.overlapping_shells = solid.resolved(), .within_shells = within,
+                                       .reference = false, .own = {}});
                 }
             }
             if (!r) return py::make_tuple(solid_verdict(solid), py::none(), notes);

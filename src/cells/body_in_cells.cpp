@@ -144,6 +144,28 @@ private:
     std::vector<uint32_t> offsets_, items_;
 };
 
+// The cells' own volumes: the caller's, or computed (checking the mesh);
+// every cell wound outward.
+struct OwnVolumes {
+    std::vector<double> computed;
+    std::span<const double> volumes;
+};
+OwnVolumes own_volumes(const CellMeshView& m, const BodyInCellsOptions& options) {
+    OwnVolumes own;
+    if (options.own.size() == m.cell_count()) {
+        if (const auto defect = check_cell_mesh(m)) throw std::invalid_argument(defect->message);
+        own.volumes = options.own;
+    } else {
+        own.computed = cell_volumes(m).volumes;
+        own.volumes = own.computed;
+    }
+    const auto c = std::find_if(own.volumes.begin(), own.volumes.end(), [](double v) { return v < 0; });
+    if (c != own.volumes.end())
+        throw std::invalid_argument("cell " + std::to_string(c - own.volumes.begin()) +
+                                    " is wound inward (negative volume)");
+    return own;
+}
+
 // |B ∩ c| exactly, or the defect that stops it.
 BooleanVolumes booleans(const MeshView& a, const MeshView& body, const BodyInCellsOptions& o) {
     return o.overlapping_shells ? solid_boolean_volumes(a, body, o.within_shells) : boolean_volumes(a, body);
@@ -167,12 +189,7 @@ double intersect(const Mesh& cell, const MeshView& body, const BodyInCellsOption
 
 // The exact reference: a boolean against the whole body per touched cell.
 static BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
-    const CellVolumes own = cell_volumes(m);  // checks the mesh
-    if (own.negative_cells > 0) {
-        const auto c = std::find_if(own.volumes.begin(), own.volumes.end(), [](double v) { return v < 0; });
-        throw std::invalid_argument("cell " + std::to_string(c - own.volumes.begin()) +
-                                    " is wound inward (negative volume)");
-    }
+    const OwnVolumes own = own_volumes(m, options);
     const cells::CellFaces cf = cells::cell_faces(m);
     const std::size_t n = m.cell_count();
     BodyInCells r;
@@ -254,13 +271,8 @@ void cell_triangles(const CellMeshView& m, const cells::CellFaces& cf, std::size
 
 // |B ∩ c| from B prepared once: the windings at the touched cells' points in
 // one pass, then each touched cell with the body's triangles near it.
-BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body) {
-    const CellVolumes own = cell_volumes(m);
-    if (own.negative_cells > 0) {
-        const auto c = std::find_if(own.volumes.begin(), own.volumes.end(), [](double v) { return v < 0; });
-        throw std::invalid_argument("cell " + std::to_string(c - own.volumes.begin()) +
-                                    " is wound inward (negative volume)");
-    }
+BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
+    const OwnVolumes own = own_volumes(m, options);
     const std::shared_ptr<const boolean::PreparedBody> held = boolean::prepare_body(body);
     const boolean::PreparedBody& prepared = *held;
     const cells::CellFaces cf = cells::cell_faces(m);
@@ -349,7 +361,7 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body) {
 
 BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
     if (options.reference || options.overlapping_shells) return reference_volumes(m, body, options);
-    return prepared_volumes(m, body);
+    return prepared_volumes(m, body, options);
 }
 
 }  // namespace polyvol

@@ -2,8 +2,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <cmath>
-#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -125,57 +123,6 @@ std::optional<CellMeshDefect> check_cell_mesh(const CellMeshView& m) {
     return CellMeshDefect{"cell " + std::to_string(c) + what, static_cast<uint32_t>(c), kNoCell};
 }
 
-namespace {
-
-// 6 V_c = Σ ± det(a - p, b - p, d - p) over the cell's face triangles, p
-// the cell's first point (any point gives the same exact sum over a closed
-// surface). Each term in double as Shewchuk's orient3d computes it, within
-// (7 + 56u) u times its permanent (his o3derrboundA, the differences'
-// rounding included); the terms added exactly; the sum of the bounds taken
-// a little up. The rounding is then decided, or the terms are summed exactly.
-double cell_volume(const CellMeshView& m, std::span<const uint32_t> faces, exact::ExactSum& cell) {
-    cell = exact::ExactSum();
-    const double* p = &m.points[3 * std::size_t{m.face(faces[0] >> 1)[0]}];
-    double bound = 0;
-    std::size_t terms = 0;
-    for (const uint32_t entry : faces) {
-        const double sign = (entry & 1u) != 0 ? -1.0 : 1.0;
-        face_triangles(m.face(entry >> 1), [&](uint32_t ia, uint32_t ib, uint32_t ic) {
-            const double* a = &m.points[3 * std::size_t{ia}];
-            const double* b = &m.points[3 * std::size_t{ib}];
-            const double* c = &m.points[3 * std::size_t{ic}];
-            const double adx = a[0] - p[0], ady = a[1] - p[1], adz = a[2] - p[2];
-            const double bdx = b[0] - p[0], bdy = b[1] - p[1], bdz = b[2] - p[2];
-            const double cdx = c[0] - p[0], cdy = c[1] - p[1], cdz = c[2] - p[2];
-            const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy, cdxady = cdx * ady, adxcdy = adx * cdy,
-                         adxbdy = adx * bdy, bdxady = bdx * ady;
-            const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-            const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
-                                     (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
-                                     (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
-            cell.add(sign * det);
-            bound += (7.0 + 56.0 * 0x1p-53) * 0x1p-53 * permanent;
-            ++terms;
-        });
-    }
-    bound *= 1 + static_cast<double>(terms + 2) * 0x1p-52;
-    if (const auto decided = exact::decided_round_div(cell, bound, 6)) return *decided;
-    // Undecided (a flat or tiny cell): the exact terms about the origin.
-    cell = exact::ExactSum();
-    double det[exact::kDetTerms];
-    for (const uint32_t entry : faces) {
-        const double sign = (entry & 1u) != 0 ? -1.0 : 1.0;
-        face_triangles(m.face(entry >> 1), [&](uint32_t a, uint32_t b, uint32_t d) {
-            const int n = exact::det3_exact<false>(&m.points[3 * std::size_t{a}], &m.points[3 * std::size_t{b}],
-                                                   &m.points[3 * std::size_t{d}], det);
-            for (int i = 0; i < n; ++i) cell.add(sign * det[i]);
-        });
-    }
-    return cell.round_div(6);
-}
-
-}  // namespace
-
 CellVolumes cell_volumes(const CellMeshView& m) {
     if (const auto defect = check_cell_mesh(m)) throw std::invalid_argument(defect->message);
     if (!in_exact_range(m))
@@ -183,27 +130,25 @@ CellVolumes cell_volumes(const CellMeshView& m) {
     const cells::CellFaces cf = cells::cell_faces(m);
     CellVolumes r;
     r.volumes.resize(m.cell_count());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.cell_count(), 256),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                          exact::ExactSum scratch;
-                          for (std::size_t c = range.begin(); c < range.end(); ++c)
-                              r.volumes[c] = cell_volume(m, cf.of(c), scratch);
-                      });
-    // The cells' exact sum: internal faces cancel, so it is the boundary
-    // faces' exact cone sum about the origin.
     tbb::combinable<exact::ExactSum> totals;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.face_count(), 1024),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.cell_count(), 256),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                           exact::ExactSum& total = totals.local();
                           double det[exact::kDetTerms];
-                          for (std::size_t f = range.begin(); f < range.end(); ++f) {
-                              if (m.neighbour[f] != kNoCell) continue;
-                              face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
-                                  const int n = exact::det3_exact<false>(&m.points[3 * std::size_t{a}],
-                                                                         &m.points[3 * std::size_t{b}],
-                                                                         &m.points[3 * std::size_t{d}], det);
-                                  total.add(std::span<const double>(det, static_cast<std::size_t>(n)));
-                              });
+                          for (std::size_t c = range.begin(); c < range.end(); ++c) {
+                              // 6 V_c = Σ ± det(a, b, d) over the cell's face triangles, exactly.
+                              exact::ExactSum cell;
+                              for (const uint32_t entry : cf.of(c)) {
+                                  const double sign = (entry & 1u) != 0 ? -1.0 : 1.0;
+                                  face_triangles(m.face(entry >> 1), [&](uint32_t a, uint32_t b, uint32_t d) {
+                                      const int n = exact::det3_exact<false>(&m.points[3 * std::size_t{a}],
+                                                                             &m.points[3 * std::size_t{b}],
+                                                                             &m.points[3 * std::size_t{d}], det);
+                                      for (int i = 0; i < n; ++i) cell.add(sign * det[i]);
+                                  });
+                              }
+                              r.volumes[c] = cell.round_div(6);
+                              total.merge(cell);
                           }
                       });
     exact::ExactSum total;
