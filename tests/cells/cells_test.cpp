@@ -346,59 +346,6 @@ TEST(BodyInCells, AnOpenBodyOrAnInwardCellIsRefused) {
 
 namespace {
 
-// n^3 hexahedra over [lo, hi]^3, interior points moved by up to `jitter`
-// of a cell along each axis (a random but fixed pattern): warped faces.
-CellMesh hex_cells(int n, double lo, double hi, double jitter, unsigned seed = 7) {
-    CellMesh m;
-    const double h = (hi - lo) / n;
-    auto p = [n](int i, int j, int k) { return static_cast<uint32_t>(i + (n + 1) * (j + (n + 1) * k)); };
-    auto c = [n](int i, int j, int k) { return static_cast<uint32_t>(i + n * (j + n * k)); };
-    uint64_t state = seed;
-    auto random = [&] {  // in [-1, 1)
-        state = state * 6364136223846793005ull + 1442695040888963407ull;
-        return static_cast<double>(state >> 11) * 0x1p-52 - 1.0;
-    };
-    for (int k = 0; k <= n; ++k)
-        for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i) {
-                const int ijk[3] = {i, j, k};
-                for (int a = 0; a < 3; ++a) {
-                    const bool inner = ijk[a] > 0 && ijk[a] < n;
-                    m.points.push_back(lo + h * ijk[a] + (inner ? jitter * h * random() : 0.0));
-                }
-            }
-    auto face = [&](std::array<uint32_t, 4> q, uint32_t owner, uint32_t neighbour) {
-        m.face_points.insert(m.face_points.end(), q.begin(), q.end());
-        m.face_offsets.push_back(static_cast<uint32_t>(m.face_points.size()));
-        m.owner.push_back(owner);
-        m.neighbour.push_back(neighbour);
-    };
-    // The face of normal +axis at the plane through (i, j, k).
-    auto plus = [&](int axis, int i, int j, int k) -> std::array<uint32_t, 4> {
-        if (axis == 0) return {p(i, j, k), p(i, j + 1, k), p(i, j + 1, k + 1), p(i, j, k + 1)};
-        if (axis == 1) return {p(i, j, k), p(i, j, k + 1), p(i + 1, j, k + 1), p(i + 1, j, k)};
-        return {p(i, j, k), p(i + 1, j, k), p(i + 1, j + 1, k), p(i, j + 1, k)};
-    };
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const int ijk[3] = {i, j, k};
-                for (int a = 0; a < 3; ++a) {
-                    int q[3] = {i, j, k};
-                    ++q[a];
-                    if (q[a] < n) face(plus(a, q[0], q[1], q[2]), c(i, j, k), c(q[0], q[1], q[2]));
-                    if (ijk[a] == 0) {
-                        auto f = plus(a, i, j, k);
-                        std::reverse(f.begin(), f.end());
-                        face(f, c(i, j, k), kNoCell);
-                    }
-                    if (q[a] == n) face(plus(a, q[0], q[1], q[2]), c(i, j, k), kNoCell);
-                }
-            }
-    m.cells = static_cast<std::size_t>(n) * n * n;
-    return m;
-}
-
 void expect_prepared_equals_reference(const CellMesh& cells, const Mesh& body, const std::string& what) {
     const BodyInCells fast = body_in_cells(cells.view(), body.view());
     const BodyInCells reference = body_in_cells(cells.view(), body.view(), {.reference = true});
@@ -413,13 +360,13 @@ void expect_prepared_equals_reference(const CellMesh& cells, const Mesh& body, c
 }  // namespace
 
 TEST(BodyInCells, ThePreparedPathGivesTheReferencesBitsOnWarpedCells) {
-    const CellMesh warped = hex_cells(6, -1.0, 1.0, 0.25);
+    const CellMesh warped = polyvol::generate::hex_cells(6, -1.0, 1.0, 0.25);
     ASSERT_FALSE(check_cell_mesh(warped.view()));
     // A sphere partly outside the mesh, a torus inside, a box whose faces lie
     // on the cells' planes (touching and coincident faces: the perturbation).
     expect_prepared_equals_reference(warped, polyvol::generate::uv_sphere(10, 20, 0.9, 0.3, -0.2, 0.4), "sphere");
     expect_prepared_equals_reference(warped, polyvol::generate::torus(24, 12, 0.6, 0.2), "torus");
-    const CellMesh straight = hex_cells(4, -1.0, 1.0, 0.0);
+    const CellMesh straight = polyvol::generate::hex_cells(4, -1.0, 1.0, 0.0);
     expect_prepared_equals_reference(straight, polyvol::test::box({-0.5, -0.5, 0.0}, {0.5, 1.0, 0.5}), "aligned box");
     expect_prepared_equals_reference(straight, polyvol::test::box({-0.7, -0.3, -0.9}, {0.2, 0.6, 0.3}), "box");
 }
@@ -431,13 +378,13 @@ TEST(CellVolumes, FilteredOrExactEveryCellIsItsSurfacesVolume) {
         double lo, hi, jitter;
     };
     for (const Shape& s : {Shape{3, 0.0, 1.0, 0.49}, Shape{3, 1e6, 1e6 + 1e-3, 0.3}, Shape{2, -1.0, 1.0, 0.0}}) {
-        const CellMesh m = hex_cells(s.n, s.lo, s.hi, s.jitter);
+        const CellMesh m = polyvol::generate::hex_cells(s.n, s.lo, s.hi, s.jitter);
         const CellVolumes v = cell_volumes(m.view());
         for (std::size_t c = 0; c < m.cells; ++c)
             EXPECT_EQ(v.volumes[c], signed_volume(cell_surface(m.view(), c).view())) << "cell " << c;
         EXPECT_EQ(v.total, signed_volume(boundary_surface(m.view()).view()));
     }
-    CellMesh flat = hex_cells(2, 0.0, 1.0, 0.0);
+    CellMesh flat = polyvol::generate::hex_cells(2, 0.0, 1.0, 0.0);
     for (std::size_t p = 0; p < flat.points.size() / 3; ++p) flat.points[3 * p + 2] *= 0x1p-100;  // thin
     const CellVolumes thin = cell_volumes(flat.view());
     for (std::size_t c = 0; c < flat.cells; ++c)

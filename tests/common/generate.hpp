@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "polyvol/cell_mesh.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace polyvol::generate {
@@ -161,6 +162,59 @@ inline Joined join_by_tube(const Mesh& a, const Mesh& b) {
     t.add_triangle(tb[0], tb[2], tb[1]);
     j.three.append(t);
     return j;
+}
+
+// n^3 hexahedra over [lo, hi]^3, interior points moved by up to `jitter`
+// of a cell along each axis (a random but fixed pattern): warped faces.
+inline CellMesh hex_cells(int n, double lo, double hi, double jitter, unsigned seed = 7) {
+    CellMesh m;
+    const double h = (hi - lo) / n;
+    auto p = [n](int i, int j, int k) { return static_cast<uint32_t>(i + (n + 1) * (j + (n + 1) * k)); };
+    auto c = [n](int i, int j, int k) { return static_cast<uint32_t>(i + n * (j + n * k)); };
+    uint64_t state = seed;
+    auto random = [&] {  // in [-1, 1)
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(state >> 11) * 0x1p-52 - 1.0;
+    };
+    for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                const int ijk[3] = {i, j, k};
+                for (int a = 0; a < 3; ++a) {
+                    const bool inner = ijk[a] > 0 && ijk[a] < n;
+                    m.points.push_back(lo + h * ijk[a] + (inner ? jitter * h * random() : 0.0));
+                }
+            }
+    auto face = [&](std::array<uint32_t, 4> q, uint32_t owner, uint32_t neighbour) {
+        m.face_points.insert(m.face_points.end(), q.begin(), q.end());
+        m.face_offsets.push_back(static_cast<uint32_t>(m.face_points.size()));
+        m.owner.push_back(owner);
+        m.neighbour.push_back(neighbour);
+    };
+    // The face of normal +axis at the plane through (i, j, k).
+    auto plus = [&](int axis, int i, int j, int k) -> std::array<uint32_t, 4> {
+        if (axis == 0) return {p(i, j, k), p(i, j + 1, k), p(i, j + 1, k + 1), p(i, j, k + 1)};
+        if (axis == 1) return {p(i, j, k), p(i, j, k + 1), p(i + 1, j, k + 1), p(i + 1, j, k)};
+        return {p(i, j, k), p(i + 1, j, k), p(i + 1, j + 1, k), p(i, j + 1, k)};
+    };
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const int ijk[3] = {i, j, k};
+                for (int a = 0; a < 3; ++a) {
+                    int q[3] = {i, j, k};
+                    ++q[a];
+                    if (q[a] < n) face(plus(a, q[0], q[1], q[2]), c(i, j, k), c(q[0], q[1], q[2]));
+                    if (ijk[a] == 0) {
+                        auto f = plus(a, i, j, k);
+                        std::reverse(f.begin(), f.end());
+                        face(f, c(i, j, k), kNoCell);
+                    }
+                    if (q[a] == n) face(plus(a, q[0], q[1], q[2]), c(i, j, k), kNoCell);
+                }
+            }
+    m.cells = static_cast<std::size_t>(n) * n * n;
+    return m;
 }
 
 }  // namespace polyvol::generate
