@@ -11,6 +11,8 @@
 //               own volumes
 //   --field N   the fractions as the OpenFOAM field CASE/0/N (one body),
 //               keeping the boundary conditions of an existing 0/N
+//   OUT.vtu     VTK UnstructuredGrid (polyhedra) with cell_volume and, per
+//               body, its volume, fraction and cell_class (ParaView opens it)
 //   OUT.json    the summary only (as --json prints it)
 #include "commands/cells.hpp"
 
@@ -55,8 +57,8 @@ int usage_error(const std::string& message) {
 }
 
 int check_arguments(const CellsArgs& a) {
-    if (!a.out.empty() && extension(a.out) != ".npy" && extension(a.out) != ".json")
-        return usage_error("-o " + a.out + ": expected a .npy or .json file");
+    if (!a.out.empty() && extension(a.out) != ".npy" && extension(a.out) != ".json" && extension(a.out) != ".vtu")
+        return usage_error("-o " + a.out + ": expected a .npy, .vtu or .json file");
     if (!a.field.empty() && a.bodies.size() != 1) return usage_error("--field needs exactly one body");
     if (a.fractions && a.bodies.empty()) return usage_error("--fractions needs a body");
     for (const std::string* u : {&a.units, &a.mesh_units})
@@ -156,6 +158,19 @@ int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolu
             if (bodies.size() > 1) shape.push_back(bodies.size());
             shape.push_back(own.volumes.size());
             write_npy(a.out, data, shape);
+        } else if (extension(a.out) == ".vtu") {
+            // The cells' volumes, then per body its volume, fraction and class in each cell.
+            std::vector<std::string> names{"cell_volume"};
+            std::vector<std::vector<double>> classes(bodies.size());
+            std::vector<CellArray> arrays{{names[0], own.volumes, 1, false}};
+            for (std::size_t i = 0; i < bodies.size(); ++i) {
+                const std::string prefix = bodies.size() == 1 ? "" : "body" + std::to_string(i) + "_";
+                for (const CellClass c : bodies[i].cells.cell_class) classes[i].push_back(static_cast<double>(c));
+                arrays.push_back({prefix + "volume", bodies[i].cells.volumes, 1, false});
+                arrays.push_back({prefix + "fraction", bodies[i].fractions, 1, false});
+                arrays.push_back({prefix + "cell_class", classes[i], 1, true});
+            }
+            write_vtu(a.out, mesh.mesh.view(), arrays);
         } else if (extension(a.out) == ".json") {
             std::ofstream(a.out) << j.dump(2) << "\n";
         }
@@ -181,7 +196,7 @@ CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
     cmd->add_flag("--json", a.json, "Print the summary as JSON");
     cmd->add_option("-o,--output", a.out,
                     "OUT.npy: per-cell volumes (or fractions), shape (cells,) or (bodies, cells); "
-                    "OUT.json: the summary");
+                    "OUT.vtu: the cells with their volumes, fractions and classes; OUT.json: the summary");
     cmd->add_flag("--fractions", a.fractions, "Write each cell's fraction inside the body, not its volume");
     cmd->add_option("--field", a.field,
                     "Write the fractions as the OpenFOAM field CASE/0/NAME (e.g. alpha.water), keeping the "

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "polyvol/cell_mesh.hpp"
+#include "polyvol/grid_io.hpp"  // CellArray
 
 namespace polyvol {
 
@@ -51,6 +52,13 @@ std::vector<FoamPatch> read_foam_patches(const std::string& polymesh_dir);
 // the path written. Throws ReadError for an unreadable boundary file and
 // std::runtime_error when the mesh is not in a case or the file cannot be
 // written.
+// VTK XML UnstructuredGrid (.vtu) of the cells, each a VTK polyhedron (type
+// 42: its faces outward, as cell_mesh.hpp winds them), with cell data (one
+// value per cell and component), in VTK's binary appended form (raw, exact);
+// ParaView and VTK's readers open it. Throws std::invalid_argument for an
+// array without one value per cell, std::runtime_error when it cannot write.
+void write_vtu(const std::string& path, const CellMeshView& mesh, std::span<const CellArray> arrays);
+
 std::string write_foam_field(const std::string& polymesh_dir, const std::string& name, std::span<const double> values,
                              const std::string& time = "0");
 

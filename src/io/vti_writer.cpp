@@ -9,6 +9,7 @@
 // integer arrays (cell classes) UInt8. VTK orders cells with x fastest, cell
 // (i, j, k) at i + nx (j + ny k); polyvol's arrays have k fastest, so the
 // writer transposes. A .vtr's plane coordinates stay inline as decimals.
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cstdint>
@@ -17,7 +18,9 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "polyvol/cell_mesh_io.hpp"
 #include "polyvol/grid_io.hpp"
 
 namespace polyvol {
@@ -207,6 +210,94 @@ void write_vtr(const std::string& path, std::span<const double> x, std::span<con
     }
     b += "      </Coordinates>\n    </Piece>\n  </RectilinearGrid>\n";
     write_appended(w, d.appended);
+    w.buffer() += "</VTKFile>\n";
+    w.close();
+}
+
+}  // namespace polyvol
+
+namespace polyvol {
+namespace {
+
+// Cell c's faces outward (its owner faces as wound, its neighbour faces
+// reversed), for the VTK polyhedron's face stream.
+struct CellFaceStream {
+    std::vector<int64_t> connectivity, offsets, faces, face_offsets;
+};
+
+CellFaceStream face_streams(const CellMeshView& m) {
+    std::vector<std::vector<uint32_t>> of_cell(m.cell_count());
+    for (std::size_t f = 0; f < m.face_count(); ++f) {
+        of_cell[m.owner[f]].push_back(static_cast<uint32_t>(2 * f));
+        if (m.neighbour[f] != kNoCell) of_cell[m.neighbour[f]].push_back(static_cast<uint32_t>(2 * f + 1));
+    }
+    CellFaceStream s;
+    std::vector<int64_t> points;
+    for (std::size_t c = 0; c < m.cell_count(); ++c) {
+        points.clear();
+        s.faces.push_back(static_cast<int64_t>(of_cell[c].size()));
+        for (const uint32_t entry : of_cell[c]) {
+            const std::span<const uint32_t> face = m.face(entry / 2);
+            s.faces.push_back(static_cast<int64_t>(face.size()));
+            for (std::size_t i = 0; i < face.size(); ++i) {
+                const uint32_t p = (entry & 1u) != 0 ? face[face.size() - 1 - i] : face[i];
+                s.faces.push_back(p);
+                if (std::find(points.begin(), points.end(), int64_t{p}) == points.end()) points.push_back(p);
+            }
+        }
+        s.face_offsets.push_back(static_cast<int64_t>(s.faces.size()));
+        s.connectivity.insert(s.connectivity.end(), points.begin(), points.end());
+        s.offsets.push_back(static_cast<int64_t>(s.connectivity.size()));
+    }
+    return s;
+}
+
+template <class T>
+void append_array(std::string& xml, std::string& appended, const char* type, const std::string& name, int components,
+                  std::span<const T> values, const char* indent) {
+    xml += std::string(indent) + "<DataArray type=\"" + type + "\"" +
+           (name.empty() ? std::string() : " Name=\"" + xml_escape(name) + "\"") + " NumberOfComponents=\"" +
+           std::to_string(components) + "\" format=\"appended\" offset=\"" + std::to_string(appended.size()) +
+           "\"/>\n";
+    append_le(appended, static_cast<uint64_t>(values.size() * sizeof(T)));
+    for (const T v : values) append_le(appended, v);
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const CellMeshView& m, std::span<const CellArray> arrays) {
+    check_arrays(path, m.cell_count(), arrays);
+    const CellFaceStream s = face_streams(m);
+    const std::vector<uint8_t> types(m.cell_count(), 42);  // VTK_POLYHEDRON
+    std::string xml, appended;
+    xml += "<?xml version=\"1.0\"?>\n"
+           "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+           "  <UnstructuredGrid>\n"
+           "    <Piece NumberOfPoints=\"" + std::to_string(m.point_count()) + "\" NumberOfCells=\"" +
+           std::to_string(m.cell_count()) + "\">\n      <Points>\n";
+    append_array<double>(xml, appended, "Float64", "", 3, m.points, "        ");
+    xml += "      </Points>\n      <Cells>\n";
+    append_array<int64_t>(xml, appended, "Int64", "connectivity", 1, s.connectivity, "        ");
+    append_array<int64_t>(xml, appended, "Int64", "offsets", 1, s.offsets, "        ");
+    append_array<uint8_t>(xml, appended, "UInt8", "types", 1, types, "        ");
+    append_array<int64_t>(xml, appended, "Int64", "faces", 1, s.faces, "        ");
+    append_array<int64_t>(xml, appended, "Int64", "faceoffsets", 1, s.face_offsets, "        ");
+    xml += "      </Cells>\n      <CellData";
+    if (!arrays.empty()) xml += " Scalars=\"" + xml_escape(arrays[0].name) + "\"";
+    xml += ">\n";
+    for (const CellArray& a : arrays) {
+        if (a.integer) {
+            std::vector<uint8_t> bytes(a.values.size());
+            for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<uint8_t>(a.values[i]);
+            append_array<uint8_t>(xml, appended, "UInt8", a.name, a.components, bytes, "        ");
+        } else {
+            append_array<double>(xml, appended, "Float64", a.name, a.components, a.values, "        ");
+        }
+    }
+    xml += "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n";
+    Writer w(path);
+    w.buffer() = std::move(xml);
+    write_appended(w, appended);
     w.buffer() += "</VTKFile>\n";
     w.close();
 }

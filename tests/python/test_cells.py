@@ -75,3 +75,29 @@ def test_the_field_is_written_for_openfoam(case):
     assert "walls" in text and "zeroGradient" in text
     with pytest.raises(ValueError, match="one value per cell"):
         polyvol.write_foam_field(m, "alpha.water", np.zeros(3))
+
+
+def test_vtk_opens_the_vtu_with_the_cells_and_their_values(case, tmp_path):
+    vtk = pytest.importorskip("vtkmodules.all")
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    body = off_file(tmp_path / "sphere.off", *uv_sphere(12, 24, 0.7, (0.1, 0.0, -0.2)))
+    out = subprocess.run([CLI, "cells", case, body, "--units", "m", "-o", tmp_path / "c.vtu"], capture_output=True,
+                         text=True)
+    assert out.returncode == 0, out.stderr
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(str(tmp_path / "c.vtu"))
+    reader.Update()
+    grid = reader.GetOutput()
+    assert grid.GetNumberOfCells() == 64 and grid.GetNumberOfPoints() == 125
+    assert grid.GetCellType(0) == vtk.VTK_POLYHEDRON and grid.GetCell(0).GetNumberOfFaces() == 6
+    r = polyvol.cells(polyvol.load_cells(case), polyvol.load(body), units="m")
+    data = grid.GetCellData()
+    assert np.array_equal(vtk_to_numpy(data.GetArray("volume")), r.volumes[0])
+    assert np.array_equal(vtk_to_numpy(data.GetArray("fraction")), r.fractions[0])
+    assert np.array_equal(vtk_to_numpy(data.GetArray("cell_class")), r.cell_class[0])
+    # VTK's own cell volumes agree with the cells' (planar faces).
+    sizes = vtk.vtkCellSizeFilter()
+    sizes.SetInputData(grid)
+    sizes.Update()
+    vtk_volumes = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume"))
+    assert np.allclose(vtk_volumes, vtk_to_numpy(data.GetArray("cell_volume")), rtol=1e-12, atol=0)
