@@ -1,8 +1,11 @@
 #include "grammar.hpp"
+#include "output/format.hpp"
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <string_view>
 
@@ -59,6 +62,17 @@ std::vector<std::string> long_names(const CLI::App& cmd) {
 }
 
 }  // namespace
+
+std::string lower_extension(const std::string& path) {
+    std::string e = std::filesystem::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return e;
+}
+
+int usage_error(const std::string& command, const std::string& message) {
+    std::cerr << "polyvol " << command << ": " << message << "\n";
+    return Exit::usage;
+}
 
 std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
     std::string best;

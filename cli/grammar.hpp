@@ -38,6 +38,12 @@ struct UnitFlags {
 // to_help: what --to sets for this command.
 void add_unit_flags(CLI::App* cmd, UnitFlags& flags, const std::string& to_help);
 
+// A path's extension in lower case, with its dot (".npy"; "" for none).
+std::string lower_extension(const std::string& path);
+
+// "polyvol COMMAND: message" on stderr; returns Exit::usage (1).
+int usage_error(const std::string& command, const std::string& message);
+
 // The candidate nearest to `word` by edit distance, if it is near enough to
 // be a typing slip (at most a third of the word's letters, and 2 at least);
 // else "".

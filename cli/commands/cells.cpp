@@ -37,6 +37,8 @@
 namespace polyvol::cli {
 namespace {
 
+int usage(const std::string& message) { return usage_error("cells", message); }
+
 using Clock = std::chrono::steady_clock;
 
 struct Body {
@@ -45,25 +47,15 @@ struct Body {
     std::vector<double> fractions;
 };
 
-std::string extension(const std::string& path) {
-    std::string e = std::filesystem::path(path).extension().string();
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return e;
-}
-
-int usage_error(const std::string& message) {
-    std::cerr << "polyvol cells: " << message << "\n";
-    return Exit::usage;
-}
-
 int check_arguments(const CellsArgs& a) {
-    if (!a.out.empty() && extension(a.out) != ".npy" && extension(a.out) != ".json" && extension(a.out) != ".vtu")
-        return usage_error("-o " + a.out + ": expected a .npy, .vtu or .json file");
-    if (!a.field.empty() && a.bodies.size() != 1) return usage_error("--field needs exactly one body");
-    if (a.fractions && a.bodies.empty()) return usage_error("--fractions needs a body");
+    const std::string out = lower_extension(a.out);
+    if (!a.out.empty() && out != ".npy" && out != ".json" && out != ".vtu")
+        return usage("-o " + a.out + ": expected a .npy, .vtu or .json file");
+    if (!a.field.empty() && a.bodies.size() != 1) return usage("--field needs exactly one body");
+    if (a.fractions && a.bodies.empty()) return usage("--fractions needs a body");
     for (const std::string* u : {&a.units, &a.mesh_units})
         if (!u->empty() && !length_unit(*u))
-            return usage_error("unknown unit '" + *u + "': expected " + kLengthUnitNames);
+            return usage("unknown unit '" + *u + "': expected " + kLengthUnitNames);
     return Exit::ok;
 }
 
@@ -147,7 +139,7 @@ void print_table(const nlohmann::json& j) {
 int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolumes& own,
                   const std::vector<Body>& bodies, const nlohmann::json& j) {
     try {
-        if (extension(a.out) == ".npy") {
+        if (lower_extension(a.out) == ".npy") {
             std::vector<double> data;
             if (bodies.empty()) data = own.volumes;
             for (const Body& b : bodies) {
@@ -158,7 +150,7 @@ int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolu
             if (bodies.size() > 1) shape.push_back(bodies.size());
             shape.push_back(own.volumes.size());
             write_npy(a.out, data, shape);
-        } else if (extension(a.out) == ".vtu") {
+        } else if (lower_extension(a.out) == ".vtu") {
             // The cells' volumes, then per body its volume, fraction and class in each cell.
             std::vector<std::string> names{"cell_volume"};
             std::vector<std::vector<double>> classes(bodies.size());
@@ -171,7 +163,7 @@ int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolu
                 arrays.push_back({prefix + "cell_class", classes[i], 1, true});
             }
             write_vtu(a.out, mesh.mesh.view(), arrays);
-        } else if (extension(a.out) == ".json") {
+        } else if (lower_extension(a.out) == ".json") {
             std::ofstream(a.out) << j.dump(2) << "\n";
         }
         if (!a.field.empty()) {

@@ -43,20 +43,11 @@
 namespace polyvol::cli {
 namespace {
 
+int usage(const std::string& message) { return usage_error("grid", message); }
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-std::string extension(const std::string& path) {
-    std::string e = std::filesystem::path(path).extension().string();
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return e;
-}
-
-int usage_error(const std::string& message) {
-    std::cerr << "polyvol grid: " << message << "\n";
-    return Exit::usage;
-}
 
 bool strictly_increasing(const std::vector<double>& c) {
     if (c.size() < 2) return false;
@@ -179,22 +170,22 @@ namespace {
 // output names, the slice, the box, the planes. 0 when they are fine.
 int check_arguments(const GridArgs& a, const std::string& out_ext, const std::optional<Slice>& slice) {
     if (!a.out.empty() && out_ext != ".npy" && out_ext != ".vti" && out_ext != ".vtr" && out_ext != ".json")
-        return usage_error("-o needs a .npy, .vti, .vtr or .json file, not '" + a.out + "'");
-    if (!a.centroids.empty() && extension(a.centroids) != ".npy") return usage_error("--centroids needs a .npy file");
-    if (!a.union_out.empty() && extension(a.union_out) != ".npy") return usage_error("--union needs a .npy file");
-    if (!a.intersection_out.empty() && extension(a.intersection_out) != ".npy")
-        return usage_error("--intersection needs a .npy file");
-    if (!a.surface.empty() && extension(a.surface) != ".npy") return usage_error("--surface needs a .npy file");
-    if (!slice) return usage_error("--slice takes x=VALUE, y=VALUE or z=VALUE, not '" + a.slice + "'");
-    if (!a.slice.empty() && a.png.empty()) return usage_error("--slice goes with --png");
+        return usage("-o needs a .npy, .vti, .vtr or .json file, not '" + a.out + "'");
+    if (!a.centroids.empty() && lower_extension(a.centroids) != ".npy") return usage("--centroids needs a .npy file");
+    if (!a.union_out.empty() && lower_extension(a.union_out) != ".npy") return usage("--union needs a .npy file");
+    if (!a.intersection_out.empty() && lower_extension(a.intersection_out) != ".npy")
+        return usage("--intersection needs a .npy file");
+    if (!a.surface.empty() && lower_extension(a.surface) != ".npy") return usage("--surface needs a .npy file");
+    if (!slice) return usage("--slice takes x=VALUE, y=VALUE or z=VALUE, not '" + a.slice + "'");
+    if (!a.slice.empty() && a.png.empty()) return usage("--slice goes with --png");
     if (!a.bounds.empty())
         for (int k = 0; k < 3; ++k)
             if (!(a.bounds[k] < a.bounds[k + 3]) || !std::isfinite(a.bounds[k]) || !std::isfinite(a.bounds[k + 3]))
-                return usage_error("--bounds needs XMIN YMIN ZMIN XMAX YMAX ZMAX with each min < max");
+                return usage("--bounds needs XMIN YMIN ZMIN XMAX YMAX ZMAX with each min < max");
     const std::vector<double>* planes[3] = {&a.x_planes, &a.y_planes, &a.z_planes};
     for (int k = 0; k < 3; ++k)
         if (!planes[k]->empty() && !strictly_increasing(*planes[k]))
-            return usage_error(std::string("--") + static_cast<char>('x' + k) +
+            return usage(std::string("--") + static_cast<char>('x' + k) +
                                "-planes needs at least 2 finite, strictly increasing values");
     return Exit::ok;
 }
@@ -209,16 +200,16 @@ int check_planes(const GridArgs& a) {
         if (p.empty()) continue;
         const std::string flag = std::string("--") + axis[k] + "-planes";
         if (a.dims.size() == 3 && p.size() != std::size_t{a.dims[k]} + 1)
-            return usage_error("--dims gives " + std::to_string(a.dims[k]) + " cells along " + axis[k] + " but " +
+            return usage("--dims gives " + std::to_string(a.dims[k]) + " cells along " + axis[k] + " but " +
                                flag + " gives " + std::to_string(p.size()) + " planes (" +
                                std::to_string(p.size() - 1) + " cells): give one of them, or make them agree");
         if (a.bounds.size() == 6 && (p.front() != a.bounds[k] || p.back() != a.bounds[3 + k]))
-            return usage_error("--bounds gives " + std::string(1, axis[k]) + " from " + shortest(a.bounds[k]) +
+            return usage("--bounds gives " + std::string(1, axis[k]) + " from " + shortest(a.bounds[k]) +
                                " to " + shortest(a.bounds[3 + k]) + " but " + flag + " runs from " +
                                shortest(p.front()) + " to " + shortest(p.back()));
     }
     if (!a.x_planes.empty() && !a.y_planes.empty() && !a.z_planes.empty() && (a.cells_given || a.cell_size > 0))
-        return usage_error(std::string(a.cell_size > 0 ? "--cell-size" : "--cells") +
+        return usage(std::string(a.cell_size > 0 ? "--cell-size" : "--cells") +
                            " has no effect when --x-planes, --y-planes and --z-planes give every plane");
     return Exit::ok;
 }
@@ -305,11 +296,11 @@ int make_axes(const GridArgs& a, const Bodies& bodies, const std::string& out_ex
         std::cerr << "polyvol: " << e.what() << "\n";
         return Exit::invalid;
     }
-    if (out_ext == ".vti" && !g.uniform()) return usage_error("the grid is not uniform: write .vtr (RectilinearGrid) instead");
+    if (out_ext == ".vti" && !g.uniform()) return usage("the grid is not uniform: write .vtr (RectilinearGrid) instead");
     if (slice.given) {
         const std::vector<double>& c = slice.axis == 0 ? g.x : (slice.axis == 1 ? g.y : g.z);
         if (slice.value < c.front() || slice.value > c.back())
-            return usage_error("--slice " + a.slice + " lies outside the grid [" + shortest(c.front()) + ", " +
+            return usage("--slice " + a.slice + " lies outside the grid [" + shortest(c.front()) + ", " +
                                shortest(c.back()) + "]");
     }
     return Exit::ok;
@@ -319,12 +310,12 @@ int make_axes(const GridArgs& a, const Bodies& bodies, const std::string& out_ex
 // quarters of this machine's memory), before anything is allocated.
 int check_memory(const GridArgs& a, std::size_t cells, std::size_t nb) {
     if (cells > (std::size_t{1} << 34))
-        return usage_error("too many cells (" + std::to_string(cells) + ", more than 2^34 = 17179869184): the volumes "
+        return usage("too many cells (" + std::to_string(cells) + ", more than 2^34 = 17179869184): the volumes "
                            "alone would need about " + bytes_text(8.0 * static_cast<double>(cells * nb)) +
                            "; a coarser grid (--cells, --cell-size, --dims), or polyvol.dask.grid in blocks");
     const std::optional<uint64_t> limit =
         a.max_memory.empty() ? std::optional<uint64_t>(default_memory_limit()) : parse_bytes(a.max_memory);
-    if (!limit) return usage_error("--max-memory takes a size such as 8G or 512M, not '" + a.max_memory + "'");
+    if (!limit) return usage("--max-memory takes a size such as 8G or 512M, not '" + a.max_memory + "'");
     // The bodies' volumes, centroids (moments and the written copy), surfaces
     // (the sums and the written copy), the union, its class and the .vti copy
     // of it, the intersection.
@@ -335,7 +326,7 @@ int check_memory(const GridArgs& a, std::size_t cells, std::size_t nb) {
     if (nb > 1) per_cell += 8 + 1 + 8 + (a.intersection_out.empty() ? 0 : 8);
     const double need = per_cell * static_cast<double>(cells);
     if (need > static_cast<double>(*limit))
-        return usage_error("the grid of " + std::to_string(cells) + " cells needs about " + bytes_text(need) +
+        return usage("the grid of " + std::to_string(cells) + " cells needs about " + bytes_text(need) +
                            " for its arrays, more than " +
                            (a.max_memory.empty() ? "three quarters of this machine's memory (" +
                                                        bytes_text(static_cast<double>(*limit)) + ")"
@@ -513,7 +504,7 @@ void write_outputs(const GridArgs& a, const GridAxes& g, Arrays& r, std::size_t 
 // the grid, compute every cell, write what was asked, print the summary.
 int run_grid_command(const GridArgs& a) {
     const auto t_start = Clock::now();
-    const std::string out_ext = a.out.empty() ? "" : extension(a.out);
+    const std::string out_ext = a.out.empty() ? "" : lower_extension(a.out);
     const std::optional<Slice> slice = parse_slice(a.slice);
     if (const int code = check_arguments(a, out_ext, slice)) return code;
     Bodies bodies;

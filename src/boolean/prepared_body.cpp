@@ -32,6 +32,14 @@ int bucket_of(double x, double lo, double hi, int n) {
     return std::clamp(static_cast<int>(std::floor((x - lo) / (hi - lo) * n)), 0, n - 1);
 }
 
+// The buckets (n per axis over `all`) a box (xmin ymin zmin xmax ymax zmax) meets, per axis.
+void bucket_range(const std::array<double, 6>& all, int n, const double* box, int* lo, int* hi) {
+    for (int k = 0; k < 3; ++k) {
+        lo[k] = bucket_of(box[k], all[k], all[3 + k], n);
+        hi[k] = bucket_of(box[3 + k], all[k], all[3 + k], n);
+    }
+}
+
 }  // namespace
 
 void PreparedBody::triangles_meeting(const std::array<double, 6>& b, std::vector<uint32_t>& out) const {
@@ -40,10 +48,7 @@ void PreparedBody::triangles_meeting(const std::array<double, 6>& b, std::vector
     for (int k = 0; k < 3; ++k)
         if (b[k] > all[3 + k] || all[k] > b[3 + k]) return;
     int lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) {
-        lo[k] = bucket_of(b[k], all[k], all[3 + k], n);
-        hi[k] = bucket_of(b[3 + k], all[k], all[3 + k], n);
-    }
+    bucket_range(all, n, b.data(), lo, hi);
     for (int i = lo[0]; i <= hi[0]; ++i)
         for (int j = lo[1]; j <= hi[1]; ++j)
             for (int k = lo[2]; k <= hi[2]; ++k) {
@@ -89,10 +94,7 @@ std::shared_ptr<const PreparedBody> prepare_body(const MeshView& view) {
         for (uint32_t t = 0; t < nt; ++t) {
             const double* b = &p.body.box[6 * std::size_t{t}];
             int lo[3], hi[3];
-            for (int k = 0; k < 3; ++k) {
-                lo[k] = bucket_of(b[k], all[k], all[3 + k], n);
-                hi[k] = bucket_of(b[3 + k], all[k], all[3 + k], n);
-            }
+            bucket_range(all, n, b, lo, hi);
             for (int i = lo[0]; i <= hi[0]; ++i)
                 for (int j = lo[1]; j <= hi[1]; ++j)
                     for (int k = lo[2]; k <= hi[2]; ++k) fn((static_cast<std::size_t>(i) * n + j) * n + k, t);

@@ -1,8 +1,10 @@
-// cells/body_in_cells.cpp — body_in_cells (polyvol/cells.hpp): the exact
-// reference, a boolean per touched cell and one per region of untouched cells.
+// cells/body_in_cells.cpp — body_in_cells (polyvol/cells.hpp): the steps
+// both paths share (the whole, the touched cells, the regions of untouched
+// cells, the classes), the prepared path and the exact reference.
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -21,48 +23,6 @@ namespace {
 
 using Box = std::array<double, 6>;  // xmin ymin zmin xmax ymax zmax
 
-Box empty_box() {
-    return {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
-}
-
-void grow(Box& b, const double* p) {
-    for (int k = 0; k < 3; ++k) {
-        b[k] = std::min(b[k], p[k]);
-        b[3 + k] = std::max(b[3 + k], p[k]);
-    }
-}
-
-bool meet(const Box& a, const Box& b) {
-    for (int k = 0; k < 3; ++k)
-        if (a[k] > b[3 + k] || b[k] > a[3 + k]) return false;
-    return true;
-}
-
-// Cell c as a closed triangle mesh of its own points: the face rule's
-// triangles, its neighbour faces reversed (outward from c).
-Mesh cell_surface(const CellMeshView& m, const cells::CellFaces& cf, std::size_t c) {
-    Mesh out;
-    std::vector<uint32_t> global;  // local point -> mesh point
-    auto local = [&](uint32_t p) {
-        for (std::size_t i = 0; i < global.size(); ++i)
-            if (global[i] == p) return static_cast<uint32_t>(i);
-        global.push_back(p);
-        out.positions.insert(out.positions.end(), &m.points[3 * std::size_t{p}], &m.points[3 * std::size_t{p} + 3]);
-        return static_cast<uint32_t>(global.size() - 1);
-    };
-    for (const uint32_t entry : cf.of(c)) {
-        const bool reversed = (entry & 1u) != 0;
-        face_triangles(m.face(entry >> 1), [&](uint32_t a, uint32_t b, uint32_t d) {
-            const uint32_t la = local(a), lb = local(b), ld = local(d);
-            if (reversed)
-                out.indices.insert(out.indices.end(), {la, ld, lb});
-            else
-                out.indices.insert(out.indices.end(), {la, lb, ld});
-        });
-    }
-    return out;
-}
-
 // The boundary faces' triangles: the surface of the region the cells tile.
 Mesh boundary_surface(const CellMeshView& m) {
     Mesh out;
@@ -74,75 +34,6 @@ Mesh boundary_surface(const CellMeshView& m) {
             });
     return out;
 }
-
-// The body's fan triangles' boxes in a uniform grid of buckets over the
-// body's box, for the question "does any of them meet this box?".
-class TriangleBoxes {
-public:
-    explicit TriangleBoxes(const MeshView& body) {
-        bounds_ = empty_box();
-        for (std::size_t f = 0; f < body.face_count(); ++f) {
-            const std::span<const uint32_t> v = body.face(f);
-            for (std::size_t i = 1; i + 1 < v.size(); ++i) {
-                Box b = empty_box();
-                for (const uint32_t p : {v[0], v[i], v[i + 1]}) grow(b, &body.positions[3 * std::size_t{p}]);
-                boxes_.push_back(b);
-                grow(bounds_, b.data());
-                grow(bounds_, b.data() + 3);
-            }
-        }
-        n_ = std::max<int>(1, static_cast<int>(std::cbrt(static_cast<double>(boxes_.size()))));
-        std::vector<uint32_t> count(static_cast<std::size_t>(n_) * n_ * n_ + 1, 0);
-        for_each_bucket_of_all([&](std::size_t bucket, uint32_t) { ++count[bucket + 1]; });
-        for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
-        offsets_ = count;
-        items_.resize(count.back());
-        for_each_bucket_of_all([&](std::size_t bucket, uint32_t t) { items_[count[bucket]++] = t; });
-    }
-    const Box& bounds() const { return bounds_; }
-    bool any_meets(const Box& b) const {
-        if (boxes_.empty() || !meet(b, bounds_)) return false;
-        int lo[3], hi[3];
-        range(b, lo, hi);
-        for (int i = lo[0]; i <= hi[0]; ++i)
-            for (int j = lo[1]; j <= hi[1]; ++j)
-                for (int k = lo[2]; k <= hi[2]; ++k) {
-                    const std::size_t bucket = (static_cast<std::size_t>(i) * n_ + j) * n_ + k;
-                    for (uint32_t x = offsets_[bucket]; x < offsets_[bucket + 1]; ++x)
-                        if (meet(boxes_[items_[x]], b)) return true;
-                }
-        return false;
-    }
-
-private:
-    int cell_of(double x, int axis) const {
-        const double lo = bounds_[axis], hi = bounds_[3 + axis];
-        if (!(hi > lo)) return 0;
-        const double t = (x - lo) / (hi - lo) * n_;
-        return std::clamp(static_cast<int>(std::floor(t)), 0, n_ - 1);
-    }
-    void range(const Box& b, int* lo, int* hi) const {
-        for (int k = 0; k < 3; ++k) {
-            lo[k] = cell_of(b[k], k);
-            hi[k] = cell_of(b[3 + k], k);
-        }
-    }
-    template <class Fn>
-    void for_each_bucket_of_all(Fn&& fn) const {
-        for (uint32_t t = 0; t < boxes_.size(); ++t) {
-            int lo[3], hi[3];
-            range(boxes_[t], lo, hi);
-            for (int i = lo[0]; i <= hi[0]; ++i)
-                for (int j = lo[1]; j <= hi[1]; ++j)
-                    for (int k = lo[2]; k <= hi[2]; ++k) fn((static_cast<std::size_t>(i) * n_ + j) * n_ + k, t);
-        }
-    }
-
-    std::vector<Box> boxes_;
-    Box bounds_{};
-    int n_ = 1;
-    std::vector<uint32_t> offsets_, items_;
-};
 
 // The cells' own volumes: the caller's, or computed (checking the mesh);
 // every cell wound outward.
@@ -185,77 +76,6 @@ double intersect(const Mesh& cell, const MeshView& body, const BodyInCellsOption
     }
 }
 
-}  // namespace
-
-// The exact reference: a boolean against the whole body per touched cell.
-static BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
-    const OwnVolumes own = own_volumes(m, options);
-    const cells::CellFaces cf = cells::cell_faces(m);
-    const std::size_t n = m.cell_count();
-    BodyInCells r;
-    r.volumes.assign(n, 0);
-    r.cell_class.assign(n, CellClass::empty);
-
-    // The whole: |B ∩ M| and |B| (also checks the body).
-    const Mesh outside = boundary_surface(m);
-    const BooleanVolumes whole = booleans(outside.view(), body, options);
-    if (whole.status == BooleanStatus::b_not_closed) throw std::invalid_argument("the body is not a closed surface");
-    if (whole.status == BooleanStatus::b_inside_out) throw std::invalid_argument("the body is inside out");
-    if (whole.status != BooleanStatus::ok)
-        throw std::invalid_argument(std::string("the mesh's boundary: ") + boolean_status_message(whole.status));
-    r.total = whole.intersection;
-    r.body_volume = whole.volume_b;
-
-    // Touched cells: their box meets a body triangle's box.
-    const TriangleBoxes triangles(body);
-    std::vector<uint8_t> touched(n, 0);
-    std::vector<Box> box(n);
-    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t c) {
-        Box b = empty_box();
-        for (const uint32_t entry : cf.of(c))
-            for (const uint32_t p : m.face(entry >> 1)) grow(b, &m.points[3 * std::size_t{p}]);
-        box[c] = b;
-        touched[c] = triangles.any_meets(b) ? 1 : 0;
-    });
-    std::vector<uint32_t> touched_cells;
-    for (std::size_t c = 0; c < n; ++c)
-        if (touched[c] != 0) touched_cells.push_back(static_cast<uint32_t>(c));
-    r.touched_cells = touched_cells.size();
-    tbb::parallel_for(std::size_t{0}, touched_cells.size(), [&](std::size_t i) {
-        const uint32_t c = touched_cells[i];
-        r.volumes[c] = intersect(cell_surface(m, cf, c), body, options, c);
-    });
-
-    // Untouched cells: alike across a face between two of them; one exact
-    // decision per region (none where the region's cell is outside the body's box).
-    core::UnionFind regions(n);
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-        const uint32_t a = m.owner[f], b = m.neighbour[f];
-        if (b != kNoCell && touched[a] == 0 && touched[b] == 0) regions.unite(a, b);
-    }
-    std::vector<int8_t> inside_of_root(n, -1);
-    for (std::size_t c = 0; c < n; ++c) {
-        if (touched[c] != 0) continue;
-        const uint32_t root = regions.find(static_cast<uint32_t>(c));
-        if (inside_of_root[root] < 0) {
-            double v = 0;
-            if (meet(box[c], triangles.bounds())) v = intersect(cell_surface(m, cf, c), body, options, c);
-            if (v != 0 && v != own.volumes[c])
-                throw std::logic_error("cell " + std::to_string(c) + " is neither inside nor outside the body");
-            inside_of_root[root] = v != 0 ? 1 : 0;
-        }
-        r.volumes[c] = inside_of_root[root] != 0 ? own.volumes[c] : 0.0;
-    }
-    for (std::size_t c = 0; c < n; ++c) {
-        const double v = r.volumes[c];
-        r.cell_class[c] = v == 0 ? CellClass::empty : v == own.volumes[c] ? CellClass::full : CellClass::cut;
-        (v == 0 ? r.empty_cells : v == own.volumes[c] ? r.full_cells : r.cut_cells) += 1;
-    }
-    return r;
-}
-
-namespace {
-
 // Cell c's face triangles over the mesh's points (outward from c).
 void cell_triangles(const CellMeshView& m, const cells::CellFaces& cf, std::size_t c, std::vector<uint32_t>& out) {
     for (const uint32_t entry : cf.of(c)) {
@@ -269,69 +89,82 @@ void cell_triangles(const CellMeshView& m, const cells::CellFaces& cf, std::size
     }
 }
 
-// |B ∩ c| from B prepared once: the windings at the touched cells' points in
-// one pass, then each touched cell with the body's triangles near it.
-BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
-    const OwnVolumes own = own_volumes(m, options);
-    const std::shared_ptr<const boolean::PreparedBody> held = boolean::prepare_body(body);
-    const boolean::PreparedBody& prepared = *held;
-    const cells::CellFaces cf = cells::cell_faces(m);
-    const std::size_t n = m.cell_count();
-    BodyInCells r;
-    r.volumes.assign(n, 0);
-    r.cell_class.assign(n, CellClass::empty);
+// Cell c's triangles (outward) over its own points numbered from 0, with
+// the body's winding at each when `winding` (at the mesh's points) is given.
+struct LocalCell {
+    std::vector<uint32_t> triangles;
+    std::vector<double> points;
+    std::vector<int32_t> winding;
+};
+LocalCell local_cell(const CellMeshView& m, const cells::CellFaces& cf, std::size_t c,
+                     const std::vector<int32_t>* winding) {
+    LocalCell l;
+    cell_triangles(m, cf, c, l.triangles);
+    std::vector<uint32_t> global;
+    for (uint32_t& v : l.triangles) {
+        const auto at = std::find(global.begin(), global.end(), v);
+        if (at != global.end()) {
+            v = static_cast<uint32_t>(at - global.begin());
+            continue;
+        }
+        global.push_back(v);
+        l.points.insert(l.points.end(), &m.points[3 * std::size_t{v}], &m.points[3 * std::size_t{v} + 3]);
+        if (winding != nullptr) l.winding.push_back((*winding)[v]);
+        v = static_cast<uint32_t>(global.size() - 1);
+    }
+    return l;
+}
+
+// Cell c as a closed triangle mesh of its own points, outward.
+Mesh cell_surface(const CellMeshView& m, const cells::CellFaces& cf, std::size_t c) {
+    LocalCell l = local_cell(m, cf, c, nullptr);
+    Mesh out;
+    out.positions = std::move(l.points);
+    out.indices = std::move(l.triangles);
+    return out;
+}
+
+// |B ∩ M| and |B| (B's checks too), by the booleans with M's boundary faces as A.
+void whole_volumes(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options, BodyInCells& r) {
     const Mesh outside = boundary_surface(m);
-    const BooleanVolumes whole = boolean_volumes(outside.view(), body);
+    const BooleanVolumes whole = booleans(outside.view(), body, options);
+    if (whole.status == BooleanStatus::b_not_closed) throw std::invalid_argument("the body is not a closed surface");
+    if (whole.status == BooleanStatus::b_inside_out) throw std::invalid_argument("the body is inside out");
     if (whole.status != BooleanStatus::ok)
         throw std::invalid_argument(std::string("the mesh's boundary: ") + boolean_status_message(whole.status));
     r.total = whole.intersection;
     r.body_volume = whole.volume_b;
+}
 
-    // Touched cells: their box meets a body triangle's box.
-    std::vector<uint8_t> touched(n, 0);
-    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t c) {
-        Box b = empty_box();
+// 1 for each cell whose box meets a body triangle's box.
+std::vector<uint8_t> touched_cells(const CellMeshView& m, const cells::CellFaces& cf,
+                                   const boolean::PreparedBody& body) {
+    std::vector<uint8_t> touched(m.cell_count(), 0);
+    tbb::parallel_for(std::size_t{0}, m.cell_count(), [&](std::size_t c) {
+        Box b{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
         for (const uint32_t entry : cf.of(c))
-            for (const uint32_t p : m.face(entry >> 1)) grow(b, &m.points[3 * std::size_t{p}]);
-        touched[c] = boolean::meets_box(prepared, b) ? 1 : 0;
+            for (const uint32_t p : m.face(entry >> 1))
+                for (int k = 0; k < 3; ++k) {
+                    b[k] = std::min(b[k], m.points[3 * std::size_t{p} + k]);
+                    b[3 + k] = std::max(b[3 + k], m.points[3 * std::size_t{p} + k]);
+                }
+        touched[c] = boolean::meets_box(body, b) ? 1 : 0;
     });
-    std::vector<uint32_t> touched_cells;
-    for (std::size_t c = 0; c < n; ++c)
-        if (touched[c] != 0) touched_cells.push_back(static_cast<uint32_t>(c));
-    r.touched_cells = touched_cells.size();
-    // The body's winding at every point of the touched cells, in one pass over their faces.
-    std::vector<uint32_t> faces_of_touched;
-    for (std::size_t f = 0; f < m.face_count(); ++f)
-        if (touched[m.owner[f]] != 0 || (m.neighbour[f] != kNoCell && touched[m.neighbour[f]] != 0))
-            face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
-                faces_of_touched.insert(faces_of_touched.end(), {a, b, d});
-            });
-    const std::vector<int32_t> winding = boolean::windings_at(prepared, m.points, faces_of_touched);
-    tbb::parallel_for(std::size_t{0}, touched_cells.size(), [&](std::size_t i) {
-        const uint32_t c = touched_cells[i];
-        std::vector<uint32_t> tris;
-        cell_triangles(m, cf, c, tris);
-        // The cell's own points, numbered from 0, with their windings.
-        std::vector<uint32_t> global;
-        std::vector<double> points;
-        std::vector<int32_t> w;
-        for (uint32_t& v : tris) {
-            const auto at = std::find(global.begin(), global.end(), v);
-            if (at != global.end()) {
-                v = static_cast<uint32_t>(at - global.begin());
-                continue;
-            }
-            global.push_back(v);
-            points.insert(points.end(), &m.points[3 * std::size_t{v}], &m.points[3 * std::size_t{v} + 3]);
-            w.push_back(winding[v]);
-            v = static_cast<uint32_t>(global.size() - 1);
-        }
-        for (const int32_t x : w)
-            if (x != 0 && x != 1) throw std::invalid_argument("the body overlaps itself (a winding number above 1)");
-        r.volumes[c] = boolean::cell_intersection(prepared, points, tris, w);
-    });
+    return touched;
+}
 
-    // Untouched cells: alike across a face between two of them; one ray per region.
+std::vector<uint32_t> listed(const std::vector<uint8_t>& flags) {
+    std::vector<uint32_t> out;
+    for (std::size_t c = 0; c < flags.size(); ++c)
+        if (flags[c] != 0) out.push_back(static_cast<uint32_t>(c));
+    return out;
+}
+
+// Untouched cells are alike across a face between two of them (no part of
+// the body's surface lies between): inside(c) decides each region once.
+void fill_untouched(const CellMeshView& m, const std::vector<uint8_t>& touched, std::span<const double> own,
+                    const std::function<bool(std::size_t)>& inside, BodyInCells& r) {
+    const std::size_t n = m.cell_count();
     core::UnionFind regions(n);
     for (std::size_t f = 0; f < m.face_count(); ++f) {
         const uint32_t a = m.owner[f], b = m.neighbour[f];
@@ -341,19 +174,77 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
     for (std::size_t c = 0; c < n; ++c) {
         if (touched[c] != 0) continue;
         const uint32_t root = regions.find(static_cast<uint32_t>(c));
-        if (inside_of_root[root] < 0) {
-            std::vector<uint32_t> tris;
-            cell_triangles(m, cf, c, tris);
-            const std::vector<int32_t> w = boolean::windings_at(prepared, m.points, tris);
-            inside_of_root[root] = w[tris[0]] != 0 ? 1 : 0;
-        }
-        r.volumes[c] = inside_of_root[root] != 0 ? own.volumes[c] : 0.0;
+        if (inside_of_root[root] < 0) inside_of_root[root] = inside(c) ? 1 : 0;
+        r.volumes[c] = inside_of_root[root] != 0 ? own[c] : 0.0;
     }
-    for (std::size_t c = 0; c < n; ++c) {
+}
+
+// Each cell's class by its value: empty (0), full (its own volume), cut.
+void classify(std::span<const double> own, BodyInCells& r) {
+    r.cell_class.resize(r.volumes.size());
+    for (std::size_t c = 0; c < r.volumes.size(); ++c) {
         const double v = r.volumes[c];
-        r.cell_class[c] = v == 0 ? CellClass::empty : v == own.volumes[c] ? CellClass::full : CellClass::cut;
-        (v == 0 ? r.empty_cells : v == own.volumes[c] ? r.full_cells : r.cut_cells) += 1;
+        r.cell_class[c] = v == 0 ? CellClass::empty : v == own[c] ? CellClass::full : CellClass::cut;
+        (v == 0 ? r.empty_cells : v == own[c] ? r.full_cells : r.cut_cells) += 1;
     }
+}
+
+// The exact reference: a boolean against the whole body per touched cell and
+// per region of untouched cells.
+BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
+    const OwnVolumes own = own_volumes(m, options);
+    const cells::CellFaces cf = cells::cell_faces(m);
+    BodyInCells r;
+    r.volumes.assign(m.cell_count(), 0);
+    whole_volumes(m, body, options, r);
+    const std::vector<uint8_t> touched = touched_cells(m, cf, *boolean::prepare_body(body));
+    const std::vector<uint32_t> list = listed(touched);
+    r.touched_cells = list.size();
+    tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
+        r.volumes[list[i]] = intersect(cell_surface(m, cf, list[i]), body, options, list[i]);
+    });
+    fill_untouched(m, touched, own.volumes, [&](std::size_t c) {
+        const double v = intersect(cell_surface(m, cf, c), body, options, c);
+        if (v != 0 && v != own.volumes[c])
+            throw std::logic_error("cell " + std::to_string(c) + " is neither inside nor outside the body");
+        return v != 0;
+    }, r);
+    classify(own.volumes, r);
+    return r;
+}
+
+// |B ∩ c| from B prepared once: the windings at the touched cells' points in
+// one pass, then each touched cell with the body's triangles near it.
+BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
+    const OwnVolumes own = own_volumes(m, options);
+    const std::shared_ptr<const boolean::PreparedBody> prepared = boolean::prepare_body(body);
+    const cells::CellFaces cf = cells::cell_faces(m);
+    BodyInCells r;
+    r.volumes.assign(m.cell_count(), 0);
+    whole_volumes(m, body, options, r);
+    const std::vector<uint8_t> touched = touched_cells(m, cf, *prepared);
+    const std::vector<uint32_t> list = listed(touched);
+    r.touched_cells = list.size();
+    // The body's winding at every point of the touched cells, in one pass over their faces.
+    std::vector<uint32_t> faces_of_touched;
+    for (std::size_t f = 0; f < m.face_count(); ++f)
+        if (touched[m.owner[f]] != 0 || (m.neighbour[f] != kNoCell && touched[m.neighbour[f]] != 0))
+            face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+                faces_of_touched.insert(faces_of_touched.end(), {a, b, d});
+            });
+    const std::vector<int32_t> winding = boolean::windings_at(*prepared, m.points, faces_of_touched);
+    tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
+        const LocalCell l = local_cell(m, cf, list[i], &winding);
+        for (const int32_t x : l.winding)
+            if (x != 0 && x != 1) throw std::invalid_argument("the body overlaps itself (a winding number above 1)");
+        r.volumes[list[i]] = boolean::cell_intersection(*prepared, l.points, l.triangles, l.winding);
+    });
+    fill_untouched(m, touched, own.volumes, [&](std::size_t c) {
+        std::vector<uint32_t> tris;
+        cell_triangles(m, cf, c, tris);
+        return boolean::windings_at(*prepared, m.points, tris)[tris[0]] != 0;  // one ray
+    }, r);
+    classify(own.volumes, r);
     return r;
 }
 

@@ -57,6 +57,18 @@ Mesh boundary_surface(const CellMeshView& m) {
     return out;
 }
 
+// The box of cell c's points.
+void cell_box(const CellMeshView& m, std::size_t c, double* lo, double* hi) {
+    for (int k = 0; k < 3; ++k) lo[k] = INFINITY, hi[k] = -INFINITY;
+    for (std::size_t f = 0; f < m.face_count(); ++f)
+        if (m.owner[f] == c || m.neighbour[f] == c)
+            for (const uint32_t p : m.face(f))
+                for (int k = 0; k < 3; ++k) {
+                    lo[k] = std::min(lo[k], m.points[3 * p + k]);
+                    hi[k] = std::max(hi[k], m.points[3 * p + k]);
+                }
+}
+
 void expect_same_mesh(const CellMesh& a, const CellMesh& b) {
     ASSERT_EQ(a.points.size(), b.points.size());
     for (std::size_t i = 0; i < a.points.size(); ++i) EXPECT_EQ(a.points[i], b.points[i]) << i;
@@ -131,14 +143,8 @@ TEST(CellVolumes, GradedBoxCellsAreTheirBoxesCorrectlyRounded) {
     const CellVolumes v = cell_volumes(m);
     mpq_class sum = 0;
     for (std::size_t c = 0; c < m.cell_count(); ++c) {
-        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        for (std::size_t f = 0; f < m.face_count(); ++f)
-            if (m.owner[f] == c || m.neighbour[f] == c)
-                for (const uint32_t p : m.face(f))
-                    for (int k = 0; k < 3; ++k) {
-                        lo[k] = std::min(lo[k], m.points[3 * p + k]);
-                        hi[k] = std::max(hi[k], m.points[3 * p + k]);
-                    }
+        double lo[3], hi[3];
+        cell_box(m, c, lo, hi);
         mpq_class exact = 1;
         for (int k = 0; k < 3; ++k) exact *= mpq_class(hi[k]) - mpq_class(lo[k]);
         sum += exact;
@@ -262,14 +268,8 @@ TEST(BodyInCells, ABoxInGradedBoxCellsIsTheirOverlapCorrectlyRounded) {
     mpq_class sum = 0;
     std::size_t cut = 0;
     for (std::size_t c = 0; c < m.cell_count(); ++c) {
-        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        for (std::size_t f = 0; f < m.face_count(); ++f)
-            if (m.owner[f] == c || m.neighbour[f] == c)
-                for (const uint32_t p : m.face(f))
-                    for (int k = 0; k < 3; ++k) {
-                        lo[k] = std::min(lo[k], m.points[3 * p + k]);
-                        hi[k] = std::max(hi[k], m.points[3 * p + k]);
-                    }
+        double lo[3], hi[3];
+        cell_box(m, c, lo, hi);
         const mpq_class exact = overlap(lo, hi, a, b);
         sum += exact;
         EXPECT_EQ(r.volumes[c], exact::round_to_double(exact.get_mpq_t())) << "cell " << c;
