@@ -205,12 +205,14 @@ int run_cells_command(const CellsArgs& a) {
     if (!mesh) return Exit::unreadable;
     const std::string unit = !a.mesh_units.empty() ? length_unit(a.mesh_units)->name : mesh->unit;
     const CellMeshView view = mesh->mesh.view();
-    if (const auto defect = check_cell_mesh(view)) {
-        std::cerr << "polyvol: " << a.mesh << ": " << defect->message << "\n";
+    const auto t0 = Clock::now();
+    CellVolumes own;
+    try {
+        own = cell_volumes(view);  // checks the cells (check_cell_mesh) first
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "polyvol: " << a.mesh << ": " << e.what() << "\n";
         return Exit::invalid;
     }
-    const auto t0 = Clock::now();
-    const CellVolumes own = cell_volumes(view);
     std::vector<Body> bodies;
     for (const std::string& file : a.bodies) {
         int code = Exit::ok;

@@ -101,3 +101,17 @@ def test_vtk_opens_the_vtu_with_the_cells_and_their_values(case, tmp_path):
     sizes.Update()
     vtk_volumes = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume"))
     assert np.allclose(vtk_volumes, vtk_to_numpy(data.GetArray("cell_volume")), rtol=1e-12, atol=0)
+
+
+def test_the_command_refuses_an_open_cell_and_an_unreadable_mesh(case, tmp_path):
+    mesh = case / "constant" / "polyMesh"
+    for name in ("faces", "owner"):  # the last boundary face gone: its cell is open
+        text = (mesh / name).read_text()
+        head, body = text.split("\n(\n", 1)
+        items = body.split("\n)")[0].split("\n")[:-1]
+        (mesh / name).write_text(head.rsplit("\n", 1)[0] + f"\n{len(items)}\n(\n" + "\n".join(items) + "\n)\n")
+    out = subprocess.run([CLI, "cells", case], capture_output=True, text=True)
+    assert out.returncode == 3 and "cell 63's faces do not close" in out.stderr, out.stderr
+    (mesh / "points").write_text("FoamFile { format ascii; class vectorField; }\n3\n(\n(0 0 0)\n(1 0 0)\n)\n")
+    out = subprocess.run([CLI, "cells", case], capture_output=True, text=True)
+    assert out.returncode == 2 and "points:3: the list claims 3 points" in out.stderr, out.stderr
