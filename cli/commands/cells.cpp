@@ -69,7 +69,11 @@ std::optional<LoadedMesh> read_body(const std::string& file, const CellsArgs& a,
         return std::nullopt;
     }
     const std::string unit = !body->unit.empty() ? body->unit : a.units;
-    if (unit.empty()) {
+    if (mesh_unit.empty()) {
+        if (!unit.empty())
+            std::cerr << "polyvol: warning: " << file << ": the mesh states no unit: the body's coordinates are "
+                      << "taken as they are (--mesh-units gives the mesh's)\n";
+    } else if (unit.empty()) {
         std::cerr << "polyvol: warning: " << file << ": no unit stated: taken in the mesh's unit (" << mesh_unit
                   << "); --units gives it (" << kLengthUnitNames << ")\n";
     } else if (unit != mesh_unit) {
@@ -125,12 +129,13 @@ nlohmann::json summary(const CellsArgs& a, const LoadedCellMesh& mesh, const std
 void print_table(const nlohmann::json& j) {
     const auto& m = j["mesh"];
     const std::string unit = m["unit"].get<std::string>();
+    const std::string cubed = unit.empty() ? "" : " " + unit + "3";
     std::cout << m["file"].get<std::string>() << ": " << m["cells"].get<std::size_t>() << " cells, "
               << m["faces"].get<std::size_t>() << " faces, " << m["points"].get<std::size_t>()
-              << " points; volume " << shortest(m["volume"].get<double>()) << " " << unit << "3\n";
+              << " points; volume " << shortest(m["volume"].get<double>()) << cubed << "\n";
     for (const auto& b : j["bodies"])
         std::cout << b["file"].get<std::string>() << ": volume " << shortest(b["volume"].get<double>())
-                  << ", inside the mesh " << shortest(b["inside_mesh"].get<double>()) << " " << unit << "3; cells "
+                  << ", inside the mesh " << shortest(b["inside_mesh"].get<double>()) << cubed << "; cells "
                   << b["full_cells"].get<std::size_t>() << " full, " << b["cut_cells"].get<std::size_t>()
                   << " cut, " << b["empty_cells"].get<std::size_t>() << " empty\n";
     std::cout << "volumes: correctly rounded, every cell and every total\n";
@@ -201,7 +206,7 @@ CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
 
 int run_cells_command(const CellsArgs& a) {
     if (const int code = check_arguments(a); code != Exit::ok) return code;
-    auto mesh = read_or_report(a.mesh, [&] { return read_polymesh(a.mesh); });
+    auto mesh = read_or_report(a.mesh, [&] { return read_cell_mesh(a.mesh); });
     if (!mesh) return Exit::unreadable;
     const std::string unit = !a.mesh_units.empty() ? length_unit(a.mesh_units)->name : mesh->unit;
     const CellMeshView view = mesh->mesh.view();

@@ -24,7 +24,7 @@ namespace polyvol {
 
 struct LoadedCellMesh {
     CellMesh mesh;
-    std::string format;    // "openfoam"
+    std::string format;    // "openfoam" or "vtu"
     std::string encoding;  // "ascii" or "binary" (of the points file)
     bool gzip = false;     // some file was gzip-compressed
     std::string unit;      // the length unit of the points ("m" for OpenFOAM)
@@ -34,6 +34,16 @@ struct LoadedCellMesh {
 
 // Reads an OpenFOAM polyMesh (above). Throws ReadError.
 LoadedCellMesh read_polymesh(const std::string& path);
+
+// Reads a VTK XML UnstructuredGrid (.vtu): ascii, binary and appended
+// (raw or base64) arrays, zlib-compressed or not, 32- or 64-bit headers;
+// tetra, voxel, hexahedron, wedge, pyramid and polyhedron cells. Each
+// distinct face (its points as a set) once, owned by the first cell naming
+// it, wound outward from it, its neighbour the second. Throws ReadError.
+LoadedCellMesh read_vtu(const std::string& path);
+
+// A .vtu file (read_vtu), else an OpenFOAM case or polyMesh directory.
+LoadedCellMesh read_cell_mesh(const std::string& path);
 
 // An OpenFOAM mesh's patches (constant/polyMesh/boundary), in order.
 struct FoamPatch {

@@ -14,8 +14,10 @@ and ``neighbour`` per face (-1 on the boundary), ``cell_count``,
 
 
 def load_cells(path):
-    """An OpenFOAM mesh: a case directory or its constant/polyMesh (ASCII or
-    binary, .gz files). Raises ReadError naming the file and the line or byte."""
+    """A mesh of cells: an OpenFOAM case directory or its constant/polyMesh
+    (ASCII or binary, .gz files), or a VTK .vtu unstructured grid (every
+    encoding VTK writes). Raises ReadError naming the file and the line,
+    byte or cell."""
     return _core.read_polymesh(str(path))
 
 

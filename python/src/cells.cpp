@@ -58,7 +58,7 @@ void bind_cells(py::module_& m) {
         "read_polymesh",
         [](const std::string& path) {
             py::gil_scoped_release release;
-            return std::make_shared<LoadedCellMesh>(read_polymesh(path));
+            return std::make_shared<LoadedCellMesh>(read_cell_mesh(path));
         },
         py::arg("path"));
 
@@ -87,7 +87,11 @@ void bind_cells(py::module_& m) {
             Mesh body = to_mesh(mesh_view(positions, indices, offsets));
             py::list notes;
             const std::string body_unit = !declared.empty() ? declared : units;
-            if (body_unit.empty()) {
+            if (unit.empty()) {
+                if (!body_unit.empty())
+                    notes.append("the mesh states no unit: the body's coordinates are taken as they are "
+                                 "(mesh_units= gives the mesh's)");
+            } else if (body_unit.empty()) {
                 notes.append("no unit stated: taken in the mesh's unit (" + unit + "); units= gives it");
             } else if (body_unit != unit) {
                 const auto from = length_unit(body_unit), to = length_unit(unit);

@@ -115,3 +115,133 @@ def test_the_command_refuses_an_open_cell_and_an_unreadable_mesh(case, tmp_path)
     (mesh / "points").write_text("FoamFile { format ascii; class vectorField; }\n3\n(\n(0 0 0)\n(1 0 0)\n)\n")
     out = subprocess.run([CLI, "cells", case], capture_output=True, text=True)
     assert out.returncode == 2 and "points:3: the list claims 3 points" in out.stderr, out.stderr
+
+
+def vtk_meshes(tmp_path):
+    """VTK's own writer, every encoding: a 3^3 hexahedral grid (jittered
+    inside) cut into tetrahedra, voxels, and a wedge and a pyramid."""
+    vtk = pytest.importorskip("vtkmodules.all")
+    rng = np.random.default_rng(5)
+    pts = vtk.vtkPoints()
+    pts.SetDataTypeToDouble()
+    n = 3
+    for k in range(n + 1):
+        for j in range(n + 1):
+            for i in range(n + 1):
+                p = np.array([i, j, k], dtype=float) / n * 2 - 1
+                if 0 < i < n and 0 < j < n and 0 < k < n:
+                    p += rng.uniform(-0.1, 0.1, 3)
+                pts.InsertNextPoint(*p)
+    hexes = vtk.vtkUnstructuredGrid()
+    hexes.SetPoints(pts)
+    pid = lambda i, j, k: i + (n + 1) * (j + (n + 1) * k)
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                hexes.InsertNextCell(vtk.VTK_HEXAHEDRON, 8, [pid(i, j, k), pid(i + 1, j, k), pid(i + 1, j + 1, k),
+                                                            pid(i, j + 1, k), pid(i, j, k + 1), pid(i + 1, j, k + 1),
+                                                            pid(i + 1, j + 1, k + 1), pid(i, j + 1, k + 1)])
+    tets = vtk.vtkDataSetTriangleFilter()
+    tets.SetInputData(hexes)
+    tets.Update()
+    grid = vtk.vtkRectilinearGrid()
+    grid.SetDimensions(3, 2, 2)
+    for axis, values in zip("XYZ", ([0, 0.5, 1.25], [0, 1], [-1, 0.5])):
+        a = vtk.vtkDoubleArray()
+        for v in values:
+            a.InsertNextValue(v)
+        getattr(grid, f"Set{axis}Coordinates")(a)
+    voxels = vtk.vtkAppendFilter()
+    voxels.AddInputData(grid)
+    voxels.Update()
+    shapes = vtk.vtkUnstructuredGrid()
+    sp = vtk.vtkPoints()
+    sp.SetDataTypeToDouble()
+    for p in [(0, 0, 0), (0, 1, 0), (1, 0, 0), (0, 0, 2), (0, 1, 2), (1, 0, 2),  # a wedge (VTK's winding)
+              (3, 0, 0), (5, 0, 0), (5, 2, 0), (3, 2, 0), (4, 1, 3)]:          # a pyramid
+        sp.InsertNextPoint(*p)
+    shapes.SetPoints(sp)
+    shapes.InsertNextCell(vtk.VTK_WEDGE, 6, [0, 1, 2, 3, 4, 5])
+    shapes.InsertNextCell(vtk.VTK_PYRAMID, 5, [6, 7, 8, 9, 10])
+    files = {}
+    for name, data in (("tets", tets.GetOutput()), ("voxels", voxels.GetOutput()), ("shapes", shapes)):
+        for mode, zlib, b64, header in (("Ascii", 0, 0, 32), ("Binary", 0, 0, 32), ("Binary", 1, 0, 64),
+                                        ("Appended", 0, 0, 32), ("Appended", 1, 0, 32), ("Appended", 0, 1, 64),
+                                        ("Appended", 1, 1, 64)):
+            path = tmp_path / f"{name}_{mode}_{zlib}{b64}{header}.vtu"
+            w = vtk.vtkXMLUnstructuredGridWriter()
+            w.SetInputData(data)
+            w.SetFileName(str(path))
+            getattr(w, f"SetDataModeTo{mode}")()
+            w.SetCompressorTypeToZLib() if zlib else w.SetCompressorTypeToNone()
+            w.SetEncodeAppendedData(b64)
+            w.SetHeaderTypeToUInt64() if header == 64 else w.SetHeaderTypeToUInt32()
+            w.Write()
+            files.setdefault(name, []).append(path)
+    return vtk, files, {"tets": tets.GetOutput(), "voxels": voxels.GetOutput(), "shapes": shapes}
+
+
+def test_vtu_files_in_every_encoding_give_the_same_cells_and_vtks_volumes(tmp_path):
+    vtk, files, data = vtk_meshes(tmp_path)
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    for name, paths in files.items():
+        sizes = vtk.vtkCellSizeFilter()
+        sizes.SetInputData(data[name])
+        sizes.Update()
+        vtk_volumes = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume"))
+        first = None
+        for path in paths:
+            m = polyvol.load_cells(path)
+            assert m.format == "vtu" and m.cell_count == data[name].GetNumberOfCells(), path.name
+            v, total = polyvol.cell_volumes(m)
+            assert np.allclose(v, vtk_volumes, rtol=1e-12, atol=0), path.name
+            if first is None:
+                first = (m.points.copy(), v, total)
+            assert np.array_equal(m.points, first[0]) and np.array_equal(v, first[1]) and total == first[2], path.name
+    # The closed forms: the wedge's and the pyramid's volumes.
+    v, _ = polyvol.cell_volumes(polyvol.load_cells(files["shapes"][0]))
+    assert v[0] == 1.0 and v[1] == 4.0
+
+
+def test_a_body_in_tetrahedra_from_a_vtu_adds_up_to_its_volume(tmp_path):
+    _, files, _ = vtk_meshes(tmp_path)
+    s = polyvol.Mesh(*uv_sphere(12, 24, 0.6, (0.05, -0.1, 0.2)))
+    r = polyvol.cells(files["tets"][2], s, units="m")
+    assert r.inside_mesh[0] == polyvol.volume(s)
+    assert math.isclose(r.volumes.sum(), r.inside_mesh[0], rel_tol=1e-13)
+
+
+def test_our_vtu_reads_back_as_the_same_cells(case, tmp_path):
+    body = off_file(tmp_path / "sphere.off", *uv_sphere(12, 24, 0.7, (0.1, 0.0, -0.2)))
+    out = subprocess.run([CLI, "cells", case, body, "--units", "m", "-o", tmp_path / "c.vtu"], capture_output=True,
+                         text=True)
+    assert out.returncode == 0, out.stderr
+    a, b = polyvol.load_cells(case), polyvol.load_cells(tmp_path / "c.vtu")
+    assert np.array_equal(polyvol.cell_volumes(a)[0], polyvol.cell_volumes(b)[0])
+    assert np.array_equal(polyvol.cells(a, polyvol.load(body), units="m").volumes,
+                          polyvol.cells(b, polyvol.load(body), units="m").volumes)
+
+
+def test_bad_vtu_files_are_refused_with_the_reason(tmp_path):
+    head = ('<VTKFile type="UnstructuredGrid" byte_order="LittleEndian"><UnstructuredGrid>'
+            '<Piece NumberOfPoints="3" NumberOfCells="1"><Points><DataArray type="Float64" NumberOfComponents="3" '
+            'format="ascii">0 0 0 1 0 0 0 1 0</DataArray></Points><Cells>'
+            '<DataArray type="Int64" Name="connectivity" format="ascii">0 1 2</DataArray>'
+            '<DataArray type="Int64" Name="offsets" format="ascii">3</DataArray>')
+    polygon = tmp_path / "polygon.vtu"
+    polygon.write_text(head + '<DataArray type="UInt8" Name="types" format="ascii">5</DataArray>'
+                       '</Cells></Piece></UnstructuredGrid></VTKFile>')
+    with pytest.raises(polyvol.ReadError, match="VTK cell type 5 is not read"):
+        polyvol.load_cells(polygon)
+    broken = tmp_path / "broken.vtu"
+    broken.write_text(head + '<DataArray type="UInt8" Name="types" format="binary">AgAA$$$</DataArray>'
+                      '</Cells></Piece></UnstructuredGrid></VTKFile>')
+    with pytest.raises(polyvol.ReadError, match="not base64"):
+        polyvol.load_cells(broken)
+    cut = tmp_path / "cut.vtu"
+    cut.write_text(head.replace("</Points>", "").replace('format="ascii">0 0 0 1 0 0 0 1 0</DataArray>',
+                                                          'format="appended" offset="0"/></Points>')
+                   + '<DataArray type="UInt8" Name="types" format="ascii">10</DataArray></Cells></Piece>'
+                   '</UnstructuredGrid><AppendedData encoding="raw">_\x48\x00\x00\x00</AppendedData></VTKFile>')
+    with pytest.raises(polyvol.ReadError, match="more bytes than there are"):
+        polyvol.load_cells(cut)
