@@ -396,3 +396,20 @@ TEST(CellVolumes, FilteredOrExactEveryCellIsItsSurfacesVolume) {
     for (std::size_t c = 0; c < flat.cells; ++c)
         EXPECT_EQ(v.volumes[c], signed_volume(cell_surface(flat.view(), c).view())) << "flat cell " << c;
 }
+
+TEST(Vtu, OurVtuReadsBackAsTheSameCells) {
+    const CellMesh warped = polyvol::generate::hex_cells(3, -1.0, 1.0, 0.3);
+    const CellVolumes own = cell_volumes(warped.view());
+    const std::string path = (scratch("vtu") / "cells.vtu").string();
+    const CellArray arrays[1] = {{"cell_volume", own.volumes, 1, false}};
+    write_vtu(path, warped.view(), arrays);
+    const LoadedCellMesh back = read_cell_mesh(path);
+    EXPECT_EQ(back.format, "vtu");
+    EXPECT_EQ(back.mesh.points, warped.points);
+    EXPECT_EQ(back.mesh.cells, warped.cells);
+    EXPECT_EQ(back.mesh.owner.size(), warped.owner.size());  // every shared face matched once
+    EXPECT_EQ(cell_volumes(back.mesh.view()).volumes, own.volumes);
+    // A file cut short names what is missing.
+    fs::resize_file(path, fs::file_size(path) - 300);
+    EXPECT_THROW(read_vtu(path), ReadError);
+}
