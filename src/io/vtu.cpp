@@ -163,7 +163,10 @@ struct Vtu {
             const auto* first = reinterpret_cast<const uint8_t*>(text.data() + p);
             data.assign(first, first + compressed_total);
         }
-        if (blocks * block > (uint64_t{1} << 36)) fail("a compressed array claims more than 64 GiB");
+        // No allocation from a count the bytes cannot back (readers.hpp's bound on decompression).
+        const uint64_t limit = io::decompression_limit(text.size());
+        if (blocks > limit || block > limit || (blocks > 0 && (blocks - 1) * block + last > limit))
+            fail("a compressed array claims to expand to more than " + std::to_string(limit) + " bytes");
         std::size_t at = 0;
         for (uint64_t b = 0; b < blocks; ++b) {
             const uint64_t size = header_int(head, 3 + b);

@@ -245,3 +245,16 @@ def test_bad_vtu_files_are_refused_with_the_reason(tmp_path):
                    '</UnstructuredGrid><AppendedData encoding="raw">_\x48\x00\x00\x00</AppendedData></VTKFile>')
     with pytest.raises(polyvol.ReadError, match="more bytes than there are"):
         polyvol.load_cells(cut)
+
+
+def test_a_vtu_that_claims_to_expand_to_gigabytes_is_refused_before_allocating(tmp_path):
+    import base64
+    import struct
+    head = struct.pack("<IIII", 1, 0xFFFFFF00, 0xFFFFFF00, 10)  # one block of almost 4 GiB
+    bomb = tmp_path / "bomb.vtu"
+    bomb.write_text('<VTKFile type="UnstructuredGrid" byte_order="LittleEndian" compressor="vtkZLibDataCompressor">'
+                    '<UnstructuredGrid><Piece NumberOfPoints="1" NumberOfCells="0"><Points><DataArray type="Float64" '
+                    'NumberOfComponents="3" format="binary">' + base64.b64encode(head).decode()
+                    + base64.b64encode(b"x" * 10).decode() + "</DataArray></Points></Piece></UnstructuredGrid></VTKFile>")
+    with pytest.raises(polyvol.ReadError, match="claims to expand to more than"):
+        polyvol.load_cells(bomb)
