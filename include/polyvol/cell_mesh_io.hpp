@@ -35,12 +35,20 @@ struct LoadedCellMesh {
 // Reads an OpenFOAM polyMesh (above). Throws ReadError.
 LoadedCellMesh read_polymesh(const std::string& path);
 
+// The same from the four files' bytes (each plain or gzip), `name` naming
+// them in messages (name/points, ...): for tests, fuzzing and uploads.
+struct PolyMeshBytes {
+    std::span<const std::byte> points, faces, owner, neighbour;
+};
+LoadedCellMesh read_polymesh_memory(const PolyMeshBytes& files, const std::string& name);
+
 // Reads a VTK XML UnstructuredGrid (.vtu): ascii, binary and appended
 // (raw or base64) arrays, zlib-compressed or not, 32- or 64-bit headers;
 // tetra, voxel, hexahedron, wedge, pyramid and polyhedron cells. Each
 // distinct face (its points as a set) once, owned by the first cell naming
 // it, wound outward from it, its neighbour the second. Throws ReadError.
 LoadedCellMesh read_vtu(const std::string& path);
+LoadedCellMesh read_vtu_memory(std::span<const std::byte> data, const std::string& name);
 
 // A .vtu file (read_vtu), else an OpenFOAM case or polyMesh directory.
 LoadedCellMesh read_cell_mesh(const std::string& path);

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -361,14 +362,9 @@ fs::path polymesh_directory(const std::string& path) {
 }
 
 // One file (NAME or NAME.gz), its header read.
-FoamFile open_foam_file(const fs::path& dir, const char* name, bool& gzip) {
-    fs::path p = dir / name;
-    std::error_code ec;
-    const bool compressed = !fs::exists(p, ec) && fs::exists(dir / (std::string(name) + ".gz"), ec);
-    if (compressed) p = dir / (std::string(name) + ".gz");
-    std::string shown;
-    std::vector<std::byte> bytes = io::read_whole_input(p.string(), shown);
-    if (compressed) {
+// One file's bytes (gunzipped when they are gzip), its header read.
+FoamFile foam_file(std::vector<std::byte> bytes, const std::string& shown, bool& gzip) {
+    if (io::is_gzip(bytes)) {
         bytes = io::gunzip(bytes, shown, io::decompression_limit(bytes.size()));
         gzip = true;
     }
@@ -377,33 +373,41 @@ FoamFile open_foam_file(const fs::path& dir, const char* name, bool& gzip) {
     return f;
 }
 
-}  // namespace
+// One file of dir (NAME or NAME.gz), its header read.
+FoamFile open_foam_file(const fs::path& dir, const char* name, bool& gzip) {
+    fs::path p = dir / name;
+    std::error_code ec;
+    if (!fs::exists(p, ec) && fs::exists(dir / (std::string(name) + ".gz"), ec)) p = dir / (std::string(name) + ".gz");
+    std::string shown;
+    std::vector<std::byte> bytes = io::read_whole_input(p.string(), shown);
+    return foam_file(std::move(bytes), shown, gzip);
+}
 
-LoadedCellMesh read_polymesh(const std::string& path) {
-    const fs::path dir = polymesh_directory(path);
-    LoadedCellMesh r;
+using OpenFoamFile = std::function<FoamFile(const char* name, bool& gzip)>;
+
+// The mesh from its points, faces, owner and neighbour files, each given by open.
+void read_polymesh_files(const OpenFoamFile& open, LoadedCellMesh& r) {
     r.format = "openfoam";
     r.unit = "m";
-    r.location = dir.string();
     CellMesh& m = r.mesh;
 
-    FoamFile points = open_foam_file(dir, "points", r.gzip);
+    FoamFile points = open("points", r.gzip);
     r.encoding = points.binary() ? "binary" : "ascii";
     m.points = points.vectors();
     const uint64_t point_count = m.points.size() / 3;
     if (point_count >= kNoCell) points.fail_whole("more than 2^32 - 2 points");
 
-    FoamFile faces = open_foam_file(dir, "faces", r.gzip);
+    FoamFile faces = open("faces", r.gzip);
     faces.faces(point_count, m.face_offsets, m.face_points);
     const std::size_t face_count = m.face_offsets.size() - 1;
 
-    FoamFile owner = open_foam_file(dir, "owner", r.gzip);
+    FoamFile owner = open("owner", r.gzip);
     m.owner = owner.labels("owner cell", kNoCell, face_count);
     if (m.owner.size() != face_count)
         owner.fail_whole("owner lists " + std::to_string(m.owner.size()) + " cells, but there are " +
                    std::to_string(face_count) + " faces (" + faces.name() + ")");
 
-    FoamFile neighbour = open_foam_file(dir, "neighbour", r.gzip);
+    FoamFile neighbour = open("neighbour", r.gzip);
     std::vector<uint32_t> internal = neighbour.labels("neighbour cell", kNoCell, face_count);
     if (internal.size() > face_count)
         neighbour.fail_whole("neighbour lists " + std::to_string(internal.size()) + " cells, more than the " +
@@ -425,8 +429,34 @@ LoadedCellMesh read_polymesh(const std::string& path) {
         }
     }
     m.cells = any ? std::size_t{last} + 1 : 0;
+}
+
+}  // namespace
+
+LoadedCellMesh read_polymesh(const std::string& path) {
+    const fs::path dir = polymesh_directory(path);
+    LoadedCellMesh r;
+    r.location = dir.string();
+    read_polymesh_files([&](const char* name, bool& gzip) { return open_foam_file(dir, name, gzip); }, r);
     return r;
 }
+
+LoadedCellMesh read_polymesh_memory(const PolyMeshBytes& files, const std::string& name) {
+    LoadedCellMesh r;
+    r.location = name;
+    read_polymesh_files(
+        [&](const char* file, bool& gzip) {
+            const std::string f(file);
+            const std::span<const std::byte> b = f == "points" ? files.points
+                                                 : f == "faces" ? files.faces
+                                                 : f == "owner" ? files.owner
+                                                                : files.neighbour;
+            return foam_file(std::vector<std::byte>(b.begin(), b.end()), name + "/" + f, gzip);
+        },
+        r);
+    return r;
+}
+
 
 }  // namespace polyvol
 

@@ -280,6 +280,10 @@ private:
 LoadedCellMesh read_vtu(const std::string& path) {
     std::string shown;
     const std::vector<std::byte> bytes = io::read_whole_input(path, shown);
+    return read_vtu_memory(bytes, shown);
+}
+
+LoadedCellMesh read_vtu_memory(std::span<const std::byte> bytes, const std::string& shown) {
     const std::string_view all(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     Vtu vtu;
     vtu.name = shown;
