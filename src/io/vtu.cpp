@@ -15,6 +15,7 @@
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <string>
@@ -338,36 +339,47 @@ LoadedCellMesh read_vtu_memory(std::span<const std::byte> bytes, const std::stri
     const uint64_t n = piece.attribute("NumberOfCells").as_ullong();
     if (offsets.size() != n || types.size() != n)
         vtu.fail("Cells: offsets and types need one entry per cell (" + std::to_string(n) + ")");
-    auto point_id = [&](double v) {
-        if (!(v >= 0 && v < static_cast<double>(points))) vtu.fail("a cell names point " + std::to_string(v) +
-                                                                 ", beyond the " + std::to_string(points) + " points");
-        return static_cast<uint32_t>(v);
+    // A whole number in [0, limit] from an array of doubles, or the reason it is not.
+    auto whole = [&](double v, std::size_t limit, std::size_t c, const char* what) {
+        if (!(v >= 0 && v <= static_cast<double>(limit) && v == std::floor(v)))
+            vtu.fail("cell " + std::to_string(c) + ": " + what + " " + std::to_string(v) + " is out of range");
+        return static_cast<std::size_t>(v);
     };
+    auto point_id = [&](double v, std::size_t c) {
+        return static_cast<uint32_t>(whole(v, points - 1, c, "point"));
+    };
+    if (points == 0 && !connectivity.empty()) vtu.fail("cells name points, but there are none");
     FaceTable table(m);
     std::size_t start = 0, face_start = 0;
-    for (uint32_t c = 0; c < n; ++c) {
-        const auto end = static_cast<std::size_t>(offsets[c]);
-        if (end < start || end > connectivity.size()) vtu.fail("cell " + std::to_string(c) + ": bad offsets");
-        const int type = static_cast<int>(types[c]);
+    for (std::size_t c = 0; c < n; ++c) {
+        const std::size_t end = whole(offsets[c], connectivity.size(), c, "offset");
+        if (end < start) vtu.fail("cell " + std::to_string(c) + ": its offset is below the cell before's");
+        const double type_value = types[c];
+        const int type = type_value >= 0 && type_value <= 255 ? static_cast<int>(type_value) : -1;
+        const auto cell = static_cast<uint32_t>(c);
         if (type == 42) {
-            const auto fend = static_cast<std::size_t>(face_offsets.size() > c ? face_offsets[c] : -1);
-            if (face_offsets.size() <= c || fend > faces.size() || fend < face_start)
+            if (face_offsets.size() <= c)
                 vtu.fail("cell " + std::to_string(c) + ": a polyhedron without its faces (faces, faceoffsets)");
+            const std::size_t fend = whole(face_offsets[c], faces.size(), c, "face offset");
+            if (fend <= face_start) vtu.fail("cell " + std::to_string(c) + ": its face stream is empty");
             std::size_t p = face_start;
-            const auto count = static_cast<std::size_t>(faces[p++]);
+            const double count_value = faces[p++];
+            const std::size_t count = whole(count_value, fend - p, c, "face count");
             for (std::size_t f = 0; f < count; ++f) {
                 if (p >= fend) vtu.fail("cell " + std::to_string(c) + ": its face stream ends early");
-                const auto k = static_cast<std::size_t>(faces[p++]);
-                if (k < 3 || p + k > fend) vtu.fail("cell " + std::to_string(c) + ": a face of fewer than 3 points");
+                const double size_value = faces[p++];
+                const std::size_t k = whole(size_value, fend - p, c, "face size");
+                if (k < 3) vtu.fail("cell " + std::to_string(c) + ": a face of fewer than 3 points");
                 std::vector<uint32_t> face;
-                for (std::size_t i = 0; i < k; ++i) face.push_back(point_id(faces[p++]));
-                table.add(face, c, vtu);
+                for (std::size_t i = 0; i < k; ++i) face.push_back(point_id(faces[p++], c));
+                table.add(face, cell, vtu);
             }
             face_start = fend;
         } else {
             const auto& local = cell_faces_of(type);
             if (local.empty())
-                vtu.fail("cell " + std::to_string(c) + ": VTK cell type " + std::to_string(type) +
+                vtu.fail("cell " + std::to_string(c) + ": VTK cell type " +
+                         (type >= 0 ? std::to_string(type) : std::to_string(type_value)) +
                          " is not read (tetra, voxel, hexahedron, wedge, pyramid, polyhedron are)");
             const std::size_t corners = type == 10 ? 4 : type == 13 ? 6 : type == 14 ? 5 : 8;
             if (end - start != corners)
@@ -375,10 +387,11 @@ LoadedCellMesh read_vtu_memory(std::span<const std::byte> bytes, const std::stri
                          std::to_string(type));
             for (const auto& lf : local) {
                 std::vector<uint32_t> face;
-                for (const int i : lf) face.push_back(point_id(connectivity[start + static_cast<std::size_t>(i)]));
-                table.add(face, c, vtu);
+                for (const int i : lf) face.push_back(point_id(connectivity[start + static_cast<std::size_t>(i)], c));
+                table.add(face, cell, vtu);
             }
-            if (face_offsets.size() > c && face_offsets[c] >= 0) face_start = static_cast<std::size_t>(face_offsets[c]);
+            if (face_offsets.size() > c && face_offsets[c] >= 0)
+                face_start = whole(face_offsets[c], faces.size(), c, "face offset");
         }
         start = end;
     }

@@ -413,3 +413,14 @@ TEST(Vtu, OurVtuReadsBackAsTheSameCells) {
     fs::resize_file(path, fs::file_size(path) - 300);
     EXPECT_THROW(read_vtu(path), ReadError);
 }
+
+TEST(Vtu, TheRegressionsAreReadErrors) {
+    // tests/data/regressions/*.vtu: inputs the fuzz_vtu target found.
+    int files = 0;
+    for (const auto& entry : fs::directory_iterator(std::string(POLYVOL_TEST_DATA) + "/regressions")) {
+        if (entry.path().extension() != ".vtu") continue;
+        ++files;
+        EXPECT_THROW(read_vtu(entry.path().string()), ReadError) << entry.path();
+    }
+    EXPECT_GE(files, 1);
+}
