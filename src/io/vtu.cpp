@@ -119,6 +119,7 @@ struct Vtu {
                 std::size_t p = pos;
                 head = base64(text, p, header_bytes);
                 const uint64_t n = header_int(head, 0);
+                if (n > text.size()) fail("a base64 array claims more bytes than its text holds");
                 p = pos;  // header and values are one base64 stream
                 std::vector<uint8_t> all = base64(text, p, header_bytes + n);
                 out.assign(all.begin() + static_cast<std::ptrdiff_t>(header_bytes), all.end());
@@ -155,7 +156,11 @@ struct Vtu {
         }
         const uint64_t blocks = header_int(head, 0), block = header_int(head, 1), last = header_int(head, 2);
         uint64_t compressed_total = 0;
-        for (uint64_t b = 0; b < blocks; ++b) compressed_total += header_int(head, 3 + b);
+        for (uint64_t b = 0; b < blocks; ++b) {
+            const uint64_t size = header_int(head, 3 + b);
+            if (size > text.size()) fail("a compressed block claims more bytes than there are");
+            compressed_total += size;
+        }
         std::vector<uint8_t> data;
         if (is_base64) {
             data = base64(text, p, compressed_total);
