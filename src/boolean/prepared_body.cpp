@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "boolean/exact_terms.hpp"
 #include "boolean/operand.hpp"
@@ -30,6 +31,22 @@ namespace {
 int bucket_of(double x, double lo, double hi, int n) {
     if (!(hi > lo)) return 0;
     return std::clamp(static_cast<int>(std::floor((x - lo) / (hi - lo) * n)), 0, n - 1);
+}
+
+// Checks that every coordinate of op's triangles is in the exact predicates'
+// range (std::invalid_argument naming `what` otherwise), and lowers e0 to the
+// lowest bit exponent and raises max_coordinate to the largest magnitude
+// among them (boolean_volumes' common scale).
+void widen_scale(const Operand& op, const char* what, int& e0, double& max_coordinate) {
+    for (const uint32_t v : op.tri)
+        for (int k = 0; k < 3; ++k) {
+            const double x = op.point(v)[k];
+            if (!in_predicate_range(x))
+                throw std::invalid_argument(std::string("a coordinate of the ") + what +
+                                            " is not finite or outside 0 and 2^-160 .. 2^180");
+            if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
+            max_coordinate = std::max(max_coordinate, std::fabs(x));
+        }
 }
 
 // The buckets (n per axis over `all`) a box (xmin ymin zmin xmax ymax zmax) meets, per axis.
@@ -76,14 +93,7 @@ std::shared_ptr<const PreparedBody> prepare_body(const MeshView& view) {
     PreparedBody& p = *prepared;
     p.body = make_operand(view, 1);
     int e0 = std::numeric_limits<int>::max();
-    for (const uint32_t v : p.body.tri)
-        for (int k = 0; k < 3; ++k) {
-            const double x = p.body.point(v)[k];
-            if (!in_predicate_range(x))
-                throw std::invalid_argument("a coordinate of the body is not finite or outside 0 and 2^-160 .. 2^180");
-            if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
-            p.max_coordinate = std::max(p.max_coordinate, std::fabs(x));
-        }
+    widen_scale(p.body, "body", e0, p.max_coordinate);
     p.e0 = e0 == std::numeric_limits<int>::max() ? 0 : e0;
     // Buckets: about one triangle each, per axis the cube root.
     const std::size_t nt = p.body.triangles();
@@ -116,10 +126,9 @@ std::vector<int32_t> windings_at(const PreparedBody& body, std::span<const doubl
     s.mesh.indices.assign(triangles.begin(), triangles.end());
     s.tri = s.mesh.indices;
     s.body_shift = {0};
-    for (const uint32_t v : s.tri)
-        for (int k = 0; k < 3; ++k)
-            if (!in_predicate_range(s.point(v)[k]))
-                throw std::invalid_argument("a coordinate of the mesh is not finite or outside 0 and 2^-160 .. 2^180");
+    int e0 = 0;
+    double max_coordinate = 0;
+    widen_scale(s, "mesh", e0, max_coordinate);  // the range check
     finish_operand(s);
     const Crossings cross = find_crossings(s, body.body);
     return vertex_windings(s, body.body, cross.a_hits);
@@ -155,14 +164,7 @@ double cell_intersection(const PreparedBody& body, std::span<const double> point
 
     int e0 = body.e0;
     double max_coordinate = body.max_coordinate;
-    for (const uint32_t v : A.tri)
-        for (int k = 0; k < 3; ++k) {
-            const double x = A.point(v)[k];
-            if (!in_predicate_range(x))
-                throw std::invalid_argument("a coordinate of the mesh is not finite or outside 0 and 2^-160 .. 2^180");
-            if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
-            max_coordinate = std::max(max_coordinate, std::fabs(x));
-        }
+    widen_scale(A, "mesh", e0, max_coordinate);
     return intersection_given_windings(A, B, std::vector<int32_t>(winding.begin(), winding.end()), e0, max_coordinate);
 }
 
