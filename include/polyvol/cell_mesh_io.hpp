@@ -13,6 +13,9 @@
 // checked against the bytes that are there.
 #pragma once
 
+#include <array>
+#include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,12 +27,18 @@ namespace polyvol {
 
 struct LoadedCellMesh {
     CellMesh mesh;
-    std::string format;    // "openfoam" or "vtu"
+    std::string format;    // "openfoam", "vtu" or "grdecl"
     std::string encoding;  // "ascii" or "binary" (of the points file)
     bool gzip = false;     // some file was gzip-compressed
-    std::string unit;      // the length unit of the points ("m" for OpenFOAM)
-    std::string location;  // the directory the files were read from
+    std::string unit;      // the length unit of the points ("m" for OpenFOAM; empty: not stated)
+    std::string location;  // the directory or file read
     std::vector<std::string> notes;
+    // Corner-point grids: the grid's size I×J×K, each cell's place in it,
+    // i + I (j + J k) (only active cells are cells of `mesh`), and the faces
+    // between neighbouring cells that do not match (faults).
+    std::array<uint64_t, 3> grid_dims{};
+    std::vector<uint64_t> grid_index;
+    std::size_t fault_faces = 0;
 };
 
 // Reads an OpenFOAM polyMesh (above). Throws ReadError.
@@ -50,7 +59,22 @@ LoadedCellMesh read_polymesh_memory(const PolyMeshBytes& files, const std::strin
 LoadedCellMesh read_vtu(const std::string& path);
 LoadedCellMesh read_vtu_memory(std::span<const std::byte> data, const std::string& name);
 
-// A .vtu file (read_vtu), else an OpenFOAM case or polyMesh directory.
+// Eclipse GRDECL corner-point grid (io/grdecl.cpp): SPECGRID or DIMENS,
+// COORD, ZCORN, ACTNUM (inactive cells are not cells; grid_index maps back),
+// repeats N*v, comments, INCLUDE (relative to the including file; not from
+// memory), the unit from GRIDUNIT, else METRIC / FIELD / LAB / PVT-M, else
+// none. MAPAXES is read and not applied (a note says so). Each active cell is
+// the polyhedron of its 8 corners: a corner is the point of its pillar at
+// its depth, one point per (pillar, depth), so neighbouring cells share
+// points and faces exactly; a face of a cell whose neighbour names other
+// corners (a fault) bounds each cell alone (fault_faces counts them). The
+// faces are wound outward (all turned when (I, J, K) is left-handed).
+// Other keywords are skipped. Throws ReadError naming the file and line.
+LoadedCellMesh read_grdecl(const std::string& path);
+LoadedCellMesh read_grdecl_memory(std::span<const std::byte> data, const std::string& name);
+
+// A .vtu file (read_vtu), a .grdecl file (read_grdecl), else an OpenFOAM
+// case or polyMesh directory.
 LoadedCellMesh read_cell_mesh(const std::string& path);
 
 // An OpenFOAM mesh's patches (constant/polyMesh/boundary), in order.
@@ -70,6 +94,9 @@ std::vector<FoamPatch> read_foam_patches(const std::string& polymesh_dir);
 // the path written. Throws ReadError for an unreadable boundary file and
 // std::runtime_error when the mesh is not in a case or the file cannot be
 // written.
+std::string write_foam_field(const std::string& polymesh_dir, const std::string& name, std::span<const double> values,
+                             const std::string& time = "0");
+
 // VTK XML UnstructuredGrid (.vtu) of the cells, each a VTK polyhedron (type
 // 42: its faces outward, as cell_mesh.hpp winds them), with cell data (one
 // value per cell and component), in VTK's binary appended form (raw, exact);
@@ -77,7 +104,15 @@ std::vector<FoamPatch> read_foam_patches(const std::string& polymesh_dir);
 // array without one value per cell, std::runtime_error when it cannot write.
 void write_vtu(const std::string& path, const CellMeshView& mesh, std::span<const CellArray> arrays);
 
-std::string write_foam_field(const std::string& polymesh_dir, const std::string& name, std::span<const double> values,
-                             const std::string& time = "0");
+// A GRDECL include file of one keyword for a corner-point grid read by
+// read_grdecl: one value per cell of the I×J×K grid, I fastest, inactive
+// cells 0, runs as N*v, each value the shortest decimal that reads back as
+// the same double. `values` has one value per active cell (per cell of
+// grid.mesh). Throws std::invalid_argument for another mesh, a count that
+// differs or a keyword that is not 1-8 capitals, digits or '_';
+// std::runtime_error when it cannot write (the file is written beside and
+// renamed).
+void write_grdecl_keyword(const std::string& path, const std::string& keyword, std::span<const double> values,
+                          const LoadedCellMesh& grid);
 
 }  // namespace polyvol

@@ -17,6 +17,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <string_view>
@@ -405,9 +406,11 @@ LoadedCellMesh read_vtu_memory(std::span<const std::byte> bytes, const std::stri
 }
 
 LoadedCellMesh read_cell_mesh(const std::string& path) {
-    std::string e = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+    std::string e = std::filesystem::path(path).extension().string();
     std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return e == ".vtu" ? read_vtu(path) : read_polymesh(path);
+    if (e == ".vtu") return read_vtu(path);
+    if (e == ".grdecl") return read_grdecl(path);
+    return read_polymesh(path);
 }
 
 }  // namespace polyvol

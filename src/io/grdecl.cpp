@@ -1,0 +1,470 @@
+// io/grdecl.cpp — read_grdecl and write_grdecl_keyword
+// (polyvol/cell_mesh_io.hpp): Eclipse corner-point grids.
+//
+// The file is keywords, each at the start of a line, most followed by data
+// ended by '/': numbers, repeats N*v, quoted strings; "--" starts a comment.
+// A corner-point grid is I×J×K hexahedra on (I+1)(J+1) straight pillars:
+//   COORD  6 numbers per pillar (top x y z, bottom x y z), pillar (i, j) at
+//          6(i + (I+1) j);
+//   ZCORN  8 depths per cell, corner (i, j, k; a, b, c ∈ {0, 1}) at
+//          (2i + a) + 2I (2j + b) + 4IJ (2k + c);
+//   ACTNUM 0 for an inactive cell (all active without it).
+// A corner is the point of its pillar at its depth z: with t = (z − z_top)
+// / (z_bot − z_top), (x_top + t (x_bot − x_top), y_top + t (y_bot − y_top), z)
+// — one formula, so two cells naming the same pillar and depth get the
+// same point, the same double.
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "io/readers.hpp"
+#include "io/text.hpp"
+#include "polyvol/cell_mesh_io.hpp"
+
+namespace polyvol {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Token {
+    std::string_view text;
+    uint64_t line = 0;
+    bool line_start = false;  // the first token of its line
+    bool quoted = false;
+    bool slash = false;  // the '/' that ends a keyword's data
+};
+
+// The tokens of one GRDECL text (comments dropped).
+std::vector<Token> tokenize(std::string_view s) {
+    std::vector<Token> out;
+    uint64_t line = 1;
+    bool fresh = true;
+    std::size_t p = 0;
+    while (p < s.size()) {
+        const char c = s[p];
+        if (c == '\n') {
+            ++line;
+            fresh = true;
+            ++p;
+        } else if (io::text::is_space(c)) {
+            ++p;
+        } else if (c == '-' && p + 1 < s.size() && s[p + 1] == '-') {
+            while (p < s.size() && s[p] != '\n') ++p;
+        } else if (c == '/') {
+            out.push_back({s.substr(p, 1), line, fresh, false, true});
+            fresh = false;
+            ++p;
+        } else if (c == '\'' || c == '"') {
+            const std::size_t end = s.find(c, p + 1);
+            const std::size_t stop = end == std::string_view::npos ? s.size() : end;
+            out.push_back({s.substr(p + 1, stop - p - 1), line, fresh, true, false});
+            for (std::size_t i = p; i < stop; ++i) line += s[i] == '\n';
+            fresh = false;
+            p = stop + 1;
+        } else {
+            const std::size_t start = p;
+            while (p < s.size() && !io::text::is_space(s[p]) && s[p] != '/') ++p;
+            out.push_back({s.substr(start, p - start), line, fresh, false, false});
+            fresh = false;
+        }
+    }
+    return out;
+}
+
+bool is_keyword(const Token& t) {
+    if (!t.line_start || t.quoted || t.slash || t.text.empty()) return false;
+    const char c = t.text[0];
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+}
+
+std::string upper(std::string_view s) {
+    std::string u(s);
+    for (char& c : u)
+        if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+    return u;
+}
+
+// The keywords a grid needs, and the facts about the file.
+struct Deck {
+    std::array<uint64_t, 3> dims{};
+    bool has_dims = false;
+    std::vector<double> coord, zcorn, actnum, mapaxes;
+    std::string unit;       // from GRIDUNIT, else METRIC / FIELD / LAB / PVT-M
+    std::string unit_from;  // the keyword that said it
+    bool unit_by_gridunit = false;
+};
+
+class Reader {
+public:
+    Reader(Deck& deck, bool files) : deck_(deck), files_(files) {}
+
+    void read(std::string_view text, const std::string& name, int depth) {
+        const std::vector<Token> tokens = tokenize(text);
+        std::size_t i = 0;
+        while (i < tokens.size()) {
+            const Token& k = tokens[i];
+            if (!is_keyword(k)) {
+                if (k.slash) {  // a stray '/' (an empty record) is harmless
+                    ++i;
+                    continue;
+                }
+                throw ReadError(name, k.line, "expected a keyword at the start of a line, found '" +
+                                                  std::string(k.text) + "'");
+            }
+            const std::string word = upper(k.text);
+            ++i;
+            if (word == "METRIC" || word == "FIELD" || word == "LAB" || word == "PVT-M") {
+                if (!deck_.unit_by_gridunit) {
+                    deck_.unit = word == "FIELD" ? "ft" : word == "LAB" ? "cm" : "m";
+                    deck_.unit_from = word;
+                }
+                continue;
+            }
+            const bool wanted = word == "SPECGRID" || word == "DIMENS" || word == "COORD" || word == "ZCORN" ||
+                                word == "ACTNUM" || word == "MAPAXES" || word == "GRIDUNIT" || word == "INCLUDE";
+            // The data: the tokens up to '/' (a keyword without data is
+            // followed at once by the next keyword's line).
+            const std::size_t start = i;
+            while (i < tokens.size() && !tokens[i].slash && !(is_keyword(tokens[i]) && !wanted)) ++i;
+            const bool ended = i < tokens.size() && tokens[i].slash;
+            if (!wanted) {
+                if (ended) ++i;
+                continue;
+            }
+            if (!ended) throw ReadError(name, k.line, word + ": its data is not ended by '/'");
+            const std::span<const Token> data(tokens.data() + start, i - start);
+            ++i;
+            keyword(word, data, k.line, name, depth);
+        }
+    }
+
+private:
+    [[noreturn]] static void fail(const std::string& name, uint64_t line, const std::string& what) {
+        throw ReadError(name, line, what);
+    }
+
+    void keyword(const std::string& word, std::span<const Token> data, uint64_t line, const std::string& name,
+                 int depth) {
+        if (word == "INCLUDE") {
+            if (data.empty()) fail(name, line, "INCLUDE: expected a file name");
+            if (!files_) fail(name, line, "INCLUDE: a grid read from memory cannot include files");
+            if (depth >= 16) fail(name, line, "INCLUDE: nested more than 16 deep");
+            const fs::path target = fs::path(name).parent_path() / fs::path(std::string(data[0].text));
+            std::string shown;
+            const std::vector<std::byte> bytes = io::read_whole_input(target.string(), shown);
+            read(io::text::as_text(bytes), shown, depth + 1);
+            return;
+        }
+        if (word == "GRIDUNIT") {
+            if (data.empty()) fail(name, line, "GRIDUNIT: expected a unit (METRES, FEET or CM)");
+            const std::string u = upper(io::text::trim(data[0].text));
+            deck_.unit = u == "METRES" || u == "METERS" || u == "M" ? "m"
+                         : u == "FEET" || u == "FT"                   ? "ft"
+                         : u == "CM"                                  ? "cm"
+                                                                      : "";
+            if (deck_.unit.empty()) fail(name, line, "GRIDUNIT '" + u + "': expected METRES, FEET or CM");
+            deck_.unit_from = "GRIDUNIT";
+            deck_.unit_by_gridunit = true;
+            return;
+        }
+        if (word == "SPECGRID" || word == "DIMENS") {
+            // I J K, and SPECGRID's NUMRES; the rest (the coordinate type) is not needed.
+            const std::vector<double> v = numbers(data.first(std::min<std::size_t>(data.size(), 4)), 4, name, line, word);
+            if (v.size() < 3) fail(name, line, word + ": expected the grid's size I J K");
+            for (int a = 0; a < 3; ++a) {
+                if (!(v[a] >= 1 && v[a] <= 1e9 && v[a] == std::floor(v[a])))
+                    fail(name, line, word + ": the grid's size must be whole numbers of 1 or more");
+                deck_.dims[a] = static_cast<uint64_t>(v[a]);
+            }
+            if (word == "SPECGRID" && v.size() >= 4 && v[3] != 1)
+                fail(name, line, "SPECGRID: " + std::to_string(static_cast<long long>(v[3])) +
+                                     " reservoirs (NUMRES): only one is read");
+            // Cells, and their 8 corners, are numbered in 32 bits.
+            const uint64_t cells = deck_.dims[0] * deck_.dims[1] * deck_.dims[2];
+            if (cells >= (uint64_t{1} << 28))
+                fail(name, line, word + ": " + std::to_string(cells) + " cells: at most 2^28 are read");
+            deck_.has_dims = true;
+            return;
+        }
+        if (!deck_.has_dims) fail(name, line, word + " before SPECGRID or DIMENS: the grid's size must come first");
+        const auto [nx, ny, nz] = deck_.dims;
+        if (word == "COORD") deck_.coord = numbers(data, 6 * (nx + 1) * (ny + 1), name, line, word);
+        else if (word == "ZCORN") deck_.zcorn = numbers(data, 8 * nx * ny * nz, name, line, word);
+        else if (word == "ACTNUM") deck_.actnum = numbers(data, nx * ny * nz, name, line, word);
+        else if (word == "MAPAXES") deck_.mapaxes = numbers(data, 6, name, line, word);
+    }
+
+    // The numbers of a keyword's data, repeats expanded, at most `limit`
+    // of them (the grid's size says how many it needs).
+    static std::vector<double> numbers(std::span<const Token> data, uint64_t limit, const std::string& name,
+                                       uint64_t line, const std::string& word) {
+        std::vector<double> out;
+        for (const Token& t : data) {
+            std::string_view s = t.text;
+            uint64_t repeat = 1;
+            if (const std::size_t star = s.find('*'); star != std::string_view::npos) {
+                int64_t n = 0;
+                if (!io::text::parse_int(s.substr(0, star), n) || n < 1)
+                    fail(name, t.line, word + ": '" + std::string(s) + "' is not a repeat count N*value");
+                if (star + 1 == s.size())
+                    fail(name, t.line, word + ": '" + std::string(s) + "' asks for default values, which " + word +
+                                           " does not have");
+                repeat = static_cast<uint64_t>(n);
+                s.remove_prefix(star + 1);
+            }
+            double v = 0;
+            if (!io::text::parse_double(s, v) || !std::isfinite(v))
+                fail(name, t.line, word + ": '" + std::string(t.text) + "' is not a number");
+            if (repeat > limit - out.size())
+                fail(name, line, word + ": more than the " + std::to_string(limit) + " values the grid's size needs");
+            out.insert(out.end(), repeat, v);
+        }
+        return out;
+    }
+
+    Deck& deck_;
+    bool files_;
+};
+
+// A corner's point id, one per (pillar, depth).
+class Corners {
+public:
+    Corners(CellMesh& m, const std::vector<double>& coord) : m_(m), coord_(coord) {}
+    uint32_t at(uint64_t pillar, double z) {
+        z += 0.0;  // -0 and +0 are one depth
+        uint64_t bits;
+        std::memcpy(&bits, &z, 8);
+        const auto [it, fresh] = ids_.try_emplace(Key{pillar, bits}, static_cast<uint32_t>(m_.points.size() / 3));
+        if (fresh) {
+            const double* c = coord_.data() + 6 * pillar;  // x_top y_top z_top x_bot y_bot z_bot
+            double x = c[0], y = c[1];
+            // The point of the pillar at depth z (a vertical-less pillar, top
+            // and bottom at one depth, is taken at its top's x and y).
+            if (c[5] != c[2]) {
+                const double t = (z - c[2]) / (c[5] - c[2]);
+                x = c[0] + t * (c[3] - c[0]);
+                y = c[1] + t * (c[4] - c[1]);
+            }
+            m_.points.insert(m_.points.end(), {x, y, z});
+        }
+        return it->second;
+    }
+
+private:
+    struct Key {
+        uint64_t pillar, z;
+        bool operator==(const Key&) const = default;
+    };
+    struct Hash {
+        std::size_t operator()(const Key& k) const {
+            return std::hash<uint64_t>()(k.z * 0x9E3779B97F4A7C15ull ^ k.pillar);
+        }
+    };
+    CellMesh& m_;
+    const std::vector<double>& coord_;
+    std::unordered_map<Key, uint32_t, Hash> ids_;
+};
+
+// Corner n = a + 2b + 4c of a cell (a along I, b along J, c down K); the
+// six faces as corner lists, wound outward when (I, J, K) is right-handed:
+// −I, +I, −J, +J, −K (top), +K (bottom).
+constexpr std::array<std::array<int, 4>, 6> kFaces{{{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                                    {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}}};
+
+LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
+    if (!deck.has_dims) throw ReadError::whole_file(name, "no SPECGRID or DIMENS: the grid's size is not given");
+    const auto [nx, ny, nz] = deck.dims;
+    const uint64_t cells = nx * ny * nz;
+    auto need = [&](const std::vector<double>& v, uint64_t n, const char* word, const char* rule) {
+        if (v.size() != n)
+            throw ReadError::whole_file(name, std::string(word) + " holds " + std::to_string(v.size()) +
+                                                  " values; the grid " + std::to_string(nx) + "×" +
+                                                  std::to_string(ny) + "×" + std::to_string(nz) + " needs " + rule +
+                                                  " = " + std::to_string(n));
+    };
+    need(deck.coord, 6 * (nx + 1) * (ny + 1), "COORD", "6(I+1)(J+1)");
+    need(deck.zcorn, 8 * cells, "ZCORN", "8·I·J·K");
+    if (!deck.actnum.empty()) need(deck.actnum, cells, "ACTNUM", "I·J·K");
+
+    LoadedCellMesh r;
+    r.format = "grdecl";
+    r.encoding = "ascii";
+    r.location = name;
+    r.unit = deck.unit;
+    r.grid_dims = deck.dims;
+    CellMesh& m = r.mesh;
+    auto active = [&](uint64_t i, uint64_t j, uint64_t k) {
+        return deck.actnum.empty() || deck.actnum[i + nx * (j + ny * k)] != 0;
+    };
+    std::vector<uint32_t> cell_of(cells, kNoCell);
+    for (uint64_t c = 0; c < cells; ++c)
+        if (deck.actnum.empty() || deck.actnum[c] != 0) {
+            cell_of[c] = static_cast<uint32_t>(r.grid_index.size());
+            r.grid_index.push_back(c);
+        }
+    m.cells = r.grid_index.size();
+
+    // Each active cell's 8 corner ids, numbered in the order cells first name them.
+    Corners corners(m, deck.coord);
+    std::vector<std::array<uint32_t, 8>> corner_ids(m.cells);
+    for (uint32_t c = 0; c < m.cells; ++c) {
+        const uint64_t g = r.grid_index[c], i = g % nx, j = g / nx % ny, k = g / (nx * ny);
+        for (int n = 0; n < 8; ++n) {
+            const uint64_t a = n & 1, b = (n >> 1) & 1, d = (n >> 2) & 1;
+            const uint64_t pillar = (i + a) + (nx + 1) * (j + b);
+            corner_ids[c][n] =
+                corners.at(pillar, deck.zcorn[(2 * i + a) + 2 * nx * (2 * j + b) + 4 * nx * ny * (2 * k + d)]);
+        }
+    }
+    // Face f of a cell as point ids, repeated corners (a pinched cell) once.
+    auto face_of = [&](const std::array<uint32_t, 8>& ids, int f) {
+        std::vector<uint32_t> face;
+        for (const int n : kFaces[f])
+            if (face.empty() || face.back() != ids[n]) face.push_back(ids[n]);
+        while (face.size() > 1 && face.front() == face.back()) face.pop_back();
+        return face;
+    };
+    auto emit = [&](std::vector<uint32_t> face, uint32_t owner, uint32_t neighbour) {
+        if (face.size() < 3) return;  // collapsed to an edge or a point: no area
+        m.face_points.insert(m.face_points.end(), face.begin(), face.end());
+        m.face_offsets.push_back(static_cast<uint32_t>(m.face_points.size()));
+        m.owner.push_back(owner);
+        m.neighbour.push_back(neighbour);
+    };
+    // Each active cell's +I, +J, +K face is shared with the next cell when
+    // both name the same corners (no fault), else each keeps its own; its
+    // −I, −J, −K face is its own where no active cell precedes it.
+    const std::array<std::array<uint64_t, 3>, 3> step{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    for (uint64_t k = 0; k < nz; ++k)
+        for (uint64_t j = 0; j < ny; ++j)
+            for (uint64_t i = 0; i < nx; ++i) {
+                const uint32_t c = cell_of[i + nx * (j + ny * k)];
+                if (c == kNoCell) continue;
+                const std::array<uint32_t, 8>& ids = corner_ids[c];
+                const std::array<uint64_t, 3> at{i, j, k};
+                for (int axis = 0; axis < 3; ++axis) {
+                    if (at[axis] == 0 || !active(i - step[axis][0], j - step[axis][1], k - step[axis][2]))
+                        emit(face_of(ids, 2 * axis), c, kNoCell);
+                    const uint64_t ni = i + step[axis][0], nj = j + step[axis][1], nk = k + step[axis][2];
+                    if (at[axis] + 1 == deck.dims[axis] || !active(ni, nj, nk)) {
+                        emit(face_of(ids, 2 * axis + 1), c, kNoCell);
+                        continue;
+                    }
+                    const uint32_t n = cell_of[ni + nx * (nj + ny * nk)];
+                    std::vector<uint32_t> mine = face_of(ids, 2 * axis + 1), theirs = face_of(corner_ids[n], 2 * axis);
+                    std::reverse(theirs.begin(), theirs.end());
+                    std::vector<uint32_t> a = mine, b = theirs;
+                    std::sort(a.begin(), a.end());
+                    std::sort(b.begin(), b.end());
+                    if (a == b) {
+                        emit(std::move(mine), c, n);
+                    } else {  // a fault: the two faces differ; each bounds its own cell
+                        ++r.fault_faces;
+                        emit(std::move(mine), c, kNoCell);
+                        std::reverse(theirs.begin(), theirs.end());
+                        emit(std::move(theirs), n, kNoCell);
+                    }
+                }
+            }
+    // Wound outward when the grid's signed volume (Σ over the boundary faces'
+    // fans of det/6, in doubles: only its sign is used) is positive; a
+    // left-handed (I, J, K), as depth downward usually makes it, turns every face.
+    double volume = 0;
+    const CellMeshView v = m.view();
+    for (std::size_t f = 0; f < v.face_count(); ++f) {
+        if (v.neighbour[f] != kNoCell) continue;
+        face_triangles(v.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+            const double* p = &m.points[3 * a];
+            const double* q = &m.points[3 * b];
+            const double* s = &m.points[3 * d];
+            volume += p[0] * (q[1] * s[2] - q[2] * s[1]) - p[1] * (q[0] * s[2] - q[2] * s[0]) +
+                      p[2] * (q[0] * s[1] - q[1] * s[0]);
+        });
+    }
+    if (volume < 0) {
+        for (std::size_t f = 0; f + 1 < m.face_offsets.size(); ++f)
+            std::reverse(m.face_points.begin() + m.face_offsets[f], m.face_points.begin() + m.face_offsets[f + 1]);
+        r.notes.push_back("the grid's axes (I, J, K) are left-handed (depth downward): every face turned outward");
+    }
+    if (!deck.mapaxes.empty())
+        r.notes.push_back("MAPAXES is not applied: the points are in the grid's own coordinates (COORD's)");
+    if (r.fault_faces > 0)
+        r.notes.push_back(std::to_string(r.fault_faces) +
+                          " faces between neighbouring cells do not match (faults): each cell keeps its own");
+    if (!deck.unit_from.empty()) r.notes.push_back("unit " + deck.unit + " from " + deck.unit_from);
+    return r;
+}
+
+}  // namespace
+
+LoadedCellMesh read_grdecl(const std::string& path) {
+    std::string shown;
+    const std::vector<std::byte> bytes = io::read_whole_input(path, shown);
+    Deck deck;
+    Reader(deck, true).read(io::text::as_text(bytes), shown, 0);
+    return build_grid(deck, shown);
+}
+
+LoadedCellMesh read_grdecl_memory(std::span<const std::byte> bytes, const std::string& name) {
+    Deck deck;
+    Reader(deck, false).read(io::text::as_text(bytes), name, 0);
+    return build_grid(deck, name);
+}
+
+void write_grdecl_keyword(const std::string& path, const std::string& keyword, std::span<const double> values,
+                          const LoadedCellMesh& grid) {
+    const uint64_t cells = grid.grid_dims[0] * grid.grid_dims[1] * grid.grid_dims[2];
+    if (grid.format != "grdecl" || cells == 0)
+        throw std::invalid_argument("a GRDECL keyword is written for a corner-point grid (read from GRDECL) only");
+    if (values.size() != grid.grid_index.size())
+        throw std::invalid_argument("a GRDECL keyword needs one value per active cell (" +
+                                    std::to_string(grid.grid_index.size()) + "), not " +
+                                    std::to_string(values.size()));
+    if (keyword.empty() || keyword.size() > 8 ||
+        !std::all_of(keyword.begin(), keyword.end(), [](char c) {
+            return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+        }) || !(keyword[0] >= 'A' && keyword[0] <= 'Z'))
+        throw std::invalid_argument("GRDECL keyword '" + keyword + "': 1 to 8 capitals, digits or '_', a capital first");
+    std::vector<double> all(cells, 0.0);  // inactive cells 0
+    for (std::size_t c = 0; c < values.size(); ++c) all[grid.grid_index[c]] = values[c];
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        if (!out) throw std::runtime_error("cannot write " + tmp);
+        out << "-- written by polyvol: one value per cell of the " << grid.grid_dims[0] << "x" << grid.grid_dims[1]
+            << "x" << grid.grid_dims[2] << " grid, I fastest; inactive cells 0\n"
+            << keyword << "\n";
+        // Runs of equal values as N*v; each value the shortest decimal that
+        // reads back as the same double.
+        int on_line = 0;
+        for (uint64_t c = 0; c < cells;) {
+            uint64_t run = 1;
+            while (c + run < cells && all[c + run] == all[c] && std::signbit(all[c + run]) == std::signbit(all[c]))
+                ++run;
+            char buffer[64];
+            const auto end = std::to_chars(buffer, buffer + sizeof buffer, all[c]).ptr;
+            if (run > 1) out << run << '*';
+            out.write(buffer, end - buffer);
+            out << (++on_line == 6 ? '\n' : ' ');
+            if (on_line == 6) on_line = 0;
+            c += run;
+        }
+        out << "/\n";
+        if (!out.flush()) throw std::runtime_error("cannot write " + tmp);
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) throw std::runtime_error("cannot write " + path + ": " + ec.message());
+}
+
+}  // namespace polyvol
