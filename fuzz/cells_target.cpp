@@ -1,5 +1,6 @@
 // fuzz/cells_target.cpp — the readers of meshes of cells (polyvol/cell_mesh_io.hpp)
 // and what follows them: POLYVOL_FUZZ_CELLS "vtu" reads the input as a .vtu,
+// "grdecl" as a GRDECL corner-point grid (of at most 4096 cells),
 // "polymesh" as OpenFOAM's four files separated by lines "@@" (points,
 // faces, owner, neighbour). A mesh read is checked, and when its cells close,
 // measured (cell_volumes). Bad input is ReadError or std::invalid_argument;
@@ -40,6 +41,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     try {
         if (std::string_view(POLYVOL_FUZZ_CELLS) == "vtu")
             m = read_vtu_memory(all, "f.vtu");
+        else if (std::string_view(POLYVOL_FUZZ_CELLS) == "grdecl")
+            m = read_grdecl_memory(all, "f.grdecl", 4096);
         else
             m = read_polymesh_memory({part(all, 0), part(all, 1), part(all, 2), part(all, 3)}, "case");
     } catch (const ReadError&) {

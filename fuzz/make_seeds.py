@@ -142,3 +142,20 @@ for path in ['obj/tet.obj', 'off/cube-shuffled.off', 'stl/tet_bin.stl', 'ply/tet
         data = f.read()
     put('pipeline', os.path.basename(path), data)
     put('grid', os.path.basename(path), b'\x05\x01\x10' + data)
+
+
+# Corner-point grids: 3×2×2 cells, an inactive cell, repeats and comments; one
+# with a fault on leaning pillars; one layer cake in FIELD units.
+def grdecl(nx, ny, nz, throw, lean, head):
+    coord = ' '.join('%r %r 1000 %r %r 1100' % (10.0 * i, 20.0 * j, 10.0 * i + lean * i, 20.0 * j)
+                     for j in range(ny + 1) for i in range(nx + 1))
+    z = ' '.join('2*%r' % (1000.0 + 5 * (k + c) + (throw if i >= 2 else 0.0))
+                 for k in range(nz) for c in range(2) for j in range(ny) for b in range(2) for i in range(nx))
+    act = ' '.join('0' if n == 1 else '1' for n in range(nx * ny * nz))
+    return '%s-- a seed\nSPECGRID\n%d %d %d 1 F /\nCOORD\n%s /\nZCORN\n%s /\nACTNUM\n%s /\nPORO\n 3*0.2 /\n' % (
+        head, nx, ny, nz, coord, z, act)
+
+
+put('grdecl', 'inactive.grdecl', grdecl(3, 2, 2, 0.0, 0.0, "GRIDUNIT\n'METRES  ' /\n"))
+put('grdecl', 'fault.grdecl', grdecl(3, 2, 2, 2.5, 1.5, 'METRIC\nMAPAXES\n 0 1 0 0 1 0 /\n'))
+put('grdecl', 'field.grdecl', grdecl(2, 1, 3, 0.0, 0.0, 'FIELD\nECHO\n'))

@@ -14,13 +14,13 @@ seconds=${2:-60}
 shift $(( $# > 2 ? 2 : $# ))
 targets=("$@")
 RUNS=${RUNS:-}
-[ ${#targets[@]} -eq 0 ] && targets=(stl obj off ply 3mf amf gzip archive gltf chain qhull polygons pipeline grid vtu polymesh)
+[ ${#targets[@]} -eq 0 ] && targets=(stl obj off ply 3mf amf gzip archive gltf chain qhull polygons pipeline grid vtu polymesh grdecl)
 mkdir -p "$build/fuzz-artifacts" "$build/fuzz-logs"
 
 dict_of() {
   case $1 in
     stl) echo fuzz/dict/stl.dict ;; obj) echo fuzz/dict/obj.dict ;; off) echo fuzz/dict/off.dict ;;
-    ply) echo fuzz/dict/ply.dict ;; 3mf|amf|vtu) echo fuzz/dict/xml.dict ;; chain|qhull|polygons) echo fuzz/dict/chain.dict ;;
+    ply) echo fuzz/dict/ply.dict ;; 3mf|amf|vtu) echo fuzz/dict/xml.dict ;; chain|qhull|polygons) echo fuzz/dict/chain.dict ;; grdecl) echo fuzz/dict/grdecl.dict ;;
     *) echo "" ;;
   esac
 }

@@ -1,8 +1,8 @@
-// `polyvol cells MESH [BODY...] [--json] [-o OUT.npy|OUT.json] [--fractions]
-//   [--field NAME] [--units U] [--mesh-units U]`
+// `polyvol cells MESH [BODY...] [--json] [-o OUT.npy|.vtu|.grdecl|.json]
+//   [--fractions] [--field NAME] [--keyword NAME] [--units U] [--mesh-units U]`
 //
-// Reads the mesh of cells (an OpenFOAM case or its constant/polyMesh; exit
-// 2 if unreadable), checks that every cell closes (exit 3), reads each body
+// Reads the mesh of cells (an OpenFOAM case or its constant/polyMesh, a
+// .vtu, a .grdecl corner-point grid; exit 2 if unreadable), checks that every cell closes (exit 3), reads each body
 // as the solid it means (exit 2 / 3 as `volume`), puts it in the mesh's
 // unit, and gives each body's volume in every cell (polyvol/cells.hpp),
 // correctly rounded:
@@ -13,6 +13,8 @@
 //               keeping the boundary conditions of an existing 0/N
 //   OUT.vtu     VTK UnstructuredGrid (polyhedra) with cell_volume and, per
 //               body, its volume, fraction and cell_class (ParaView opens it)
+//   OUT.grdecl  (a corner-point grid, one body) the volumes, or fractions,
+//               as one GRDECL keyword over every cell (--keyword; inactive 0)
 //   OUT.json    the summary only (as --json prints it)
 #include "commands/cells.hpp"
 
@@ -49,8 +51,10 @@ struct Body {
 
 int check_arguments(const CellsArgs& a) {
     const std::string out = lower_extension(a.out);
-    if (!a.out.empty() && out != ".npy" && out != ".json" && out != ".vtu")
-        return usage("-o " + a.out + ": expected a .npy, .vtu or .json file");
+    if (!a.out.empty() && out != ".npy" && out != ".json" && out != ".vtu" && out != ".grdecl")
+        return usage("-o " + a.out + ": expected a .npy, .vtu, .grdecl or .json file");
+    if (out == ".grdecl" && a.bodies.size() != 1) return usage("-o " + a.out + " needs exactly one body");
+    if (!a.keyword.empty() && out != ".grdecl") return usage("--keyword names the keyword of -o OUT.grdecl");
     if (!a.field.empty() && a.bodies.size() != 1) return usage("--field needs exactly one body");
     if (a.fractions && a.bodies.empty()) return usage("--fractions needs a body");
     for (const std::string* u : {&a.units, &a.mesh_units})
@@ -111,12 +115,18 @@ nlohmann::json summary(const CellsArgs& a, const LoadedCellMesh& mesh, const std
                  {"faces", m.face_count()},
                  {"points", m.point_count()},
                  {"volume", json_number(own.total)}};
-    j["accuracy"] = "correctly-rounded";  // every cell's volume, and every total
+    if (mesh.format == "grdecl")
+        j["mesh"]["grid"] = {{"dims", mesh.grid_dims},
+                             {"active_cells", mesh.grid_index.size()},
+                             {"fault_faces", mesh.fault_faces}};
+    j["accuracy"] = "correctly-rounded";  // every cell's volume, and every total but a faulted grid's
+    j["cells_tile"] = mesh.cells_tile;    // false: inside_mesh is the cells' sum, each cell correctly rounded
     nlohmann::json list = nlohmann::json::array();
     for (const Body& b : bodies)
         list.push_back({{"file", b.file},
                         {"volume", json_number(b.cells.body_volume)},
                         {"inside_mesh", json_number(b.cells.total)},
+                        {"cells_sum", json_number(b.cells.cells_sum)},
                         {"full_cells", b.cells.full_cells},
                         {"cut_cells", b.cells.cut_cells},
                         {"empty_cells", b.cells.empty_cells},
@@ -130,7 +140,13 @@ void print_table(const nlohmann::json& j) {
     const auto& m = j["mesh"];
     const std::string unit = m["unit"].get<std::string>();
     const std::string cubed = unit.empty() ? "" : " " + unit + "3";
-    std::cout << m["file"].get<std::string>() << ": " << m["cells"].get<std::size_t>() << " cells, "
+    std::cout << m["file"].get<std::string>() << ": ";
+    if (m.contains("grid")) {
+        const auto& d = m["grid"]["dims"];
+        std::cout << "corner-point grid " << d[0].get<uint64_t>() << "x" << d[1].get<uint64_t>() << "x"
+                  << d[2].get<uint64_t>() << ", active ";
+    }
+    std::cout << m["cells"].get<std::size_t>() << " cells, "
               << m["faces"].get<std::size_t>() << " faces, " << m["points"].get<std::size_t>()
               << " points; volume " << shortest(m["volume"].get<double>()) << cubed << "\n";
     for (const auto& b : j["bodies"])
@@ -138,7 +154,15 @@ void print_table(const nlohmann::json& j) {
                   << ", inside the mesh " << shortest(b["inside_mesh"].get<double>()) << cubed << "; cells "
                   << b["full_cells"].get<std::size_t>() << " full, " << b["cut_cells"].get<std::size_t>()
                   << " cut, " << b["empty_cells"].get<std::size_t>() << " empty\n";
-    std::cout << "volumes: correctly rounded, every cell and every total\n";
+    if (m.contains("grid") && m["grid"]["fault_faces"].get<std::size_t>() > 0)
+        std::cout << "faults: " << m["grid"]["fault_faces"].get<std::size_t>()
+                  << " faces between neighbouring cells do not match; each cell keeps its own faces; "
+                  << (j["cells_tile"].get<bool>()
+                          ? "on vertical pillars the cells still tile, and every total is conserved\n"
+                          : "off vertical pillars they may overlap or leave gaps: each body's inside-the-mesh figure "
+                            "is its cells' values added, each correctly rounded, and is not conserved\n");
+    std::cout << (j["cells_tile"].get<bool>() ? "volumes: correctly rounded, every cell and every total\n"
+                                              : "volumes: correctly rounded, every cell and the mesh's\n");
 }
 
 int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolumes& own,
@@ -168,6 +192,9 @@ int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolu
                 arrays.push_back({prefix + "cell_class", classes[i], 1, true});
             }
             write_vtu(a.out, mesh.mesh.view(), arrays);
+        } else if (lower_extension(a.out) == ".grdecl") {
+            const std::string keyword = !a.keyword.empty() ? a.keyword : a.fractions ? "BODYFRAC" : "BODYVOL";
+            write_grdecl_keyword(a.out, keyword, a.fractions ? bodies[0].fractions : bodies[0].cells.volumes, mesh);
         } else if (lower_extension(a.out) == ".json") {
             std::ofstream(a.out) << j.dump(2) << "\n";
         }
@@ -187,19 +214,25 @@ int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolu
 CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
     auto* cmd = app.add_subcommand("cells",
                                    "Volume of each body in every cell of a mesh of polyhedral cells (an OpenFOAM "
-                                   "case), correctly rounded, and the cells' own volumes");
-    cmd->add_option("mesh", a.mesh, "An OpenFOAM case directory, or its constant/polyMesh")->required();
+                                   "case, a .vtu, a GRDECL corner-point grid), correctly rounded, and the cells' "
+                                   "own volumes");
+    cmd->add_option("mesh", a.mesh,
+                    "An OpenFOAM case directory or its constant/polyMesh, a VTK .vtu, or an Eclipse .grdecl")
+        ->required();
     cmd->add_option("bodies", a.bodies, "Closed meshes (any format polyvol reads), each the solid it means");
     cmd->add_flag("--json", a.json, "Print the summary as JSON");
     cmd->add_option("-o,--output", a.out,
                     "OUT.npy: per-cell volumes (or fractions), shape (cells,) or (bodies, cells); "
-                    "OUT.vtu: the cells with their volumes, fractions and classes; OUT.json: the summary");
+                    "OUT.vtu: the cells with their volumes, fractions and classes; OUT.grdecl: one keyword "
+                    "over the corner-point grid's cells (one body); OUT.json: the summary");
     cmd->add_flag("--fractions", a.fractions, "Write each cell's fraction inside the body, not its volume");
     cmd->add_option("--field", a.field,
                     "Write the fractions as the OpenFOAM field CASE/0/NAME (e.g. alpha.water), keeping the "
                     "boundary conditions of an existing one (one body)");
+    cmd->add_option("--keyword", a.keyword,
+                    "The GRDECL keyword -o OUT.grdecl writes (default BODYVOL, or BODYFRAC with --fractions)");
     cmd->add_option("--units", a.units, std::string("The bodies' unit where a file states none: ") + kLengthUnitNames);
-    cmd->add_option("--mesh-units", a.mesh_units, "The mesh's unit (OpenFOAM: m)");
+    cmd->add_option("--mesh-units", a.mesh_units, "The mesh's unit (OpenFOAM: m; GRDECL: its unit keyword)");
     add_solid_flags(cmd, a.solid_flags);
     return cmd;
 }
@@ -209,6 +242,7 @@ int run_cells_command(const CellsArgs& a) {
     auto mesh = read_or_report(a.mesh, [&] { return read_cell_mesh(a.mesh); });
     if (!mesh) return Exit::unreadable;
     const std::string unit = !a.mesh_units.empty() ? length_unit(a.mesh_units)->name : mesh->unit;
+    for (const std::string& note : mesh->notes) std::cerr << "polyvol: note: " << a.mesh << ": " << note << "\n";
     const CellMeshView view = mesh->mesh.view();
     const auto t0 = Clock::now();
     CellVolumes own;
@@ -229,7 +263,7 @@ int run_cells_command(const CellsArgs& a) {
             const bool within = solid->solid && solid->solid->shells_crossing_themselves > 0;
             b.cells = body_in_cells(view, body->mesh.view(),
                                     {.overlapping_shells = solid->resolved(), .within_shells = within,
-                                     .reference = false, .own = own.volumes});
+                                     .reference = false, .own = own.volumes, .cells_tile = mesh->cells_tile});
         } catch (const std::invalid_argument& e) {
             std::cerr << "polyvol: " << file << " in " << a.mesh << ": " << e.what() << "\n";
             return Exit::invalid;

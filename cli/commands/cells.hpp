@@ -1,5 +1,6 @@
 // `polyvol cells MESH [BODY...]`: the volume of each body in every cell of
-// a mesh of polyhedral cells (an OpenFOAM case), and the cells' own volumes
+// a mesh of polyhedral cells (an OpenFOAM case, a .vtu, a GRDECL
+// corner-point grid), and the cells' own volumes
 // (polyvol/cells.hpp).
 #pragma once
 
@@ -18,8 +19,9 @@ struct CellsArgs {
     SolidFlags solid_flags;  // --orient, --weld-tolerance, --signed: each body the solid it means
     std::string units;       // the bodies' unit, where a file states none
     std::string mesh_units;  // the mesh's unit (OpenFOAM: metres)
-    std::string out;         // -o OUT.npy or OUT.json
+    std::string out;         // -o OUT.npy, OUT.vtu, OUT.grdecl or OUT.json
     std::string field;       // --field NAME: an OpenFOAM volScalarField of the fractions
+    std::string keyword;     // --keyword NAME: the GRDECL keyword -o OUT.grdecl writes
     bool fractions = false;
     bool json = false;
 };

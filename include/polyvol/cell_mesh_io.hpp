@@ -39,6 +39,10 @@ struct LoadedCellMesh {
     std::array<uint64_t, 3> grid_dims{};
     std::vector<uint64_t> grid_index;
     std::size_t fault_faces = 0;
+    // Whether the cells are known to tile the region their boundary faces
+    // enclose: false for a corner-point grid with a fault that is not between
+    // vertical pillars (there the cells may overlap or leave gaps).
+    bool cells_tile = true;
 };
 
 // Reads an OpenFOAM polyMesh (above). Throws ReadError.
@@ -67,11 +71,18 @@ LoadedCellMesh read_vtu_memory(std::span<const std::byte> data, const std::strin
 // the polyhedron of its 8 corners: a corner is the point of its pillar at
 // its depth, one point per (pillar, depth), so neighbouring cells share
 // points and faces exactly; a face of a cell whose neighbour names other
-// corners (a fault) bounds each cell alone (fault_faces counts them). The
+// corners (a fault) bounds each cell alone (fault_faces counts them; the
+// cells still tile where both pillars of each such face are vertical:
+// cells_tile). The
 // faces are wound outward (all turned when (I, J, K) is left-handed).
-// Other keywords are skipped. Throws ReadError naming the file and line.
-LoadedCellMesh read_grdecl(const std::string& path);
-LoadedCellMesh read_grdecl_memory(std::span<const std::byte> data, const std::string& name);
+// Other keywords are skipped. Grids of more than max_cells cells (at most
+// 2^28: cells and points are numbered in 32 bits) and repeats expanding to
+// more than max(2^26, 64 × the file's bytes) values are refused. Throws
+// ReadError naming the file and line.
+inline constexpr uint64_t kMaxGridCells = uint64_t{1} << 28;
+LoadedCellMesh read_grdecl(const std::string& path, uint64_t max_cells = kMaxGridCells);
+LoadedCellMesh read_grdecl_memory(std::span<const std::byte> data, const std::string& name,
+                                  uint64_t max_cells = kMaxGridCells);
 
 // A .vtu file (read_vtu), a .grdecl file (read_grdecl), else an OpenFOAM
 // case or polyMesh directory.

@@ -31,7 +31,7 @@ from . import _polyvol as _core
 __all__ = [
     "Mesh", "load", "load_bytes", "measure_file", "orient", "mass_properties", "volume", "check", "solid", "overlap", "self_crossings",
     "grid", "Grid", "chain_volume", "polygon_area", "load_chain", "load_polygons", "implicit",
-    "CellMesh", "load_cells", "cell_volumes", "cells", "Cells", "write_foam_field",
+    "CellMesh", "load_cells", "cell_volumes", "cells", "Cells", "write_foam_field", "write_grdecl_keyword",
     "ReadError", "ImplicitError", "ExpressionError", "NotASolidError", "__version__",
 ]
 
@@ -641,8 +641,8 @@ class Cells(_Result):
     """Bodies in the cells of a mesh (`polyvol cells`): every volume correctly
     rounded; see polyvol.cells."""
 
-    _fields = ("unit", "total", "cell_volumes", "volumes", "fractions", "cell_class", "inside_mesh", "body_volumes",
-               "full_cells", "cut_cells", "empty_cells")
+    _fields = ("unit", "total", "cell_volumes", "volumes", "fractions", "cell_class", "inside_mesh", "cells_sum",
+               "cells_tile", "body_volumes", "full_cells", "cut_cells", "empty_cells")
 
 
-from ._cells import CellMesh, cell_volumes, cells, load_cells, write_foam_field  # noqa: E402
+from ._cells import CellMesh, cell_volumes, cells, load_cells, write_foam_field, write_grdecl_keyword  # noqa: E402

@@ -1,5 +1,6 @@
 """The volume of bodies in every cell of a mesh of polyhedral cells (an
-OpenFOAM case): polyvol/cells.hpp, as `polyvol cells` gives it."""
+OpenFOAM case, a .vtu, an Eclipse .grdecl corner-point grid):
+polyvol/cells.hpp, as `polyvol cells` gives it."""
 
 import numpy as np
 
@@ -10,13 +11,17 @@ CellMesh = _core.CellMesh
 CellMesh.__doc__ = """A mesh of polyhedral cells in OpenFOAM's form (polyvol/cell_mesh.hpp):
 ``points`` (n, 3), faces as ``face_offsets`` and ``face_points``, ``owner``
 and ``neighbour`` per face (-1 on the boundary), ``cell_count``,
-``format``, ``encoding``, ``unit`` (metres for OpenFOAM), ``location``."""
+``format``, ``encoding``, ``unit`` (metres for OpenFOAM; a GRDECL file's
+unit keyword), ``location``, ``notes``. Corner-point grids also give
+``grid_dims`` (I, J, K), ``grid_index`` (each cell's i + I (j + J k): only
+active cells are cells) and ``fault_faces``; ``cells_tile`` is False for a
+grid with faults (its cells may overlap or leave gaps)."""
 
 
 def load_cells(path):
     """A mesh of cells: an OpenFOAM case directory or its constant/polyMesh
-    (ASCII or binary, .gz files), or a VTK .vtu unstructured grid (every
-    encoding VTK writes). Raises ReadError naming the file and the line,
+    (ASCII or binary, .gz files), a VTK .vtu unstructured grid (every
+    encoding VTK writes), or an Eclipse .grdecl corner-point grid. Raises ReadError naming the file and the line,
     byte or cell."""
     return _core.read_polymesh(str(path))
 
@@ -36,6 +41,14 @@ def write_foam_field(mesh, name, values, time="0"):
     return _core.write_foam_field(mesh, str(name), values, str(time))
 
 
+def write_grdecl_keyword(mesh, path, keyword, values):
+    """Writes the values (one per active cell of a corner-point grid) as the
+    GRDECL keyword `keyword` over every cell of the grid, I fastest,
+    inactive cells 0: an include file for reservoir tools."""
+    values = np.ascontiguousarray(values, dtype=np.float64).reshape(-1)
+    _core.write_grdecl_keyword(mesh, str(path), str(keyword), values)
+
+
 def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=False, weld_tolerance=0.0):
     """The volume of each body in every cell of ``mesh`` (a CellMesh, or a
     path for load_cells), correctly rounded, as `polyvol cells` gives it.
@@ -50,7 +63,9 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
     Returns Cells: ``cell_volumes`` (cells,), ``volumes`` and ``fractions``
     (bodies, cells), ``cell_class`` (bodies, cells: 0 empty, 1 full, 2 cut),
     ``inside_mesh`` per body (the exact sum of its cells rounded once: for a
-    body inside the mesh, its volume bit for bit), ``body_volumes``,
+    body inside the mesh, its volume bit for bit; where ``cells_tile`` is
+    False, a grid with faults, the cells' values added: ``cells_sum``),
+    ``cells_sum`` (the cells' values added exactly, rounded once), ``body_volumes``,
     ``full_cells``, ``cut_cells``, ``empty_cells`` per body, ``total`` (the
     mesh's volume) and ``unit``."""
     from . import Mesh, _policy, _solid_verdict, _warn, Cells  # noqa: E402 (defined before this module is imported)
@@ -77,6 +92,7 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
         fractions = np.clip(np.where(own > 0, volumes / own, 0.0), 0.0, 1.0)
     return Cells(unit=unit, cell_volumes=own, total=total, volumes=volumes, fractions=fractions,
                  cell_class=np.array([r["cell_class"] for r in results], dtype=np.uint8).reshape(len(results), n),
-                 inside_mesh=[r["inside_mesh"] for r in results], body_volumes=[r["volume"] for r in results],
+                 inside_mesh=[r["inside_mesh"] for r in results], cells_sum=[r["cells_sum"] for r in results],
+                 cells_tile=mesh.cells_tile, body_volumes=[r["volume"] for r in results],
                  full_cells=[r["full_cells"] for r in results], cut_cells=[r["cut_cells"] for r in results],
                  empty_cells=[r["empty_cells"] for r in results])

@@ -52,7 +52,22 @@ void bind_cells(py::module_& m) {
         .def_readonly("encoding", &LoadedCellMesh::encoding)
         .def_readonly("gzip", &LoadedCellMesh::gzip)
         .def_readonly("unit", &LoadedCellMesh::unit)
-        .def_readonly("location", &LoadedCellMesh::location);
+        .def_readonly("location", &LoadedCellMesh::location)
+        .def_readonly("notes", &LoadedCellMesh::notes)
+        .def_property_readonly("grid_dims",
+                               [](const LoadedCellMesh& l) -> py::object {
+                                   if (l.format != "grdecl") return py::none();
+                                   return py::make_tuple(l.grid_dims[0], l.grid_dims[1], l.grid_dims[2]);
+                               })
+        .def_property_readonly("grid_index",
+                               [](py::object self) -> py::object {
+                                   const auto& l = self.cast<const LoadedCellMesh&>();
+                                   if (l.format != "grdecl") return py::none();
+                                   return view_array<uint64_t>(l.grid_index.data(),
+                                                               {static_cast<py::ssize_t>(l.grid_index.size())}, self);
+                               })
+        .def_readonly("fault_faces", &LoadedCellMesh::fault_faces)
+        .def_property_readonly("cells_tile", [](const LoadedCellMesh& l) { return l.cells_tile; });
 
     m.def(
         "read_polymesh",
@@ -109,7 +124,7 @@ void bind_cells(py::module_& m) {
                     const bool within = solid.solid && solid.solid->shells_crossing_themselves > 0;
                     r = body_in_cells(l.mesh.view(), body.view(),
                                       {.overlapping_shells = solid.resolved(), .within_shells = within,
-                                       .reference = false, .own = {}});
+                                       .reference = false, .own = {}, .cells_tile = l.cells_tile});
                 }
             }
             if (!r) return py::make_tuple(solid_verdict(solid), py::none(), notes);
@@ -120,6 +135,7 @@ void bind_cells(py::module_& m) {
             d["volumes"] = adopt_array(std::move(r->volumes), {n});
             d["cell_class"] = adopt_array(std::move(cls), {n});
             d["inside_mesh"] = r->total;
+            d["cells_sum"] = r->cells_sum;
             d["volume"] = r->body_volume;
             d["full_cells"] = r->full_cells;
             d["cut_cells"] = r->cut_cells;
@@ -139,6 +155,13 @@ void bind_cells(py::module_& m) {
             return write_foam_field(l.location, name, span_of(values), time);
         },
         py::arg("mesh"), py::arg("name"), py::arg("values"), py::arg("time"));
+
+    m.def(
+        "write_grdecl_keyword",
+        [](const LoadedCellMesh& l, const std::string& path, const std::string& keyword, const Doubles& values) {
+            write_grdecl_keyword(path, keyword, span_of(values), l);
+        },
+        py::arg("mesh"), py::arg("path"), py::arg("keyword"), py::arg("values"));
 }
 
 }  // namespace polyvol::python

@@ -15,6 +15,7 @@
 #include "boolean/prepared_body.hpp"
 #include "cells/cell_faces.hpp"
 #include "core/union_find.hpp"
+#include "exact/exact_sum.hpp"
 #include "polyvol/boolean.hpp"
 #include "polyvol/cells.hpp"
 
@@ -124,9 +125,13 @@ Mesh cell_surface(const CellMeshView& m, const cells::CellFaces& cf, std::size_t
     return out;
 }
 
-// |B ∩ M| and |B| (B's checks too), by the booleans with M's boundary faces as A.
-void whole_volumes(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options, BodyInCells& r) {
-    const Mesh outside = boundary_surface(m);
+// |B ∩ M| and |B| (B's checks too), by the booleans with M's boundary faces
+// as A. Cells that may not tile M (options.cells_tile false) leave no
+// surface to intersect (its winding may be 2 where cells overlap): B is
+// checked and measured against one cell, and total is the cells' sum.
+void whole_volumes(const CellMeshView& m, const cells::CellFaces& cf, const MeshView& body,
+                   const BodyInCellsOptions& options, BodyInCells& r) {
+    const Mesh outside = options.cells_tile || m.cell_count() == 0 ? boundary_surface(m) : cell_surface(m, cf, 0);
     const BooleanVolumes whole = booleans(outside.view(), body, options);
     if (whole.status == BooleanStatus::b_not_closed) throw std::invalid_argument("the body is not a closed surface");
     if (whole.status == BooleanStatus::b_inside_out) throw std::invalid_argument("the body is inside out");
@@ -179,8 +184,12 @@ void fill_untouched(const CellMeshView& m, const std::vector<uint8_t>& touched, 
     }
 }
 
-// Each cell's class by its value: empty (0), full (its own volume), cut.
+// Each cell's class by its value: empty (0), full (its own volume), cut;
+// and the cells' values added exactly, rounded once.
 void classify(std::span<const double> own, BodyInCells& r) {
+    exact::ExactSum sum;
+    sum.add(r.volumes);
+    r.cells_sum = sum.round();
     r.cell_class.resize(r.volumes.size());
     for (std::size_t c = 0; c < r.volumes.size(); ++c) {
         const double v = r.volumes[c];
@@ -196,7 +205,7 @@ BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const
     const cells::CellFaces cf = cells::cell_faces(m);
     BodyInCells r;
     r.volumes.assign(m.cell_count(), 0);
-    whole_volumes(m, body, options, r);
+    whole_volumes(m, cf, body, options, r);
     const std::vector<uint8_t> touched = touched_cells(m, cf, *boolean::prepare_body(body));
     const std::vector<uint32_t> list = listed(touched);
     r.touched_cells = list.size();
@@ -210,6 +219,7 @@ BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const
         return v != 0;
     }, r);
     classify(own.volumes, r);
+    if (!options.cells_tile) r.total = r.cells_sum;
     return r;
 }
 
@@ -221,7 +231,7 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
     const cells::CellFaces cf = cells::cell_faces(m);
     BodyInCells r;
     r.volumes.assign(m.cell_count(), 0);
-    whole_volumes(m, body, options, r);
+    whole_volumes(m, cf, body, options, r);
     const std::vector<uint8_t> touched = touched_cells(m, cf, *prepared);
     const std::vector<uint32_t> list = listed(touched);
     r.touched_cells = list.size();
@@ -242,9 +252,11 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
     fill_untouched(m, touched, own.volumes, [&](std::size_t c) {
         std::vector<uint32_t> tris;
         cell_triangles(m, cf, c, tris);
+        if (tris.empty()) return false;  // a cell without faces holds nothing
         return boolean::windings_at(*prepared, m.points, tris)[tris[0]] != 0;  // one ray
     }, r);
     classify(own.volumes, r);
+    if (!options.cells_tile) r.total = r.cells_sum;
     return r;
 }
 

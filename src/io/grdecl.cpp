@@ -99,16 +99,16 @@ struct Deck {
     std::array<uint64_t, 3> dims{};
     bool has_dims = false;
     std::vector<double> coord, zcorn, actnum, mapaxes;
-    std::string unit;       // from GRIDUNIT, else METRIC / FIELD / LAB / PVT-M
-    std::string unit_from;  // the keyword that said it
+    std::string unit;  // from GRIDUNIT, else METRIC / FIELD / LAB / PVT-M
     bool unit_by_gridunit = false;
 };
 
 class Reader {
 public:
-    Reader(Deck& deck, bool files) : deck_(deck), files_(files) {}
+    Reader(Deck& deck, bool files, uint64_t max_cells) : deck_(deck), files_(files), max_cells_(max_cells) {}
 
     void read(std::string_view text, const std::string& name, int depth) {
+        bytes_ += text.size();
         const std::vector<Token> tokens = tokenize(text);
         std::size_t i = 0;
         while (i < tokens.size()) {
@@ -124,10 +124,7 @@ public:
             const std::string word = upper(k.text);
             ++i;
             if (word == "METRIC" || word == "FIELD" || word == "LAB" || word == "PVT-M") {
-                if (!deck_.unit_by_gridunit) {
-                    deck_.unit = word == "FIELD" ? "ft" : word == "LAB" ? "cm" : "m";
-                    deck_.unit_from = word;
-                }
+                if (!deck_.unit_by_gridunit) deck_.unit = word == "FIELD" ? "ft" : word == "LAB" ? "cm" : "m";
                 continue;
             }
             const bool wanted = word == "SPECGRID" || word == "DIMENS" || word == "COORD" || word == "ZCORN" ||
@@ -173,7 +170,6 @@ private:
                          : u == "CM"                                  ? "cm"
                                                                       : "";
             if (deck_.unit.empty()) fail(name, line, "GRIDUNIT '" + u + "': expected METRES, FEET or CM");
-            deck_.unit_from = "GRIDUNIT";
             deck_.unit_by_gridunit = true;
             return;
         }
@@ -191,9 +187,14 @@ private:
                                      " reservoirs (NUMRES): only one is read");
             // Cells, and their 8 corners, are numbered in 32 bits.
             const uint64_t cells = deck_.dims[0] * deck_.dims[1] * deck_.dims[2];
-            if (cells >= (uint64_t{1} << 28))
-                fail(name, line, word + ": " + std::to_string(cells) + " cells: at most 2^28 are read");
+            if (cells > max_cells_)
+                fail(name, line, word + ": " + std::to_string(cells) + " cells: at most " +
+                                     std::to_string(max_cells_) + " are read");
             deck_.has_dims = true;
+            return;
+        }
+        if (word == "MAPAXES") {
+            deck_.mapaxes = numbers(data, 6, name, line, word);
             return;
         }
         if (!deck_.has_dims) fail(name, line, word + " before SPECGRID or DIMENS: the grid's size must come first");
@@ -201,14 +202,16 @@ private:
         if (word == "COORD") deck_.coord = numbers(data, 6 * (nx + 1) * (ny + 1), name, line, word);
         else if (word == "ZCORN") deck_.zcorn = numbers(data, 8 * nx * ny * nz, name, line, word);
         else if (word == "ACTNUM") deck_.actnum = numbers(data, nx * ny * nz, name, line, word);
-        else if (word == "MAPAXES") deck_.mapaxes = numbers(data, 6, name, line, word);
     }
 
     // The numbers of a keyword's data, repeats expanded, at most `limit`
-    // of them (the grid's size says how many it needs).
-    static std::vector<double> numbers(std::span<const Token> data, uint64_t limit, const std::string& name,
-                                       uint64_t line, const std::string& word) {
+    // of them (the grid's size says how many it needs), and repeats
+    // expanding to no more than max(2^26, 64 × the bytes read) values in all
+    // (no huge allocation for a small file).
+    std::vector<double> numbers(std::span<const Token> data, uint64_t limit, const std::string& name,
+                                uint64_t line, const std::string& word) {
         std::vector<double> out;
+        const uint64_t cap = std::max<uint64_t>(uint64_t{1} << 26, 64 * bytes_);
         for (const Token& t : data) {
             std::string_view s = t.text;
             uint64_t repeat = 1;
@@ -227,6 +230,10 @@ private:
                 fail(name, t.line, word + ": '" + std::string(t.text) + "' is not a number");
             if (repeat > limit - out.size())
                 fail(name, line, word + ": more than the " + std::to_string(limit) + " values the grid's size needs");
+            if (repeat > cap - std::min(cap, expanded_))
+                fail(name, t.line, word + ": the repeats expand to more than " + std::to_string(cap) +
+                                       " values, 64 times the file's size: refused");
+            expanded_ += repeat;
             out.insert(out.end(), repeat, v);
         }
         return out;
@@ -234,6 +241,8 @@ private:
 
     Deck& deck_;
     bool files_;
+    uint64_t max_cells_;
+    uint64_t bytes_ = 0, expanded_ = 0;
 };
 
 // A corner's point id, one per (pillar, depth).
@@ -341,6 +350,10 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
         m.owner.push_back(owner);
         m.neighbour.push_back(neighbour);
     };
+    auto vertical = [&](uint64_t i, uint64_t j) {
+        const double* c = deck.coord.data() + 6 * (i + (nx + 1) * j);
+        return c[0] == c[3] && c[1] == c[4];
+    };
     // Each active cell's +I, +J, +K face is shared with the next cell when
     // both name the same corners (no fault), else each keeps its own; its
     // −I, −J, −K face is its own where no active cell precedes it.
@@ -370,6 +383,14 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
                         emit(std::move(mine), c, n);
                     } else {  // a fault: the two faces differ; each bounds its own cell
                         ++r.fault_faces;
+                        // On two vertical pillars both faces lie in their plane (every corner
+                        // has its pillar's x and y exactly) and the cells still tile; else
+                        // they may overlap or leave slivers.
+                        const bool on_vertical_pillars =
+                            axis == 0 ? vertical(i + 1, j) && vertical(i + 1, j + 1)
+                            : axis == 1 ? vertical(i, j + 1) && vertical(i + 1, j + 1)
+                                        : false;  // layers that do not meet: they may overlap
+                        if (!on_vertical_pillars) r.cells_tile = false;
                         emit(std::move(mine), c, kNoCell);
                         std::reverse(theirs.begin(), theirs.end());
                         emit(std::move(theirs), n, kNoCell);
@@ -398,26 +419,22 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
     }
     if (!deck.mapaxes.empty())
         r.notes.push_back("MAPAXES is not applied: the points are in the grid's own coordinates (COORD's)");
-    if (r.fault_faces > 0)
-        r.notes.push_back(std::to_string(r.fault_faces) +
-                          " faces between neighbouring cells do not match (faults): each cell keeps its own");
-    if (!deck.unit_from.empty()) r.notes.push_back("unit " + deck.unit + " from " + deck.unit_from);
     return r;
 }
 
 }  // namespace
 
-LoadedCellMesh read_grdecl(const std::string& path) {
+LoadedCellMesh read_grdecl(const std::string& path, uint64_t max_cells) {
     std::string shown;
     const std::vector<std::byte> bytes = io::read_whole_input(path, shown);
     Deck deck;
-    Reader(deck, true).read(io::text::as_text(bytes), shown, 0);
+    Reader(deck, true, max_cells).read(io::text::as_text(bytes), shown, 0);
     return build_grid(deck, shown);
 }
 
-LoadedCellMesh read_grdecl_memory(std::span<const std::byte> bytes, const std::string& name) {
+LoadedCellMesh read_grdecl_memory(std::span<const std::byte> bytes, const std::string& name, uint64_t max_cells) {
     Deck deck;
-    Reader(deck, false).read(io::text::as_text(bytes), name, 0);
+    Reader(deck, false, max_cells).read(io::text::as_text(bytes), name, 0);
     return build_grid(deck, name);
 }
 

@@ -258,3 +258,88 @@ def test_a_vtu_that_claims_to_expand_to_gigabytes_is_refused_before_allocating(t
                     + base64.b64encode(b"x" * 10).decode() + "</DataArray></Points></Piece></UnstructuredGrid></VTKFile>")
     with pytest.raises(polyvol.ReadError, match="claims to expand to more than"):
         polyvol.load_cells(bomb)
+
+
+def grdecl_file(path, nx, ny, nz, actnum, throw=0.0, lean=0.0):
+    """A corner-point grid of 10 × 20 × 5 m cells (depth down), columns i >= 2
+    thrown down by `throw`, pillars leaning apart by `lean` per column."""
+    coord = []
+    for j in range(ny + 1):
+        for i in range(nx + 1):
+            coord += [10.0 * i, 20.0 * j, 1000.0, 10.0 * i + lean * i, 20.0 * j, 1100.0]
+    z = []
+    for k in range(nz):
+        for c in range(2):
+            for j in range(ny):
+                for b in range(2):
+                    for i in range(nx):
+                        z += [1000.0 + 5.0 * (k + c) + (throw if i >= 2 else 0.0)] * 2
+    path.write_text("METRIC\nSPECGRID\n%d %d %d 1 F /\nCOORD\n%s /\nZCORN\n%s /\nACTNUM\n%s /\n" % (
+        nx, ny, nz, " ".join(map(repr, coord)), " ".join(map(repr, z)), " ".join(map(str, actnum))))
+    return path
+
+
+def read_keyword(path):
+    """A GRDECL keyword file's values, repeats expanded."""
+    words = [w for line in path.read_text().splitlines() if not line.startswith("--") for w in line.split()]
+    values = []
+    for w in words[1:words.index("/")]:
+        n, _, v = w.rpartition("*")
+        values += [float(v)] * (int(n) if n else 1)
+    return words[0], np.array(values)
+
+
+def test_a_corner_point_grid_gives_the_commands_bits_and_its_keyword_file(tmp_path):
+    grid = grdecl_file(tmp_path / "grid.grdecl", 4, 3, 2, [1] * 5 + [0] + [1] * 18, throw=2.0)
+    lo, hi = (5.0, 3.0, 1001.0), (33.0, 51.0, 1012.5)
+    body = off_file(tmp_path / "box.off", *box(lo, hi))
+    m = polyvol.load_cells(grid)
+    assert (m.format, m.unit, m.grid_dims, m.cell_count, m.cells_tile) == ("grdecl", "m", (4, 3, 2), 23, True)
+    assert m.fault_faces == 3 * 2 - 1  # between columns 1 and 2, one beside the inactive cell
+    r = polyvol.cells(m, polyvol.load(body), units="m")
+    out = subprocess.run([CLI, "cells", grid, body, "--units", "m", "-o", tmp_path / "frac.grdecl", "--fractions",
+                          "--keyword", "SATBODY", "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    j = json.loads(out.stdout)
+    assert j["mesh"]["grid"] == {"dims": [4, 3, 2], "active_cells": 23, "fault_faces": 5}
+    assert j["bodies"][0]["inside_mesh"] == r.inside_mesh[0]
+    keyword, values = read_keyword(tmp_path / "frac.grdecl")
+    assert keyword == "SATBODY" and len(values) == 24 and values[5] == 0
+    assert np.array_equal(values[m.grid_index], r.fractions[0])  # the same doubles, through the text
+    # Vertical pillars: the thrown cells still tile; each cell is the box's overlap, exactly.
+    exact = Fraction(0)
+    for c, g in enumerate(m.grid_index):
+        i, jj, k = g % 4, g // 4 % 3, g // 12
+        t = 2.0 if i >= 2 else 0.0
+        cell = [(10.0 * i, 10.0 * i + 10), (20.0 * jj, 20.0 * jj + 20), (1000 + 5.0 * k + t, 1005 + 5.0 * k + t)]
+        v = math.prod(max(Fraction(0), Fraction(min(h, b)) - Fraction(max(l, a)))
+                      for (a, b), l, h in zip(cell, lo, hi))
+        assert r.volumes[0][c] == float(v)
+        exact += v
+    assert r.inside_mesh[0] == float(exact)
+
+
+def test_a_faulted_grid_on_leaning_pillars_says_its_total_is_the_cells_sum(tmp_path):
+    grid = grdecl_file(tmp_path / "grid.grdecl", 3, 2, 2, [1] * 12, throw=3.0, lean=4.0)
+    body = off_file(tmp_path / "box.off", *box((12.0, 3.0, 1001.0), (27.0, 30.0, 1012.0)))
+    r = polyvol.cells(grid, polyvol.load(body), units="m")
+    assert r.cells_tile is False and r.inside_mesh == r.cells_sum
+    out = subprocess.run([CLI, "cells", grid, body, "--units", "m"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "faults: 4 faces" in out.stdout and "is not conserved" in out.stdout
+    assert "correctly rounded, every cell and the mesh's" in out.stdout
+
+
+def test_bad_grdecl_files_are_refused_with_the_line(tmp_path):
+    grid = grdecl_file(tmp_path / "grid.grdecl", 2, 2, 1, [1] * 4)
+    grid.write_text(grid.read_text().replace("ZCORN\n1000.0", "ZCORN\nx1000.0"))
+    out = subprocess.run([CLI, "cells", grid], capture_output=True, text=True)
+    assert out.returncode == 2 and "grid.grdecl:7: ZCORN: 'x1000.0' is not a number" in out.stderr, out.stderr
+    with pytest.raises(polyvol.ReadError, match="is not a number"):
+        polyvol.load_cells(grid)
+    out = subprocess.run([CLI, "cells", grid, grid, "-o", tmp_path / "o.grdecl", "--keyword", "x"],
+                         capture_output=True, text=True)
+    assert out.returncode == 2  # the mesh is unreadable before the keyword is looked at
+    good = grdecl_file(tmp_path / "good.grdecl", 2, 2, 1, [1] * 4)
+    out = subprocess.run([CLI, "cells", good, "-o", tmp_path / "o.grdecl"], capture_output=True, text=True)
+    assert out.returncode == 1 and "needs exactly one body" in out.stderr
