@@ -147,17 +147,24 @@ double cell_intersection(const PreparedBody& body, std::span<const double> point
     finish_operand(A);
     std::vector<uint32_t> near;
     body.triangles_meeting(A.bounds, near);
+    // The near triangles over their own vertices (sorted body indices, a
+    // few dozen: a search per corner, not a table of the whole body per cell).
     Operand B;
     B.body_shift = {1};
-    std::vector<uint32_t> local(body.body.mesh.vertex_count(), kNoVertex);
+    std::vector<uint32_t> used;
+    used.reserve(3 * near.size());
+    for (const uint32_t t : near)
+        for (int i = 0; i < 3; ++i) used.push_back(body.body.tri[3 * std::size_t{t} + i]);
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    B.mesh.positions.reserve(3 * used.size());
+    for (const uint32_t v : used)
+        B.mesh.positions.insert(B.mesh.positions.end(), body.body.point(v), body.body.point(v) + 3);
+    B.tri.reserve(3 * near.size());
     for (const uint32_t t : near)
         for (int i = 0; i < 3; ++i) {
             const uint32_t v = body.body.tri[3 * std::size_t{t} + i];
-            if (local[v] == kNoVertex) {
-                local[v] = static_cast<uint32_t>(B.mesh.vertex_count());
-                B.mesh.positions.insert(B.mesh.positions.end(), body.body.point(v), body.body.point(v) + 3);
-            }
-            B.tri.push_back(local[v]);
+            B.tri.push_back(static_cast<uint32_t>(std::lower_bound(used.begin(), used.end(), v) - used.begin()));
         }
     B.mesh.indices = B.tri;
     finish_operand(B);
