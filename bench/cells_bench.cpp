@@ -53,6 +53,27 @@ void CellsArgo(benchmark::State& state) {
                                                static_cast<double>(state.range(1)) / 100);
     run(state, cells, body);
 }
+// Two ellipsoids, the second moved by a quarter of its size: their union in
+// every cell (union_in_cells: the exact reference path, a boolean per
+// touched cell against both bodies).
+void CellsUnion(benchmark::State& state) {
+    static const Mesh a = ellipsoid();
+    static const Mesh b = [] {
+        Mesh m = ellipsoid();
+        for (std::size_t v = 0; v < m.vertex_count(); ++v) m.positions[3 * v] += 0.25;
+        return m;
+    }();
+    const CellMesh cells = generate::hex_cells(static_cast<int>(state.range(0)), -1.0, 1.0, 0.0);
+    const MeshView both[2] = {a.view(), b.view()};
+    for (auto _ : state) {
+        const BodyInCells r = union_in_cells(cells.view(), both);
+        benchmark::DoNotOptimize(r.total);
+        state.counters["cut_cells"] = static_cast<double>(r.cut_cells);
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * cells.cells));
+}
+BENCHMARK(CellsUnion)->Arg(16)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 BENCHMARK(CellsArgo)->Args({16, 0})->Args({16, 25})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void CellsLarge(benchmark::State& state) {

@@ -22,6 +22,8 @@ struct CellsArgs {
     std::string out;         // -o OUT.npy, OUT.vtu, OUT.grdecl or OUT.json
     std::string field;       // --field NAME: an OpenFOAM volScalarField of the fractions
     std::string keyword;     // --keyword NAME: the GRDECL keyword -o OUT.grdecl writes
+    std::string union_out;         // --union FILE.npy: the bodies' union per cell
+    std::string intersection_out;  // --intersection FILE.npy: two bodies' intersection per cell
     bool fractions = false;
     bool json = false;
 };

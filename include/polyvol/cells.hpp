@@ -103,4 +103,24 @@ struct BodyInCellsOptions {
 };
 BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body, const BodyInCellsOptions& options = {});
 
+// Several bodies' union in every cell, correctly rounded: the bodies (each
+// a closed outward 2-cycle, its own solid: solid.hpp) taken together as one
+// body whose shells overlap — the region where any is — by the exact
+// reference path (a boolean per touched cell). options.overlapping_shells
+// is implied; within_shells when a body's shell crosses itself.
+BodyInCells union_in_cells(const CellMeshView& mesh, std::span<const MeshView> bodies,
+                           const BodyInCellsOptions& options = {});
+
+// Two bodies' intersection in every cell, from three correctly rounded
+// values per cell: |A ∩ B ∩ c| = |A ∩ c| + |B ∩ c| − |(A ∪ B) ∩ c|, added
+// exactly, rounded once, clamped to [0, min(|A ∩ c|, |B ∩ c|)]: within
+// 2 ulp(|c|) of the exact value (each term is within half an ulp of a
+// value at most |c|); total the same of the three totals, within
+// 2 ulp(|(A ∪ B) ∩ M|). A bound, not a correct rounding.
+struct IntersectionInCells {
+    std::vector<double> volumes;
+    double total = 0;
+};
+IntersectionInCells intersection_in_cells(const BodyInCells& a, const BodyInCells& b, const BodyInCells& both);
+
 }  // namespace polyvol

@@ -262,6 +262,33 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
 
 }  // namespace
 
+BodyInCells union_in_cells(const CellMeshView& m, std::span<const MeshView> bodies, const BodyInCellsOptions& options) {
+    Mesh all;
+    for (const MeshView& b : bodies) all.append(to_mesh(b));
+    BodyInCellsOptions o = options;
+    o.overlapping_shells = true;
+    return reference_volumes(m, all.view(), o);
+}
+
+IntersectionInCells intersection_in_cells(const BodyInCells& a, const BodyInCells& b, const BodyInCells& both) {
+    if (a.volumes.size() != b.volumes.size() || a.volumes.size() != both.volumes.size())
+        throw std::invalid_argument("intersection_in_cells: the three results are of different meshes");
+    // a + b − (a ∪ b), added exactly and rounded once, within [0, min(a, b)].
+    auto inclusion_exclusion = [](double x, double y, double u) {
+        exact::ExactSum s;
+        s.add(x);
+        s.add(y);
+        s.add(-u);
+        return std::clamp(s.round(), 0.0, std::min(x, y));
+    };
+    IntersectionInCells r;
+    r.volumes.resize(a.volumes.size());
+    for (std::size_t c = 0; c < r.volumes.size(); ++c)
+        r.volumes[c] = inclusion_exclusion(a.volumes[c], b.volumes[c], both.volumes[c]);
+    r.total = inclusion_exclusion(a.total, b.total, both.total);
+    return r;
+}
+
 BodyInCells body_in_cells(const CellMeshView& m, const MeshView& body, const BodyInCellsOptions& options) {
     if (options.reference || options.overlapping_shells) return reference_volumes(m, body, options);
     return prepared_volumes(m, body, options);

@@ -424,3 +424,38 @@ TEST(Vtu, TheRegressionsAreReadErrors) {
     }
     EXPECT_GE(files, 1);
 }
+
+TEST(BodyInCells, TwoBoxesUnionIsCorrectlyRoundedAndTheirIntersectionBounded) {
+    const LoadedCellMesh loaded = read_polymesh(kData + "graded_box");
+    const CellMeshView m = loaded.mesh.view();
+    const std::array<double, 3> a0{0.05, 0.03, 0.02}, a1{0.21, 0.17, 0.2};
+    const std::array<double, 3> b0{0.11, 0.01, 0.07}, b1{0.3, 0.13, 0.16};
+    const std::array<double, 3> i0{0.11, 0.03, 0.07}, i1{0.21, 0.13, 0.16};  // A ∩ B, a box
+    const Mesh A = polyvol::test::box(a0, a1), B = polyvol::test::box(b0, b1);
+    const MeshView both[2] = {A.view(), B.view()};
+    const BodyInCells ra = body_in_cells(m, A.view()), rb = body_in_cells(m, B.view());
+    const BodyInCells u = union_in_cells(m, both);
+    const IntersectionInCells x = intersection_in_cells(ra, rb, u);
+    mpq_class union_sum = 0, meet_sum = 0;
+    std::size_t cells_in_both = 0;
+    for (std::size_t c = 0; c < m.cell_count(); ++c) {
+        double lo[3], hi[3];
+        cell_box(m, c, lo, hi);
+        const mpq_class meet = overlap(lo, hi, i0, i1);
+        const mpq_class joined = overlap(lo, hi, a0, a1) + overlap(lo, hi, b0, b1) - meet;
+        union_sum += joined;
+        meet_sum += meet;
+        EXPECT_EQ(u.volumes[c], exact::round_to_double(joined.get_mpq_t())) << "cell " << c;
+        const double cell = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+        const double ulp = std::nextafter(cell, INFINITY) - cell;
+        EXPECT_LE(std::abs(mpq_class(mpq_class(x.volumes[c]) - meet).get_d()), 2 * ulp) << "cell " << c;
+        cells_in_both += meet > 0;
+    }
+    EXPECT_GT(cells_in_both, 3u);
+    EXPECT_EQ(u.total, exact::round_to_double(union_sum.get_mpq_t()));
+    EXPECT_LE(std::abs(mpq_class(mpq_class(x.total) - meet_sum).get_d()),
+              2 * (std::nextafter(u.total, INFINITY) - u.total));
+    // The union of a body with itself is the body.
+    const MeshView twice[2] = {A.view(), A.view()};
+    EXPECT_EQ(union_in_cells(m, twice).volumes, ra.volumes);
+}
