@@ -65,21 +65,24 @@ LoadedCellMesh read_vtu_memory(std::span<const std::byte> data, const std::strin
 
 // Eclipse GRDECL corner-point grid (io/grdecl.cpp): SPECGRID or DIMENS,
 // COORD, ZCORN, ACTNUM (inactive cells are not cells; grid_index maps back),
-// repeats N*v, comments, INCLUDE (relative to the including file; not from
-// memory), the unit from GRIDUNIT, else METRIC / FIELD / LAB / PVT-M, else
+// repeats N*v, comments, INCLUDE (relative to the main file's directory, as
+// OPM resolves it; not from memory), the unit from GRIDUNIT, else METRIC / FIELD / LAB / PVT-M, else
 // none. MAPAXES is read and not applied (a note says so). Each active cell is
 // the polyhedron of its 8 corners: a corner is the point of its pillar at
 // its depth, one point per (pillar, depth), so neighbouring cells share
 // points and faces exactly; a face of a cell whose neighbour names other
 // corners (a fault) bounds each cell alone (fault_faces counts them; the
-// cells still tile where both pillars of each such face are vertical:
-// cells_tile). The
+// cells still tile where both pillars of each such face are vertical, and
+// where layers that do not meet leave a gap, not an overlap: cells_tile). The
 // faces are wound outward (all turned when (I, J, K) is left-handed).
-// Other keywords are skipped. Grids of more than max_cells cells (at most
-// 2^28: cells and points are numbered in 32 bits) and repeats expanding to
-// more than max(2^26, 64 × the file's bytes) values are refused. Throws
-// ReadError naming the file and line.
-inline constexpr uint64_t kMaxGridCells = uint64_t{1} << 28;
+// Other keywords are skipped, each up to the next keyword's line (several
+// records), the rest of a line after '/' being a comment; one that changes
+// a grid array (EQUALS 'ACTNUM' ..., COPY, a grid array inside BOX) is
+// refused, as are radial grids and NUMRES > 1. Grids of more than max_cells
+// cells (at most 2^27: cells, points and face lists are numbered in 32
+// bits) and repeats expanding to more than max(2^22, 8 × the file's bytes)
+// values are refused. Throws ReadError naming the file and line.
+inline constexpr uint64_t kMaxGridCells = uint64_t{1} << 27;
 LoadedCellMesh read_grdecl(const std::string& path, uint64_t max_cells = kMaxGridCells);
 LoadedCellMesh read_grdecl_memory(std::span<const std::byte> data, const std::string& name,
                                   uint64_t max_cells = kMaxGridCells);

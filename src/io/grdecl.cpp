@@ -44,26 +44,31 @@ struct Token {
     bool slash = false;  // the '/' that ends a keyword's data
 };
 
-// The tokens of one GRDECL text (comments dropped).
+// The tokens of one GRDECL text. Comments are dropped: "--" to the end of
+// the line, and the rest of a line after a '/' (Eclipse reads no further).
+// "\n", "\r\n" and a lone "\r" each end a line.
 std::vector<Token> tokenize(std::string_view s) {
     std::vector<Token> out;
     uint64_t line = 1;
     bool fresh = true;
     std::size_t p = 0;
+    auto to_line_end = [&] {
+        while (p < s.size() && s[p] != '\n' && s[p] != '\r') ++p;
+    };
     while (p < s.size()) {
         const char c = s[p];
-        if (c == '\n') {
+        if (c == '\n' || c == '\r') {
             ++line;
             fresh = true;
-            ++p;
+            p += (c == '\r' && p + 1 < s.size() && s[p + 1] == '\n') ? 2 : 1;
         } else if (io::text::is_space(c)) {
             ++p;
         } else if (c == '-' && p + 1 < s.size() && s[p + 1] == '-') {
-            while (p < s.size() && s[p] != '\n') ++p;
+            to_line_end();
         } else if (c == '/') {
             out.push_back({s.substr(p, 1), line, fresh, false, true});
             fresh = false;
-            ++p;
+            to_line_end();
         } else if (c == '\'' || c == '"') {
             const std::size_t end = s.find(c, p + 1);
             const std::size_t stop = end == std::string_view::npos ? s.size() : end;
@@ -105,7 +110,10 @@ struct Deck {
 
 class Reader {
 public:
-    Reader(Deck& deck, bool files, uint64_t max_cells) : deck_(deck), files_(files), max_cells_(max_cells) {}
+    // INCLUDE paths are relative to the main file's directory (as OPM and
+    // Eclipse resolve them).
+    Reader(Deck& deck, bool files, uint64_t max_cells, fs::path root)
+        : deck_(deck), files_(files), max_cells_(max_cells), root_(std::move(root)) {}
 
     void read(std::string_view text, const std::string& name, int depth) {
         bytes_ += text.size();
@@ -129,18 +137,21 @@ public:
             }
             const bool wanted = word == "SPECGRID" || word == "DIMENS" || word == "COORD" || word == "ZCORN" ||
                                 word == "ACTNUM" || word == "MAPAXES" || word == "GRIDUNIT" || word == "INCLUDE";
-            // The data: the tokens up to '/' (a keyword without data is
-            // followed at once by the next keyword's line).
             const std::size_t start = i;
-            while (i < tokens.size() && !tokens[i].slash && !(is_keyword(tokens[i]) && !wanted)) ++i;
-            const bool ended = i < tokens.size() && tokens[i].slash;
             if (!wanted) {
-                if (ended) ++i;
+                // Any other keyword: its records (several for FAULTS, EQUALS,
+                // ...) up to the next keyword's line. Those that would change
+                // the grid's arrays are refused rather than ignored.
+                while (i < tokens.size() && !is_keyword(tokens[i])) ++i;
+                other_keyword(word, std::span(tokens.data() + start, i - start), k.line, name);
                 continue;
             }
-            if (!ended) throw ReadError(name, k.line, word + ": its data is not ended by '/'");
+            while (i < tokens.size() && !tokens[i].slash) ++i;
+            if (i == tokens.size()) throw ReadError(name, k.line, word + ": its data is not ended by '/'");
             const std::span<const Token> data(tokens.data() + start, i - start);
             ++i;
+            if (box_ && word != "INCLUDE" && word != "GRIDUNIT" && word != "MAPAXES")
+                throw ReadError(name, k.line, word + " inside a BOX (a part of the grid) is not read");
             keyword(word, data, k.line, name, depth);
         }
     }
@@ -150,13 +161,27 @@ private:
         throw ReadError(name, line, what);
     }
 
+    // BOX ... ENDBOX limits what follows to part of the grid; EQUALS, COPY,
+    // ADD, MULTIPLY and the like change arrays: one that names a grid array
+    // would change the cells, so it is refused.
+    void other_keyword(const std::string& word, std::span<const Token> data, uint64_t line, const std::string& name) {
+        if (word == "BOX") box_ = true;
+        if (word == "ENDBOX") box_ = false;
+        for (const Token& t : data) {
+            const std::string u = upper(io::text::trim(t.text));
+            if (u == "ACTNUM" || u == "ZCORN" || u == "COORD")
+                fail(name, line, word + " changes " + u + ": not read (write the array out in full)");
+        }
+    }
+
     void keyword(const std::string& word, std::span<const Token> data, uint64_t line, const std::string& name,
                  int depth) {
         if (word == "INCLUDE") {
             if (data.empty()) fail(name, line, "INCLUDE: expected a file name");
             if (!files_) fail(name, line, "INCLUDE: a grid read from memory cannot include files");
             if (depth >= 16) fail(name, line, "INCLUDE: nested more than 16 deep");
-            const fs::path target = fs::path(name).parent_path() / fs::path(std::string(data[0].text));
+            if (++includes_ > 1000) fail(name, line, "INCLUDE: more than 1000 files included");
+            const fs::path target = root_ / fs::path(std::string(io::text::trim(data[0].text)));
             std::string shown;
             const std::vector<std::byte> bytes = io::read_whole_input(target.string(), shown);
             read(io::text::as_text(bytes), shown, depth + 1);
@@ -174,22 +199,24 @@ private:
             return;
         }
         if (word == "SPECGRID" || word == "DIMENS") {
-            // I J K, and SPECGRID's NUMRES; the rest (the coordinate type) is not needed.
-            const std::vector<double> v = numbers(data.first(std::min<std::size_t>(data.size(), 4)), 4, name, line, word);
+            // I J K; SPECGRID's NUMRES (1) and coordinate type (F: Cartesian).
+            const std::vector<double> v = numbers(data.first(std::min<std::size_t>(data.size(), 3)), 3, name, line, word);
             if (v.size() < 3) fail(name, line, word + ": expected the grid's size I J K");
             for (int a = 0; a < 3; ++a) {
                 if (!(v[a] >= 1 && v[a] <= 1e9 && v[a] == std::floor(v[a])))
                     fail(name, line, word + ": the grid's size must be whole numbers of 1 or more");
                 deck_.dims[a] = static_cast<uint64_t>(v[a]);
             }
-            if (word == "SPECGRID" && v.size() >= 4 && v[3] != 1)
-                fail(name, line, "SPECGRID: " + std::to_string(static_cast<long long>(v[3])) +
-                                     " reservoirs (NUMRES): only one is read");
-            // Cells, and their 8 corners, are numbered in 32 bits.
-            const uint64_t cells = deck_.dims[0] * deck_.dims[1] * deck_.dims[2];
-            if (cells > max_cells_)
-                fail(name, line, word + ": " + std::to_string(cells) + " cells: at most " +
-                                     std::to_string(max_cells_) + " are read");
+            if (word == "SPECGRID" && data.size() >= 4 && data[3].text != "1" && data[3].text != "1*")
+                fail(name, line, "SPECGRID: NUMRES " + std::string(data[3].text) + ": only one reservoir is read");
+            if (word == "SPECGRID" && data.size() >= 5 && upper(data[4].text) == "T")
+                fail(name, line, "SPECGRID: a radial grid (T) is not read");
+            // Cells, their points and face lists are numbered in 32 bits.
+            const auto [nx, ny, nz] = deck_.dims;
+            if (nx * ny > max_cells_ || nx * ny * nz > max_cells_)
+                fail(name, line, word + ": " + std::to_string(nx) + "×" + std::to_string(ny) + "×" +
+                                     std::to_string(nz) + " cells: at most " + std::to_string(max_cells_) +
+                                     " are read");
             deck_.has_dims = true;
             return;
         }
@@ -206,12 +233,12 @@ private:
 
     // The numbers of a keyword's data, repeats expanded, at most `limit`
     // of them (the grid's size says how many it needs), and repeats
-    // expanding to no more than max(2^26, 64 × the bytes read) values in all
+    // expanding to no more than max(2^22, 8 × the bytes read) values in all
     // (no huge allocation for a small file).
     std::vector<double> numbers(std::span<const Token> data, uint64_t limit, const std::string& name,
                                 uint64_t line, const std::string& word) {
         std::vector<double> out;
-        const uint64_t cap = std::max<uint64_t>(uint64_t{1} << 26, 64 * bytes_);
+        const uint64_t cap = std::max<uint64_t>(uint64_t{1} << 22, 8 * bytes_);
         for (const Token& t : data) {
             std::string_view s = t.text;
             uint64_t repeat = 1;
@@ -232,7 +259,7 @@ private:
                 fail(name, line, word + ": more than the " + std::to_string(limit) + " values the grid's size needs");
             if (repeat > cap - std::min(cap, expanded_))
                 fail(name, t.line, word + ": the repeats expand to more than " + std::to_string(cap) +
-                                       " values, 64 times the file's size: refused");
+                                       " values, 8 times the file's size: refused");
             expanded_ += repeat;
             out.insert(out.end(), repeat, v);
         }
@@ -242,13 +269,17 @@ private:
     Deck& deck_;
     bool files_;
     uint64_t max_cells_;
+    fs::path root_;
     uint64_t bytes_ = 0, expanded_ = 0;
+    int includes_ = 0;
+    bool box_ = false;
 };
 
 // A corner's point id, one per (pillar, depth).
 class Corners {
 public:
-    Corners(CellMesh& m, const std::vector<double>& coord) : m_(m), coord_(coord) {}
+    Corners(CellMesh& m, const std::vector<double>& coord, const std::string& name)
+        : m_(m), coord_(coord), name_(name) {}
     uint32_t at(uint64_t pillar, double z) {
         z += 0.0;  // -0 and +0 are one depth
         uint64_t bits;
@@ -257,13 +288,17 @@ public:
         if (fresh) {
             const double* c = coord_.data() + 6 * pillar;  // x_top y_top z_top x_bot y_bot z_bot
             double x = c[0], y = c[1];
-            // The point of the pillar at depth z (a vertical-less pillar, top
-            // and bottom at one depth, is taken at its top's x and y).
-            if (c[5] != c[2]) {
+            // The point of the pillar at depth z; a vertical pillar's x and y
+            // exactly (and a pillar whose top and bottom have one depth: its top's).
+            const bool vertical = c[0] == c[3] && c[1] == c[4];
+            if (!vertical && c[5] != c[2]) {
                 const double t = (z - c[2]) / (c[5] - c[2]);
                 x = c[0] + t * (c[3] - c[0]);
                 y = c[1] + t * (c[4] - c[1]);
             }
+            if (!std::isfinite(x) || !std::isfinite(y))
+                throw ReadError::whole_file(name_, "pillar " + std::to_string(pillar) + " at depth " +
+                                                       std::to_string(z) + ": the point is not finite (COORD)");
             m_.points.insert(m_.points.end(), {x, y, z});
         }
         return it->second;
@@ -281,6 +316,7 @@ private:
     };
     CellMesh& m_;
     const std::vector<double>& coord_;
+    const std::string& name_;
     std::unordered_map<Key, uint32_t, Hash> ids_;
 };
 
@@ -324,7 +360,7 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
     m.cells = r.grid_index.size();
 
     // Each active cell's 8 corner ids, numbered in the order cells first name them.
-    Corners corners(m, deck.coord);
+    Corners corners(m, deck.coord, name);
     std::vector<std::array<uint32_t, 8>> corner_ids(m.cells);
     for (uint32_t c = 0; c < m.cells; ++c) {
         const uint64_t g = r.grid_index[c], i = g % nx, j = g / nx % ny, k = g / (nx * ny);
@@ -343,8 +379,16 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
         while (face.size() > 1 && face.front() == face.back()) face.pop_back();
         return face;
     };
+    // The same face seen from both cells: one cyclic sequence (from its
+    // smallest id) equal to the other reversed.
+    auto canonical = [](std::vector<uint32_t> f) {
+        std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+        return f;
+    };
     auto emit = [&](std::vector<uint32_t> face, uint32_t owner, uint32_t neighbour) {
         if (face.size() < 3) return;  // collapsed to an edge or a point: no area
+        if (m.face_points.size() + face.size() > UINT32_MAX)
+            throw ReadError::whole_file(name, "more than 2^32 face points: the grid is too large to read");
         m.face_points.insert(m.face_points.end(), face.begin(), face.end());
         m.face_offsets.push_back(static_cast<uint32_t>(m.face_points.size()));
         m.owner.push_back(owner);
@@ -376,11 +420,10 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
                     const uint32_t n = cell_of[ni + nx * (nj + ny * nk)];
                     std::vector<uint32_t> mine = face_of(ids, 2 * axis + 1), theirs = face_of(corner_ids[n], 2 * axis);
                     std::reverse(theirs.begin(), theirs.end());
-                    std::vector<uint32_t> a = mine, b = theirs;
-                    std::sort(a.begin(), a.end());
-                    std::sort(b.begin(), b.end());
-                    if (a == b) {
+                    if (canonical(mine) == canonical(theirs)) {
                         emit(std::move(mine), c, n);
+                    } else if (mine.size() < 3 && theirs.size() < 3) {
+                        continue;  // both collapsed: no face on either side
                     } else {  // a fault: the two faces differ; each bounds its own cell
                         ++r.fault_faces;
                         // On two vertical pillars both faces lie in their plane (every corner
@@ -389,7 +432,7 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
                         const bool on_vertical_pillars =
                             axis == 0 ? vertical(i + 1, j) && vertical(i + 1, j + 1)
                             : axis == 1 ? vertical(i, j + 1) && vertical(i + 1, j + 1)
-                                        : false;  // layers that do not meet: they may overlap
+                                        : true;  // layers: by their depths, below
                         if (!on_vertical_pillars) r.cells_tile = false;
                         emit(std::move(mine), c, kNoCell);
                         std::reverse(theirs.begin(), theirs.end());
@@ -397,17 +440,46 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
                     }
                 }
             }
+    // Layers that do not meet (a mismatch between two active cells of a
+    // column, next to each other or with inactive cells between) tile when
+    // the space between them is no cell turned inside out: at each pillar
+    // the lower cell's top is not above the upper cell's bottom, "above"
+    // taken along the upper cell's own top → bottom direction. (Cells are
+    // taken to be embedded, their faces not crossing each other, here as
+    // everywhere.)
+    auto depth = [&](uint64_t i, uint64_t j, uint64_t k, int n) {
+        const uint64_t a = n & 1, b = (n >> 1) & 1, d = (n >> 2) & 1;
+        return deck.zcorn[(2 * i + a) + 2 * nx * (2 * j + b) + 4 * nx * ny * (2 * k + d)];
+    };
+    for (uint64_t j = 0; j < ny && r.cells_tile; ++j)
+        for (uint64_t i = 0; i < nx && r.cells_tile; ++i) {
+            uint64_t upper = nz;  // the last active cell of the column, none yet
+            for (uint64_t k = 0; k < nz; ++k) {
+                if (!active(i, j, k)) continue;
+                if (upper != nz) {
+                    double down = 0;  // the upper cell's direction, top to bottom
+                    for (int n = 0; n < 4; ++n) down += depth(i, j, upper, n + 4) - depth(i, j, upper, n);
+                    const double sign = down < 0 ? -1.0 : 1.0;
+                    for (int n = 0; n < 4; ++n)
+                        if (sign * (depth(i, j, k, n) - depth(i, j, upper, n + 4)) < 0) r.cells_tile = false;
+                }
+                upper = k;
+            }
+        }
     // Wound outward when the grid's signed volume (Σ over the boundary faces'
-    // fans of det/6, in doubles: only its sign is used) is positive; a
+    // fans of det/6, in doubles from the first point, so that coordinates far
+    // from the origin do not drown it: only its sign is used) is positive; a
     // left-handed (I, J, K), as depth downward usually makes it, turns every face.
     double volume = 0;
     const CellMeshView v = m.view();
+    const double o[3] = {m.points.empty() ? 0 : m.points[0], m.points.empty() ? 0 : m.points[1],
+                         m.points.empty() ? 0 : m.points[2]};
     for (std::size_t f = 0; f < v.face_count(); ++f) {
         if (v.neighbour[f] != kNoCell) continue;
         face_triangles(v.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
-            const double* p = &m.points[3 * a];
-            const double* q = &m.points[3 * b];
-            const double* s = &m.points[3 * d];
+            const double p[3] = {m.points[3 * a] - o[0], m.points[3 * a + 1] - o[1], m.points[3 * a + 2] - o[2]};
+            const double q[3] = {m.points[3 * b] - o[0], m.points[3 * b + 1] - o[1], m.points[3 * b + 2] - o[2]};
+            const double s[3] = {m.points[3 * d] - o[0], m.points[3 * d + 1] - o[1], m.points[3 * d + 2] - o[2]};
             volume += p[0] * (q[1] * s[2] - q[2] * s[1]) - p[1] * (q[0] * s[2] - q[2] * s[0]) +
                       p[2] * (q[0] * s[1] - q[1] * s[0]);
         });
@@ -428,13 +500,13 @@ LoadedCellMesh read_grdecl(const std::string& path, uint64_t max_cells) {
     std::string shown;
     const std::vector<std::byte> bytes = io::read_whole_input(path, shown);
     Deck deck;
-    Reader(deck, true, max_cells).read(io::text::as_text(bytes), shown, 0);
+    Reader(deck, true, max_cells, fs::path(shown).parent_path()).read(io::text::as_text(bytes), shown, 0);
     return build_grid(deck, shown);
 }
 
 LoadedCellMesh read_grdecl_memory(std::span<const std::byte> bytes, const std::string& name, uint64_t max_cells) {
     Deck deck;
-    Reader(deck, false, max_cells).read(io::text::as_text(bytes), name, 0);
+    Reader(deck, false, max_cells, {}).read(io::text::as_text(bytes), name, 0);
     return build_grid(deck, name);
 }
 
@@ -453,7 +525,12 @@ void write_grdecl_keyword(const std::string& path, const std::string& keyword, s
         }) || !(keyword[0] >= 'A' && keyword[0] <= 'Z'))
         throw std::invalid_argument("GRDECL keyword '" + keyword + "': 1 to 8 capitals, digits or '_', a capital first");
     std::vector<double> all(cells, 0.0);  // inactive cells 0
-    for (std::size_t c = 0; c < values.size(); ++c) all[grid.grid_index[c]] = values[c];
+    for (std::size_t c = 0; c < values.size(); ++c) {
+        if (!std::isfinite(values[c]))
+            throw std::invalid_argument("a GRDECL keyword's values must be finite (cell " + std::to_string(c) + ")");
+        if (grid.grid_index[c] >= cells) throw std::invalid_argument("grid_index out of the grid");
+        all[grid.grid_index[c]] = values[c];
+    }
     const std::string tmp = path + ".tmp";
     {
         std::ofstream out(tmp, std::ios::binary);
@@ -462,20 +539,33 @@ void write_grdecl_keyword(const std::string& path, const std::string& keyword, s
             << "x" << grid.grid_dims[2] << " grid, I fastest; inactive cells 0\n"
             << keyword << "\n";
         // Runs of equal values as N*v; each value the shortest decimal that
-        // reads back as the same double.
-        int on_line = 0;
+        // reads back as the same double; lines of at most 100 characters
+        // (Eclipse reads 132).
+        std::size_t width = 0;
         for (uint64_t c = 0; c < cells;) {
             uint64_t run = 1;
             while (c + run < cells && all[c + run] == all[c] && std::signbit(all[c + run]) == std::signbit(all[c]))
                 ++run;
             char buffer[64];
-            const auto end = std::to_chars(buffer, buffer + sizeof buffer, all[c]).ptr;
-            if (run > 1) out << run << '*';
+            char* end = buffer;
+            if (run > 1) {
+                end = std::to_chars(end, buffer + sizeof buffer, run).ptr;
+                *end++ = '*';
+            }
+            end = std::to_chars(end, buffer + sizeof buffer, all[c]).ptr;
+            const auto size = static_cast<std::size_t>(end - buffer);
+            if (width > 0 && width + 1 + size > 100) {
+                out << '\n';
+                width = 0;
+            } else if (width > 0) {
+                out << ' ';
+                ++width;
+            }
             out.write(buffer, end - buffer);
-            out << (++on_line == 6 ? '\n' : ' ');
-            if (on_line == 6) on_line = 0;
+            width += size;
             c += run;
         }
+        out << (width > 0 ? " " : "");
         out << "/\n";
         if (!out.flush()) throw std::runtime_error("cannot write " + tmp);
     }

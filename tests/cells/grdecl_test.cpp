@@ -271,9 +271,20 @@ TEST(Grdecl, BadFilesNameTheFileAndTheLine) {
     expect(read_error("COORD\n 1 2 3 /\n"), ":1: COORD before SPECGRID or DIMENS");
     expect(read_error("SPECGRID\n 2 2 /\n"), "expected the grid's size I J K");
     expect(read_error("SPECGRID\n 2 2 1 /\nCOORD\n 1 2 3\n"), ":3: COORD: its data is not ended by '/'");
-    expect(read_error("SPECGRID\n 100000 100000 100 /\n"), "cells: at most 268435456 are read");
+    expect(read_error("SPECGRID\n 100000 100000 100 /\n"), "100000×100000×100 cells: at most 134217728 are read");
+    expect(read_error("SPECGRID\n 4194304 4194304 1048576 /\n"), "cells: at most 134217728 are read");
     expect(read_error("SPECGRID\n 1000 1000 100 /\nZCORN\n 400000000*1 /\n"),
-           "ZCORN: the repeats expand to more than 67108864 values, 64 times the file's size: refused");
+           "ZCORN: the repeats expand to more than 4194304 values, 8 times the file's size: refused");
+    expect(read_error("SPECGRID\n 2 2 1 1e300 F /\n"), ":1: SPECGRID: NUMRES 1e300: only one reservoir is read");
+    expect(read_error("SPECGRID\n 2 2 1 1 T /\n"), "a radial grid (T) is not read");
+    expect(read_error("SPECGRID\n 2 2 1 /\nEQUALS\n 'ACTNUM' 0 1 1 1 1 1 1 /\n/\n"),
+           ":3: EQUALS changes ACTNUM: not read");
+    expect(read_error("SPECGRID\n 2 2 1 /\nBOX\n 1 1 1 1 1 1 /\nACTNUM\n 0 /\nENDBOX\n"),
+           ":5: ACTNUM inside a BOX (a part of the grid) is not read");
+    std::string far = good;  // a vertical pillar with top and bottom 5e-324 apart
+    far.replace(far.find("COORD\n") + 6, far.find("\n", far.find("COORD\n") + 6) - far.find("COORD\n") - 6,
+                "0 0 0 1 1 5e-324");
+    expect(read_error(far), "is not finite (COORD)");
     expect(read_error("DIMENS\n 2 2 1 /\n"), "COORD holds 0 values");
     expect(read_error("SPECGRID\n 2 2 1 /\nINCLUDE\n 'x.inc' /\n"), ":3: INCLUDE: a grid read from memory");
     expect(read_error("  12 13 /\n"), ":1: expected a keyword at the start of a line, found '12'");
@@ -320,4 +331,74 @@ TEST(Grdecl, FaultsOnLeaningPillarsGiveEachCellAloneAndTheCellsSum) {
     for (const double v : b.volumes) sum += mpq_class(v);
     EXPECT_EQ(b.cells_sum, exact::round_to_double(sum.get_mpq_t()));
     EXPECT_GT(b.cut_cells, 4u);
+}
+
+TEST(Grdecl, OtherKeywordsRecordsCommentsAndLineEndsAreSkipped) {
+    // FAULTS with several records, text after '/', a lone CR line end, a
+    // section header without data.
+    std::string text = box_grid(2, 2, 1).text();
+    text = "RUNSPEC\nGRID\nFAULTS\n 'F1' 1 1 1 2 1 1 'X' / the first\n 'F2' 2 2 1 2 1 1 'Y' /\n/\n" + text +
+           "PORO\r 4*0.25 / porosity\rMULTFLT\n 'F1' 0.1 /\n/\nEDIT\n";
+    const LoadedCellMesh r = read_text(text);
+    EXPECT_EQ(r.mesh.cells, 4u);
+    EXPECT_EQ(cell_volumes(r.mesh.view()).total, 4000.0);
+}
+
+TEST(Grdecl, PinchedCellsAndMismatchedNeighboursStayClosed) {
+    // Column i = 1 pinched to nothing at its right pillar in layer 0 (top =
+    // bottom there), and a neighbour whose depths at the shared pillar are
+    // the reverse of this cell's (the same corner set, another face).
+    CornerGrid g = box_grid(2, 1, 2);
+    g.depth = [](int i, int, int k, int a, int, int c) {
+        if (k == 0 && i == 1 && a == 1) return 1000.0;  // pinched
+        return 1000.0 + 5.0 * (k + c);
+    };
+    LoadedCellMesh r = read_text(g.text());
+    EXPECT_FALSE(check_cell_mesh(r.mesh.view()).has_value());
+    const CellVolumes v = cell_volumes(r.mesh.view());
+    EXPECT_EQ(v.volumes[1], 10.0 * 20 * 5 / 2);  // a wedge: half the box
+    EXPECT_EQ(v.total, 4 * 1000.0 - 500);
+    g = box_grid(2, 1, 1);
+    g.depth = [](int i, int, int, int a, int, int c) {
+        // Cell 1's depths at the shared pillar (a = 0) swapped: top 1005, bottom 1000.
+        if (i == 1 && a == 0) return c == 0 ? 1005.0 : 1000.0;
+        return 1000.0 + 5.0 * c;
+    };
+    r = read_text(g.text());
+    EXPECT_EQ(r.fault_faces, 1u);
+    EXPECT_FALSE(check_cell_mesh(r.mesh.view()).has_value());
+}
+
+TEST(Grdecl, LayersOverlappingAcrossAnInactiveCellAreNotTakenToTile) {
+    CornerGrid g = box_grid(1, 1, 3);
+    g.actnum = {1, 0, 1};
+    EXPECT_TRUE(read_text(g.text()).cells_tile);  // a hole where the inactive cell is
+    // The inactive middle cell inside out (1005 down to 1004): cell 0 (1000
+    // to 1005) and cell 2 (1004 to 1015) overlap by 1.
+    g.depth = [](int, int, int k, int, int, int c) {
+        const double z[3][2] = {{1000, 1005}, {1005, 1004}, {1004, 1015}};
+        return z[k][c];
+    };
+    const LoadedCellMesh r = read_text(g.text());
+    EXPECT_FALSE(r.cells_tile);
+    EXPECT_EQ(cell_volumes(r.mesh.view()).total, 200.0 * (5 + 11));
+}
+
+TEST(Grdecl, TheKeywordFilesLinesStayShort) {
+    CornerGrid g = box_grid(40, 1, 1);
+    const LoadedCellMesh r = read_text(g.text());
+    std::vector<double> values(40);
+    for (std::size_t c = 0; c < values.size(); ++c) values[c] = 1.0 / static_cast<double>(c + 3);
+    const fs::path out = fs::temp_directory_path() / "polyvol_grdecl" / "long.grdecl";
+    write_grdecl_keyword(out.string(), "VALUES", values, r);
+    std::ifstream in(out);
+    std::string line;
+    std::size_t lines = 0;
+    while (std::getline(in, line)) {
+        EXPECT_LE(line.size(), 100u) << line;
+        ++lines;
+    }
+    EXPECT_GT(lines, 5u);
+    values[3] = NAN;
+    EXPECT_THROW(write_grdecl_keyword(out.string(), "VALUES", values, r), std::invalid_argument);
 }
