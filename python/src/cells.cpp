@@ -20,9 +20,43 @@ py::array_t<uint32_t> u32(py::object self, const std::vector<uint32_t>& v) {
     return view_array<uint32_t>(v.data(), {static_cast<py::ssize_t>(v.size())}, self);
 }
 
+// A body as body_in_cells took it (its solid's mesh, in the mesh's unit),
+// kept for the bodies' union.
+struct CellsBody {
+    Mesh mesh;
+    bool within = false;  // a shell crosses itself
+};
+
+// BodyInCells as the dict polyvol.cells reads (the keys of `polyvol cells --json`).
+py::dict result_dict(BodyInCells r) {
+    py::dict d;
+    const auto n = static_cast<py::ssize_t>(r.volumes.size());
+    std::vector<uint8_t> cls(r.cell_class.size());
+    for (std::size_t c = 0; c < cls.size(); ++c) cls[c] = static_cast<uint8_t>(r.cell_class[c]);
+    d["volumes"] = adopt_array(std::move(r.volumes), {n});
+    d["cell_class"] = adopt_array(std::move(cls), {n});
+    d["inside_mesh"] = r.total;
+    d["cells_sum"] = r.cells_sum;
+    d["volume"] = r.body_volume;
+    d["full_cells"] = r.full_cells;
+    d["cut_cells"] = r.cut_cells;
+    d["empty_cells"] = r.empty_cells;
+    d["cells_intersected"] = r.touched_cells;
+    return d;
+}
+
+BodyInCells from_dict(const py::dict& d) {
+    BodyInCells r;
+    const auto v = d["volumes"].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+    r.volumes.assign(v.data(), v.data() + v.size());
+    r.total = d["inside_mesh"].cast<double>();
+    return r;
+}
+
 }  // namespace
 
 void bind_cells(py::module_& m) {
+    py::class_<CellsBody, std::shared_ptr<CellsBody>>(m, "_CellsBody");
     py::class_<LoadedCellMesh, std::shared_ptr<LoadedCellMesh>>(m, "CellMesh")
         .def_property_readonly("points",
                                [](py::object self) {
@@ -98,7 +132,7 @@ void bind_cells(py::module_& m) {
         "body_in_cells",
         [](const LoadedCellMesh& l, const Doubles& positions, const Indices& indices,
            const std::optional<Indices>& offsets, const py::dict& policy, const std::string& declared,
-           const std::string& units, const std::string& unit) {
+           const std::string& units, const std::string& unit, const Doubles& own) {
             Mesh body = to_mesh(mesh_view(positions, indices, offsets));
             py::list notes;
             const std::string body_unit = !declared.empty() ? declared : units;
@@ -117,6 +151,7 @@ void bind_cells(py::module_& m) {
             }
             MeshSolid solid;
             std::optional<BodyInCells> r;
+            const bool own_given = static_cast<std::size_t>(own.size()) == l.mesh.cells;
             {
                 py::gil_scoped_release release;
                 solid = make_solid(body, solid_options(policy));
@@ -124,27 +159,48 @@ void bind_cells(py::module_& m) {
                     const bool within = solid.solid && solid.solid->shells_crossing_themselves > 0;
                     r = body_in_cells(l.mesh.view(), body.view(),
                                       {.overlapping_shells = solid.resolved(), .within_shells = within,
-                                       .reference = false, .own = {}, .cells_tile = l.cells_tile});
+                                       .reference = false, .own = own_given ? span_of(own) : std::span<const double>{},
+                                       .cells_tile = l.cells_tile});
                 }
             }
             if (!r) return py::make_tuple(solid_verdict(solid), py::none(), notes);
-            py::dict d;
-            const auto n = static_cast<py::ssize_t>(r->volumes.size());
-            std::vector<uint8_t> cls(r->cell_class.size());
-            for (std::size_t c = 0; c < cls.size(); ++c) cls[c] = static_cast<uint8_t>(r->cell_class[c]);
-            d["volumes"] = adopt_array(std::move(r->volumes), {n});
-            d["cell_class"] = adopt_array(std::move(cls), {n});
-            d["inside_mesh"] = r->total;
-            d["cells_sum"] = r->cells_sum;
-            d["volume"] = r->body_volume;
-            d["full_cells"] = r->full_cells;
-            d["cut_cells"] = r->cut_cells;
-            d["empty_cells"] = r->empty_cells;
-            d["cells_intersected"] = r->touched_cells;
+            py::dict d = result_dict(std::move(*r));
+            const bool within = solid.solid && solid.solid->shells_crossing_themselves > 0;
+            d["body"] = std::make_shared<CellsBody>(CellsBody{std::move(body), within});
             return py::make_tuple(solid_verdict(solid), d, notes);
         },
         py::arg("mesh"), py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("policy"),
-        py::arg("declared"), py::arg("units"), py::arg("unit"));
+        py::arg("declared"), py::arg("units"), py::arg("unit"), py::arg("own"));
+
+    // The bodies' union in every cell (union_in_cells), from the bodies
+    // body_in_cells returned; and two bodies' intersection from the three results.
+    m.def(
+        "union_in_cells",
+        [](const LoadedCellMesh& l, const std::vector<std::shared_ptr<CellsBody>>& bodies, const Doubles& own) {
+            std::vector<MeshView> views;
+            bool within = false;
+            for (const auto& b : bodies) {
+                views.push_back(b->mesh.view());
+                within = within || b->within;
+            }
+            BodyInCells r;
+            {
+                py::gil_scoped_release release;
+                r = union_in_cells(l.mesh.view(), views,
+                                   {.overlapping_shells = true, .within_shells = within, .reference = true,
+                                    .own = span_of(own), .cells_tile = l.cells_tile});
+            }
+            return result_dict(std::move(r));
+        },
+        py::arg("mesh"), py::arg("bodies"), py::arg("own"));
+    m.def(
+        "intersection_in_cells",
+        [](const py::dict& a, const py::dict& b, const py::dict& joined) {
+            IntersectionInCells r = intersection_in_cells(from_dict(a), from_dict(b), from_dict(joined));
+            const auto n = static_cast<py::ssize_t>(r.volumes.size());
+            return py::make_tuple(adopt_array(std::move(r.volumes), {n}), r.total);
+        },
+        py::arg("a"), py::arg("b"), py::arg("union"));
 
     m.def(
         "write_foam_field",

@@ -343,3 +343,25 @@ def test_bad_grdecl_files_are_refused_with_the_line(tmp_path):
     good = grdecl_file(tmp_path / "good.grdecl", 2, 2, 1, [1] * 4)
     out = subprocess.run([CLI, "cells", good, "-o", tmp_path / "o.grdecl"], capture_output=True, text=True)
     assert out.returncode == 1 and "needs exactly one body" in out.stderr
+
+
+def test_two_bodies_union_and_intersection_give_the_commands_bits_and_the_boxes_closed_forms(case, tmp_path):
+    a, b = ((-0.7, -0.3, -0.2), (0.45, 0.6, 0.5)), ((-0.1, -0.6, 0.1), (0.8, 0.2, 0.9))
+    files = [off_file(tmp_path / f"{n}.off", *box(*ab)) for n, ab in (("a", a), ("b", b))]
+    r = polyvol.cells(case, [polyvol.load(f) for f in files], units="m", union=True, intersection=True)
+    out = subprocess.run([CLI, "cells", case, *files, "--units", "m", "--union", tmp_path / "u.npy",
+                          "--intersection", tmp_path / "i.npy", "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    j = json.loads(out.stdout)
+    assert np.array_equal(np.load(tmp_path / "u.npy"), r.union_volumes)
+    assert np.array_equal(np.load(tmp_path / "i.npy"), r.intersection_volumes)
+    assert j["union"]["inside_mesh"] == r.union_inside_mesh and j["intersection"]["inside_mesh"] == r.intersection_inside_mesh
+    # Closed forms: the union by inclusion-exclusion of boxes, exactly; the intersection box.
+    size = lambda lo, hi: math.prod(max(Fraction(0), Fraction(h) - Fraction(l)) for l, h in zip(lo, hi))
+    meet = (tuple(map(max, a[0], b[0])), tuple(map(min, a[1], b[1])))
+    assert r.union_inside_mesh == float(size(*a) + size(*b) - size(*meet))
+    assert abs(Fraction(r.intersection_inside_mesh) - size(*meet)) <= 2 * math.ulp(r.union_inside_mesh)
+    assert np.all(r.intersection_volumes <= np.minimum(r.volumes[0], r.volumes[1]))
+    with pytest.raises(ValueError, match="two bodies"):
+        polyvol.cells(case, polyvol.load(files[0]), units="m", union=True)
+    assert polyvol.cells(case, polyvol.load(files[0]), units="m").union_volumes is None
