@@ -10,8 +10,8 @@
 //   * a cell is the closed surface of its faces (its owner faces as wound,
 //     its neighbour faces reversed); every face a cell uses appears once.
 // Faces that are not planar are split into triangles by one rule, the fan
-// from the face's point of smallest index (`face_triangles`), so the two
-// cells sharing a face split it alike and the cells tile space exactly
+// from the face's point first in (x, y, z) order (`face_triangles`), so the
+// two cells sharing a face split it alike and the cells tile space exactly
 // (docs/cells.md compares this with OpenFOAM's face-centre decomposition).
 #pragma once
 
@@ -51,17 +51,28 @@ struct CellMesh {
     CellMeshView view() const { return {points, face_offsets, face_points, owner, neighbour, cells}; }
 };
 
-// The triangles face f is split into, as point indices, in the face's
-// winding: with m the position of the face's smallest point index and k its
-// size, (v[m], v[m+i], v[m+i+1]) for i = 1 .. k-2 (indices mod k). Calls
-// fn(a, b, c) for each.
+// The triangles a face is split into, as point indices, in the face's
+// winding: with m the position of the face's point that comes first in
+// (x, y, z) order (ties — equal points — by the smaller index) and k its
+// size, (v[m], v[m+i], v[m+i+1]) for i = 1 .. k-2 (indices mod k). A rule of
+// the points' positions, not their numbering: the two cells sharing a face,
+// a renumbered mesh and the pieces of a decomposed case all split it alike.
+// Calls fn(a, b, c) for each.
 template <class Fn>
-void face_triangles(std::span<const uint32_t> face, Fn&& fn) {
+void face_triangles(std::span<const uint32_t> face, std::span<const double> points, Fn&& fn) {
     const std::size_t k = face.size();
     if (k < 3) return;
+    auto before = [&](uint32_t p, uint32_t q) {
+        const double* a = &points[3 * std::size_t{p}];
+        const double* b = &points[3 * std::size_t{q}];
+        if (a[0] != b[0]) return a[0] < b[0];
+        if (a[1] != b[1]) return a[1] < b[1];
+        if (a[2] != b[2]) return a[2] < b[2];
+        return p < q;
+    };
     std::size_t m = 0;
     for (std::size_t i = 1; i < k; ++i)
-        if (face[i] < face[m]) m = i;
+        if (before(face[i], face[m])) m = i;
     for (std::size_t i = 1; i + 1 < k; ++i) fn(face[m], face[(m + i) % k], face[(m + i + 1) % k]);
 }
 

@@ -30,7 +30,7 @@ Mesh boundary_surface(const CellMeshView& m) {
     out.positions.assign(m.points.begin(), m.points.end());
     for (std::size_t f = 0; f < m.face_count(); ++f)
         if (m.neighbour[f] == kNoCell)
-            face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+            face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
                 out.indices.insert(out.indices.end(), {a, b, d});
             });
     return out;
@@ -81,7 +81,7 @@ double intersect(const Mesh& cell, const MeshView& body, const BodyInCellsOption
 void cell_triangles(const CellMeshView& m, const cells::CellFaces& cf, std::size_t c, std::vector<uint32_t>& out) {
     for (const uint32_t entry : cf.of(c)) {
         const bool reversed = (entry & 1u) != 0;
-        face_triangles(m.face(entry >> 1), [&](uint32_t a, uint32_t b, uint32_t d) {
+        face_triangles(m.face(entry >> 1), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
             if (reversed)
                 out.insert(out.end(), {a, d, b});
             else
@@ -239,7 +239,7 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
     std::vector<uint32_t> faces_of_touched;
     for (std::size_t f = 0; f < m.face_count(); ++f)
         if (touched[m.owner[f]] != 0 || (m.neighbour[f] != kNoCell && touched[m.neighbour[f]] != 0))
-            face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+            face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
                 faces_of_touched.insert(faces_of_touched.end(), {a, b, d});
             });
     const std::vector<int32_t> winding = boolean::windings_at(*prepared, m.points, faces_of_touched);

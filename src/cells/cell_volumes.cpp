@@ -140,7 +140,7 @@ CellVolumes cell_volumes(const CellMeshView& m) {
                               exact::ExactSum cell;
                               for (const uint32_t entry : cf.of(c)) {
                                   const double sign = (entry & 1u) != 0 ? -1.0 : 1.0;
-                                  face_triangles(m.face(entry >> 1), [&](uint32_t a, uint32_t b, uint32_t d) {
+                                  face_triangles(m.face(entry >> 1), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
                                       const int n = exact::det3_exact<false>(&m.points[3 * std::size_t{a}],
                                                                              &m.points[3 * std::size_t{b}],
                                                                              &m.points[3 * std::size_t{d}], det);

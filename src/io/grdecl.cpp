@@ -476,7 +476,7 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
                          m.points.empty() ? 0 : m.points[2]};
     for (std::size_t f = 0; f < v.face_count(); ++f) {
         if (v.neighbour[f] != kNoCell) continue;
-        face_triangles(v.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+        face_triangles(v.face(f), v.points, [&](uint32_t a, uint32_t b, uint32_t d) {
             const double p[3] = {m.points[3 * a] - o[0], m.points[3 * a + 1] - o[1], m.points[3 * a + 2] - o[2]};
             const double q[3] = {m.points[3 * b] - o[0], m.points[3 * b + 1] - o[1], m.points[3 * b + 2] - o[2]};
             const double s[3] = {m.points[3 * d] - o[0], m.points[3 * d + 1] - o[1], m.points[3 * d + 2] - o[2]};

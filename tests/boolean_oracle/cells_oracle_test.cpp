@@ -39,7 +39,7 @@ Mesh cell_surface(const CellMeshView& m, std::size_t c) {
     for (std::size_t f = 0; f < m.face_count(); ++f) {
         const bool owns = m.owner[f] == c, neighbours = m.neighbour[f] == c;
         if (!owns && !neighbours) continue;
-        face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+        face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
             if (owns)
                 out.add_triangle(at(a), at(b), at(d));
             else

@@ -37,7 +37,7 @@ Mesh cell_surface(const CellMeshView& m, std::size_t c) {
     for (std::size_t f = 0; f < m.face_count(); ++f) {
         const bool owns = m.owner[f] == c, neighbours = m.neighbour[f] == c;
         if (!owns && !neighbours) continue;
-        face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+        face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
             if (owns) out.indices.insert(out.indices.end(), {a, b, d});
             else out.indices.insert(out.indices.end(), {a, d, b});
         });
@@ -51,7 +51,7 @@ Mesh boundary_surface(const CellMeshView& m) {
     out.positions.assign(m.points.begin(), m.points.end());
     for (std::size_t f = 0; f < m.face_count(); ++f)
         if (m.neighbour[f] == kNoCell)
-            face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+            face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
                 out.indices.insert(out.indices.end(), {a, b, d});
             });
     return out;
@@ -178,7 +178,7 @@ TEST(CellVolumes, WarpedCellsAreTheirSurfacesVolumesAndAddUpToTheBoundarys) {
 
 TEST(CellVolumes, TheResultDoesNotDependOnTheFacesStartingPoint) {
     // Rotating each face's point list (same polygon, same winding) keeps the
-    // triangles: the fan starts at the smallest point index.
+    // triangles: the fan starts at the point first in (x, y, z) order.
     CellMesh rotated = read_polymesh(kData + "warped_ascii").mesh;
     for (std::size_t f = 0; f + 1 < rotated.face_offsets.size(); ++f)
         std::rotate(rotated.face_points.begin() + rotated.face_offsets[f],
@@ -188,6 +188,22 @@ TEST(CellVolumes, TheResultDoesNotDependOnTheFacesStartingPoint) {
     const CellVolumes b = cell_volumes(rotated.view());
     EXPECT_EQ(a.volumes, b.volumes);
     EXPECT_EQ(a.total, b.total);
+}
+
+TEST(CellVolumes, ARenumberedMeshGivesTheSameBits) {
+    // The points numbered backwards: the face rule is one of positions, so
+    // every warped face is split alike and every cell's volume is the same.
+    const CellMesh original = read_polymesh(kData + "warped_ascii").mesh;
+    CellMesh renumbered = original;
+    const std::size_t n = original.points.size() / 3;
+    for (std::size_t p = 0; p < n; ++p)
+        for (int k = 0; k < 3; ++k) renumbered.points[3 * (n - 1 - p) + k] = original.points[3 * p + k];
+    for (uint32_t& p : renumbered.face_points) p = static_cast<uint32_t>(n - 1 - p);
+    const CellVolumes a = cell_volumes(original.view()), b = cell_volumes(renumbered.view());
+    EXPECT_EQ(a.volumes, b.volumes);
+    const Mesh sphere = polyvol::generate::uv_sphere(12, 24, 0.7, 1.55, 1.05, 1.1);
+    EXPECT_EQ(body_in_cells(original.view(), sphere.view()).volumes,
+              body_in_cells(renumbered.view(), sphere.view()).volumes);
 }
 
 TEST(CellVolumes, ACellWhoseFacesDoNotCloseIsNamed) {

@@ -94,7 +94,7 @@ Mesh cell_surface(const CellMeshView& m, std::size_t c) {
     for (std::size_t f = 0; f < m.face_count(); ++f) {
         const bool owns = m.owner[f] == c, neighbours = m.neighbour[f] == c;
         if (!owns && !neighbours) continue;
-        face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+        face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
             if (owns) out.indices.insert(out.indices.end(), {a, b, d});
             else out.indices.insert(out.indices.end(), {a, d, b});
         });
@@ -187,7 +187,7 @@ TEST(Grdecl, InclinedPillarsAndWarpedLayersTileExactly) {
     boundary.positions.assign(m.points.begin(), m.points.end());
     for (std::size_t f = 0; f < m.face_count(); ++f)
         if (m.neighbour[f] == kNoCell)
-            face_triangles(m.face(f), [&](uint32_t a, uint32_t b, uint32_t d) {
+            face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
                 boundary.indices.insert(boundary.indices.end(), {a, b, d});
             });
     EXPECT_EQ(v.total, signed_volume(boundary.view()));
