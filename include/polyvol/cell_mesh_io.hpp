@@ -39,14 +39,22 @@ struct LoadedCellMesh {
     std::array<uint64_t, 3> grid_dims{};
     std::vector<uint64_t> grid_index;
     std::size_t fault_faces = 0;
+    // A processor directory of a decomposed OpenFOAM case: each cell's index
+    // in the whole case (its cellProcAddressing); empty otherwise.
+    std::vector<uint64_t> case_index;
     // Whether the cells are known to tile the region their boundary faces
     // enclose: false for a corner-point grid with a fault that is not between
     // vertical pillars (there the cells may overlap or leave gaps).
     bool cells_tile = true;
 };
 
-// Reads an OpenFOAM polyMesh (above). Throws ReadError.
+// Reads an OpenFOAM polyMesh (above), and in a processor directory of a
+// decomposed case its cellProcAddressing (case_index). Throws ReadError.
 LoadedCellMesh read_polymesh(const std::string& path);
+
+// A decomposed case's processor directories (CASE/processorN holding
+// constant/polyMesh), by N; empty when there are none.
+std::vector<std::string> foam_processor_dirs(const std::string& case_dir);
 
 // The same from the four files' bytes (each plain or gzip), `name` naming
 // them in messages (name/points, ...): for tests, fuzzing and uploads.

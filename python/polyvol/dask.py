@@ -1,5 +1,6 @@
-"""polyvol on Dask: many files as a dataframe, and grids larger than one
-machine as a dask array of independently computed blocks.
+"""polyvol on Dask: many files as a dataframe, grids larger than one
+machine as a dask array of independently computed blocks, and the cells of
+a decomposed OpenFOAM case one processor directory a task.
 
 Both run on whatever scheduler is active: the threads of this process by
 default, or a dask.distributed cluster (``Client(...)``; docs/python.md shows
@@ -161,3 +162,72 @@ def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, ce
         part = dask.delayed(_block, pure=True)(bodies, factors, edges, block, what, options)
         blocks[index] = da.from_delayed(part, shape=lead + tuple(hi - lo for lo, hi in block) + tail, dtype=dtype)
     return _assemble(blocks, counts, len(lead))
+
+
+def _processor_cells(directory, bodies, units, options):
+    """One processor directory's cells: their places in the whole case, their
+    own volumes, and each body's volume and class in each (each body in its
+    own unit: the file's, else units=)."""
+    mesh = polyvol.load_cells(directory)
+    if mesh.case_index is None:
+        raise polyvol.ReadError(f"{directory}: no constant/polyMesh/cellProcAddressing (decomposePar writes it)")
+    results = [polyvol.cells(mesh, [b.arrays], units=u, **options) for b, u in zip(bodies, units)]
+    own = results[0].cell_volumes if results else polyvol.cell_volumes(mesh)[0]
+    return (np.array(mesh.case_index), own, [r.volumes[0] for r in results], [r.cell_class[0] for r in results],
+            [r.body_volumes[0] for r in results], _mesh_unit(mesh, options))
+
+
+def _mesh_unit(mesh, options):
+    return options.get("mesh_units") or mesh.unit
+
+
+def cells(case, bodies=(), *, units=None, mesh_units=None, signed=False, orient=False, weld_tolerance=0.0):
+    """polyvol.cells of a decomposed OpenFOAM case (CASE/processorN made by
+    decomposePar), one processor directory a task on the active scheduler,
+    each reading its own mesh: the values in the whole case's cell order
+    (cellProcAddressing), each cell's bit for bit what polyvol.cells gives on
+    the whole case (the face rule is one of positions, so each processor
+    splits its faces as the whole case does).
+
+    bodies, units, ...: as polyvol.cells (each body travels once, as one node
+    of the graph). Returns Cells with ``cell_volumes``, ``volumes``,
+    ``fractions``, ``cell_class`` for every cell of the case; ``cells_sum``
+    (and ``inside_mesh``, which is it here) the cells' values added exactly,
+    rounded once — the whole case's ``cells_sum``, not its exactly rounded
+    ``inside_mesh``; ``total`` the cells' own volumes added the same way."""
+    directories = polyvol._core.foam_processor_dirs(os.fspath(case))
+    if not directories:
+        raise ValueError(f"{case}: no processor*/constant/polyMesh: not a decomposed OpenFOAM case")
+    if isinstance(bodies, polyvol.Mesh) or hasattr(bodies, "vertices"):
+        bodies = [bodies]
+    graph_bodies = [dask.delayed(_Body(_arrays.mesh(b)), pure=True, traverse=False) for b in bodies]
+    body_units = [(b.unit if isinstance(b, polyvol.Mesh) else None) or units for b in bodies]
+    options = {"mesh_units": mesh_units, "signed": signed, "orient": orient, "weld_tolerance": weld_tolerance}
+    parts = dask.compute(*[dask.delayed(_processor_cells, pure=True)(d, graph_bodies, body_units, options)
+                           for d in directories])
+    n = sum(len(p[0]) for p in parts)
+    own = np.zeros(n)
+    volumes = np.zeros((len(bodies), n))
+    cell_class = np.zeros((len(bodies), n), dtype=np.uint8)
+    seen = np.zeros(n, dtype=bool)
+    for index, part_own, part_volumes, part_class, _, _ in parts:
+        if len(index) == 0:
+            continue
+        if index.max(initial=0) >= n or seen[index].any():
+            raise polyvol.ReadError(f"{case}: the processors' cellProcAddressing do not number the cells 0..{n - 1} "
+                                    "once each")
+        seen[index] = True
+        own[index] = part_own
+        for b in range(len(bodies)):
+            volumes[b, index] = part_volumes[b]
+            cell_class[b, index] = part_class[b]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        fractions = np.clip(np.where(own > 0, volumes / own, 0.0), 0.0, 1.0)
+    sums = [math.fsum(v) for v in volumes]  # exactly rounded sums, as ExactSum's
+    return polyvol.Cells(unit=parts[0][5], cell_volumes=own, total=math.fsum(own), volumes=volumes,
+                         fractions=fractions, cell_class=cell_class, inside_mesh=sums, cells_sum=sums,
+                         cells_tile=True, body_volumes=list(parts[0][4]),
+                         full_cells=[int((c == 1).sum()) for c in cell_class],
+                         cut_cells=[int((c == 2).sum()) for c in cell_class],
+                         empty_cells=[int((c == 0).sum()) for c in cell_class], union_volumes=None,
+                         union_inside_mesh=None, intersection_volumes=None, intersection_inside_mesh=None)

@@ -101,6 +101,13 @@ void bind_cells(py::module_& m) {
                                                                {static_cast<py::ssize_t>(l.grid_index.size())}, self);
                                })
         .def_readonly("fault_faces", &LoadedCellMesh::fault_faces)
+        .def_property_readonly("case_index",
+                               [](py::object self) -> py::object {
+                                   const auto& l = self.cast<const LoadedCellMesh&>();
+                                   if (l.case_index.empty()) return py::none();
+                                   return view_array<uint64_t>(l.case_index.data(),
+                                                               {static_cast<py::ssize_t>(l.case_index.size())}, self);
+                               })
         .def_property_readonly("cells_tile", [](const LoadedCellMesh& l) { return l.cells_tile; });
 
     m.def(
@@ -110,6 +117,8 @@ void bind_cells(py::module_& m) {
             return std::make_shared<LoadedCellMesh>(read_cell_mesh(path));
         },
         py::arg("path"));
+
+    m.def("foam_processor_dirs", &foam_processor_dirs, py::arg("case"));
 
     // The cells' own volumes and their total; check_cell_mesh's defect as a ValueError.
     m.def(

@@ -438,7 +438,36 @@ LoadedCellMesh read_polymesh(const std::string& path) {
     LoadedCellMesh r;
     r.location = dir.string();
     read_polymesh_files([&](const char* name, bool& gzip) { return open_foam_file(dir, name, gzip); }, r);
+    // A processor's piece of a decomposed case: its cells' places in the whole.
+    std::error_code ec;
+    if (fs::exists(dir / "cellProcAddressing", ec) || fs::exists(dir / "cellProcAddressing.gz", ec)) {
+        FoamFile addressing = open_foam_file(dir, "cellProcAddressing", r.gzip);
+        const std::vector<uint32_t> cells = addressing.labels("cell", kNoCell, r.mesh.cells);
+        if (cells.size() != r.mesh.cells)
+            addressing.fail_whole("cellProcAddressing lists " + std::to_string(cells.size()) + " cells; the mesh has " +
+                                  std::to_string(r.mesh.cells));
+        r.case_index.assign(cells.begin(), cells.end());
+    }
     return r;
+}
+
+std::vector<std::string> foam_processor_dirs(const std::string& case_dir) {
+    std::vector<std::pair<uint64_t, std::string>> found;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(fs::path(case_dir), ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("processor", 0) != 0 || name.size() == 9) continue;
+        const std::string digits = name.substr(9);
+        if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
+            digits.size() > 9)
+            continue;
+        if (!fs::exists(entry.path() / "constant" / "polyMesh", ec)) continue;
+        found.emplace_back(std::stoull(digits), entry.path().string());
+    }
+    std::sort(found.begin(), found.end());
+    std::vector<std::string> out;
+    for (auto& f : found) out.push_back(std::move(f.second));
+    return out;
 }
 
 LoadedCellMesh read_polymesh_memory(const PolyMeshBytes& files, const std::string& name) {

@@ -113,3 +113,21 @@ def test_an_existing_fields_boundary_conditions_are_kept(tmp_path):
     text = (case / "0" / "alpha.water").read_text()
     assert "type fixedValue;" in text and "value uniform 0.25;" in text
     assert math.isclose(vol_integrate(case), 0.002464, rel_tol=1e-12)
+
+
+def test_a_decomposed_case_gives_the_whole_cases_bits_one_processor_a_dask_task(tmp_path):
+    import polyvol
+    import polyvol.dask
+    case = make_case(tmp_path, "warped_ascii")  # warped faces, split by the rule of positions
+    foam(case, "decomposePar")
+    assert len(list(case.glob("processor*"))) == 3
+    sphere = off_file(tmp_path / "sphere.off", *uv_sphere(12, 24, 0.7, (1.55, 1.05, 1.1)))
+    body = polyvol.load(sphere)
+    whole = polyvol.cells(case, body, units="m")
+    parts = polyvol.dask.cells(case, body, units="m")
+    assert np.array_equal(parts.cell_volumes, whole.cell_volumes)
+    assert np.array_equal(parts.volumes, whole.volumes) and np.array_equal(parts.cell_class, whole.cell_class)
+    assert parts.cells_sum == whole.cells_sum and parts.body_volumes == whole.body_volumes
+    assert whole.cut_cells[0] > 10 and parts.cut_cells == whole.cut_cells
+    with pytest.raises(ValueError, match="not a decomposed OpenFOAM case"):
+        polyvol.dask.cells(tmp_path, body, units="m")
