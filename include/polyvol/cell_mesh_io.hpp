@@ -49,7 +49,12 @@ struct LoadedCellMesh {
 };
 
 // Reads an OpenFOAM polyMesh (above), and in a processor directory of a
-// decomposed case its cellProcAddressing (case_index). Throws ReadError.
+// decomposed case its cellProcAddressing (case_index). A decomposed case's
+// directory (processorN/constant/polyMesh and no constant/polyMesh of its
+// own) gives the whole mesh, put together from the processors' meshes by
+// their point, face and cell addressing: the undecomposed case's points,
+// faces and cells in its own order (location: the case directory, which
+// write_foam_field then writes processor by processor). Throws ReadError.
 LoadedCellMesh read_polymesh(const std::string& path);
 
 // A decomposed case's processor directories (CASE/processorN holding
@@ -107,7 +112,8 @@ std::vector<FoamPatch> read_foam_patches(const std::string& polymesh_dir);
 
 // Writes the dimensionless volScalarField `name` into the case that holds
 // polymesh_dir (LoadedCellMesh::location, CASE/constant/polyMesh), at
-// CASE/<time>/<name>: the internalField one value per cell, each with 17
+// CASE/<time>/<name> — or, for a decomposed case's directory, into each
+// CASE/processorN/<time>/<name>, its cells' values by its cellProcAddressing: the internalField one value per cell, each with 17
 // significant digits (the doubles exactly); the boundaryField kept verbatim
 // from an existing file of that name (its boundary conditions are the
 // user's), else zeroGradient on every patch (empty, wedge, symmetry,

@@ -213,6 +213,49 @@ public:
         return out;
     }
 
+    // A list of signed labels, |label| < limit (faceProcAddressing: ±(face + 1)).
+    std::vector<int64_t> signed_labels(const char* what, uint64_t limit) {
+        bool uniform = false;
+        const uint64_t n = list_start("the number of labels", uniform);
+        if (uniform) fail("a uniform list of " + std::string(what));
+        std::vector<int64_t> out;
+        auto check = [&](int64_t v) {
+            if (v <= -static_cast<int64_t>(limit) || v >= static_cast<int64_t>(limit))
+                fail(std::string(what) + " " + std::to_string(v) + " is out of range");
+            return v;
+        };
+        if (binary()) {
+            if (n == kUnknown) fail("a binary list needs a count");
+            const std::string_view body = raw(n, label_bytes_);
+            out.resize(n);
+            for (uint64_t i = 0; i < n; ++i) {
+                if (label_bytes_ == 4) {
+                    int32_t x;
+                    std::memcpy(&x, body.data() + 4 * i, 4);
+                    out[i] = check(x);
+                } else {
+                    int64_t x;
+                    std::memcpy(&x, body.data() + 8 * i, 8);
+                    out[i] = check(x);
+                }
+            }
+            return out;
+        }
+        if (n != kUnknown && n > (text_.size() - pos_) / 2)
+            fail("the list claims " + std::to_string(n) + " labels, more than the rest of the file holds");
+        while (!at(')')) {
+            skip();
+            const bool negative = pos_ < text_.size() && text_[pos_] == '-';
+            if (negative) ++pos_;
+            const auto v = static_cast<int64_t>(std::min<uint64_t>(count(what), limit));
+            out.push_back(check(negative ? -v : v));
+        }
+        ++pos_;
+        if (n != kUnknown && out.size() != n)
+            fail("the list holds " + std::to_string(out.size()) + " labels, its count says " + std::to_string(n));
+        return out;
+    }
+
     std::vector<double> vectors() {
         bool uniform = false;
         const uint64_t n = list_start("the number of points", uniform);
@@ -433,7 +476,113 @@ void read_polymesh_files(const OpenFoamFile& open, LoadedCellMesh& r) {
 
 }  // namespace
 
+namespace {
+
+// The whole mesh of a decomposed case, put together from its processors'
+// meshes by their point, face and cell addressing (decomposePar's
+// pointProcAddressing, faceProcAddressing: ±(face + 1), negative where the
+// processor holds the face reversed, as its neighbour cell's; and
+// cellProcAddressing): the undecomposed case's points, faces and cells in
+// its own order. A point two processors share must have the same coordinates.
+LoadedCellMesh read_decomposed_case(const fs::path& case_dir, const std::vector<std::string>& dirs) {
+    struct Piece {
+        LoadedCellMesh mesh;
+        std::vector<uint32_t> points;
+        std::vector<int64_t> faces;
+    };
+    std::vector<Piece> pieces(dirs.size());
+    uint64_t points = 0, faces = 0, cells = 0, local_points = 0, local_faces = 0;
+    for (std::size_t p = 0; p < dirs.size(); ++p) {
+        Piece& piece = pieces[p];
+        piece.mesh = read_polymesh(dirs[p]);
+        const fs::path dir = piece.mesh.location;
+        bool gzip = false;
+        if (piece.mesh.case_index.empty())
+            throw ReadError::whole_file(dir.string(), "no cellProcAddressing: decomposePar writes it");
+        FoamFile point_file = open_foam_file(dir, "pointProcAddressing", gzip);
+        piece.points = point_file.labels("point", kNoCell, piece.mesh.mesh.points.size() / 3);
+        if (piece.points.size() != piece.mesh.mesh.points.size() / 3)
+            point_file.fail_whole("pointProcAddressing does not list one point per point of the mesh");
+        FoamFile face_file = open_foam_file(dir, "faceProcAddressing", gzip);
+        piece.faces = face_file.signed_labels("face", kNoCell);
+        if (piece.faces.size() != piece.mesh.mesh.owner.size())
+            face_file.fail_whole("faceProcAddressing does not list one face per face of the mesh");
+        for (const uint32_t v : piece.points) points = std::max<uint64_t>(points, v + uint64_t{1});
+        for (const int64_t v : piece.faces) {
+            if (v == 0) face_file.fail_whole("faceProcAddressing holds 0 (faces are numbered from 1, signed)");
+            faces = std::max<uint64_t>(faces, static_cast<uint64_t>(v < 0 ? -v : v));
+        }
+        for (const uint64_t v : piece.mesh.case_index) cells = std::max<uint64_t>(cells, v + 1);
+        local_points += piece.points.size();
+        local_faces += piece.faces.size();
+    }
+    const std::string name = case_dir.string();
+    if (points > local_points || faces > local_faces || cells >= kNoCell)
+        throw ReadError::whole_file(name, "the processors' addressing names more points, faces or cells than they hold");
+    LoadedCellMesh r;
+    r.format = "openfoam";
+    r.unit = "m";
+    r.location = name;
+    r.encoding = pieces.empty() ? "ascii" : pieces[0].mesh.encoding;
+    r.notes.push_back("a decomposed case: " + std::to_string(dirs.size()) + " processors' meshes put together");
+    CellMesh& m = r.mesh;
+    m.points.assign(3 * points, 0.0);
+    std::vector<uint8_t> point_set(points, 0);
+    constexpr uint64_t kNone = ~uint64_t{0};
+    std::vector<uint64_t> source(faces, kNone);  // the processor and local face that gives each face's points
+    m.owner.assign(faces, kNoCell);
+    m.neighbour.assign(faces, kNoCell);
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+        const Piece& piece = pieces[p];
+        const CellMesh& local = piece.mesh.mesh;
+        r.gzip = r.gzip || piece.mesh.gzip;
+        for (std::size_t i = 0; i < piece.points.size(); ++i) {
+            double* at = &m.points[3 * std::size_t{piece.points[i]}];
+            if (point_set[piece.points[i]] != 0 &&
+                (at[0] != local.points[3 * i] || at[1] != local.points[3 * i + 1] || at[2] != local.points[3 * i + 2]))
+                throw ReadError::whole_file(dirs[p], "point " + std::to_string(piece.points[i]) +
+                                                         " has other coordinates in another processor");
+            std::copy_n(&local.points[3 * i], 3, at);
+            point_set[piece.points[i]] = 1;
+        }
+        for (std::size_t f = 0; f < piece.faces.size(); ++f) {
+            const bool reversed = piece.faces[f] < 0;
+            const auto g = static_cast<std::size_t>((reversed ? -piece.faces[f] : piece.faces[f]) - 1);
+            const auto cell = static_cast<uint32_t>(piece.mesh.case_index[local.owner[f]]);
+            uint32_t& side = reversed ? m.neighbour[g] : m.owner[g];
+            if (side != kNoCell && side != cell)
+                throw ReadError::whole_file(dirs[p], "face " + std::to_string(g) + " is given two cells on one side");
+            side = cell;
+            if (!reversed) {
+                source[g] = (uint64_t{p} << 32) | f;
+                if (local.neighbour[f] != kNoCell)
+                    m.neighbour[g] = static_cast<uint32_t>(piece.mesh.case_index[local.neighbour[f]]);
+            }
+        }
+    }
+    for (std::size_t g = 0; g < faces; ++g) {
+        if (source[g] == kNone || m.owner[g] == kNoCell)
+            throw ReadError::whole_file(name, "face " + std::to_string(g) + " is in no processor as its owner's");
+        const Piece& piece = pieces[source[g] >> 32];
+        for (const uint32_t v : piece.mesh.mesh.view().face(source[g] & 0xFFFFFFFFu))
+            m.face_points.push_back(piece.points[v]);
+        m.face_offsets.push_back(static_cast<uint32_t>(m.face_points.size()));
+    }
+    m.cells = cells;
+    return r;
+}
+
+}  // namespace
+
 LoadedCellMesh read_polymesh(const std::string& path) {
+    {
+        std::error_code ec;
+        const fs::path p(path);
+        if (!fs::exists(p / "points", ec) && !fs::exists(p / "points.gz", ec) &&
+            !fs::exists(p / "constant" / "polyMesh", ec))
+            if (const std::vector<std::string> dirs = foam_processor_dirs(path); !dirs.empty())
+                return read_decomposed_case(p, dirs);
+    }
     const fs::path dir = polymesh_directory(path);
     LoadedCellMesh r;
     r.location = dir.string();
@@ -519,6 +668,21 @@ std::vector<FoamPatch> read_foam_patches(const std::string& polymesh_dir) {
 
 std::string write_foam_field(const std::string& polymesh_dir, const std::string& name, std::span<const double> values,
                              const std::string& time) {
+    // A decomposed case (read_polymesh of its directory): each processor's
+    // cells' values into its own field, as a parallel run reads them.
+    if (fs::path(polymesh_dir).filename() != "polyMesh")
+        if (const std::vector<std::string> dirs = foam_processor_dirs(polymesh_dir); !dirs.empty()) {
+            for (const std::string& d : dirs) {
+                const fs::path mesh = fs::path(d) / "constant" / "polyMesh";
+                bool gzip = false;
+                FoamFile file = open_foam_file(mesh, "cellProcAddressing", gzip);
+                const std::vector<uint32_t> cells = file.labels("cell", values.size());
+                std::vector<double> local(cells.size());
+                for (std::size_t c = 0; c < cells.size(); ++c) local[c] = values[cells[c]];
+                write_foam_field(mesh.string(), name, local, time);
+            }
+            return (fs::path(polymesh_dir) / "processor*" / time / name).string();
+        }
     const fs::path mesh_dir = fs::absolute(fs::path(polymesh_dir)).lexically_normal();
     const fs::path constant = mesh_dir.parent_path();
     if (mesh_dir.filename() != "polyMesh" || constant.filename() != "constant")

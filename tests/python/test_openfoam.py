@@ -131,3 +131,28 @@ def test_a_decomposed_case_gives_the_whole_cases_bits_one_processor_a_dask_task(
     assert whole.cut_cells[0] > 10 and parts.cut_cells == whole.cut_cells
     with pytest.raises(ValueError, match="not a decomposed OpenFOAM case"):
         polyvol.dask.cells(tmp_path, body, units="m")
+
+
+def test_a_decomposed_case_is_read_whole_and_its_fields_are_written_per_processor_for_openfoam(tmp_path):
+    import polyvol
+    case = make_case(tmp_path, "warped_ascii")
+    foam(case, "decomposePar")
+    # The processors alone (no constant/polyMesh of the case's own): the whole mesh from its pieces.
+    alone = tmp_path / "alone"
+    shutil.copytree(case / "system", alone / "system")
+    for p in case.glob("processor*"):
+        shutil.copytree(p, alone / p.name)
+    whole, pieces = polyvol.load_cells(case), polyvol.load_cells(alone)
+    for field in ("points", "face_offsets", "face_points", "owner", "neighbour"):
+        assert np.array_equal(getattr(whole, field), getattr(pieces, field)), field
+    sphere = off_file(tmp_path / "sphere.off", *uv_sphere(12, 24, 0.7, (1.55, 1.05, 1.1)))
+    a = cells(case, sphere, "--units", "m", "--field", "alpha.water")
+    b = cells(alone, sphere, "--units", "m", "--field", "alpha.water")
+    assert a["bodies"] == b["bodies"] and a["mesh"]["volume"] == b["mesh"]["volume"]
+    # OpenFOAM puts the processors' fields together again: the whole case's field, value for value.
+    for p in alone.glob("processor*"):
+        shutil.copytree(p / "0", case / p.name / "0")
+    expected = internal_field(case / "0" / "alpha.water")
+    shutil.rmtree(case / "0")
+    foam(case, "reconstructPar -withZero -fields '(alpha.water)'")
+    assert np.array_equal(internal_field(case / "0" / "alpha.water"), expected)
