@@ -20,6 +20,9 @@
 //                         correctly rounded (the exact reference path: slow)
 //   --intersection F.npy  two bodies: their intersection's, within 2 ulp of
 //                         each cell's volume (inclusion-exclusion)
+//   --surface F.npy       each body's wetted area and area-weighted normal
+//                         per cell, shape (cells, 4) or (bodies, cells, 4);
+//                         with -o OUT.vtu also as cell arrays, with their bound
 #include "commands/cells.hpp"
 
 #include <algorithm>
@@ -63,6 +66,8 @@ int check_arguments(const CellsArgs& a) {
         return usage("--union needs a .npy file and two bodies or more");
     if (!a.intersection_out.empty() && (lower_extension(a.intersection_out) != ".npy" || a.bodies.size() != 2))
         return usage("--intersection needs a .npy file and exactly two bodies");
+    if (!a.surface_out.empty() && (lower_extension(a.surface_out) != ".npy" || a.bodies.empty()))
+        return usage("--surface needs a .npy file and a body");
     if (!a.field.empty() && a.bodies.size() != 1) return usage("--field needs exactly one body");
     if (a.fractions && a.bodies.empty()) return usage("--fractions needs a body");
     for (const std::string* u : {&a.units, &a.mesh_units})
@@ -146,6 +151,11 @@ nlohmann::json summary(const CellsArgs& a, const LoadedCellMesh& mesh, const std
                         {"cut_cells", b.cells.cut_cells},
                         {"empty_cells", b.cells.empty_cells},
                         {"cells_intersected", b.cells.touched_cells}});
+    if (!a.surface_out.empty())
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+            list[i]["wetted_area"] = json_number(bodies[i].cells.wetted_area_total);
+            list[i]["wetted_area_bound"] = json_number(bodies[i].cells.wetted_area_total_bound);
+        }
     j["bodies"] = list;
     if (joined.union_)
         j["union"] = {{"inside_mesh", json_number(joined.union_->total)},
@@ -202,6 +212,19 @@ int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolu
         const std::size_t per_cell[1] = {own.volumes.size()};
         if (joined.union_) write_npy(a.union_out, joined.union_->volumes, per_cell);
         if (joined.intersection) write_npy(a.intersection_out, joined.intersection->volumes, per_cell);
+        if (!a.surface_out.empty()) {
+            // Per body and cell: the wetted area, then ∫ n dA.
+            std::vector<double> data;
+            for (const Body& b : bodies)
+                for (std::size_t c = 0; c < own.volumes.size(); ++c) {
+                    data.push_back(b.cells.wetted_area[c]);
+                    data.insert(data.end(), &b.cells.surface_normal[3 * c], &b.cells.surface_normal[3 * c] + 3);
+                }
+            std::vector<std::size_t> shape;
+            if (bodies.size() > 1) shape.push_back(bodies.size());
+            shape.insert(shape.end(), {own.volumes.size(), 4});
+            write_npy(a.surface_out, data, shape);
+        }
         if (lower_extension(a.out) == ".npy") {
             std::vector<double> data;
             if (bodies.empty()) data = own.volumes;
@@ -224,6 +247,11 @@ int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolu
                 arrays.push_back({prefix + "volume", bodies[i].cells.volumes, 1, false});
                 arrays.push_back({prefix + "fraction", bodies[i].fractions, 1, false});
                 arrays.push_back({prefix + "cell_class", classes[i], 1, true});
+                if (!bodies[i].cells.wetted_area.empty()) {
+                    arrays.push_back({prefix + "wetted_area", bodies[i].cells.wetted_area, 1, false});
+                    arrays.push_back({prefix + "surface_normal", bodies[i].cells.surface_normal, 3, false});
+                    arrays.push_back({prefix + "surface_bound", bodies[i].cells.surface_bound, 1, false});
+                }
             }
             write_vtu(a.out, mesh.mesh.view(), arrays);
         } else if (lower_extension(a.out) == ".grdecl") {
@@ -269,6 +297,9 @@ CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
     cmd->add_option("--intersection", a.intersection_out,
                     "Two bodies: write their intersection's volume per cell (FILE.npy), within 2 ulp of each "
                     "cell's volume");
+    cmd->add_option("--surface", a.surface_out,
+                    "Write each body's wetted area and area-weighted outward normal per cell: FILE.npy, shape "
+                    "(cells, 4) or (bodies, cells, 4), with their bound in -o OUT.vtu");
     cmd->add_option("--keyword", a.keyword,
                     "The GRDECL keyword -o OUT.grdecl writes (default BODYVOL, or BODYFRAC with --fractions)");
     cmd->add_option("--units", a.units, std::string("The bodies' unit where a file states none: ") + kLengthUnitNames);
@@ -301,12 +332,16 @@ int run_cells_command(const CellsArgs& a) {
         const auto body = read_body(file, a, unit, solid, code);
         if (!body) return code;
         Body b{file, {}, {}};
+        if (!a.surface_out.empty() && solid->resolved())
+            std::cerr << "polyvol: warning: " << file << ": its shells overlap: its wetted area and normal are not "
+                      << "computed (NaN in --surface)\n";
         try {
             const bool within = solid->solid && solid->solid->shells_crossing_themselves > 0;
             any_within = any_within || within;
             b.cells = body_in_cells(view, body->mesh.view(),
                                     {.overlapping_shells = solid->resolved(), .within_shells = within,
-                                     .reference = false, .own = own.volumes, .cells_tile = mesh->cells_tile});
+                                     .reference = false, .own = own.volumes, .cells_tile = mesh->cells_tile,
+                                     .surface = !a.surface_out.empty()});
         } catch (const std::invalid_argument& e) {
             std::cerr << "polyvol: " << file << " in " << a.mesh << ": " << e.what() << "\n";
             return Exit::invalid;
@@ -322,7 +357,8 @@ int run_cells_command(const CellsArgs& a) {
         try {
             joined.union_ = union_in_cells(view, views,
                                            {.overlapping_shells = true, .within_shells = any_within,
-                                            .reference = true, .own = own.volumes, .cells_tile = mesh->cells_tile});
+                                            .reference = true, .own = own.volumes, .cells_tile = mesh->cells_tile,
+                                            .surface = false});
         } catch (const std::invalid_argument& e) {
             std::cerr << "polyvol: the bodies' union in " << a.mesh << ": " << e.what() << "\n";
             return Exit::invalid;

@@ -24,6 +24,7 @@ struct CellsArgs {
     std::string keyword;     // --keyword NAME: the GRDECL keyword -o OUT.grdecl writes
     std::string union_out;         // --union FILE.npy: the bodies' union per cell
     std::string intersection_out;  // --intersection FILE.npy: two bodies' intersection per cell
+    std::string surface_out;       // --surface FILE.npy: each body's wetted area and normal per cell
     bool fractions = false;
     bool json = false;
 };

@@ -12,6 +12,7 @@
 // volume the boundary faces enclose: `total` is that sum rounded once.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -82,6 +83,16 @@ struct BodyInCells {
     double body_volume = 0;            // |B|, correctly rounded
     std::size_t full_cells = 0, cut_cells = 0, empty_cells = 0;
     std::size_t touched_cells = 0;     // intersected exactly one by one
+    // With BodyInCellsOptions::surface: per cell, the area of the body's
+    // surface inside it (its wetted area), its area-weighted outward normal
+    // ∫ n dA (3 per cell), and a bound that holds for the area and each
+    // component. A piece of the surface lying on a face between two cells
+    // counts in one of them (the booleans' perturbation decides which), so
+    // the cells add up to the surface's area inside the mesh. NaN for a body
+    // whose shells overlap (the reference path does not give them).
+    std::vector<double> wetted_area, surface_normal, surface_bound;
+    // Their sum (the cells' values added exactly, rounded once) and its bound.
+    double wetted_area_total = NAN, wetted_area_total_bound = NAN;
 };
 
 // The body's solid where its shells overlap or cross themselves
@@ -100,6 +111,7 @@ struct BodyInCellsOptions {
     bool reference = false;
     std::span<const double> own{};
     bool cells_tile = true;
+    bool surface = false;  // also the wetted area and normal per cell
 };
 BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body, const BodyInCellsOptions& options = {});
 

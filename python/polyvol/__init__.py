@@ -643,7 +643,8 @@ class Cells(_Result):
 
     _fields = ("unit", "total", "cell_volumes", "volumes", "fractions", "cell_class", "inside_mesh", "cells_sum",
                "cells_tile", "body_volumes", "full_cells", "cut_cells", "empty_cells", "union_volumes",
-               "union_inside_mesh", "intersection_volumes", "intersection_inside_mesh")
+               "union_inside_mesh", "intersection_volumes", "intersection_inside_mesh", "wetted_area", "surface_normal",
+               "surface_bound")
 
 
 from ._cells import CellMesh, cell_volumes, cells, load_cells, write_foam_field, write_grdecl_keyword  # noqa: E402

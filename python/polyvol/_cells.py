@@ -50,7 +50,7 @@ def write_grdecl_keyword(mesh, path, keyword, values):
 
 
 def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=False, weld_tolerance=0.0,
-          union=False, intersection=False):
+          union=False, intersection=False, surface=False):
     """The volume of each body in every cell of ``mesh`` (a CellMesh, or a
     path for load_cells), correctly rounded, as `polyvol cells` gives it.
 
@@ -74,7 +74,12 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
     ``union_inside_mesh``, the bodies' union per cell, correctly rounded
     (the exact reference path: slow on large meshes); intersection=True
     (two bodies): ``intersection_volumes`` and ``intersection_inside_mesh``,
-    within 2 ulp of each cell's volume. Otherwise these are None."""
+    within 2 ulp of each cell's volume. Otherwise these are None.
+    surface=True: ``wetted_area`` (bodies, cells), ``surface_normal``
+    (bodies, cells, 3: ∫ n dA of the body's surface in the cell) and
+    ``surface_bound`` (bodies, cells: it holds for the area and each
+    component; NaN for a body whose shells overlap), as `polyvol cells
+    --surface` gives them."""
     from . import Mesh, _policy, _solid_verdict, _warn, Cells  # noqa: E402 (defined before this module is imported)
     if not isinstance(mesh, CellMesh):
         mesh = load_cells(mesh)
@@ -92,7 +97,7 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
         p, ix, off = _arrays.mesh(body)
         declared = (body.unit or "") if isinstance(body, Mesh) else ""
         verdict, r, notes = _core.body_in_cells(mesh, p, ix, off, _policy(signed, False, orient, weld_tolerance),
-                                                declared, units or "", unit, own)
+                                                declared, units or "", unit, own, bool(surface))
         for note in notes:
             _warn(f"{name}: {note}")
         _solid_verdict(verdict, name)
@@ -114,4 +119,14 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
                  empty_cells=[r["empty_cells"] for r in results],
                  union_volumes=joined["volumes"] if joined else None,
                  union_inside_mesh=joined["inside_mesh"] if joined else None,
-                 intersection_volumes=met[0] if met else None, intersection_inside_mesh=met[1] if met else None)
+                 intersection_volumes=met[0] if met else None, intersection_inside_mesh=met[1] if met else None,
+                 wetted_area=_per_body(results, "wetted_area", surface, (n,)),
+                 surface_normal=_per_body(results, "surface_normal", surface, (n, 3)),
+                 surface_bound=_per_body(results, "surface_bound", surface, (n,)))
+
+
+def _per_body(results, key, asked, shape):
+    """One array per body stacked (NaN where a body has none: its shells overlap); None unless asked."""
+    if not asked:
+        return None
+    return np.array([r[key] if key in r else np.full(shape, np.nan) for r in results]).reshape((len(results),) + shape)

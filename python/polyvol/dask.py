@@ -230,4 +230,5 @@ def cells(case, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
                          full_cells=[int((c == 1).sum()) for c in cell_class],
                          cut_cells=[int((c == 2).sum()) for c in cell_class],
                          empty_cells=[int((c == 0).sum()) for c in cell_class], union_volumes=None,
-                         union_inside_mesh=None, intersection_volumes=None, intersection_inside_mesh=None)
+                         union_inside_mesh=None, intersection_volumes=None, intersection_inside_mesh=None,
+                         wetted_area=None, surface_normal=None, surface_bound=None)

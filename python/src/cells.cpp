@@ -42,6 +42,13 @@ py::dict result_dict(BodyInCells r) {
     d["cut_cells"] = r.cut_cells;
     d["empty_cells"] = r.empty_cells;
     d["cells_intersected"] = r.touched_cells;
+    if (!r.wetted_area.empty()) {
+        d["wetted_area"] = adopt_array(std::move(r.wetted_area), {n});
+        d["surface_normal"] = adopt_array(std::move(r.surface_normal), {n, 3});
+        d["surface_bound"] = adopt_array(std::move(r.surface_bound), {n});
+        d["wetted_area_total"] = r.wetted_area_total;
+        d["wetted_area_total_bound"] = r.wetted_area_total_bound;
+    }
     return d;
 }
 
@@ -141,7 +148,7 @@ void bind_cells(py::module_& m) {
         "body_in_cells",
         [](const LoadedCellMesh& l, const Doubles& positions, const Indices& indices,
            const std::optional<Indices>& offsets, const py::dict& policy, const std::string& declared,
-           const std::string& units, const std::string& unit, const Doubles& own) {
+           const std::string& units, const std::string& unit, const Doubles& own, bool surface) {
             Mesh body = to_mesh(mesh_view(positions, indices, offsets));
             py::list notes;
             const std::string body_unit = !declared.empty() ? declared : units;
@@ -169,7 +176,7 @@ void bind_cells(py::module_& m) {
                     r = body_in_cells(l.mesh.view(), body.view(),
                                       {.overlapping_shells = solid.resolved(), .within_shells = within,
                                        .reference = false, .own = own_given ? span_of(own) : std::span<const double>{},
-                                       .cells_tile = l.cells_tile});
+                                       .cells_tile = l.cells_tile, .surface = surface});
                 }
             }
             if (!r) return py::make_tuple(solid_verdict(solid), py::none(), notes);
@@ -179,7 +186,7 @@ void bind_cells(py::module_& m) {
             return py::make_tuple(solid_verdict(solid), d, notes);
         },
         py::arg("mesh"), py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("policy"),
-        py::arg("declared"), py::arg("units"), py::arg("unit"), py::arg("own"));
+        py::arg("declared"), py::arg("units"), py::arg("unit"), py::arg("own"), py::arg("surface"));
 
     // The bodies' union in every cell (union_in_cells), from the bodies
     // body_in_cells returned; and two bodies' intersection from the three results.
@@ -197,7 +204,7 @@ void bind_cells(py::module_& m) {
                 py::gil_scoped_release release;
                 r = union_in_cells(l.mesh.view(), views,
                                    {.overlapping_shells = true, .within_shells = within, .reference = true,
-                                    .own = span_of(own), .cells_tile = l.cells_tile});
+                                    .own = span_of(own), .cells_tile = l.cells_tile, .surface = false});
             }
             return result_dict(std::move(r));
         },

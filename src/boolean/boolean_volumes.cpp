@@ -84,11 +84,14 @@ struct Inputs {
 };
 
 // The pieces' volume (integers and fractions; the whole triangles are the
-// caller's) and the areas of each operand's surface inside the other.
-void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSum& area_b_in_a) {
+// caller's) and the areas of each operand's surface inside the other; with
+// b_normal, also the vector area of B's surface inside A.
+void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSum& area_b_in_a,
+                VectorAreaSum* b_normal = nullptr) {
     const Scale& scale = in.scale;
     // Crossings of edge b -> c: σ (1 - λ) det(a, b, c), 1 - λ = D_c / (D_c - D_b).
-    auto edge_terms = [&](const Operand& op, const Operand& other, const std::vector<EdgeHit>& hits, AreaSum& area) {
+    auto edge_terms = [&](const Operand& op, const Operand& other, const std::vector<EdgeHit>& hits, AreaSum& area,
+                          VectorAreaSum* vector) {
         for (const EdgeHit& h : hits) {
             if (h.edge != 1) continue;
             const IntPoint a = scale.of(op.corner(h.tri, 0)), b = scale.of(op.corner(h.tri, 1)),
@@ -102,20 +105,23 @@ void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSu
             if (db == 0) {
                 volume.integer += h.sign * det3(a, b, c);
                 area.add(h.sign * g.normal_length, error);
+                if (vector != nullptr) vector->add(h.sign * g.normal_length, error, g);
                 continue;
             }
             const mpz_class den = dc - db;
             volume.add_fraction(h.sign * dc * det3(a, b, c), den);
-            area.add(h.sign * approx_ratio(dc, den, 0) * g.normal_length, error);
+            const double term = h.sign * approx_ratio(dc, den, 0) * g.normal_length;
+            area.add(term, error);
+            if (vector != nullptr) vector->add(term, error, g);
         }
     };
-    edge_terms(in.A, in.B, in.cross.a_hits, area_a_in_b);
-    edge_terms(in.B, in.A, in.cross.b_hits, area_b_in_a);
+    edge_terms(in.A, in.B, in.cross.a_hits, area_a_in_b, nullptr);
+    edge_terms(in.B, in.A, in.cross.b_hits, area_b_in_a, b_normal);
 
     // Cut segments: det(a_t - a_s, P, Q); areas ±|(P - a) × (Q - a)| per side.
     const double M = in.max_coordinate;
     auto cut_area = [&](const double* a, const std::array<double, 3>& p, const std::array<double, 3>& q,
-                        const Geometry& g, AreaSum& area) {
+                        const Geometry& g, AreaSum& area, VectorAreaSum* vector) {
         const double u[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
         const double v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
         const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
@@ -124,6 +130,7 @@ void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSu
         double error = 6 * 16 * kU * (M * (lu + lv) + lu * lv + 4 * kU * M * M);
         if (!(g.normal_length > 4 * g.normal_error)) error += 2 * len;  // the side may be misjudged
         area.add(along >= 0 ? len : -len, error);
+        if (vector != nullptr) vector->add(along >= 0 ? len : -len, error, g);
     };
     for (const Cut& cut : in.cross.cuts) {
         const IntPoint at = scale.of(in.A.corner(cut.a, 0)), as = scale.of(in.B.corner(cut.b, 0));
@@ -148,8 +155,10 @@ void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSu
         }
         const double* a = in.A.corner(cut.a, 0);
         const double* b = in.B.corner(cut.b, 0);
-        cut_area(a, P.xyz, Q.xyz, triangle_geometry(a, in.A.corner(cut.a, 1), in.A.corner(cut.a, 2)), area_a_in_b);
-        cut_area(b, Q.xyz, P.xyz, triangle_geometry(b, in.B.corner(cut.b, 1), in.B.corner(cut.b, 2)), area_b_in_a);
+        cut_area(a, P.xyz, Q.xyz, triangle_geometry(a, in.A.corner(cut.a, 1), in.A.corner(cut.a, 2)), area_a_in_b,
+                 nullptr);
+        cut_area(b, Q.xyz, P.xyz, triangle_geometry(b, in.B.corner(cut.b, 1), in.B.corner(cut.b, 2)), area_b_in_a,
+                 b_normal);
     }
 }
 
@@ -336,13 +345,26 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
 namespace polyvol::boolean {
 
 double intersection_given_windings(const Operand& A, const Operand& B, const std::vector<int32_t>& wb, int e0,
-                                   double max_coordinate) {
+                                   double max_coordinate, SurfaceInside* surface) {
     const Crossings cross = find_crossings(A, B);
     const std::vector<int32_t> wa = vertex_windings(B, A, cross.b_hits);
     WholeSums whole_a = whole_triangles(A, wb), whole_b = whole_triangles(B, wa);
     PieceSum pieces;
     AreaSum a_in_b = whole_a.area_inside, b_in_a = whole_b.area_inside;
-    sum_pieces(Inputs{A, B, cross, wa, wb, Scale{e0}, max_coordinate}, pieces, a_in_b, b_in_a);
+    VectorAreaSum b_normal;
+    if (surface != nullptr)  // B's whole triangles inside A: their full vector area
+        for (std::size_t i = 0; i < whole_b.inside.size(); i += 3) {
+            const Geometry g = triangle_geometry(B.mesh.positions.data() + 3 * std::size_t{whole_b.inside[i]},
+                                                 B.mesh.positions.data() + 3 * std::size_t{whole_b.inside[i + 1]},
+                                                 B.mesh.positions.data() + 3 * std::size_t{whole_b.inside[i + 2]});
+            b_normal.add(g.normal_length, g.normal_error + kU * g.normal_length, g);
+        }
+    sum_pieces(Inputs{A, B, cross, wa, wb, Scale{e0}, max_coordinate}, pieces, a_in_b, b_in_a,
+               surface != nullptr ? &b_normal : nullptr);
+    if (surface != nullptr) {
+        surface->area = b_in_a;
+        surface->normal = b_normal;
+    }
     // 6 |A ∩ B| is the pieces' sum, the whole triangles' part filtered first.
     int refinements = 0;
     for (bool exactly : {false, true}) {

@@ -85,6 +85,28 @@ struct AreaSum {
     }
 };
 
+// 2 × the vector area ∫ n dA of pieces of triangles: each term is a signed
+// area term s (an AreaSum term, error e) of one triangle, times the
+// triangle's unit normal N/|N|, summed exactly per component. Bound, per
+// component: e + 4u|s| + 2 × the normal's error (|s| <= |N|, so the unit
+// normal's error, 2 × normal_error / |N|, costs at most that).
+struct VectorAreaSum {
+    exact::ExactSum sum[3];
+    double bound = 0;
+    void add(double s, double e, const Geometry& g) {
+        bound += e + 4 * 0x1p-53 * std::fabs(s) + 2 * g.normal_error;
+        if (!(g.normal_length > 0)) return;
+        for (int k = 0; k < 3; ++k) sum[k].add(s * (g.n[k] / g.normal_length));
+    }
+};
+
+// The part of B's surface inside A, as intersection_given_windings can give
+// it: 2 × its area and 2 × its vector area, with their bounds.
+struct SurfaceInside {
+    AreaSum area;
+    VectorAreaSum normal;
+};
+
 // 6 × the volume of some pieces, in three exact parts (see the top).
 struct PieceSum {
     exact::ExactSum whole;

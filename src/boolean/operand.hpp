@@ -120,9 +120,11 @@ Crossings find_crossings(const Operand& a, const Operand& b, Pairs pairs = Pairs
 // |A ∩ B| correctly rounded (A at shift 0, B moved by δ), given B's winding
 // at A's vertices (0 or 1; B need not be closed where A's box does not
 // reach: every B triangle meeting A's box must be there); e0 and
-// max_coordinate over both (boolean_volumes' scale). boolean_volumes.cpp.
+// max_coordinate over both (boolean_volumes' scale); and, when `surface` is
+// given, B's surface inside A (its area and vector area). boolean_volumes.cpp.
+struct SurfaceInside;
 double intersection_given_windings(const Operand& A, const Operand& B, const std::vector<int32_t>& wb, int e0,
-                                   double max_coordinate);
+                                   double max_coordinate, SurfaceInside* surface = nullptr);
 
 // Winding number at every vertex of `self` of the other operand's bodies
 // other than the vertex's own (with &self == &other: of the other bodies of

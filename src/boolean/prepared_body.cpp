@@ -137,7 +137,7 @@ std::vector<int32_t> windings_at(const PreparedBody& body, std::span<const doubl
 constexpr uint32_t kNoVertex = 0xFFFFFFFFu;
 
 double cell_intersection(const PreparedBody& body, std::span<const double> points, std::span<const uint32_t> triangles,
-                         std::span<const int32_t> winding) {
+                         std::span<const int32_t> winding, CellSurface* surface) {
     // A: the cell, unmoved; B: the body's triangles near it, moved by δ as in boolean_volumes.
     Operand A;
     A.mesh.positions.assign(points.begin(), points.end());
@@ -172,7 +172,21 @@ double cell_intersection(const PreparedBody& body, std::span<const double> point
     int e0 = body.e0;
     double max_coordinate = body.max_coordinate;
     widen_scale(A, "mesh", e0, max_coordinate);
-    return intersection_given_windings(A, B, std::vector<int32_t>(winding.begin(), winding.end()), e0, max_coordinate);
+    if (surface == nullptr)
+        return intersection_given_windings(A, B, std::vector<int32_t>(winding.begin(), winding.end()), e0,
+                                           max_coordinate);
+    SurfaceInside inside;
+    const double volume = intersection_given_windings(A, B, std::vector<int32_t>(winding.begin(), winding.end()), e0,
+                                                      max_coordinate, &inside);
+    // Each sum is 2 ×: halved and rounded once (half an ulp more).
+    surface->area = inside.area.sum.round_div(2);
+    double largest = std::fabs(surface->area);
+    for (int k = 0; k < 3; ++k) {
+        surface->normal[k] = inside.normal.sum[k].round_div(2);
+        largest = std::max(largest, std::fabs(surface->normal[k]));
+    }
+    surface->bound = (std::max(inside.area.bound, inside.normal.bound) / 2 + 0x1p-53 * largest) * (1 + 0x1p-40);
+    return volume;
 }
 
 }  // namespace polyvol::boolean

@@ -41,8 +41,17 @@ std::vector<int32_t> windings_at(const PreparedBody& body, std::span<const doubl
                                  std::span<const uint32_t> triangles);
 
 // |c ∩ B|, correctly rounded, for a closed outward surface c of `triangles`
-// over `points`, given B's winding at each point (0 or 1, windings_at).
+// over `points`, given B's winding at each point (0 or 1, windings_at); with
+// `surface`, B's surface inside c too: its area, its vector area ∫ n dA
+// (area[1..3]), and one bound for all four (operand.hpp's SurfaceInside,
+// halved and rounded).
+struct CellSurface {
+    double area = 0;
+    double normal[3] = {0, 0, 0};
+    double bound = 0;
+};
 double cell_intersection(const PreparedBody& body, std::span<const double> points,
-                         std::span<const uint32_t> triangles, std::span<const int32_t> winding);
+                         std::span<const uint32_t> triangles, std::span<const int32_t> winding,
+                         CellSurface* surface = nullptr);
 
 }  // namespace polyvol::boolean

@@ -212,6 +212,11 @@ BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const
     tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
         r.volumes[list[i]] = intersect(cell_surface(m, cf, list[i]), body, options, list[i]);
     });
+    if (options.surface) {  // not given by the booleans of the whole body
+        r.wetted_area.assign(m.cell_count(), NAN);
+        r.surface_normal.assign(3 * m.cell_count(), NAN);
+        r.surface_bound.assign(m.cell_count(), NAN);
+    }
     fill_untouched(m, touched, own.volumes, [&](std::size_t c) {
         const double v = intersect(cell_surface(m, cf, c), body, options, c);
         if (v != 0 && v != own.volumes[c])
@@ -243,12 +248,34 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
                 faces_of_touched.insert(faces_of_touched.end(), {a, b, d});
             });
     const std::vector<int32_t> winding = boolean::windings_at(*prepared, m.points, faces_of_touched);
+    if (options.surface) {
+        r.wetted_area.assign(m.cell_count(), 0.0);
+        r.surface_normal.assign(3 * m.cell_count(), 0.0);
+        r.surface_bound.assign(m.cell_count(), 0.0);
+    }
     tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
         const LocalCell l = local_cell(m, cf, list[i], &winding);
         for (const int32_t x : l.winding)
             if (x != 0 && x != 1) throw std::invalid_argument("the body overlaps itself (a winding number above 1)");
-        r.volumes[list[i]] = boolean::cell_intersection(*prepared, l.points, l.triangles, l.winding);
+        boolean::CellSurface surface;
+        r.volumes[list[i]] = boolean::cell_intersection(*prepared, l.points, l.triangles, l.winding,
+                                                        options.surface ? &surface : nullptr);
+        if (options.surface) {
+            r.wetted_area[list[i]] = surface.area;
+            std::copy_n(surface.normal, 3, &r.surface_normal[3 * std::size_t{list[i]}]);
+            r.surface_bound[list[i]] = surface.bound;
+        }
     });
+    if (options.surface) {
+        exact::ExactSum area;
+        double bound = 0;
+        for (std::size_t c = 0; c < m.cell_count(); ++c) {
+            area.add(r.wetted_area[c]);
+            bound += r.surface_bound[c];
+        }
+        r.wetted_area_total = area.round();
+        r.wetted_area_total_bound = bound * (1 + 0x1p-40) + 0x1p-53 * std::fabs(r.wetted_area_total);
+    }
     fill_untouched(m, touched, own.volumes, [&](std::size_t c) {
         std::vector<uint32_t> tris;
         cell_triangles(m, cf, c, tris);

@@ -475,3 +475,65 @@ TEST(BodyInCells, TwoBoxesUnionIsCorrectlyRoundedAndTheirIntersectionBounded) {
     const MeshView twice[2] = {A.view(), A.view()};
     EXPECT_EQ(union_in_cells(m, twice).volumes, ra.volumes);
 }
+
+TEST(BodyInCells, TheWettedAreaAndNormalOfABoxAreItsFacesInEachCell) {
+    const LoadedCellMesh loaded = read_polymesh(kData + "graded_box");
+    const CellMeshView m = loaded.mesh.view();
+    const std::array<double, 3> a{0.0531, 0.0317, 0.0219}, b{0.2093, 0.1687, 0.1571};
+    const Mesh body = polyvol::test::box(a, b);
+    BodyInCellsOptions o;
+    o.surface = true;
+    const BodyInCells r = body_in_cells(m, body.view(), o);
+    ASSERT_EQ(r.wetted_area.size(), m.cell_count());
+    double total = 0, total_bound = 0, net[3] = {0, 0, 0};
+    std::size_t wet = 0;
+    for (std::size_t c = 0; c < m.cell_count(); ++c) {
+        double lo[3], hi[3];
+        cell_box(m, c, lo, hi);
+        // The box's six faces inside the cell: for the face at x = a[0]
+        // (normal -x), the rectangle in y, z clipped to the cell, if a[0] is
+        // inside the cell's x range.
+        double area = 0, normal[3] = {0, 0, 0};
+        for (int axis = 0; axis < 3; ++axis)
+            for (const int side : {0, 1}) {
+                const double at = side == 0 ? a[axis] : b[axis];
+                if (!(at > lo[axis] && at < hi[axis])) continue;
+                double piece = 1;
+                for (int k = 0; k < 3; ++k)
+                    if (k != axis) piece *= std::max(0.0, std::min(hi[k], b[k]) - std::max(lo[k], a[k]));
+                area += piece;
+                normal[axis] += side == 0 ? -piece : piece;
+            }
+        const double bound = r.surface_bound[c] + 1e-15 * area;  // the closed form's own rounding
+        EXPECT_NEAR(r.wetted_area[c], area, bound) << "cell " << c;
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.surface_normal[3 * c + k], normal[k], bound) << "cell " << c;
+        EXPECT_LT(r.surface_bound[c], 1e-12 * (area + 0.01));  // the box's faces are about 0.02 m²
+        total += r.wetted_area[c] - area;
+        total_bound += r.surface_bound[c] + 1e-15 * area;
+        for (int k = 0; k < 3; ++k) net[k] += r.surface_normal[3 * c + k] - normal[k];
+        wet += area > 0;
+    }
+    EXPECT_GT(wet, 10u);
+    // The sums over the cells: the faces' parts inside the mesh (it ends below b's top).
+    EXPECT_NEAR(total, 0.0, total_bound);
+    for (const double n : net) EXPECT_NEAR(n, 0.0, total_bound);
+}
+
+TEST(BodyInCells, ASpheresWettedAreaAddsUpToItsAreaOverWarpedCells) {
+    const LoadedCellMesh loaded = read_polymesh(kData + "warped_ascii");
+    const CellMeshView m = loaded.mesh.view();
+    const Mesh sphere = polyvol::generate::uv_sphere(12, 24, 0.7, 1.55, 1.05, 1.1);
+    BodyInCellsOptions o;
+    o.surface = true;
+    const BodyInCells r = body_in_cells(m, sphere.view(), o);
+    double total = 0, bound = 0, net[3] = {0, 0, 0};
+    for (std::size_t c = 0; c < m.cell_count(); ++c) {
+        total += r.wetted_area[c];
+        bound += r.surface_bound[c];
+        for (int k = 0; k < 3; ++k) net[k] += r.surface_normal[3 * c + k];
+        EXPECT_EQ(r.wetted_area[c] > 0, r.cell_class[c] == CellClass::cut) << "cell " << c;
+    }
+    EXPECT_NEAR(total, surface_area(sphere.view()), bound + 1e-14);
+    for (const double n : net) EXPECT_NEAR(n, 0.0, bound + 1e-14);
+    EXPECT_LT(bound, 1e-12 * total);
+}

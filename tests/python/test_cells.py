@@ -365,3 +365,29 @@ def test_two_bodies_union_and_intersection_give_the_commands_bits_and_the_boxes_
     with pytest.raises(ValueError, match="two bodies"):
         polyvol.cells(case, polyvol.load(files[0]), units="m", union=True)
     assert polyvol.cells(case, polyvol.load(files[0]), units="m").union_volumes is None
+
+
+def test_the_wetted_area_and_normal_give_the_commands_bits_and_add_up_to_the_surface(case, tmp_path):
+    s = polyvol.Mesh(*uv_sphere(16, 32, 0.6, (0.1, 0.05, 0.0)))
+    body = off_file(tmp_path / "s.off", np.asarray(s.vertices), np.asarray(s.faces))
+    r = polyvol.cells(case, polyvol.load(body), units="m", surface=True)
+    out = subprocess.run([CLI, "cells", case, body, "--units", "m", "--surface", tmp_path / "s.npy",
+                          "-o", tmp_path / "c.vtu", "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    j = json.loads(out.stdout)
+    written = np.load(tmp_path / "s.npy")
+    assert written.shape == (64, 4)
+    assert np.array_equal(written[:, 0], r.wetted_area[0]) and np.array_equal(written[:, 1:], r.surface_normal[0])
+    # The cells add up to the sphere's area, and its closed surface's normals to nothing, within the bounds.
+    bound = r.surface_bound[0].sum()
+    assert abs(j["bodies"][0]["wetted_area"] - polyvol.mass_properties(s).area) <= j["bodies"][0]["wetted_area_bound"] + 1e-15
+    assert np.all(np.abs(r.surface_normal[0].sum(axis=0)) <= bound)
+    assert np.all((r.wetted_area[0] > 0) == (r.cell_class[0] == 2))
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(str(tmp_path / "c.vtu"))
+    reader.Update()
+    data = reader.GetOutput().GetCellData()
+    assert np.array_equal(vtk_to_numpy(data.GetArray("wetted_area")), r.wetted_area[0])
+    assert np.array_equal(vtk_to_numpy(data.GetArray("surface_normal")), r.surface_normal[0])
