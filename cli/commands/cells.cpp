@@ -17,7 +17,7 @@
 //               as one GRDECL keyword over every cell (--keyword; inactive 0)
 //   OUT.json    the summary only (as --json prints it)
 //   --union F.npy         several bodies: their union's volume per cell,
-//                         correctly rounded (the exact reference path: slow)
+//                         correctly rounded (a boolean per cell two bodies touch)
 //   --intersection F.npy  two bodies: their intersection's, within 2 ulp of
 //                         each cell's volume (inclusion-exclusion)
 //   --surface F.npy       each body's wetted area and area-weighted normal
@@ -292,8 +292,8 @@ CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
                     "Write the fractions as the OpenFOAM field CASE/0/NAME (e.g. alpha.water), keeping the "
                     "boundary conditions of an existing one (one body)");
     cmd->add_option("--union", a.union_out,
-                    "Several bodies: write their union's volume per cell, correctly rounded (FILE.npy; the exact "
-                    "reference path, slow on large meshes)");
+                    "Several bodies: write their union's volume per cell, correctly rounded (FILE.npy; a boolean per "
+                    "cell where two bodies come near it: slow there)");
     cmd->add_option("--intersection", a.intersection_out,
                     "Two bodies: write their intersection's volume per cell (FILE.npy), within 2 ulp of each "
                     "cell's volume");
@@ -355,7 +355,9 @@ int run_cells_command(const CellsArgs& a) {
         std::vector<MeshView> views;
         for (const Mesh& s : solids) views.push_back(s.view());
         try {
-            joined.union_ = union_in_cells(view, views,
+            std::vector<BodyInCells> each;
+            for (const Body& b : bodies) each.push_back(b.cells);
+            joined.union_ = union_in_cells(view, views, each,
                                            {.overlapping_shells = true, .within_shells = any_within,
                                             .reference = true, .own = own.volumes, .cells_tile = mesh->cells_tile,
                                             .surface = false});

@@ -83,6 +83,9 @@ struct BodyInCells {
     double body_volume = 0;            // |B|, correctly rounded
     std::size_t full_cells = 0, cut_cells = 0, empty_cells = 0;
     std::size_t touched_cells = 0;     // intersected exactly one by one
+    // Per cell, 1 where the body's triangles come near (a triangle's box
+    // meets the cell's box); elsewhere the cell is exactly full or empty.
+    std::vector<uint8_t> touched;
     // With BodyInCellsOptions::surface: per cell, the area of the body's
     // surface inside it (its wetted area), its area-weighted outward normal
     // ∫ n dA (3 per cell), and a bound that holds for the area and each
@@ -117,11 +120,17 @@ BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body, const 
 
 // Several bodies' union in every cell, correctly rounded: the bodies (each
 // a closed outward 2-cycle, its own solid: solid.hpp) taken together as one
-// body whose shells overlap — the region where any is — by the exact
-// reference path (a boolean per touched cell). options.overlapping_shells
-// is implied; within_shells when a body's shell crosses itself.
+// body whose shells overlap — the region where any is. With each body's
+// own result (`each`, body_in_cells of the same mesh), most cells follow
+// from them: a body full in the cell (its value the cell's, so the union,
+// between the two, rounds to it too) makes the union the cell; else the
+// bodies not touching the cell are exactly empty there, and with one body
+// touching it the union is that body's value. The cells two bodies or more
+// touch (and every cell without `each`) take the exact reference path, a
+// boolean per cell. options.overlapping_shells is implied; within_shells
+// when a body's shell crosses itself.
 BodyInCells union_in_cells(const CellMeshView& mesh, std::span<const MeshView> bodies,
-                           const BodyInCellsOptions& options = {});
+                           std::span<const BodyInCells> each = {}, const BodyInCellsOptions& options = {});
 
 // Two bodies' intersection in every cell, from three correctly rounded
 // values per cell: |A ∩ B ∩ c| = |A ∩ c| + |B ∩ c| − |(A ∪ B) ∩ c|, added

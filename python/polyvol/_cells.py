@@ -72,7 +72,7 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
 
     union=True (two bodies or more): also ``union_volumes`` (cells,) and
     ``union_inside_mesh``, the bodies' union per cell, correctly rounded
-    (the exact reference path: slow on large meshes); intersection=True
+    (a boolean per cell where two bodies come near it: slow there); intersection=True
     (two bodies): ``intersection_volumes`` and ``intersection_inside_mesh``,
     within 2 ulp of each cell's volume. Otherwise these are None.
     surface=True: ``wetted_area`` (bodies, cells), ``surface_normal``

@@ -25,6 +25,7 @@ py::array_t<uint32_t> u32(py::object self, const std::vector<uint32_t>& v) {
 struct CellsBody {
     Mesh mesh;
     bool within = false;  // a shell crosses itself
+    BodyInCells cells;    // its volumes and touched cells (for union_in_cells)
 };
 
 // BodyInCells as the dict polyvol.cells reads (the keys of `polyvol cells --json`).
@@ -180,9 +181,12 @@ void bind_cells(py::module_& m) {
                 }
             }
             if (!r) return py::make_tuple(solid_verdict(solid), py::none(), notes);
-            py::dict d = result_dict(std::move(*r));
             const bool within = solid.solid && solid.solid->shells_crossing_themselves > 0;
-            d["body"] = std::make_shared<CellsBody>(CellsBody{std::move(body), within});
+            BodyInCells kept;
+            kept.volumes = r->volumes;
+            kept.touched = r->touched;
+            py::dict d = result_dict(std::move(*r));
+            d["body"] = std::make_shared<CellsBody>(CellsBody{std::move(body), within, std::move(kept)});
             return py::make_tuple(solid_verdict(solid), d, notes);
         },
         py::arg("mesh"), py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("policy"),
@@ -194,15 +198,17 @@ void bind_cells(py::module_& m) {
         "union_in_cells",
         [](const LoadedCellMesh& l, const std::vector<std::shared_ptr<CellsBody>>& bodies, const Doubles& own) {
             std::vector<MeshView> views;
+            std::vector<BodyInCells> each;
             bool within = false;
             for (const auto& b : bodies) {
                 views.push_back(b->mesh.view());
+                each.push_back(b->cells);
                 within = within || b->within;
             }
             BodyInCells r;
             {
                 py::gil_scoped_release release;
-                r = union_in_cells(l.mesh.view(), views,
+                r = union_in_cells(l.mesh.view(), views, each,
                                    {.overlapping_shells = true, .within_shells = within, .reference = true,
                                     .own = span_of(own), .cells_tile = l.cells_tile, .surface = false});
             }

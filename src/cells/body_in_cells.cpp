@@ -207,6 +207,7 @@ BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const
     r.volumes.assign(m.cell_count(), 0);
     whole_volumes(m, cf, body, options, r);
     const std::vector<uint8_t> touched = touched_cells(m, cf, *boolean::prepare_body(body));
+    r.touched = touched;
     const std::vector<uint32_t> list = listed(touched);
     r.touched_cells = list.size();
     tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
@@ -238,6 +239,7 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
     r.volumes.assign(m.cell_count(), 0);
     whole_volumes(m, cf, body, options, r);
     const std::vector<uint8_t> touched = touched_cells(m, cf, *prepared);
+    r.touched = touched;
     const std::vector<uint32_t> list = listed(touched);
     r.touched_cells = list.size();
     // The body's winding at every point of the touched cells, in one pass over their faces.
@@ -289,12 +291,43 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
 
 }  // namespace
 
-BodyInCells union_in_cells(const CellMeshView& m, std::span<const MeshView> bodies, const BodyInCellsOptions& options) {
+BodyInCells union_in_cells(const CellMeshView& m, std::span<const MeshView> bodies, std::span<const BodyInCells> each,
+                           const BodyInCellsOptions& options) {
     Mesh all;
     for (const MeshView& b : bodies) all.append(to_mesh(b));
     BodyInCellsOptions o = options;
     o.overlapping_shells = true;
-    return reference_volumes(m, all.view(), o);
+    o.surface = false;
+    if (each.size() != bodies.size()) return reference_volumes(m, all.view(), o);
+    for (const BodyInCells& b : each)
+        if (b.volumes.size() != m.cell_count() || b.touched.size() != m.cell_count())
+            throw std::invalid_argument("union_in_cells: a body's result is not of this mesh");
+    const OwnVolumes own = own_volumes(m, o);
+    const cells::CellFaces cf = cells::cell_faces(m);
+    BodyInCells r;
+    r.volumes.assign(m.cell_count(), 0);
+    r.touched.assign(m.cell_count(), 0);
+    whole_volumes(m, cf, all.view(), o, r);
+    std::vector<uint32_t> list;  // the cells two bodies or more touch, none full
+    for (std::size_t c = 0; c < m.cell_count(); ++c) {
+        std::size_t touching = 0, last = 0;
+        bool full = false;
+        for (std::size_t i = 0; i < each.size(); ++i) {
+            full = full || each[i].volumes[c] == own.volumes[c];
+            if (each[i].touched[c] != 0) ++touching, last = i;
+        }
+        if (full) r.volumes[c] = own.volumes[c];
+        else if (touching == 1) r.volumes[c] = each[last].volumes[c];
+        else if (touching > 1) list.push_back(static_cast<uint32_t>(c));
+    }
+    r.touched_cells = list.size();
+    tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
+        r.volumes[list[i]] = intersect(cell_surface(m, cf, list[i]), all.view(), o, list[i]);
+        r.touched[list[i]] = 1;
+    });
+    classify(own.volumes, r);
+    if (!o.cells_tile) r.total = r.cells_sum;
+    return r;
 }
 
 IntersectionInCells intersection_in_cells(const BodyInCells& a, const BodyInCells& b, const BodyInCells& both) {
