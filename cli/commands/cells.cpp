@@ -27,10 +27,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <string>
+
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -49,6 +54,36 @@ namespace {
 int usage(const std::string& message) { return usage_error("cells", message); }
 
 using Clock = std::chrono::steady_clock;
+
+// Progress of one step on stderr, when it is a terminal and the run has
+// taken a second: "polyvol cells: WHAT: NN%", overwritten in place.
+class ProgressLine {
+public:
+    ProgressLine(Clock::time_point start, std::string what) : start_(start), what_(std::move(what)) {}
+    ~ProgressLine() {
+        if (printed_) std::fputc('\n', stderr);
+    }
+    ProgressLine(const ProgressLine&) = delete;
+    ProgressLine& operator=(const ProgressLine&) = delete;
+    std::function<void(double)> callback() {
+        if (!::isatty(2)) return {};
+        return [this](double fraction) {
+            const auto now = Clock::now();
+            if (now - start_ < std::chrono::seconds(1) ||
+                (fraction < 1 && now - last_ < std::chrono::milliseconds(250)))
+                return;
+            last_ = now;
+            printed_ = true;
+            std::fprintf(stderr, "\rpolyvol cells: %s: %3.0f%%", what_.c_str(), 100 * fraction);
+            std::fflush(stderr);
+        };
+    }
+
+private:
+    Clock::time_point start_, last_{};
+    std::string what_;
+    bool printed_ = false;
+};
 
 struct Body {
     std::string file;
@@ -338,10 +373,11 @@ int run_cells_command(const CellsArgs& a) {
         try {
             const bool within = solid->solid && solid->solid->shells_crossing_themselves > 0;
             any_within = any_within || within;
+            ProgressLine progress(t0, file);
             b.cells = body_in_cells(view, body->mesh.view(),
                                     {.overlapping_shells = solid->resolved(), .within_shells = within,
                                      .reference = false, .own = own.volumes, .cells_tile = mesh->cells_tile,
-                                     .surface = !a.surface_out.empty()});
+                                     .surface = !a.surface_out.empty(), .progress = progress.callback()});
         } catch (const std::invalid_argument& e) {
             std::cerr << "polyvol: " << file << " in " << a.mesh << ": " << e.what() << "\n";
             return Exit::invalid;
@@ -355,12 +391,13 @@ int run_cells_command(const CellsArgs& a) {
         std::vector<MeshView> views;
         for (const Mesh& s : solids) views.push_back(s.view());
         try {
+            ProgressLine progress(t0, "the union");
             std::vector<BodyInCells> each;
             for (const Body& b : bodies) each.push_back(b.cells);
             joined.union_ = union_in_cells(view, views, each,
                                            {.overlapping_shells = true, .within_shells = any_within,
                                             .reference = true, .own = own.volumes, .cells_tile = mesh->cells_tile,
-                                            .surface = false});
+                                            .surface = false, .progress = progress.callback()});
         } catch (const std::invalid_argument& e) {
             std::cerr << "polyvol: the bodies' union in " << a.mesh << ": " << e.what() << "\n";
             return Exit::invalid;

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -115,6 +116,9 @@ struct BodyInCellsOptions {
     std::span<const double> own{};
     bool cells_tile = true;
     bool surface = false;  // also the wetted area and normal per cell
+    // Called now and then with the fraction of the cells intersected one by
+    // one so far (0..1], from worker threads but never concurrently.
+    std::function<void(double)> progress{};
 };
 BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body, const BodyInCellsOptions& options = {});
 

@@ -3,9 +3,11 @@
 // cells, the classes), the prepared path and the exact reference.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,6 +25,28 @@ namespace polyvol {
 namespace {
 
 using Box = std::array<double, 6>;  // xmin ymin zmin xmax ymax zmax
+
+// options.progress over `total` cells intersected one by one: step() after
+// each, the callback every 32nd and at the end, one thread at a time.
+class Progress {
+public:
+    Progress(const std::function<void(double)>& report, std::size_t total) : report_(report), total_(total) {}
+    void step() {
+        if (!report_) return;
+        const std::size_t done = ++done_;
+        if (done % 32 != 0 && done != total_) return;
+        if (std::unique_lock lock(mutex_, std::try_to_lock); lock.owns_lock() || done == total_) {
+            if (!lock.owns_lock()) lock.lock();
+            report_(static_cast<double>(done) / static_cast<double>(total_));
+        }
+    }
+
+private:
+    const std::function<void(double)>& report_;
+    std::size_t total_;
+    std::atomic<std::size_t> done_{0};
+    std::mutex mutex_;
+};
 
 // The boundary faces' triangles: the surface of the region the cells tile.
 Mesh boundary_surface(const CellMeshView& m) {
@@ -210,8 +234,10 @@ BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const
     r.touched = touched;
     const std::vector<uint32_t> list = listed(touched);
     r.touched_cells = list.size();
+    Progress progress(options.progress, list.size());
     tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
         r.volumes[list[i]] = intersect(cell_surface(m, cf, list[i]), body, options, list[i]);
+        progress.step();
     });
     if (options.surface) {  // not given by the booleans of the whole body
         r.wetted_area.assign(m.cell_count(), NAN);
@@ -255,6 +281,7 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
         r.surface_normal.assign(3 * m.cell_count(), 0.0);
         r.surface_bound.assign(m.cell_count(), 0.0);
     }
+    Progress progress(options.progress, list.size());
     tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
         const LocalCell l = local_cell(m, cf, list[i], &winding);
         for (const int32_t x : l.winding)
@@ -267,6 +294,7 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
             std::copy_n(surface.normal, 3, &r.surface_normal[3 * std::size_t{list[i]}]);
             r.surface_bound[list[i]] = surface.bound;
         }
+        progress.step();
     });
     if (options.surface) {
         exact::ExactSum area;
@@ -321,9 +349,11 @@ BodyInCells union_in_cells(const CellMeshView& m, std::span<const MeshView> bodi
         else if (touching > 1) list.push_back(static_cast<uint32_t>(c));
     }
     r.touched_cells = list.size();
+    Progress progress(o.progress, list.size());
     tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
         r.volumes[list[i]] = intersect(cell_surface(m, cf, list[i]), all.view(), o, list[i]);
         r.touched[list[i]] = 1;
+        progress.step();
     });
     classify(own.volumes, r);
     if (!o.cells_tile) r.total = r.cells_sum;
