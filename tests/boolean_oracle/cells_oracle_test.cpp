@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "boolean_oracle/cgal_support.hpp"
+#include "common/cell_surfaces.hpp"
 #include "common/generate.hpp"
 #include "exact/rational.hpp"
 #include "polyvol/cell_mesh_io.hpp"
@@ -26,28 +27,6 @@ namespace {
 
 using namespace oracle;
 
-// Cell c's closed surface: its owner faces as wound, its neighbour faces
-// reversed, each split by face_triangles (the rule the cells use).
-Mesh cell_surface(const CellMeshView& m, std::size_t c) {
-    Mesh out;
-    std::vector<uint32_t> local(m.point_count(), UINT32_MAX);
-    auto at = [&](uint32_t p) {
-        if (local[p] == UINT32_MAX)
-            local[p] = out.add_vertex(m.points[3 * p], m.points[3 * p + 1], m.points[3 * p + 2]);
-        return local[p];
-    };
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-        const bool owns = m.owner[f] == c, neighbours = m.neighbour[f] == c;
-        if (!owns && !neighbours) continue;
-        face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
-            if (owns)
-                out.add_triangle(at(a), at(b), at(d));
-            else
-                out.add_triangle(at(a), at(d), at(b));
-        });
-    }
-    return out;
-}
 
 std::array<double, 6> box_of(const Mesh& m) {
     std::array<double, 6> b{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
@@ -68,7 +47,7 @@ void expect_cells_match_cgal(const CellMeshView& m, const Mesh& body) {
     const std::array<double, 6> bb = box_of(body);
     std::size_t compared = 0, cut = 0;
     for (std::size_t c = 0; c < m.cell_count(); ++c) {
-        const Mesh cell = cell_surface(m, c);
+        const Mesh cell = test::cell_surface(m, c);
         const std::array<double, 6> cb = box_of(cell);
         const bool apart = cb[3] < bb[0] || cb[0] > bb[3] || cb[4] < bb[1] || cb[1] > bb[4] || cb[5] < bb[2] ||
                            cb[2] > bb[5];

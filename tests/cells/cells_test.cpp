@@ -18,44 +18,21 @@
 #include "polyvol/cell_mesh_io.hpp"
 #include "polyvol/cells.hpp"
 #include "polyvol/io.hpp"
+#include "common/cell_surfaces.hpp"
 #include "common/generate.hpp"
 #include "common/shapes.hpp"
 #include "polyvol/measure.hpp"
 
 namespace fs = std::filesystem;
 using namespace polyvol;
+using polyvol::test::boundary_surface;
+using polyvol::test::cell_surface;
 
 namespace {
 
 const std::string kData = std::string(POLYVOL_TEST_DATA) + "/openfoam/";
 
-// Cell c as a closed triangle mesh by the same face rule: its owner faces
-// as wound, its neighbour faces reversed.
-Mesh cell_surface(const CellMeshView& m, std::size_t c) {
-    Mesh out;
-    out.positions.assign(m.points.begin(), m.points.end());
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-        const bool owns = m.owner[f] == c, neighbours = m.neighbour[f] == c;
-        if (!owns && !neighbours) continue;
-        face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
-            if (owns) out.indices.insert(out.indices.end(), {a, b, d});
-            else out.indices.insert(out.indices.end(), {a, d, b});
-        });
-    }
-    return out;
-}
 
-// The mesh's boundary faces as a triangle mesh (the surface the cells fill).
-Mesh boundary_surface(const CellMeshView& m) {
-    Mesh out;
-    out.positions.assign(m.points.begin(), m.points.end());
-    for (std::size_t f = 0; f < m.face_count(); ++f)
-        if (m.neighbour[f] == kNoCell)
-            face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
-                out.indices.insert(out.indices.end(), {a, b, d});
-            });
-    return out;
-}
 
 // The box of cell c's points.
 void cell_box(const CellMeshView& m, std::size_t c, double* lo, double* hi) {

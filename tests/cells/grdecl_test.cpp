@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cell_surfaces.hpp"
 #include "common/generate.hpp"
 #include "common/shapes.hpp"
 #include "exact/rational.hpp"
@@ -87,20 +88,6 @@ LoadedCellMesh read_text(const std::string& text) {
     return read_grdecl_memory(std::as_bytes(std::span(text.data(), text.size())), "grid.grdecl");
 }
 
-// Cell c's closed surface (owner faces as wound, neighbour faces reversed).
-Mesh cell_surface(const CellMeshView& m, std::size_t c) {
-    Mesh out;
-    out.positions.assign(m.points.begin(), m.points.end());
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-        const bool owns = m.owner[f] == c, neighbours = m.neighbour[f] == c;
-        if (!owns && !neighbours) continue;
-        face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
-            if (owns) out.indices.insert(out.indices.end(), {a, b, d});
-            else out.indices.insert(out.indices.end(), {a, d, b});
-        });
-    }
-    return out;
-}
 
 mpq_class box_overlap(const std::array<double, 3>& lo, const std::array<double, 3>& hi,
                       const std::array<double, 3>& a, const std::array<double, 3>& b) {
@@ -181,16 +168,9 @@ TEST(Grdecl, InclinedPillarsAndWarpedLayersTileExactly) {
     const CellVolumes v = cell_volumes(m);
     EXPECT_EQ(v.negative_cells, 0u);
     for (std::size_t c = 0; c < m.cell_count(); ++c)
-        EXPECT_EQ(v.volumes[c], signed_volume(cell_surface(m, c).view())) << "cell " << c;
+        EXPECT_EQ(v.volumes[c], signed_volume(test::cell_surface(m, c).view())) << "cell " << c;
     // The boundary faces' volume is the cells' exact total.
-    Mesh boundary;
-    boundary.positions.assign(m.points.begin(), m.points.end());
-    for (std::size_t f = 0; f < m.face_count(); ++f)
-        if (m.neighbour[f] == kNoCell)
-            face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
-                boundary.indices.insert(boundary.indices.end(), {a, b, d});
-            });
-    EXPECT_EQ(v.total, signed_volume(boundary.view()));
+    EXPECT_EQ(v.total, signed_volume(test::boundary_surface(m).view()));
     // A body inside the grid: the cells add up to its volume, bit for bit.
     const Mesh sphere = generate::uv_sphere(10, 20, 7.0, 16, -15, 1009);
     const BodyInCells b = body_in_cells(m, sphere.view());
