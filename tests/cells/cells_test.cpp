@@ -18,6 +18,7 @@
 #include "polyvol/cell_mesh_io.hpp"
 #include "polyvol/cells.hpp"
 #include "polyvol/io.hpp"
+#include "common/box_overlap.hpp"
 #include "common/cell_surfaces.hpp"
 #include "common/generate.hpp"
 #include "common/shapes.hpp"
@@ -237,16 +238,7 @@ TEST(PolyMesh, BadFilesNameTheFileAndTheLineOrByte) {
 
 namespace {
 
-// The volume of [lo, hi] ∩ [a, b] per axis, exactly.
-mpq_class overlap(const double* lo, const double* hi, const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    mpq_class v = 1;
-    for (int k = 0; k < 3; ++k) {
-        const double l = std::max(lo[k], a[k]), h = std::min(hi[k], b[k]);
-        if (!(h > l)) return 0;
-        v *= mpq_class(h) - mpq_class(l);
-    }
-    return v;
-}
+using test::box_overlap;
 
 }  // namespace
 
@@ -263,7 +255,7 @@ TEST(BodyInCells, ABoxInGradedBoxCellsIsTheirOverlapCorrectlyRounded) {
     for (std::size_t c = 0; c < m.cell_count(); ++c) {
         double lo[3], hi[3];
         cell_box(m, c, lo, hi);
-        const mpq_class exact = overlap(lo, hi, a, b);
+        const mpq_class exact = box_overlap(lo, hi, a, b);
         sum += exact;
         EXPECT_EQ(r.volumes[c], exact::round_to_double(exact.get_mpq_t())) << "cell " << c;
         const bool is_cut = r.volumes[c] != 0 && r.volumes[c] != own.volumes[c];
@@ -437,8 +429,8 @@ TEST(BodyInCells, TwoBoxesUnionIsCorrectlyRoundedAndTheirIntersectionBounded) {
     for (std::size_t c = 0; c < m.cell_count(); ++c) {
         double lo[3], hi[3];
         cell_box(m, c, lo, hi);
-        const mpq_class meet = overlap(lo, hi, i0, i1);
-        const mpq_class joined = overlap(lo, hi, a0, a1) + overlap(lo, hi, b0, b1) - meet;
+        const mpq_class meet = box_overlap(lo, hi, i0, i1);
+        const mpq_class joined = box_overlap(lo, hi, a0, a1) + box_overlap(lo, hi, b0, b1) - meet;
         union_sum += joined;
         meet_sum += meet;
         EXPECT_EQ(u.volumes[c], exact::round_to_double(joined.get_mpq_t())) << "cell " << c;

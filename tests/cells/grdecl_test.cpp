@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/box_overlap.hpp"
 #include "common/cell_surfaces.hpp"
 #include "common/generate.hpp"
 #include "common/shapes.hpp"
@@ -88,16 +89,9 @@ LoadedCellMesh read_text(const std::string& text) {
     return read_grdecl_memory(std::as_bytes(std::span(text.data(), text.size())), "grid.grdecl");
 }
 
-
 mpq_class box_overlap(const std::array<double, 3>& lo, const std::array<double, 3>& hi,
                       const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    mpq_class v = 1;
-    for (int k = 0; k < 3; ++k) {
-        const double l = std::max(lo[k], a[k]), h = std::min(hi[k], b[k]);
-        if (!(h > l)) return 0;
-        v *= mpq_class(h) - mpq_class(l);
-    }
-    return v;
+    return test::box_overlap(lo.data(), hi.data(), a, b);
 }
 
 std::string read_error(const std::string& text) {
