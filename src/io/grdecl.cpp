@@ -104,6 +104,7 @@ struct Deck {
     std::array<uint64_t, 3> dims{};
     bool has_dims = false;
     std::vector<double> coord, zcorn, actnum, mapaxes;
+    bool map_coordinates = false;  // GRIDUNIT's second item MAP: COORD is in map coordinates already
     std::string unit;  // from GRIDUNIT, else METRIC / FIELD / LAB / PVT-M
     bool unit_by_gridunit = false;
 };
@@ -196,6 +197,7 @@ private:
                                                                       : "";
             if (deck_.unit.empty()) fail(name, line, "GRIDUNIT '" + u + "': expected METRES, FEET or CM");
             deck_.unit_by_gridunit = true;
+            deck_.map_coordinates = data.size() >= 2 && upper(io::text::trim(data[1].text)) == "MAP";
             return;
         }
         if (word == "SPECGRID" || word == "DIMENS") {
@@ -212,7 +214,7 @@ private:
             if (word == "SPECGRID" && data.size() >= 5 && upper(data[4].text) == "T")
                 fail(name, line, "SPECGRID: a radial grid (T) is not read");
             // Cells, their points and face lists are numbered in 32 bits.
-            const auto [nx, ny, nz] = deck_.dims;
+            const uint64_t nx = deck_.dims[0], ny = deck_.dims[1], nz = deck_.dims[2];
             if (nx * ny > max_cells_ || nx * ny * nz > max_cells_)
                 fail(name, line, word + ": " + std::to_string(nx) + "×" + std::to_string(ny) + "×" +
                                      std::to_string(nz) + " cells: at most " + std::to_string(max_cells_) +
@@ -222,10 +224,11 @@ private:
         }
         if (word == "MAPAXES") {
             deck_.mapaxes = numbers(data, 6, name, line, word);
+            if (deck_.mapaxes.size() != 6) fail(name, line, "MAPAXES: expected 6 numbers (X1 Y1 X2 Y2 X3 Y3)");
             return;
         }
         if (!deck_.has_dims) fail(name, line, word + " before SPECGRID or DIMENS: the grid's size must come first");
-        const auto [nx, ny, nz] = deck_.dims;
+        const uint64_t nx = deck_.dims[0], ny = deck_.dims[1], nz = deck_.dims[2];
         if (word == "COORD") deck_.coord = numbers(data, 6 * (nx + 1) * (ny + 1), name, line, word);
         else if (word == "ZCORN") deck_.zcorn = numbers(data, 8 * nx * ny * nz, name, line, word);
         else if (word == "ACTNUM") deck_.actnum = numbers(data, nx * ny * nz, name, line, word);
@@ -276,10 +279,38 @@ private:
 };
 
 // A corner's point id, one per (pillar, depth).
+// MAPAXES: (X1, Y1) on the map's y axis, (X2, Y2) its origin, (X3, Y3) on
+// its x axis; grid coordinates (x, y) are the map point
+//   O + x e_x + y e_y,  e_x = (P3 − O) / |P3 − O|,  e_y = (P1 − O) / |P1 − O|,
+// each product and sum rounded. Identity when not applied.
+struct MapAxes {
+    double origin[2] = {0, 0}, ex[2] = {1, 0}, ey[2] = {0, 1};
+    bool identity = true;
+    static MapAxes from(const std::vector<double>& m, const std::string& name) {
+        MapAxes a;
+        const double x[2] = {m[4] - m[2], m[5] - m[3]}, y[2] = {m[0] - m[2], m[1] - m[3]};
+        const double lx = std::hypot(x[0], x[1]), ly = std::hypot(y[0], y[1]);
+        if (!(lx > 0) || !(ly > 0) || !std::isfinite(lx) || !std::isfinite(ly) ||
+            std::fabs(x[0] * y[1] - x[1] * y[0]) < 1e-12 * lx * ly)
+            throw ReadError::whole_file(name, "MAPAXES: its axes are not two independent directions");
+        a.origin[0] = m[2], a.origin[1] = m[3];
+        a.ex[0] = x[0] / lx, a.ex[1] = x[1] / lx;
+        a.ey[0] = y[0] / ly, a.ey[1] = y[1] / ly;
+        a.identity = false;
+        return a;
+    }
+    void apply(double& x, double& y) const {
+        if (identity) return;
+        const double mx = origin[0] + (x * ex[0] + y * ey[0]), my = origin[1] + (x * ex[1] + y * ey[1]);
+        x = mx;
+        y = my;
+    }
+};
+
 class Corners {
 public:
-    Corners(CellMesh& m, const std::vector<double>& coord, const std::string& name)
-        : m_(m), coord_(coord), name_(name) {}
+    Corners(CellMesh& m, const std::vector<double>& coord, const std::string& name, const MapAxes& axes)
+        : m_(m), coord_(coord), name_(name), axes_(axes) {}
     uint32_t at(uint64_t pillar, double z) {
         z += 0.0;  // -0 and +0 are one depth
         uint64_t bits;
@@ -296,6 +327,7 @@ public:
                 x = c[0] + t * (c[3] - c[0]);
                 y = c[1] + t * (c[4] - c[1]);
             }
+            axes_.apply(x, y);  // a function of the pillar's x, y: a vertical pillar's points keep one x, y
             if (!std::isfinite(x) || !std::isfinite(y))
                 throw ReadError::whole_file(name_, "pillar " + std::to_string(pillar) + " at depth " +
                                                        std::to_string(z) + ": the point is not finite (COORD)");
@@ -317,6 +349,7 @@ private:
     CellMesh& m_;
     const std::vector<double>& coord_;
     const std::string& name_;
+    const MapAxes& axes_;
     std::unordered_map<Key, uint32_t, Hash> ids_;
 };
 
@@ -326,9 +359,9 @@ private:
 constexpr std::array<std::array<int, 4>, 6> kFaces{{{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
                                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}}};
 
-LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
+LoadedCellMesh build_grid(const Deck& deck, const std::string& name, bool map_axes) {
     if (!deck.has_dims) throw ReadError::whole_file(name, "no SPECGRID or DIMENS: the grid's size is not given");
-    const auto [nx, ny, nz] = deck.dims;
+    const uint64_t nx = deck.dims[0], ny = deck.dims[1], nz = deck.dims[2];  // not a structured binding: clang 14 cannot capture one
     const uint64_t cells = nx * ny * nz;
     auto need = [&](const std::vector<double>& v, uint64_t n, const char* word, const char* rule) {
         if (v.size() != n)
@@ -360,7 +393,9 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
     m.cells = r.grid_index.size();
 
     // Each active cell's 8 corner ids, numbered in the order cells first name them.
-    Corners corners(m, deck.coord, name);
+    const bool mapped = map_axes && !deck.mapaxes.empty() && !deck.map_coordinates;
+    const MapAxes axes = mapped ? MapAxes::from(deck.mapaxes, name) : MapAxes{};
+    Corners corners(m, deck.coord, name, axes);
     std::vector<std::array<uint32_t, 8>> corner_ids(m.cells);
     for (uint32_t c = 0; c < m.cells; ++c) {
         const uint64_t g = r.grid_index[c], i = g % nx, j = g / nx % ny, k = g / (nx * ny);
@@ -489,25 +524,30 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name) {
             std::reverse(m.face_points.begin() + m.face_offsets[f], m.face_points.begin() + m.face_offsets[f + 1]);
         r.notes.push_back("the grid's axes (I, J, K) are left-handed (depth downward): every face turned outward");
     }
-    if (!deck.mapaxes.empty())
-        r.notes.push_back("MAPAXES is not applied: the points are in the grid's own coordinates (COORD's)");
+    if (mapped)
+        r.notes.push_back("MAPAXES applied: the points are in the map's coordinates");
+    else if (!deck.mapaxes.empty())
+        r.notes.push_back(deck.map_coordinates ? "MAPAXES not applied: GRIDUNIT says COORD is in map coordinates"
+                                               : "MAPAXES not applied (as asked): the points are in the grid's own "
+                                                 "coordinates");
     return r;
 }
 
 }  // namespace
 
-LoadedCellMesh read_grdecl(const std::string& path, uint64_t max_cells) {
+LoadedCellMesh read_grdecl(const std::string& path, uint64_t max_cells, bool map_axes) {
     std::string shown;
     const std::vector<std::byte> bytes = io::read_whole_input(path, shown);
     Deck deck;
     Reader(deck, true, max_cells, fs::path(shown).parent_path()).read(io::text::as_text(bytes), shown, 0);
-    return build_grid(deck, shown);
+    return build_grid(deck, shown, map_axes);
 }
 
-LoadedCellMesh read_grdecl_memory(std::span<const std::byte> bytes, const std::string& name, uint64_t max_cells) {
+LoadedCellMesh read_grdecl_memory(std::span<const std::byte> bytes, const std::string& name, uint64_t max_cells,
+                                  bool map_axes) {
     Deck deck;
     Reader(deck, false, max_cells, {}).read(io::text::as_text(bytes), name, 0);
-    return build_grid(deck, name);
+    return build_grid(deck, name, map_axes);
 }
 
 void write_grdecl_keyword(const std::string& path, const std::string& keyword, std::span<const double> values,

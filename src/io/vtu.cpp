@@ -405,11 +405,11 @@ LoadedCellMesh read_vtu_memory(std::span<const std::byte> bytes, const std::stri
     return r;
 }
 
-LoadedCellMesh read_cell_mesh(const std::string& path) {
+LoadedCellMesh read_cell_mesh(const std::string& path, bool map_axes) {
     std::string e = std::filesystem::path(path).extension().string();
     std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (e == ".vtu") return read_vtu(path);
-    if (e == ".grdecl") return read_grdecl(path);
+    if (e == ".grdecl") return read_grdecl(path, kMaxGridCells, map_axes);
     return read_polymesh(path);
 }
 

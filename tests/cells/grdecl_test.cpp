@@ -376,3 +376,28 @@ TEST(Grdecl, TheKeywordFilesLinesStayShort) {
     values[3] = NAN;
     EXPECT_THROW(write_grdecl_keyword(out.string(), "VALUES", values, r), std::invalid_argument);
 }
+
+TEST(Grdecl, MapAxesTakeThePointsToTheMapsCoordinates) {
+    // The map's origin at (1000, 2000), e_x = (0, 1) and e_y = (-1, 0): a
+    // grid point (x, y) is the map's (1000 - y, 2000 + x), a quarter turn
+    // (every product exact).
+    CornerGrid g = box_grid(2, 2, 1);
+    g.head = "MAPAXES\n 999 2000 1000 2000 1000 2001 /\n";
+    const LoadedCellMesh mapped = read_text(g.text());
+    const std::string text = g.text();
+    const LoadedCellMesh kept = read_grdecl_memory(std::as_bytes(std::span(text.data(), text.size())), "grid.grdecl",
+                                                   kMaxGridCells, false);
+    ASSERT_EQ(mapped.mesh.points.size(), kept.mesh.points.size());
+    for (std::size_t p = 0; p < kept.mesh.points.size(); p += 3) {
+        const double x = kept.mesh.points[p], y = kept.mesh.points[p + 1];
+        EXPECT_EQ(mapped.mesh.points[p], 1000 - y) << p;
+        EXPECT_EQ(mapped.mesh.points[p + 1], 2000 + x) << p;
+        EXPECT_EQ(mapped.mesh.points[p + 2], kept.mesh.points[p + 2]);
+    }
+    EXPECT_EQ(cell_volumes(mapped.mesh.view()).volumes, cell_volumes(kept.mesh.view()).volumes);
+    // GRIDUNIT's MAP: COORD is in map coordinates already.
+    g.head = "MAPAXES\n 999 2000 1000 2000 1000 2001 /\nGRIDUNIT\n 'METRES' 'MAP' /\n";
+    EXPECT_EQ(read_text(g.text()).mesh.points, kept.mesh.points);
+    g.head = "MAPAXES\n 0 0 0 0 1 0 /\n";
+    EXPECT_NE(read_error(g.text()).find("MAPAXES: its axes are not two independent directions"), std::string::npos);
+}
