@@ -1,5 +1,5 @@
 // `polyvol cells MESH [BODY...] [--json] [-o OUT.npy|.vtu|.grdecl|.json]
-//   [--fractions] [--field NAME] [--keyword NAME] [--units U] [--mesh-units U]`
+//   [--fractions] [--field NAME] [--keyword NAME] [--cell-zone NAME] [--units U] [--mesh-units U]`
 //
 // Reads the mesh of cells (an OpenFOAM case or its constant/polyMesh, a
 // .vtu, a .grdecl corner-point grid; exit 2 if unreadable), checks that every cell closes (exit 3), reads each body
@@ -170,6 +170,10 @@ nlohmann::json summary(const CellsArgs& a, const LoadedCellMesh& mesh, const std
                  {"faces", m.face_count()},
                  {"points", m.point_count()},
                  {"volume", json_number(own.total)}};
+    if (!a.cell_zone.empty()) {
+        j["mesh"]["cell_zone"] = a.cell_zone;
+        j["mesh"]["case_cells"] = mesh.case_cells;
+    }
     if (mesh.format == "grdecl")
         j["mesh"]["grid"] = {{"dims", mesh.grid_dims},
                              {"active_cells", mesh.grid_index.size()},
@@ -237,8 +241,11 @@ void print_table(const nlohmann::json& j) {
     if (j.contains("intersection"))
         std::cout << "intersection: inside the mesh " << shortest(j["intersection"]["inside_mesh"].get<double>())
                   << cubed << " (each cell within 2 ulp of its volume, the total within 2 ulp of the union's)\n";
-    std::cout << (j["cells_tile"].get<bool>() ? "volumes: correctly rounded, every cell and every total\n"
-                                              : "volumes: correctly rounded, every cell and the mesh's\n");
+    std::cout << (j["cells_tile"].get<bool>() ? "volumes: correctly rounded, every cell and every total"
+                                              : "volumes: correctly rounded, every cell and the mesh's");
+    char took[32];
+    std::snprintf(took, sizeof took, "%.3g", j["seconds"].get<double>());
+    std::cout << "; computed in " << took << " s\n";
 }
 
 int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolumes& own,
@@ -296,7 +303,7 @@ int write_outputs(const CellsArgs& a, const LoadedCellMesh& mesh, const CellVolu
             std::ofstream(a.out) << j.dump(2) << "\n";
         }
         if (!a.field.empty()) {
-            const std::string path = write_foam_field(mesh.location, a.field, bodies[0].fractions);
+            const std::string path = write_foam_field(mesh.location, a.field, in_case_cells(mesh, bodies[0].fractions));
             std::cerr << "polyvol: wrote " << path << "\n";
         }
     } catch (const std::exception& e) {
@@ -335,6 +342,11 @@ CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
     cmd->add_option("--surface", a.surface_out,
                     "Write each body's wetted area and area-weighted outward normal per cell: FILE.npy, shape "
                     "(cells, 4) or (bodies, cells, 4), with their bound in -o OUT.vtu");
+    cmd->add_flag("--grid-axes", a.grid_axes,
+                  "A corner-point grid in its own axes: its MAPAXES not applied (the points as COORD gives them)");
+    cmd->add_option("--cell-zone", a.cell_zone,
+                    "Only the cells of this OpenFOAM cellZone (its faces to other cells taken as boundary faces); "
+                    "--field writes 0 in the other cells");
     cmd->add_option("--keyword", a.keyword,
                     "The GRDECL keyword -o OUT.grdecl writes (default BODYVOL, or BODYFRAC with --fractions)");
     cmd->add_option("--units", a.units, std::string("The bodies' unit where a file states none: ") + kLengthUnitNames);
@@ -345,7 +357,10 @@ CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
 
 int run_cells_command(const CellsArgs& a) {
     if (const int code = check_arguments(a); code != Exit::ok) return code;
-    auto mesh = read_or_report(a.mesh, [&] { return read_cell_mesh(a.mesh); });
+    auto mesh = read_or_report(a.mesh, [&] {
+        LoadedCellMesh whole = read_cell_mesh(a.mesh, !a.grid_axes);
+        return a.cell_zone.empty() ? whole : cell_zone(whole, a.cell_zone);
+    });
     if (!mesh) return Exit::unreadable;
     const std::string unit = !a.mesh_units.empty() ? length_unit(a.mesh_units)->name : mesh->unit;
     for (const std::string& note : mesh->notes) std::cerr << "polyvol: note: " << a.mesh << ": " << note << "\n";

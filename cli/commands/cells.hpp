@@ -22,9 +22,11 @@ struct CellsArgs {
     std::string out;         // -o OUT.npy, OUT.vtu, OUT.grdecl or OUT.json
     std::string field;       // --field NAME: an OpenFOAM volScalarField of the fractions
     std::string keyword;     // --keyword NAME: the GRDECL keyword -o OUT.grdecl writes
+    std::string cell_zone;   // --cell-zone NAME: an OpenFOAM cellZone's cells only
     std::string union_out;         // --union FILE.npy: the bodies' union per cell
     std::string intersection_out;  // --intersection FILE.npy: two bodies' intersection per cell
     std::string surface_out;       // --surface FILE.npy: each body's wetted area and normal per cell
+    bool grid_axes = false;  // --grid-axes: a corner-point grid's MAPAXES not applied
     bool fractions = false;
     bool json = false;
 };

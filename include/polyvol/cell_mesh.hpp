@@ -51,6 +51,13 @@ struct CellMesh {
     CellMeshView view() const { return {points, face_offsets, face_points, owner, neighbour, cells}; }
 };
 
+// The mesh of some of m's cells (each listed once, in the order given: cell
+// i of the result is cells[i]): their faces, a face between a kept cell and
+// one left out becoming a boundary face wound out of the kept one; all of
+// m's points. Throws std::invalid_argument for a cell out of range or
+// listed twice, and a face naming a cell out of range.
+CellMesh cells_subset(const CellMeshView& m, std::span<const uint32_t> cells);
+
 // The triangles a face is split into, as point indices, in the face's
 // winding: with m the position of the face's point that comes first in
 // (x, y, z) order (ties — equal points — by the smaller index) and k its

@@ -39,9 +39,12 @@ struct LoadedCellMesh {
     std::array<uint64_t, 3> grid_dims{};
     std::vector<uint64_t> grid_index;
     std::size_t fault_faces = 0;
-    // A processor directory of a decomposed OpenFOAM case: each cell's index
-    // in the whole case (its cellProcAddressing); empty otherwise.
+    // A processor directory of a decomposed OpenFOAM case, or a cellZone of
+    // a case: each cell's index in the whole case (its cellProcAddressing,
+    // the zone's cellLabels); empty otherwise. case_cells: the whole case's
+    // cell count where it is known (a zone), else 0.
     std::vector<uint64_t> case_index;
+    std::size_t case_cells = 0;
     // Whether the cells are known to tile the region their boundary faces
     // enclose: false for a corner-point grid with a fault that is not between
     // vertical pillars (there the cells may overlap or leave gaps).
@@ -60,6 +63,19 @@ LoadedCellMesh read_polymesh(const std::string& path);
 // A decomposed case's processor directories (CASE/processorN holding
 // constant/polyMesh), by N; empty when there are none.
 std::vector<std::string> foam_processor_dirs(const std::string& case_dir);
+
+// The cells of an OpenFOAM cellZone (polyMesh/cellZones, ASCII or binary,
+// plain or .gz) of a mesh read by read_polymesh: the zone's cells alone
+// (cells_subset: faces to the other cells become boundary faces), case_index
+// their numbers in the case, case_cells its cell count. Throws ReadError
+// when there is no such zone (naming those there are), for a zone naming a
+// cell out of range or twice, and for a decomposed case read whole.
+LoadedCellMesh cell_zone(const LoadedCellMesh& mesh, const std::string& zone);
+
+// Values given per cell of `mesh` spread over the whole case's cells (a
+// cellZone's: at case_index, 0 elsewhere), as a field of the case needs
+// them; the values themselves for any other mesh.
+std::vector<double> in_case_cells(const LoadedCellMesh& mesh, std::span<const double> values);
 
 // The same from the four files' bytes (each plain or gzip), `name` naming
 // them in messages (name/points, ...): for tests, fuzzing and uploads.
@@ -96,13 +112,13 @@ LoadedCellMesh read_vtu_memory(std::span<const std::byte> data, const std::strin
 // bits) and repeats expanding to more than max(2^22, 8 × the file's bytes)
 // values are refused. Throws ReadError naming the file and line.
 inline constexpr uint64_t kMaxGridCells = uint64_t{1} << 27;
-LoadedCellMesh read_grdecl(const std::string& path, uint64_t max_cells = kMaxGridCells);
+LoadedCellMesh read_grdecl(const std::string& path, uint64_t max_cells = kMaxGridCells, bool map_axes = true);
 LoadedCellMesh read_grdecl_memory(std::span<const std::byte> data, const std::string& name,
-                                  uint64_t max_cells = kMaxGridCells);
+                                  uint64_t max_cells = kMaxGridCells, bool map_axes = true);
 
 // A .vtu file (read_vtu), a .grdecl file (read_grdecl), else an OpenFOAM
-// case or polyMesh directory.
-LoadedCellMesh read_cell_mesh(const std::string& path);
+// case or polyMesh directory (map_axes: read_grdecl's).
+LoadedCellMesh read_cell_mesh(const std::string& path, bool map_axes = true);
 
 // An OpenFOAM mesh's patches (constant/polyMesh/boundary), in order.
 struct FoamPatch {

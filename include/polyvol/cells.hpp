@@ -123,8 +123,9 @@ struct BodyInCellsOptions {
 BodyInCells body_in_cells(const CellMeshView& mesh, const MeshView& body, const BodyInCellsOptions& options = {});
 
 // Several bodies' union in every cell, correctly rounded: the bodies (each
-// a closed outward 2-cycle, its own solid: solid.hpp) taken together as one
-// body whose shells overlap — the region where any is. With each body's
+// a closed outward 2-cycle, its own solid as solid.hpp makes it, its winding
+// number never below 0: a cavity inside its outer shell) taken together as
+// one body whose shells overlap — the region where any is. With each body's
 // own result (`each`, body_in_cells of the same mesh), most cells follow
 // from them: a body full in the cell (its value the cell's, so the union,
 // between the two, rounds to it too) makes the union the cell; else the

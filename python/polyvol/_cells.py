@@ -18,12 +18,17 @@ active cells are cells) and ``fault_faces``; ``cells_tile`` is False for a
 grid with faults (its cells may overlap or leave gaps)."""
 
 
-def load_cells(path):
+def load_cells(path, cell_zone=None, *, map_axes=True):
     """A mesh of cells: an OpenFOAM case directory or its constant/polyMesh
     (ASCII or binary, .gz files), a VTK .vtu unstructured grid (every
-    encoding VTK writes), or an Eclipse .grdecl corner-point grid. Raises ReadError naming the file and the line,
-    byte or cell."""
-    return _core.read_polymesh(str(path))
+    encoding VTK writes), or an Eclipse .grdecl corner-point grid; with
+    cell_zone, that OpenFOAM cellZone's cells only (``case_index`` their
+    numbers in the case; write_foam_field writes 0 in the others).
+    map_axes=False keeps a corner-point grid in its own axes (its MAPAXES,
+    applied by default, not applied). Raises ReadError naming the file and
+    the line, byte or cell."""
+    mesh = _core.read_polymesh(str(path), bool(map_axes))
+    return mesh if cell_zone is None else _core.cell_zone(mesh, str(cell_zone))
 
 
 def cell_volumes(mesh):

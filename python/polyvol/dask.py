@@ -169,11 +169,16 @@ def _processor_cells(directory, bodies, units, options):
     own volumes, and each body's volume and class in each (each body in its
     own unit: the file's, else units=)."""
     mesh = polyvol.load_cells(directory)
+    if mesh.cell_count == 0:  # decomposePar leaves some processors empty on small meshes
+        empty = np.zeros(0)
+        return (np.zeros(0, dtype=np.uint64), empty, [empty for _ in bodies],
+                [np.zeros(0, dtype=np.uint8) for _ in bodies], [None for _ in bodies], _mesh_unit(mesh, options))
     if mesh.case_index is None:
         raise polyvol.ReadError(f"{directory}: no constant/polyMesh/cellProcAddressing (decomposePar writes it)")
     results = [polyvol.cells(mesh, [b.arrays], units=u, **options) for b, u in zip(bodies, units)]
     own = results[0].cell_volumes if results else polyvol.cell_volumes(mesh)[0]
-    return (np.array(mesh.case_index), own, [r.volumes[0] for r in results], [r.cell_class[0] for r in results],
+    index = np.array(mesh.case_index if mesh.case_index is not None else [], dtype=np.uint64)
+    return (index, own, [r.volumes[0] for r in results], [r.cell_class[0] for r in results],
             [r.body_volumes[0] for r in results], _mesh_unit(mesh, options))
 
 
@@ -221,12 +226,15 @@ def cells(case, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
         for b in range(len(bodies)):
             volumes[b, index] = part_volumes[b]
             cell_class[b, index] = part_class[b]
+    if not seen.all():
+        raise polyvol.ReadError(f"{case}: the processors' cellProcAddressing leave cells out")
     with np.errstate(divide="ignore", invalid="ignore"):
         fractions = np.clip(np.where(own > 0, volumes / own, 0.0), 0.0, 1.0)
     sums = [math.fsum(v) for v in volumes]  # exactly rounded sums, as ExactSum's
+    body_volumes = next((list(p[4]) for p in parts if len(p[0]) > 0), [None for _ in bodies])
     return polyvol.Cells(unit=parts[0][5], cell_volumes=own, total=math.fsum(own), volumes=volumes,
                          fractions=fractions, cell_class=cell_class, inside_mesh=sums, cells_sum=sums,
-                         cells_tile=True, body_volumes=list(parts[0][4]),
+                         cells_tile=True, body_volumes=body_volumes,
                          full_cells=[int((c == 1).sum()) for c in cell_class],
                          cut_cells=[int((c == 2).sum()) for c in cell_class],
                          empty_cells=[int((c == 0).sum()) for c in cell_class], union_volumes=None,

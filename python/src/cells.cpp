@@ -109,6 +109,7 @@ void bind_cells(py::module_& m) {
                                                                {static_cast<py::ssize_t>(l.grid_index.size())}, self);
                                })
         .def_readonly("fault_faces", &LoadedCellMesh::fault_faces)
+        .def_readonly("case_cells", &LoadedCellMesh::case_cells)
         .def_property_readonly("case_index",
                                [](py::object self) -> py::object {
                                    const auto& l = self.cast<const LoadedCellMesh&>();
@@ -120,13 +121,17 @@ void bind_cells(py::module_& m) {
 
     m.def(
         "read_polymesh",
-        [](const std::string& path) {
+        [](const std::string& path, bool map_axes) {
             py::gil_scoped_release release;
-            return std::make_shared<LoadedCellMesh>(read_cell_mesh(path));
+            return std::make_shared<LoadedCellMesh>(read_cell_mesh(path, map_axes));
         },
-        py::arg("path"));
+        py::arg("path"), py::arg("map_axes") = true);
 
     m.def("foam_processor_dirs", &foam_processor_dirs, py::arg("case"));
+    m.def(
+        "cell_zone",
+        [](const LoadedCellMesh& l, const std::string& zone) { return std::make_shared<LoadedCellMesh>(cell_zone(l, zone)); },
+        py::arg("mesh"), py::arg("zone"));
 
     // The cells' own volumes and their total; check_cell_mesh's defect as a ValueError.
     m.def(
@@ -230,7 +235,7 @@ void bind_cells(py::module_& m) {
             if (static_cast<std::size_t>(values.size()) != l.mesh.cells)
                 throw py::value_error("write_foam_field: one value per cell (" + std::to_string(l.mesh.cells) +
                                       "), not " + std::to_string(values.size()));
-            return write_foam_field(l.location, name, span_of(values), time);
+            return write_foam_field(l.location, name, in_case_cells(l, span_of(values)), time);
         },
         py::arg("mesh"), py::arg("name"), py::arg("values"), py::arg("time"));
 

@@ -37,6 +37,8 @@ public:
         if (done % 32 != 0 && done != total_) return;
         if (std::unique_lock lock(mutex_, std::try_to_lock); lock.owns_lock() || done == total_) {
             if (!lock.owns_lock()) lock.lock();
+            if (done <= reported_) return;  // a later count reported already (never back)
+            reported_ = done;
             report_(static_cast<double>(done) / static_cast<double>(total_));
         }
     }
@@ -45,6 +47,7 @@ private:
     const std::function<void(double)>& report_;
     std::size_t total_;
     std::atomic<std::size_t> done_{0};
+    std::size_t reported_ = 0;  // under mutex_
     std::mutex mutex_;
 };
 
@@ -304,7 +307,10 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
             bound += r.surface_bound[c];
         }
         r.wetted_area_total = area.round();
-        r.wetted_area_total_bound = bound * (1 + 0x1p-40) + 0x1p-53 * std::fabs(r.wetted_area_total);
+        // n doubles added in order: each addition's rounding within 2^-53 of the
+        // running sum, so (1 + (n + 1) 2^-52) covers them all.
+        r.wetted_area_total_bound = bound * (1 + static_cast<double>(m.cell_count() + 1) * 0x1p-52) +
+                                    0x1p-53 * std::fabs(r.wetted_area_total);
     }
     fill_untouched(m, touched, own.volumes, [&](std::size_t c) {
         std::vector<uint32_t> tris;

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -377,6 +378,45 @@ public:
         return out;
     }
 
+    // The cellLabels of zone `zone` in a cellZones file (each < cells), or
+    // nothing; `names` gets every zone's name.
+    std::optional<std::vector<uint32_t>> zone_cells(const std::string& zone, uint64_t cells,
+                                                    std::vector<std::string>& names) {
+        bool uniform = false;
+        list_start("the number of zones", uniform);
+        std::optional<std::vector<uint32_t>> found;
+        while (!at(')')) {
+            const std::string name(token());
+            if (name.empty()) fail("expected a zone name");
+            names.push_back(name);
+            expect('{', ("after zone " + name).c_str());
+            while (!at('}')) {
+                const std::string key(token());
+                if (key.empty()) fail("zone " + name + ": expected an entry or '}'");
+                if (key == "cellLabels") {
+                    if (token() != "List<label>") fail("zone " + name + ": expected List<label> after cellLabels");
+                    std::vector<uint32_t> labels_read = this->labels("cell", cells, cells);
+                    if (name == zone) found = std::move(labels_read);
+                } else {  // any other entry, brackets and braces in it balanced, to its ';'
+                    int depth = 0;
+                    while (true) {
+                        skip();
+                        if (pos_ >= text_.size()) fail("zone " + name + ": entry " + key + " is not ended by ';'");
+                        const char c = text_[pos_];
+                        if (depth == 0 && (c == ';' || c == '}')) break;
+                        if (c == '(' || c == '{') ++depth;
+                        if (c == ')' || c == '}') --depth;
+                        if (c == '(' || c == ')' || c == '{' || c == '}') ++pos_;
+                        else if (token().empty()) ++pos_;
+                    }
+                }
+                if (at(';')) ++pos_;
+            }
+            ++pos_;
+        }
+        return found;
+    }
+
 private:
     static constexpr uint64_t kUnknown = std::numeric_limits<uint64_t>::max();
     std::vector<std::byte> bytes_;
@@ -491,13 +531,14 @@ LoadedCellMesh read_decomposed_case(const fs::path& case_dir, const std::vector<
         std::vector<int64_t> faces;
     };
     std::vector<Piece> pieces(dirs.size());
-    uint64_t points = 0, faces = 0, cells = 0, local_points = 0, local_faces = 0;
+    uint64_t points = 0, faces = 0, cells = 0, local_points = 0, local_faces = 0, local_cells = 0;
     for (std::size_t p = 0; p < dirs.size(); ++p) {
         Piece& piece = pieces[p];
         piece.mesh = read_polymesh(dirs[p]);
         const fs::path dir = piece.mesh.location;
         bool gzip = false;
-        if (piece.mesh.case_index.empty())
+        std::error_code exists;
+        if (!fs::exists(dir / "cellProcAddressing", exists) && !fs::exists(dir / "cellProcAddressing.gz", exists))
             throw ReadError::whole_file(dir.string(), "no cellProcAddressing: decomposePar writes it");
         FoamFile point_file = open_foam_file(dir, "pointProcAddressing", gzip);
         piece.points = point_file.labels("point", kNoCell, piece.mesh.mesh.points.size() / 3);
@@ -515,10 +556,16 @@ LoadedCellMesh read_decomposed_case(const fs::path& case_dir, const std::vector<
         for (const uint64_t v : piece.mesh.case_index) cells = std::max<uint64_t>(cells, v + 1);
         local_points += piece.points.size();
         local_faces += piece.faces.size();
+        local_cells += piece.mesh.mesh.cells;
     }
     const std::string name = case_dir.string();
-    if (points > local_points || faces > local_faces || cells >= kNoCell)
+    if (points > local_points || faces > local_faces || cells != local_cells)
         throw ReadError::whole_file(name, "the processors' addressing names more points, faces or cells than they hold");
+    std::vector<uint8_t> cell_seen(cells, 0);  // each cell in exactly one processor
+    for (const Piece& piece : pieces)
+        for (const uint64_t c : piece.mesh.case_index)
+            if (cell_seen[c]++ != 0)
+                throw ReadError::whole_file(name, "cell " + std::to_string(c) + " is in two processors");
     LoadedCellMesh r;
     r.format = "openfoam";
     r.unit = "m";
@@ -555,8 +602,13 @@ LoadedCellMesh read_decomposed_case(const fs::path& case_dir, const std::vector<
             side = cell;
             if (!reversed) {
                 source[g] = (uint64_t{p} << 32) | f;
-                if (local.neighbour[f] != kNoCell)
-                    m.neighbour[g] = static_cast<uint32_t>(piece.mesh.case_index[local.neighbour[f]]);
+                if (local.neighbour[f] != kNoCell) {
+                    const auto other = static_cast<uint32_t>(piece.mesh.case_index[local.neighbour[f]]);
+                    if (m.neighbour[g] != kNoCell && m.neighbour[g] != other)
+                        throw ReadError::whole_file(dirs[p], "face " + std::to_string(g) +
+                                                                 " is given two cells on one side");
+                    m.neighbour[g] = other;
+                }
             }
         }
     }
@@ -564,8 +616,10 @@ LoadedCellMesh read_decomposed_case(const fs::path& case_dir, const std::vector<
         if (source[g] == kNone || m.owner[g] == kNoCell)
             throw ReadError::whole_file(name, "face " + std::to_string(g) + " is in no processor as its owner's");
         const Piece& piece = pieces[source[g] >> 32];
-        for (const uint32_t v : piece.mesh.mesh.view().face(source[g] & 0xFFFFFFFFu))
-            m.face_points.push_back(piece.points[v]);
+        const std::span<const uint32_t> face = piece.mesh.mesh.view().face(source[g] & 0xFFFFFFFFu);
+        if (m.face_points.size() + face.size() > UINT32_MAX)
+            throw ReadError::whole_file(name, "more than 2^32 face points: the case is too large to read whole");
+        for (const uint32_t v : face) m.face_points.push_back(piece.points[v]);
         m.face_offsets.push_back(static_cast<uint32_t>(m.face_points.size()));
     }
     m.cells = cells;
@@ -578,8 +632,8 @@ LoadedCellMesh read_polymesh(const std::string& path) {
     {
         std::error_code ec;
         const fs::path p(path);
-        if (!fs::exists(p / "points", ec) && !fs::exists(p / "points.gz", ec) &&
-            !fs::exists(p / "constant" / "polyMesh", ec))
+        auto has_points = [&](const fs::path& d) { return fs::exists(d / "points", ec) || fs::exists(d / "points.gz", ec); };
+        if (!has_points(p) && !has_points(p / "constant" / "polyMesh"))
             if (const std::vector<std::string> dirs = foam_processor_dirs(path); !dirs.empty())
                 return read_decomposed_case(p, dirs);
     }
@@ -598,6 +652,46 @@ LoadedCellMesh read_polymesh(const std::string& path) {
         r.case_index.assign(cells.begin(), cells.end());
     }
     return r;
+}
+
+LoadedCellMesh cell_zone(const LoadedCellMesh& mesh, const std::string& zone) {
+    const fs::path dir(mesh.location);
+    if (mesh.format != "openfoam" || dir.filename() != "polyMesh" || !mesh.case_index.empty())
+        throw ReadError::whole_file(mesh.location, "cellZone " + zone + ": zones are read from an OpenFOAM case's "
+                                                   "constant/polyMesh/cellZones (not of a decomposed case or its processors)");
+    bool gzip = false;
+    FoamFile file = open_foam_file(dir, "cellZones", gzip);
+    std::vector<std::string> names;
+    const auto cells = file.zone_cells(zone, mesh.mesh.cells, names);
+    if (!cells) {
+        std::string listed;
+        for (const std::string& n : names) listed += (listed.empty() ? "" : ", ") + n;
+        file.fail_whole("no cellZone " + zone + (names.empty() ? std::string(" (there are none)")
+                                                                : " (the zones: " + listed + ")"));
+    }
+    LoadedCellMesh r;
+    r.format = mesh.format;
+    r.encoding = mesh.encoding;
+    r.gzip = mesh.gzip;
+    r.unit = mesh.unit;
+    r.location = mesh.location;
+    try {
+        r.mesh = cells_subset(mesh.mesh.view(), *cells);
+    } catch (const std::invalid_argument& e) {
+        file.fail_whole("cellZone " + zone + ": " + e.what());
+    }
+    r.case_index.assign(cells->begin(), cells->end());
+    r.case_cells = mesh.mesh.cells;
+    r.notes.push_back("cellZone " + zone + ": " + std::to_string(cells->size()) + " of the case's " +
+                      std::to_string(mesh.mesh.cells) + " cells");
+    return r;
+}
+
+std::vector<double> in_case_cells(const LoadedCellMesh& mesh, std::span<const double> values) {
+    if (mesh.case_cells == 0) return {values.begin(), values.end()};
+    std::vector<double> all(mesh.case_cells, 0.0);
+    for (std::size_t c = 0; c < values.size() && c < mesh.case_index.size(); ++c) all[mesh.case_index[c]] = values[c];
+    return all;
 }
 
 std::vector<std::string> foam_processor_dirs(const std::string& case_dir) {
@@ -651,11 +745,14 @@ std::string_view braced(std::string_view text, std::size_t open) {
     return {};
 }
 
-// The patch types whose fields take the same type (a zeroGradient there is an error).
+// The patch types whose fields take the same type (a zeroGradient there is
+// an error): empty, wedge, symmetry, symmetryPlane, and the processor and
+// cyclic families (processorCyclic where decomposePar splits a cyclic,
+// cyclicAMI, cyclicSlip, ...) and nonConformal ones.
 bool constrained_patch(const std::string& type) {
-    for (const char* t : {"empty", "wedge", "symmetry", "symmetryPlane", "cyclic", "cyclicAMI", "processor"})
+    for (const char* t : {"empty", "wedge", "symmetry", "symmetryPlane"})
         if (type == t) return true;
-    return false;
+    return type.rfind("processor", 0) == 0 || type.rfind("cyclic", 0) == 0 || type.rfind("nonConformal", 0) == 0;
 }
 
 }  // namespace
@@ -676,7 +773,7 @@ std::string write_foam_field(const std::string& polymesh_dir, const std::string&
                 const fs::path mesh = fs::path(d) / "constant" / "polyMesh";
                 bool gzip = false;
                 FoamFile file = open_foam_file(mesh, "cellProcAddressing", gzip);
-                const std::vector<uint32_t> cells = file.labels("cell", values.size());
+                const std::vector<uint32_t> cells = file.labels("cell", values.size(), values.size());
                 std::vector<double> local(cells.size());
                 for (std::size_t c = 0; c < cells.size(); ++c) local[c] = values[cells[c]];
                 write_foam_field(mesh.string(), name, local, time);

@@ -509,3 +509,19 @@ TEST(BodyInCells, ASpheresWettedAreaAddsUpToItsAreaOverWarpedCells) {
     for (const double n : net) EXPECT_NEAR(n, 0.0, bound + 1e-14);
     EXPECT_LT(bound, 1e-12 * total);
 }
+
+TEST(CellVolumes, ASubsetOfTheCellsKeepsEachCellsVolumeAndCloses) {
+    const CellMesh whole = read_polymesh(kData + "warped_ascii").mesh;
+    std::vector<uint32_t> some;
+    for (uint32_t c = static_cast<uint32_t>(whole.cells); c-- > 0;)
+        if (c % 3 != 1) some.push_back(c);  // every third cell left out, the rest in reverse order
+    const CellMesh part = cells_subset(whole.view(), some);
+    ASSERT_EQ(part.cells, some.size());
+    EXPECT_FALSE(check_cell_mesh(part.view()).has_value());
+    const CellVolumes a = cell_volumes(whole.view()), b = cell_volumes(part.view());
+    for (std::size_t i = 0; i < some.size(); ++i) EXPECT_EQ(b.volumes[i], a.volumes[some[i]]) << i;
+    EXPECT_EQ(b.total, signed_volume(boundary_surface(part.view()).view()));
+    const uint32_t twice[2] = {0, 0}, outside[1] = {static_cast<uint32_t>(whole.cells)};
+    EXPECT_THROW(cells_subset(whole.view(), twice), std::invalid_argument);
+    EXPECT_THROW(cells_subset(whole.view(), outside), std::invalid_argument);
+}

@@ -156,3 +156,25 @@ def test_a_decomposed_case_is_read_whole_and_its_fields_are_written_per_processo
     shutil.rmtree(case / "0")
     foam(case, "reconstructPar -withZero -fields '(alpha.water)'")
     assert np.array_equal(internal_field(case / "0" / "alpha.water"), expected)
+
+
+def test_a_cell_zone_limits_the_cells_and_openfoam_integrates_the_zones_field(tmp_path):
+    import polyvol
+    case = make_case(tmp_path, "graded_box")
+    foam(case, "topoSet")
+    whole, zone = polyvol.load_cells(case), polyvol.load_cells(case, cell_zone="inner")
+    assert 0 < zone.cell_count < whole.cell_count and zone.case_cells == whole.cell_count
+    body = off_file(tmp_path / "box.off", *box((0.05, 0.03, 0.02), (0.21, 0.17, 0.1)))
+    a = polyvol.cells(whole, polyvol.load(body), units="m")
+    z = polyvol.cells(zone, polyvol.load(body), units="m")
+    assert np.array_equal(z.volumes[0], a.volumes[0][zone.case_index])  # each cell the same double
+    j = cells(case, body, "--cell-zone", "inner", "--field", "alpha.water")
+    assert j["mesh"]["cells"] == zone.cell_count and j["mesh"]["cell_zone"] == "inner"
+    assert j["bodies"][0]["inside_mesh"] == z.inside_mesh[0]
+    alpha = internal_field(case / "0" / "alpha.water")
+    outside = np.ones(whole.cell_count, dtype=bool)
+    outside[zone.case_index] = False
+    assert len(alpha) == whole.cell_count and np.all(alpha[outside] == 0)
+    assert math.isclose(vol_integrate(case), z.inside_mesh[0], rel_tol=1e-12)
+    with pytest.raises(polyvol.ReadError, match="no cellZone outer .the zones: inner"):
+        polyvol.load_cells(case, cell_zone="outer")
