@@ -134,7 +134,6 @@ std::vector<int32_t> windings_at(const PreparedBody& body, std::span<const doubl
     return vertex_windings(s, body.body, cross.a_hits);
 }
 
-
 double cell_intersection(const PreparedBody& body, std::span<const double> points, std::span<const uint32_t> triangles,
                          std::span<const int32_t> winding, CellSurface* surface) {
     // A: the cell, unmoved; B: the body's triangles near it, moved by δ as in boolean_volumes.
