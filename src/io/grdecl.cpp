@@ -381,9 +381,7 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name, bool map_ax
     r.unit = deck.unit;
     r.grid_dims = deck.dims;
     CellMesh& m = r.mesh;
-    auto active = [&](uint64_t i, uint64_t j, uint64_t k) {
-        return deck.actnum.empty() || deck.actnum[i + nx * (j + ny * k)] != 0;
-    };
+    // Each grid cell's index among the active cells (kNoCell: inactive).
     std::vector<uint32_t> cell_of(cells, kNoCell);
     for (uint64_t c = 0; c < cells; ++c)
         if (deck.actnum.empty() || deck.actnum[c] != 0) {
@@ -391,6 +389,12 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name, bool map_ax
             r.grid_index.push_back(c);
         }
     m.cells = r.grid_index.size();
+    auto cell_at = [&](uint64_t i, uint64_t j, uint64_t k) { return cell_of[i + nx * (j + ny * k)]; };
+    // The depth of corner n = a + 2b + 4c of cell (i, j, k).
+    auto depth = [&](uint64_t i, uint64_t j, uint64_t k, int n) {
+        const uint64_t a = n & 1, b = (n >> 1) & 1, c = (n >> 2) & 1;
+        return deck.zcorn[(2 * i + a) + 2 * nx * (2 * j + b) + 4 * nx * ny * (2 * k + c)];
+    };
 
     // Each active cell's 8 corner ids, numbered in the order cells first name them.
     const bool mapped = map_axes && !deck.mapaxes.empty() && !deck.map_coordinates;
@@ -400,10 +404,8 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name, bool map_ax
     for (uint32_t c = 0; c < m.cells; ++c) {
         const uint64_t g = r.grid_index[c], i = g % nx, j = g / nx % ny, k = g / (nx * ny);
         for (int n = 0; n < 8; ++n) {
-            const uint64_t a = n & 1, b = (n >> 1) & 1, d = (n >> 2) & 1;
-            const uint64_t pillar = (i + a) + (nx + 1) * (j + b);
-            corner_ids[c][n] =
-                corners.at(pillar, deck.zcorn[(2 * i + a) + 2 * nx * (2 * j + b) + 4 * nx * ny * (2 * k + d)]);
+            const uint64_t a = n & 1, b = (n >> 1) & 1;
+            corner_ids[c][n] = corners.at((i + a) + (nx + 1) * (j + b), depth(i, j, k, n));
         }
     }
     // Face f of a cell as point ids, repeated corners (a pinched cell) once.
@@ -440,19 +442,19 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name, bool map_ax
     for (uint64_t k = 0; k < nz; ++k)
         for (uint64_t j = 0; j < ny; ++j)
             for (uint64_t i = 0; i < nx; ++i) {
-                const uint32_t c = cell_of[i + nx * (j + ny * k)];
+                const uint32_t c = cell_at(i, j, k);
                 if (c == kNoCell) continue;
                 const std::array<uint32_t, 8>& ids = corner_ids[c];
                 const std::array<uint64_t, 3> at{i, j, k};
                 for (int axis = 0; axis < 3; ++axis) {
-                    if (at[axis] == 0 || !active(i - step[axis][0], j - step[axis][1], k - step[axis][2]))
+                    if (at[axis] == 0 || cell_at(i - step[axis][0], j - step[axis][1], k - step[axis][2]) == kNoCell)
                         emit(face_of(ids, 2 * axis), c, kNoCell);
                     const uint64_t ni = i + step[axis][0], nj = j + step[axis][1], nk = k + step[axis][2];
-                    if (at[axis] + 1 == deck.dims[axis] || !active(ni, nj, nk)) {
+                    const uint32_t n = at[axis] + 1 == deck.dims[axis] ? kNoCell : cell_at(ni, nj, nk);
+                    if (n == kNoCell) {
                         emit(face_of(ids, 2 * axis + 1), c, kNoCell);
                         continue;
                     }
-                    const uint32_t n = cell_of[ni + nx * (nj + ny * nk)];
                     std::vector<uint32_t> mine = face_of(ids, 2 * axis + 1), theirs = face_of(corner_ids[n], 2 * axis);
                     std::reverse(theirs.begin(), theirs.end());
                     if (canonical(mine) == canonical(theirs)) {
@@ -482,15 +484,11 @@ LoadedCellMesh build_grid(const Deck& deck, const std::string& name, bool map_ax
     // taken along the upper cell's own top → bottom direction. (Cells are
     // taken to be embedded, their faces not crossing each other, here as
     // everywhere.)
-    auto depth = [&](uint64_t i, uint64_t j, uint64_t k, int n) {
-        const uint64_t a = n & 1, b = (n >> 1) & 1, d = (n >> 2) & 1;
-        return deck.zcorn[(2 * i + a) + 2 * nx * (2 * j + b) + 4 * nx * ny * (2 * k + d)];
-    };
     for (uint64_t j = 0; j < ny && r.cells_tile; ++j)
         for (uint64_t i = 0; i < nx && r.cells_tile; ++i) {
             uint64_t upper = nz;  // the last active cell of the column, none yet
             for (uint64_t k = 0; k < nz; ++k) {
-                if (!active(i, j, k)) continue;
+                if (cell_at(i, j, k) == kNoCell) continue;
                 if (upper != nz) {
                     double down = 0;  // the upper cell's direction, top to bottom
                     for (int n = 0; n < 4; ++n) down += depth(i, j, upper, n + 4) - depth(i, j, upper, n);
