@@ -212,11 +212,13 @@ void fill_untouched(const CellMeshView& m, const std::vector<uint8_t>& touched, 
 }
 
 // Each cell's class by its value: empty (0), full (its own volume), cut;
-// and the cells' values added exactly, rounded once.
-void classify(std::span<const double> own, BodyInCells& r) {
+// and the cells' values added exactly, rounded once — the total where the
+// cells may not tile the mesh's region (options.cells_tile false).
+void classify(std::span<const double> own, bool cells_tile, BodyInCells& r) {
     exact::ExactSum sum;
     sum.add(r.volumes);
     r.cells_sum = sum.round();
+    if (!cells_tile) r.total = r.cells_sum;
     r.cell_class.resize(r.volumes.size());
     for (std::size_t c = 0; c < r.volumes.size(); ++c) {
         const double v = r.volumes[c];
@@ -253,8 +255,7 @@ BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const
             throw std::logic_error("cell " + std::to_string(c) + " is neither inside nor outside the body");
         return v != 0;
     }, r);
-    classify(own.volumes, r);
-    if (!options.cells_tile) r.total = r.cells_sum;
+    classify(own.volumes, options.cells_tile, r);
     return r;
 }
 
@@ -318,8 +319,7 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
         if (tris.empty()) return false;  // a cell without faces holds nothing
         return boolean::windings_at(*prepared, m.points, tris)[tris[0]] != 0;  // one ray
     }, r);
-    classify(own.volumes, r);
-    if (!options.cells_tile) r.total = r.cells_sum;
+    classify(own.volumes, options.cells_tile, r);
     return r;
 }
 
@@ -361,8 +361,7 @@ BodyInCells union_in_cells(const CellMeshView& m, std::span<const MeshView> bodi
         r.touched[list[i]] = 1;
         progress.step();
     });
-    classify(own.volumes, r);
-    if (!o.cells_tile) r.total = r.cells_sum;
+    classify(own.volumes, o.cells_tile, r);
     return r;
 }
 
