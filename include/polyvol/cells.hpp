@@ -54,6 +54,15 @@ struct CellVolumes {
 // magnitude (the exact arithmetic's range).
 CellVolumes cell_volumes(const CellMeshView& mesh);
 
+// The volume of the region at least one cell covers, each point once,
+// correctly rounded: the solid {winding >= 1} of the boundary faces
+// (polyvol/boolean.hpp's solid_volume, crossings within the surface
+// resolved), the winding number at a point being the number of cells
+// covering it. CellVolumes::total where the cells tile; less where they
+// overlap (a corner-point grid's faults on leaning pillars); NaN where that
+// solid is not decided. Throws as cell_volumes for a defective mesh.
+double covered_volume(const CellMeshView& mesh);
+
 // A body's volume in every cell: |B ∩ c| for each cell c, correctly rounded.
 //   * Cells whose box meets the box of one of the body's triangles are
 //     "touched": each is intersected with the body exactly (boolean_volumes
@@ -77,10 +86,18 @@ struct BodyInCells {
     std::vector<CellClass> cell_class; // cut: the body's surface enters the cell
     double total = 0;                  // |B ∩ M|, correctly rounded
     // The cells' values added exactly, rounded once: total up to the cells'
-    // roundings where the cells tile M; where they overlap or leave gaps (a
-    // corner-point grid's faults on pillars that are not parallel) it
-    // differs by what they count twice or miss.
+    // roundings where the cells tile M.
     double cells_sum = 0;
+    // Where the cells may not tile (BodyInCellsOptions::cells_tile false: a
+    // corner-point grid's faults on pillars that are not parallel), M is
+    // the region at least one cell covers, each point once, and the body
+    // in the cells' overlaps counts in cells_sum once per covering cell:
+    // in_overlaps = cells_sum − total, the difference of the two rounded
+    // values (within an ulp of each). NaN where the covered region is not
+    // decided (its boundary touches itself where it crosses itself): total
+    // is then cells_sum. The body in a gap between cells is in no cell and
+    // counts as outside M. 0 where the cells tile.
+    double in_overlaps = 0;
     double body_volume = 0;            // |B|, correctly rounded
     std::size_t full_cells = 0, cut_cells = 0, empty_cells = 0;
     std::size_t touched_cells = 0;     // intersected exactly one by one
@@ -107,8 +124,9 @@ struct BodyInCells {
 // own: the cells' own volumes (cell_volumes(mesh).volumes) when the caller
 // has them, so that several bodies do not compute them again; empty: computed.
 // cells_tile: false when the cells may overlap or leave gaps
-// (LoadedCellMesh::cells_tile says it of a mesh read): total is then cells_sum (not
-// |B ∩ M|: no region is then tiled, and nothing is conserved).
+// (LoadedCellMesh::cells_tile says it of a mesh read): the total is then
+// the body in the region the cells cover, and the cells' values do not add
+// up to it (BodyInCells::in_overlaps).
 struct BodyInCellsOptions {
     bool overlapping_shells = false;
     bool within_shells = false;

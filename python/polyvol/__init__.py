@@ -641,8 +641,8 @@ class Cells(_Result):
     """Bodies in the cells of a mesh (`polyvol cells`): every volume correctly
     rounded; see polyvol.cells."""
 
-    _fields = ("unit", "total", "cell_volumes", "volumes", "fractions", "cell_class", "inside_mesh", "cells_sum",
-               "cells_tile", "body_volumes", "full_cells", "cut_cells", "empty_cells", "union_volumes",
+    _fields = ("unit", "total", "covered_volume", "cell_volumes", "volumes", "fractions", "cell_class", "inside_mesh",
+               "cells_sum", "in_overlaps", "cells_tile", "body_volumes", "full_cells", "cut_cells", "empty_cells", "union_volumes",
                "union_inside_mesh", "intersection_volumes", "intersection_inside_mesh", "wetted_area", "surface_normal",
                "surface_bound")
 

@@ -70,10 +70,14 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
     (bodies, cells), ``cell_class`` (bodies, cells: 0 empty, 1 full, 2 cut),
     ``inside_mesh`` per body (the exact sum of its cells rounded once: for a
     body inside the mesh, its volume bit for bit; where ``cells_tile`` is
-    False, a grid with faults, the cells' values added: ``cells_sum``),
-    ``cells_sum`` (the cells' values added exactly, rounded once), ``body_volumes``,
-    ``full_cells``, ``cut_cells``, ``empty_cells`` per body, ``total`` (the
-    mesh's volume) and ``unit``.
+    False, a grid with faults, the body in the region the cells cover, each
+    point once), ``cells_sum`` (the cells' values added exactly, rounded
+    once), ``in_overlaps`` (cells_sum − inside_mesh: the body counted more
+    than once where cells overlap; 0 where they tile, NaN where the covered
+    region is not decided), ``body_volumes``, ``full_cells``, ``cut_cells``,
+    ``empty_cells`` per body, ``total`` (the cells' volumes added),
+    ``covered_volume`` (the region they cover: ``total`` where they tile) and
+    ``unit``.
 
     union=True (two bodies or more): also ``union_volumes`` (cells,) and
     ``union_inside_mesh``, the bodies' union per cell, correctly rounded
@@ -89,6 +93,7 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
     if not isinstance(mesh, CellMesh):
         mesh = load_cells(mesh)
     own, total = _core.cell_volumes(mesh)
+    covered = total if mesh.cells_tile else _core.covered_volume(mesh)
     unit = mesh_units or mesh.unit
     if isinstance(bodies, Mesh) or hasattr(bodies, "vertices"):
         bodies = [bodies]
@@ -116,9 +121,10 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
     volumes = np.array([r["volumes"] for r in results]).reshape(len(results), n)
     with np.errstate(divide="ignore", invalid="ignore"):
         fractions = np.clip(np.where(own > 0, volumes / own, 0.0), 0.0, 1.0)
-    return Cells(unit=unit, cell_volumes=own, total=total, volumes=volumes, fractions=fractions,
+    return Cells(unit=unit, cell_volumes=own, total=total, covered_volume=covered, volumes=volumes, fractions=fractions,
                  cell_class=np.array([r["cell_class"] for r in results], dtype=np.uint8).reshape(len(results), n),
                  inside_mesh=[r["inside_mesh"] for r in results], cells_sum=[r["cells_sum"] for r in results],
+                 in_overlaps=[r["in_overlaps"] for r in results],
                  cells_tile=mesh.cells_tile, body_volumes=[r["volume"] for r in results],
                  full_cells=[r["full_cells"] for r in results], cut_cells=[r["cut_cells"] for r in results],
                  empty_cells=[r["empty_cells"] for r in results],

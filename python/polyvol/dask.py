@@ -232,9 +232,10 @@ def cells(case, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
         fractions = np.clip(np.where(own > 0, volumes / own, 0.0), 0.0, 1.0)
     sums = [math.fsum(v) for v in volumes]  # exactly rounded sums, as ExactSum's
     body_volumes = next((list(p[4]) for p in parts if len(p[0]) > 0), [None for _ in bodies])
-    return polyvol.Cells(unit=parts[0][5], cell_volumes=own, total=math.fsum(own), volumes=volumes,
+    total = math.fsum(own)
+    return polyvol.Cells(unit=parts[0][5], cell_volumes=own, total=total, covered_volume=total, volumes=volumes,
                          fractions=fractions, cell_class=cell_class, inside_mesh=sums, cells_sum=sums,
-                         cells_tile=True, body_volumes=body_volumes,
+                         in_overlaps=[0.0 for _ in bodies], cells_tile=True, body_volumes=body_volumes,
                          full_cells=[int((c == 1).sum()) for c in cell_class],
                          cut_cells=[int((c == 2).sum()) for c in cell_class],
                          empty_cells=[int((c == 0).sum()) for c in cell_class], union_volumes=None,

@@ -38,6 +38,7 @@ py::dict result_dict(BodyInCells r) {
     d["cell_class"] = adopt_array(std::move(cls), {n});
     d["inside_mesh"] = r.total;
     d["cells_sum"] = r.cells_sum;
+    d["in_overlaps"] = r.in_overlaps;
     d["volume"] = r.body_volume;
     d["full_cells"] = r.full_cells;
     d["cut_cells"] = r.cut_cells;
@@ -144,6 +145,15 @@ void bind_cells(py::module_& m) {
             }
             const auto n = static_cast<py::ssize_t>(v.volumes.size());
             return py::make_tuple(adopt_array(std::move(v.volumes), {n}), v.total);
+        },
+        py::arg("mesh"));
+
+    // The region the cells cover, each point once (NaN: not decided).
+    m.def(
+        "covered_volume",
+        [](const LoadedCellMesh& l) {
+            py::gil_scoped_release release;
+            return covered_volume(l.mesh.view());
         },
         py::arg("mesh"));
 

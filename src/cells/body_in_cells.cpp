@@ -51,18 +51,6 @@ private:
     std::mutex mutex_;
 };
 
-// The boundary faces' triangles: the surface of the region the cells tile.
-Mesh boundary_surface(const CellMeshView& m) {
-    Mesh out;
-    out.positions.assign(m.points.begin(), m.points.end());
-    for (std::size_t f = 0; f < m.face_count(); ++f)
-        if (m.neighbour[f] == kNoCell)
-            face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
-                out.indices.insert(out.indices.end(), {a, b, d});
-            });
-    return out;
-}
-
 // The cells' own volumes: the caller's, or computed (checking the mesh);
 // every cell wound outward.
 struct OwnVolumes {
@@ -153,13 +141,22 @@ Mesh cell_surface(const CellMeshView& m, const cells::CellFaces& cf, std::size_t
 }
 
 // |B ∩ M| and |B| (B's checks too), by the booleans with M's boundary faces
-// as A. Cells that may not tile M (options.cells_tile false) leave no
-// surface to intersect (its winding may be 2 where cells overlap): B is
-// checked and measured against one cell, and total is the cells' sum.
+// as A: M the region the cells cover, each point once. Where the cells may
+// not tile (options.cells_tile false) the boundary faces' winding number is
+// the number of cells covering a point (2 where two overlap), and M is its
+// solid {winding >= 1}, the surface's crossings resolved; where that solid
+// is not decided, total is left NaN for classify to make it the cells' sum.
 void whole_volumes(const CellMeshView& m, const cells::CellFaces& cf, const MeshView& body,
                    const BodyInCellsOptions& options, BodyInCells& r) {
-    const Mesh outside = options.cells_tile || m.cell_count() == 0 ? boundary_surface(m) : cell_surface(m, cf, 0);
-    const BooleanVolumes whole = booleans(outside.view(), body, options);
+    const Mesh outside = cells::boundary_surface(m);
+    BooleanVolumes whole = options.cells_tile ? booleans(outside.view(), body, options)
+                                              : solid_boolean_volumes(outside.view(), body, true);
+    if (!options.cells_tile && whole.status != BooleanStatus::ok && m.cell_count() > 0) {
+        // The covered region is not decided (the boundary touches itself
+        // where it crosses itself): B checked and measured against one cell.
+        whole = booleans(cell_surface(m, cf, 0).view(), body, options);
+        whole.intersection = NAN;
+    }
     if (whole.status == BooleanStatus::b_not_closed) throw std::invalid_argument("the body is not a closed surface");
     if (whole.status == BooleanStatus::b_inside_out) throw std::invalid_argument("the body is inside out");
     if (whole.status != BooleanStatus::ok)
@@ -212,13 +209,17 @@ void fill_untouched(const CellMeshView& m, const std::vector<uint8_t>& touched, 
 }
 
 // Each cell's class by its value: empty (0), full (its own volume), cut;
-// and the cells' values added exactly, rounded once — the total where the
-// cells may not tile the mesh's region (options.cells_tile false).
+// the cells' values added exactly, rounded once; where the cells may not
+// tile, what they count more than once: cells_sum − total (whole_volumes),
+// or, where the covered region was not decided, the total is the cells' sum.
 void classify(std::span<const double> own, bool cells_tile, BodyInCells& r) {
     exact::ExactSum sum;
     sum.add(r.volumes);
     r.cells_sum = sum.round();
-    if (!cells_tile) r.total = r.cells_sum;
+    if (!cells_tile) {
+        r.in_overlaps = r.cells_sum - r.total;  // NaN where total is not known
+        if (std::isnan(r.total)) r.total = r.cells_sum;
+    }
     r.cell_class.resize(r.volumes.size());
     for (std::size_t c = 0; c < r.volumes.size(); ++c) {
         const double v = r.volumes[c];

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "polyvol/cell_mesh.hpp"
+#include "polyvol/mesh.hpp"
 
 namespace polyvol::cells {
 
@@ -23,5 +24,10 @@ struct CellFaces {
 
 // Needs owner and neighbour below the cell count (check_cell_mesh's arrays).
 CellFaces cell_faces(const CellMeshView& mesh);
+
+// The boundary faces' triangles (the faces without a neighbour) over all the
+// mesh's points: the surface of the region the cells cover, whose winding
+// number at a point is the number of cells covering it.
+Mesh boundary_surface(const CellMeshView& mesh);
 
 }  // namespace polyvol::cells

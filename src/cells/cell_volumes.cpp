@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "exact/expansion.hpp"
+#include "polyvol/boolean.hpp"
 #include "polyvol/cells.hpp"
 
 namespace polyvol {
@@ -34,6 +36,17 @@ CellFaces cell_faces(const CellMeshView& m) {
         if (m.neighbour[f] != kNoCell) cf.faces[next[m.neighbour[f]]++] = (static_cast<uint32_t>(f) << 1) | 1u;
     }
     return cf;
+}
+
+Mesh boundary_surface(const CellMeshView& m) {
+    Mesh out;
+    out.positions.assign(m.points.begin(), m.points.end());
+    for (std::size_t f = 0; f < m.face_count(); ++f)
+        if (m.neighbour[f] == kNoCell)
+            face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
+                out.indices.insert(out.indices.end(), {a, b, d});
+            });
+    return out;
 }
 
 }  // namespace cells
@@ -158,6 +171,13 @@ CellVolumes cell_volumes(const CellMeshView& m) {
         std::count_if(r.volumes.begin(), r.volumes.end(), [](double v) { return v < 0; }));
     for (std::size_t f = 0; f < m.face_count(); ++f) r.face_triangles += m.face(f).size() - 2;
     return r;
+}
+
+double covered_volume(const CellMeshView& m) {
+    if (const auto defect = check_cell_mesh(m)) throw std::invalid_argument(defect->message);
+    const Mesh outside = cells::boundary_surface(m);
+    const SolidVolume s = solid_volume(outside.view(), {.moments = false, .within_shells = true});
+    return s.status == BooleanStatus::ok ? s.properties.volume : NAN;
 }
 
 }  // namespace polyvol

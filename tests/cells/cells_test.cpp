@@ -150,6 +150,7 @@ TEST(CellVolumes, WarpedCellsAreTheirSurfacesVolumesAndAddUpToTheBoundarys) {
     // the exact volume of the boundary faces.
     const Mesh outside = boundary_surface(m);
     EXPECT_EQ(v.total, signed_volume(outside.view()));
+    EXPECT_EQ(covered_volume(m), v.total);  // cells that tile cover each point once
     EXPECT_NEAR(naive, v.total, 1e-13 * v.total);
     EXPECT_EQ(v.face_triangles, 2 * (m.face_count()));
 }

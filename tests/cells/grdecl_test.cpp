@@ -21,6 +21,7 @@
 #include "common/shapes.hpp"
 #include "exact/rational.hpp"
 #include "polyvol/cell_mesh_io.hpp"
+#include "polyvol/boolean.hpp"
 #include "polyvol/cells.hpp"
 #include "polyvol/grid.hpp"
 #include "polyvol/io.hpp"
@@ -281,10 +282,12 @@ TEST(Grdecl, AKeywordFileHoldsEveryCellInGridOrder) {
     EXPECT_THROW(write_grdecl_keyword(out.string(), "BODYFRAC", std::vector<double>(6), r), std::invalid_argument);
 }
 
-TEST(Grdecl, FaultsOnLeaningPillarsGiveEachCellAloneAndTheCellsSum) {
+TEST(Grdecl, FaultsOnLeaningPillarsCountTheBodyInTheCoveredRegionOnce) {
     // Leaning pillars that are not parallel, and a throw: cells across the
     // fault overlap or leave slivers. Each cell is still its exact
-    // intersection (the reference's bits); the total is the cells' sum.
+    // intersection (the reference's bits); the total is the body in the
+    // region the cells cover, each point once, and the cells' sum exceeds
+    // it by the body in the overlaps (in_overlaps).
     CornerGrid g = box_grid(3, 2, 2);
     g.bottom = [](int i, int j) { return std::array<double, 3>{15.0 * i + 3.0 * j, 24.0 * j, 1100}; };
     g.depth = [](int i, int, int k, int, int, int c) { return 1000.0 + 5.0 * (k + c) + (i >= 2 ? 3.0 : 0.0); };
@@ -299,12 +302,39 @@ TEST(Grdecl, FaultsOnLeaningPillarsGiveEachCellAloneAndTheCellsSum) {
     o.reference = true;
     const BodyInCells ref = body_in_cells(m, sphere.view(), o);
     for (std::size_t c = 0; c < m.cell_count(); ++c) EXPECT_EQ(b.volumes[c], ref.volumes[c]) << "cell " << c;
-    EXPECT_EQ(b.total, b.cells_sum);
+    EXPECT_EQ(b.total, ref.total);
     EXPECT_EQ(b.body_volume, signed_volume(sphere.view()));
     mpq_class sum = 0;
     for (const double v : b.volumes) sum += mpq_class(v);
     EXPECT_EQ(b.cells_sum, exact::round_to_double(sum.get_mpq_t()));
     EXPECT_GT(b.cut_cells, 4u);
+    // The overlaps pair by pair (no point is in three cells here): the
+    // covered region is Σ|c| − Σ|c1 ∩ c2|, and the body in it Σ|B ∩ c| −
+    // Σ|B ∩ c1 ∩ c2|, with |B ∩ c1 ∩ c2| = |B ∩ c1| + |B ∩ c2| − |B ∩ (c1 ∪ c2)|.
+    const CellVolumes own = cell_volumes(m);
+    double cells_overlap = 0, body_overlap = 0;
+    std::size_t pairs = 0;
+    for (std::size_t c1 = 0; c1 < m.cell_count(); ++c1)
+        for (std::size_t c2 = c1 + 1; c2 < m.cell_count(); ++c2) {
+            const Mesh s1 = test::cell_surface(m, c1), s2 = test::cell_surface(m, c2);
+            const double both = boolean_volumes(s1.view(), s2.view()).intersection;
+            if (both == 0) continue;
+            ++pairs;
+            cells_overlap += both;
+            Mesh either = s1;
+            either.append(s2);
+            const BooleanVolumes in_either = solid_boolean_volumes(either.view(), sphere.view());
+            ASSERT_EQ(in_either.status, BooleanStatus::ok);
+            body_overlap += b.volumes[c1] + b.volumes[c2] - in_either.intersection;
+        }
+    EXPECT_GT(pairs, 0u);
+    EXPECT_GT(cells_overlap, 1.0);
+    const double covered = covered_volume(m);
+    EXPECT_LT(covered, own.total);
+    EXPECT_NEAR(covered, own.total - cells_overlap, 1e-12 * own.total);
+    EXPECT_GT(body_overlap, 0.01);
+    EXPECT_NEAR(b.total, b.cells_sum - body_overlap, 1e-12 * b.cells_sum);
+    EXPECT_EQ(b.in_overlaps, b.cells_sum - b.total);
 }
 
 TEST(Grdecl, OtherKeywordsRecordsCommentsAndLineEndsAreSkipped) {
@@ -401,3 +431,4 @@ TEST(Grdecl, MapAxesTakeThePointsToTheMapsCoordinates) {
     g.head = "MAPAXES\n 0 0 0 0 1 0 /\n";
     EXPECT_NE(read_error(g.text()).find("MAPAXES: its axes are not two independent directions"), std::string::npos);
 }
+

@@ -260,13 +260,14 @@ def test_a_vtu_that_claims_to_expand_to_gigabytes_is_refused_before_allocating(t
         polyvol.load_cells(bomb)
 
 
-def grdecl_file(path, nx, ny, nz, actnum, throw=0.0, lean=0.0):
+def grdecl_file(path, nx, ny, nz, actnum, throw=0.0, lean=0.0, skew=0.0):
     """A corner-point grid of 10 × 20 × 5 m cells (depth down), columns i >= 2
-    thrown down by `throw`, pillars leaning apart by `lean` per column."""
+    thrown down by `throw`, pillars leaning apart by `lean` per column and
+    by `skew` in x per row (pillars then not parallel: faces warped)."""
     coord = []
     for j in range(ny + 1):
         for i in range(nx + 1):
-            coord += [10.0 * i, 20.0 * j, 1000.0, 10.0 * i + lean * i, 20.0 * j, 1100.0]
+            coord += [10.0 * i, 20.0 * j, 1000.0, 10.0 * i + lean * i + skew * j, 20.0 * j, 1100.0]
     z = []
     for k in range(nz):
         for c in range(2):
@@ -319,15 +320,25 @@ def test_a_corner_point_grid_gives_the_commands_bits_and_its_keyword_file(tmp_pa
     assert r.inside_mesh[0] == float(exact)
 
 
-def test_a_faulted_grid_on_leaning_pillars_says_its_total_is_the_cells_sum(tmp_path):
-    grid = grdecl_file(tmp_path / "grid.grdecl", 3, 2, 2, [1] * 12, throw=3.0, lean=4.0)
+def test_a_faulted_grid_on_leaning_pillars_counts_the_covered_region_once(tmp_path):
+    grid = grdecl_file(tmp_path / "grid.grdecl", 3, 2, 2, [1] * 12, throw=3.0, lean=4.0, skew=3.0)
     body = off_file(tmp_path / "box.off", *box((12.0, 3.0, 1001.0), (27.0, 30.0, 1012.0)))
     r = polyvol.cells(grid, polyvol.load(body), units="m")
-    assert r.cells_tile is False and r.inside_mesh == r.cells_sum
+    assert r.cells_tile is False
+    # The cells overlap at the fault: they add up to more than they cover,
+    # and the body in the overlaps counts in the cells' sum more than once.
+    assert r.covered_volume < r.total and r.total - r.covered_volume > 1.0
+    assert r.in_overlaps[0] == r.cells_sum[0] - r.inside_mesh[0] and r.in_overlaps[0] > 0.01
+    assert r.cells_sum[0] == math.fsum(r.volumes[0])
+    out = subprocess.run([CLI, "cells", grid, body, "--units", "m", "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    j = json.loads(out.stdout)
+    assert j["cells_tile"] is False and j["mesh"]["covered_volume"] == r.covered_volume
+    assert (j["bodies"][0]["inside_mesh"], j["bodies"][0]["in_overlaps"]) == (r.inside_mesh[0], r.in_overlaps[0])
     out = subprocess.run([CLI, "cells", grid, body, "--units", "m"], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
-    assert "faults: 4 faces" in out.stdout and "is not conserved" in out.stdout
-    assert "correctly rounded, every cell and the mesh's" in out.stdout
+    assert "faults: 4 faces" in out.stdout and "may overlap or leave gaps" in out.stdout
+    assert "counted more than once where cells overlap" in out.stdout
 
 
 def test_bad_grdecl_files_are_refused_with_the_line(tmp_path):
