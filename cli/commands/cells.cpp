@@ -120,21 +120,9 @@ std::optional<LoadedMesh> read_body(const std::string& file, const CellsArgs& a,
         code = Exit::unreadable;
         return std::nullopt;
     }
-    const std::string unit = !body->unit.empty() ? body->unit : a.units;
-    if (mesh_unit.empty()) {
-        if (!unit.empty())
-            std::cerr << "polyvol: warning: " << file << ": the mesh states no unit: the body's coordinates are "
-                      << "taken as they are (--mesh-units gives the mesh's)\n";
-    } else if (unit.empty()) {
-        std::cerr << "polyvol: warning: " << file << ": no unit stated: taken in the mesh's unit (" << mesh_unit
-                  << "); --units gives it (" << kLengthUnitNames << ")\n";
-    } else if (unit != mesh_unit) {
-        const LengthFactor f = length_factor(*length_unit(unit), *length_unit(mesh_unit));
-        body->coordinate_error = scale_coordinates(body->mesh, f, body->coordinate_error);
-        if (body->coordinate_error > 0)
-            std::cerr << "polyvol: warning: " << file << ": converted from " << unit << " to " << mesh_unit
-                      << ", each coordinate rounded once: the cells' volumes are exact for the converted body\n";
-    }
+    const UnitChange change = into_unit(body->unit, a.units, mesh_unit);
+    body->coordinate_error = scale_coordinates(body->mesh, change.factor, body->coordinate_error);
+    if (!change.note.empty()) std::cerr << "polyvol: warning: " << file << ": " << change.note << "\n";
     solid = solid_or_report(file, body->mesh, a.solid_flags.policy());
     if (!solid) {
         code = Exit::invalid;
@@ -361,7 +349,8 @@ CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
                     "--field writes 0 in the other cells");
     cmd->add_option("--keyword", a.keyword,
                     "The GRDECL keyword -o OUT.grdecl writes (default BODYVOL, or BODYFRAC with --fractions)");
-    cmd->add_option("--units", a.units, std::string("The bodies' unit where a file states none: ") + kLengthUnitNames);
+    cmd->add_option("--units", a.units, std::string("The bodies' length unit (") + kLengthUnitNames +
+                        "); a 3MF or AMF file states its own, which this overrides (with a warning)");
     cmd->add_option("--mesh-units", a.mesh_units, "The mesh's unit (OpenFOAM: m; GRDECL: its unit keyword)");
     add_solid_flags(cmd, a.solid_flags);
     return cmd;

@@ -111,4 +111,16 @@ struct CommonUnit {
 };
 CommonUnit common_unit(std::span<const std::string> declared, std::string_view units, std::string_view to);
 
+// A mesh put into another's unit `to` (a body in a mesh of cells): its unit
+// is `units` when given, else the one it declares, as in common_unit. Where
+// its unit is not known it is taken to be in `to`, and where `to` is not
+// known (a mesh of cells that states none) its coordinates are taken as
+// they are: a note says either. error: an unknown unit name.
+struct UnitChange {
+    std::string error;
+    LengthFactor factor;  // its coordinates × factor (scale_coordinates)
+    std::string note;     // what was assumed or converted ("" for nothing)
+};
+UnitChange into_unit(std::string_view declared, std::string_view units, std::string_view to);
+
 }  // namespace polyvol

@@ -62,9 +62,10 @@ def cells(mesh, bodies=(), *, units=None, mesh_units=None, signed=False, orient=
     bodies: a mesh or a list of them (polyvol.Mesh, or objects with
     .vertices and .faces), each the solid it means as mass_properties takes
     it (NotASolidError for an open or misoriented one; signed, orient,
-    weld_tolerance as there). units: the bodies' unit where a Mesh states
-    none; mesh_units: the mesh's (OpenFOAM: metres); a body in another unit
-    is converted, each coordinate rounded once (a warning says so).
+    weld_tolerance as there). units: the bodies' unit (it overrides, with a
+    warning, one a Mesh states, as --units does); mesh_units: the mesh's
+    (OpenFOAM: metres); a body in another unit is converted, each
+    coordinate rounded once (a warning says so).
 
     Returns Cells: ``cell_volumes`` (cells,), ``volumes`` and ``fractions``
     (bodies, cells), ``cell_class`` (bodies, cells: 0 empty, 1 full, 2 cut),

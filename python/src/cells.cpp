@@ -167,20 +167,10 @@ void bind_cells(py::module_& m) {
            const std::string& units, const std::string& unit, const Doubles& own, bool surface) {
             Mesh body = to_mesh(mesh_view(positions, indices, offsets));
             py::list notes;
-            const std::string body_unit = !declared.empty() ? declared : units;
-            if (unit.empty()) {
-                if (!body_unit.empty())
-                    notes.append("the mesh states no unit: the body's coordinates are taken as they are "
-                                 "(mesh_units= gives the mesh's)");
-            } else if (body_unit.empty()) {
-                notes.append("no unit stated: taken in the mesh's unit (" + unit + "); units= gives it");
-            } else if (body_unit != unit) {
-                const auto from = length_unit(body_unit), to = length_unit(unit);
-                if (!from || !to) throw py::value_error("unknown unit: expected " + std::string(kLengthUnitNames));
-                if (scale_coordinates(body, length_factor(*from, *to), 0) > 0)
-                    notes.append("converted from " + body_unit + " to " + unit +
-                                 ", each coordinate rounded once: the cells' volumes are exact for the converted body");
-            }
+            const UnitChange change = into_unit(declared, units, unit);
+            if (!change.error.empty()) throw py::value_error(change.error);
+            scale_coordinates(body, change.factor, 0);
+            if (!change.note.empty()) notes.append(change.note);
             MeshSolid solid;
             std::optional<BodyInCells> r;
             const bool own_given = static_cast<std::size_t>(own.size()) == l.mesh.cells;

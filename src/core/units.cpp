@@ -189,4 +189,22 @@ CommonUnit common_unit(std::span<const std::string> declared, std::string_view u
     return c;
 }
 
+UnitChange into_unit(std::string_view declared, std::string_view units, std::string_view to) {
+    UnitChange u;
+    const std::string own = !units.empty() ? std::string(units) : std::string(declared);
+    if (!own.empty() && !length_unit(own)) {
+        u.error = "unknown unit " + own + " (" + kLengthUnitNames + ")";
+    } else if (to.empty()) {
+        if (!own.empty()) u.note = "the mesh states no unit: its coordinates are taken as they are";
+    } else if (own.empty()) {
+        u.note = "it states no unit: taken to be in " + std::string(to) + ", the mesh's";
+    } else {
+        const std::string declared_s(declared);
+        const CommonUnit c = common_unit(std::span<const std::string>(&declared_s, 1), units, to);
+        u.error = c.error;
+        if (c.error.empty()) u.factor = c.factors[0], u.note = c.notes[0];
+    }
+    return u;
+}
+
 }  // namespace polyvol

@@ -93,5 +93,24 @@ TEST(Units, ScaledCoordinatesWithinTheirBound) {
     EXPECT_EQ(twice.positions[5], 2 * before[5]);
 }
 
+TEST(IntoUnit, ABodyIsPutIntoTheMeshsUnitOrSaysWhatWasAssumed) {
+    // --units first, then the file's own; the factor common_unit gives.
+    UnitChange u = into_unit("in", "", "m");
+    EXPECT_EQ(u.error, "");
+    EXPECT_EQ(u.factor.factor, 0.0254);
+    EXPECT_NE(u.note.find("converted from in to m"), std::string::npos) << u.note;
+    u = into_unit("in", "mm", "mm");
+    EXPECT_EQ(u.factor.factor, 1.0);
+    EXPECT_NE(u.note.find("declares its unit as in; mm is used instead"), std::string::npos) << u.note;
+    u = into_unit("", "", "m");  // none known: taken in the mesh's
+    EXPECT_EQ(u.factor.factor, 1.0);
+    EXPECT_EQ(u.note, "it states no unit: taken to be in m, the mesh's");
+    u = into_unit("mm", "", "");  // the mesh's not known: as they are
+    EXPECT_EQ(u.factor.factor, 1.0);
+    EXPECT_EQ(u.note, "the mesh states no unit: its coordinates are taken as they are");
+    EXPECT_EQ(into_unit("m", "", "m").note, "");
+    EXPECT_NE(into_unit("", "furlong", "m").error.find("unknown unit furlong"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace polyvol

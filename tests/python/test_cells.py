@@ -49,7 +49,7 @@ def test_cells_gives_the_commands_bits_and_a_boxs_closed_form(case, tmp_path):
 
 def test_a_sphere_inside_the_mesh_adds_up_to_its_volume(case):
     s = polyvol.Mesh(*uv_sphere(16, 32, 0.8, (0.1, 0.05, 0.0)))
-    with pytest.warns(UserWarning, match="no unit stated"):
+    with pytest.warns(UserWarning, match="states no unit: taken to be in m, the mesh's"):
         r = polyvol.cells(case, s)
     assert r.inside_mesh[0] == polyvol.volume(s) == r.body_volumes[0]
     assert math.isclose(r.volumes.sum(), r.inside_mesh[0], rel_tol=1e-14)
