@@ -7,11 +7,15 @@
 //                    sphere (argo's SMCA: 685,949 cells, 120,322 triangles)
 //   CellsVsGrid/64   the same cells as a 64^3 rectilinear grid: body_in_cells
 //                    against grid_volumes on the grid's planes
+//   CellsMemory/216  216^3 = 10,077,696 hexahedra against the same sphere:
+//                    the peak resident memory of the process (peak_rss_gib,
+//                    the mesh's arrays included) and the time
 // Both meshes in memory; the time is body_in_cells with the cells' own
 // volumes included (cell_volumes). Wall-clock, all threads.
 //   ./build/bench/polyvol_bench --benchmark_filter=Cells --benchmark_repetitions=3
 //       --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include <vector>
 
@@ -84,6 +88,21 @@ void CellsLarge(benchmark::State& state) {
     run(state, cells, body);
 }
 BENCHMARK(CellsLarge)->Arg(88)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+void CellsMemory(benchmark::State& state) {
+    static const Mesh body = generate::uv_sphere(150, 400, 0.8);
+    const CellMesh cells = generate::hex_cells(static_cast<int>(state.range(0)), -1.0, 1.0, 0.0);
+    state.counters["mesh_gib"] = static_cast<double>(cells.points.size() * sizeof(double) +
+                                                     (cells.face_offsets.size() + cells.face_points.size() +
+                                                      cells.owner.size() + cells.neighbour.size()) *
+                                                         sizeof(uint32_t)) /
+                                 0x1p30;
+    run(state, cells, body);
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    state.counters["peak_rss_gib"] = static_cast<double>(usage.ru_maxrss) / (1024.0 * 1024.0);  // ru_maxrss in KiB
+}
+BENCHMARK(CellsMemory)->Arg(216)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 // range(0): cells per axis; range(1): 0 the cells, 1 the grid.
 void CellsVsGrid(benchmark::State& state) {
