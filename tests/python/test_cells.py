@@ -402,3 +402,26 @@ def test_the_wetted_area_and_normal_give_the_commands_bits_and_add_up_to_the_sur
     data = reader.GetOutput().GetCellData()
     assert np.array_equal(vtk_to_numpy(data.GetArray("wetted_area")), r.wetted_area[0])
     assert np.array_equal(vtk_to_numpy(data.GetArray("surface_normal")), r.surface_normal[0])
+
+
+def test_a_rectilinear_mesh_as_polymesh_or_vtu_gives_the_grids_numbers(tmp_path):
+    # The same 8^3 cells as an OpenFOAM case, as the .vtu polyvol writes of
+    # it, and as polyvol.grid's planes: cells correctly rounded, the grid
+    # within 3.5e-16 of a cell's volume (docs/grid.md), so they agree within both.
+    n = 8
+    case = write_polymesh(tmp_path / "case", -1.0, 1.0, n)
+    sphere = polyvol.Mesh(*uv_sphere(24, 48, 0.83, (0.1, -0.05, 0.02)))
+    r = polyvol.cells(case, sphere, units="m")
+    vtu = tmp_path / "cells.vtu"
+    out = subprocess.run([CLI, "cells", case, "-o", vtu], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    from_vtu = polyvol.cells(polyvol.load_cells(vtu), sphere, units="m", mesh_units="m")
+    assert np.array_equal(from_vtu.volumes, r.volumes) and from_vtu.inside_mesh == r.inside_mesh
+    edges = [np.linspace(-1.0, 1.0, n + 1)] * 3
+    g = polyvol.grid(sphere, edges=edges)
+    cells = r.volumes[0].reshape(n, n, n).transpose(2, 1, 0)  # cell i + n (j + n k) -> [i, j, k]
+    own = r.cell_volumes.reshape(n, n, n).transpose(2, 1, 0)
+    assert np.array_equal(own, g.cell_volumes)
+    bound = 3.5e-16 * own + np.spacing(own)
+    assert np.all(np.abs(cells - g.volumes) <= bound)
+    assert 0 < r.cut_cells[0] < n ** 3 and np.count_nonzero((cells > 0) & (cells < own)) == r.cut_cells[0]
