@@ -122,8 +122,6 @@ struct SoupAccumulator::State {
         uint64_t s = seed;
         for (auto& k : keys.aes)
             for (auto& x : k) x = core::fingerprint::splitmix(s);
-        for (auto& k : keys.mix)
-            for (auto& x : k) x = core::fingerprint::splitmix(s) | 1;
     }
 
     // Pass 1 over a group: triangles [first, first + n) of t, n <= kGroupBlocks
@@ -207,8 +205,6 @@ SoupAccumulator::SoupAccumulator(SoupWants wants) {
     // More entropy than one 64-bit seed for the keys themselves.
     s_ = std::make_unique<State>(seed, wants);
     for (auto& k : s_->keys.aes)
-        for (auto& x : k) x ^= core::fingerprint::random_word(rd);
-    for (auto& k : s_->keys.mix)
         for (auto& x : k) x ^= core::fingerprint::random_word(rd);
 }
 

@@ -16,11 +16,12 @@
 // coordinates. Where the rows come from depends on the target (scalar
 // loads; AVX2, and AVX-512 without IFMA or VAES: 8 x 8 transposes of the
 // records into a block of doubles; AVX-512 with IFMA and VAES: the same
-// transposes in registers), and so does the hash (a portable multiply-xor
-// below AVX2; AES-NI; with IFMA and VAES, fused into the loop). Every
-// target gives the same sums, bit for bit; the fingerprint differs between
-// the portable hash and AES. The error analysis is in
-// docs/numerics.md, "The streamed soup".
+// transposes in registers), and so does the way the hash is computed (one
+// vertex at a time by Highway's AESRound below AVX2, its scalar twin on
+// HWY_SCALAR; two triangles at a time by AES-NI; with IFMA and VAES, fused
+// into the loop). Every target gives the same sums and the same
+// fingerprint, bit for bit. The error analysis is in docs/numerics.md, "The
+// streamed soup".
 #include "core/hwy_targets.hpp"  // before Highway
 
 #undef HWY_TARGET_INCLUDE
@@ -29,6 +30,7 @@
 
 #include <hwy/highway.h>
 
+#include "core/aes_round.hpp"
 #include "core/simd.hpp"
 #include "exact/eft.hpp"  // POLYVOL_INLINE
 #include "measure/cone_terms-inl.h"
@@ -62,7 +64,6 @@ using cone::HWY_NAMESPACE::two_prod;
 using cone::HWY_NAMESPACE::two_sum;
 using cone::HWY_NAMESPACE::V;
 using core::fingerprint::kP;
-using core::fingerprint::mum;
 using core::fingerprint::reduce;
 using core::fingerprint::vandermonde;
 
@@ -329,22 +330,32 @@ HWY_INLINE uint32_t load_block_portable(const std::byte* base, std::size_t strid
     return mx;
 }
 
-// Portable vertex hash: two multiply-xor rounds (wyhash's mixing) for each
-// 64-bit half; the four 32-bit quarters cut to 31 bits are the four lanes.
+// The vertex hash (x, y, z, 0) of fingerprint_aesni, one vertex at a time:
+// the key k0 added, three AES rounds with k1, k2, k3, each 32-bit word cut
+// to 31 bits a lane. By Highway's AESRound (AES-NI on SSE4, its emulation
+// on EMU128 and NEON), on HWY_SCALAR by the scalar twin (core/aes_round.hpp).
+HWY_INLINE void aes_hash(const uint32_t* xyz, const Keys& key, uint32_t h[kFpLanes]) {
+    alignas(16) uint32_t s[4] = {xyz[0], xyz[1], xyz[2], 0};
+    auto* bytes = reinterpret_cast<uint8_t*>(s);
+#if HWY_TARGET == HWY_SCALAR
+    const auto* k0 = reinterpret_cast<const uint8_t*>(key.aes[0]);
+    for (int i = 0; i < 16; ++i) bytes[i] = static_cast<uint8_t>(bytes[i] ^ k0[i]);
+    for (int r = 1; r < 4; ++r) core::aes_round(bytes, reinterpret_cast<const uint8_t*>(key.aes[r]));
+#else
+    const hn::Full128<uint8_t> d8;
+    auto x = hn::Xor(hn::Load(d8, bytes), hn::Load(d8, reinterpret_cast<const uint8_t*>(key.aes[0])));
+    for (int r = 1; r < 4; ++r) x = hn::AESRound(x, hn::Load(d8, reinterpret_cast<const uint8_t*>(key.aes[r])));
+    hn::Store(x, d8, bytes);
+#endif
+    for (int l = 0; l < kFpLanes; ++l) h[l] = static_cast<uint32_t>(s[l] & kP);
+}
+
+// A block's fingerprint from its canonical words, vertex by vertex.
 HWY_INLINE void fingerprint_portable(const Words& w, int n, const Keys& key, uint64_t out[kFpLanes]) {
     uint64_t acc[kFpLanes] = {};
     for (int i = 0; i < n; ++i) {
-        uint64_t h[3][kFpLanes];
-        for (int v = 0; v < 3; ++v) {
-            const uint64_t w0 = w[i][3 * v] | static_cast<uint64_t>(w[i][3 * v + 1]) << 32;
-            const uint64_t w1 = w[i][3 * v + 2];
-            for (int half = 0; half < 2; ++half) {
-                const uint64_t* k = key.mix[half];
-                const uint64_t x = mum(mum(w0 ^ k[0], w1 ^ k[1]) ^ k[2], w0 ^ k[3]);
-                h[v][2 * half] = x & kP;
-                h[v][2 * half + 1] = (x >> 32) & kP;
-            }
-        }
+        uint32_t h[3][kFpLanes];
+        for (int v = 0; v < 3; ++v) aes_hash(&w[i][3 * v], key, h[v]);
         for (int l = 0; l < kFpLanes; ++l) acc[l] += vandermonde(h[0][l], h[1][l], h[2][l]);
     }
     for (int l = 0; l < kFpLanes; ++l) out[l] = reduce(acc[l]);

@@ -24,11 +24,10 @@ constexpr int kFpLanes = core::fingerprint::kLanes;
 // docs/numerics.md, "The streamed soup"), the rest block by block.
 constexpr int kGroupBlocks = 4;
 
-// The fingerprint's keys: AES (whitening, then three round keys) for the
-// targets with AES, and the portable hash's (four per lane half).
+// The fingerprint's keys: AES whitening, then three round keys (one hash
+// on every target).
 struct Keys {
     alignas(16) uint64_t aes[4][2];
-    uint64_t mix[2][4];
 };
 
 // What pass 1 forms of the first moments: nothing (nor the area), plain
