@@ -2,14 +2,9 @@
 #include "io/chunks.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cstring>
 
 #include <tbb/parallel_for.h>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "core/prefault.hpp"
 #include "io/text.hpp"
@@ -65,54 +60,6 @@ uint64_t count_line_ends(std::string_view text) {
     }
     return ends;
 }
-
-namespace {
-
-// count_lines for the usual body: no '\r', and every line starts with a
-// token character (no empty, blank-led or comment line). Then every line
-// is a data line and only the '\n' need counting, 16 bytes at a time.
-// Returns false, with c unspecified, when the text is not of that kind.
-bool count_plain_lines(std::string_view text, char comment, LineCounts& c) {
-    const std::size_t n = text.size();
-    const char* s = text.data();
-    auto bad_start = [&](char ch) { return is_blank(ch) || is_eol(ch) || (comment != '\0' && ch == comment); };
-    if (n == 0) return true;
-    if (bad_start(s[0])) return false;
-    uint64_t ends = 0;
-    std::size_t i = 0;
-#if defined(__SSE2__)
-    // a: bytes i..i+15; b: the bytes after them (the starts of the lines
-    // that the '\n' in a end).
-    const __m128i nl = _mm_set1_epi8('\n'), cr = _mm_set1_epi8('\r'), sp = _mm_set1_epi8(' ');
-    const __m128i tab = _mm_set1_epi8('\t'), vt = _mm_set1_epi8('\v'), ff = _mm_set1_epi8('\f');
-    const __m128i hash = _mm_set1_epi8(comment != '\0' ? comment : '\n');
-    for (; i + 17 <= n; i += 16) {
-        const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + i));
-        const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + i + 1));
-        const __m128i is_nl = _mm_cmpeq_epi8(a, nl);
-        const __m128i next_bad = _mm_or_si128(
-            _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(b, nl), _mm_cmpeq_epi8(b, sp)),
-                         _mm_or_si128(_mm_cmpeq_epi8(b, tab), _mm_cmpeq_epi8(b, vt))),
-            _mm_or_si128(_mm_cmpeq_epi8(b, ff), _mm_cmpeq_epi8(b, hash)));
-        const int nl_bits = _mm_movemask_epi8(is_nl);
-        if ((_mm_movemask_epi8(_mm_and_si128(is_nl, next_bad)) | _mm_movemask_epi8(_mm_cmpeq_epi8(a, cr))) != 0)
-            return false;
-        ends += static_cast<uint64_t>(std::popcount(static_cast<unsigned>(nl_bits)));
-    }
-#endif
-    for (; i < n; ++i) {
-        if (s[i] == '\r') return false;
-        if (s[i] == '\n') {
-            ++ends;
-            if (i + 1 < n && bad_start(s[i + 1])) return false;
-        }
-    }
-    c.line_ends = ends;
-    c.data_lines = s[n - 1] == '\n' ? ends : ends + 1;
-    return true;
-}
-
-}  // namespace
 
 LineCounts count_lines(std::string_view text, char comment) {
     LineCounts c;

@@ -93,6 +93,13 @@ struct LineCounts {
 };
 LineCounts count_lines(std::string_view text, char comment);
 
+// count_lines for the usual body: no '\r', and every line starts with a
+// token character (no empty, blank-led or comment line). Then every line
+// is a data line and only the '\n' need counting, a vector at a time
+// (io/line_scan.cpp). Returns false, with c unspecified, when the text is
+// not of that kind.
+bool count_plain_lines(std::string_view text, char comment, LineCounts& c);
+
 // How a chunk went. line is relative to the chunk (1 = its first line) and
 // may be 0 or negative when the error is at a position before the chunk.
 struct Outcome {

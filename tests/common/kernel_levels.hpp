@@ -7,7 +7,7 @@
 namespace polyvol::test {
 
 // The levels the tests run, each capped by the CPU: 0 scalar (no FMA:
-// Dekker's two_prod; the portable hash), 1 up to SSE4, 2 up to AVX2 + FMA
+// Dekker's two_prod; the AES hash by Highway's emulation), 1 up to SSE4, 2 up to AVX2 + FMA
 // (AES-NI), 3 the CPU's best (AVX-512 with IFMA and VAES where it has them).
 inline constexpr int kLevels[] = {0, 1, 2, 3};
 

@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/kernel_levels.hpp"
 #include "common/manifest.hpp"
 #include "io/chunks.hpp"
 #include "io/text.hpp"
@@ -168,10 +169,12 @@ TEST(Cursor, NextFiniteNumberReadsAsNextAndParseDouble) {
     }
 }
 
-// count_lines (with its 16-bytes-at-a-time path) against a plain reading of
-// the definition: line ends as text::Cursor counts them, and lines whose
-// first non-blank byte is neither a line end nor the comment character.
+// count_lines (with its vector-at-a-time path, at every kernel level)
+// against a plain reading of the definition: line ends as text::Cursor
+// counts them, and lines whose first non-blank byte is neither a line end
+// nor the comment character.
 TEST(CountLines, MatchesTheDefinition) {
+    const polyvol::test::LevelGuard guard;
     std::mt19937 rng(11);
     const std::string alphabets[] = {"1 \n", "12.5 \n", "ab\n\n \t#", "1\r\n", "x\n\r\v\f#"};
     for (int i = 0; i < 20000; ++i) {
@@ -206,9 +209,12 @@ TEST(CountLines, MatchesTheDefinition) {
                     seen = true;
                 }
             }
-            const polyvol::io::chunks::LineCounts got = polyvol::io::chunks::count_lines(s, comment);
-            ASSERT_EQ(got.line_ends, ends) << i;
-            ASSERT_EQ(got.data_lines, data) << i;
+            for (int level : polyvol::test::kLevels) {
+                polyvol::test::cap_kernel_level(level);
+                const polyvol::io::chunks::LineCounts got = polyvol::io::chunks::count_lines(s, comment);
+                ASSERT_EQ(got.line_ends, ends) << i << " level " << level;
+                ASSERT_EQ(got.data_lines, data) << i << " level " << level;
+            }
             ASSERT_EQ(polyvol::io::chunks::count_line_ends(s), ends) << i;
         }
     }
