@@ -21,10 +21,6 @@
 #include "measure/cone_kernels.hpp"
 #include "measure/cone_terms-inl.h"
 
-#if HWY_ARCH_X86
-#include <immintrin.h>
-#endif
-
 #undef POLYVOL_ROWS_AVX2
 #undef POLYVOL_ROWS_AVX512
 
@@ -32,7 +28,8 @@ HWY_BEFORE_NAMESPACE();
 namespace polyvol::measure::cone::HWY_NAMESPACE {
 
 // Highway's x86 targets: AVX2 and better load a vertex's (x, y, z, next)
-// with one 256-bit load; AVX-512 puts two vertices in one register.
+// with one 256-bit load; AVX-512 puts two vertices in one register. (Written
+// in Highway operations; only the load width is x86's.)
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
 #define POLYVOL_ROWS_AVX2 1
 #else
@@ -67,74 +64,49 @@ HWY_INLINE bool block_loads_within(std::size_t nv, const uint32_t* t) {
     return largest < nv - 1;
 }
 
-// Vertex v of 4 triangles (t: their 12 indices) as rows of x, y and z: each
-// vertex's (x, y, z, next) by one 256-bit load, then a 4 x 4 transpose (two
-// unpacks and three lane permutations), where hardware gathers and masked
-// loads of three doubles would wait on every lane.
-HWY_INLINE void rows4(const double* pos, const uint32_t* t, int v, __m256d (&row)[3]) {
-    __m256d r[4];
-    for (int i = 0; i < 4; ++i) r[i] = _mm256_loadu_pd(pos + 3 * std::size_t{t[3 * i + v]});
-    const __m256d xz01 = _mm256_unpacklo_pd(r[0], r[1]);  // x0 x1 | z0 z1
-    const __m256d y01 = _mm256_unpackhi_pd(r[0], r[1]);   // y0 y1 | .  .
-    const __m256d xz23 = _mm256_unpacklo_pd(r[2], r[3]);
-    const __m256d y23 = _mm256_unpackhi_pd(r[2], r[3]);
-    row[0] = _mm256_permute2f128_pd(xz01, xz23, 0x20);
-    row[1] = _mm256_permute2f128_pd(y01, y23, 0x20);
-    row[2] = _mm256_permute2f128_pd(xz01, xz23, 0x31);
-}
-#endif
-
+// Vertex v of triangles i and, on AVX-512, i + 4 (t: their indices): each
+// (x, y, z, next) by one 256-bit load, the second in the upper half.
+HWY_INLINE V vertex_quads(const double* pos, const uint32_t* t, int v, int i) {
 #if POLYVOL_ROWS_AVX512
-// The permutations below are the _mm512_mask_ forms with every lane
-// selected: the same instructions, without the plain forms' undefined
-// source operand (that GCC 12 reports as used uninitialized).
-constexpr __mmask8 kAllLanes = 0xFF;
-
-// The (x, y, z, next) at p and at q in the low and high halves.
-HWY_INLINE __m512d two_vertices(const double* p, const double* q) {
-    const __m512d low = _mm512_castpd256_pd512(_mm256_loadu_pd(p));
-    return _mm512_mask_insertf64x4(low, kAllLanes, low, _mm256_loadu_pd(q), 1);
-}
-
-// Vertex v of 8 triangles (t: their 24 indices) as rows of x, y and z, lane
-// j from triangle j. Triangles j and j + 2 of each four share a register,
-// the order in which per-128-bit-lane unpacks and a selection of 128-bit
-// lanes put the rows back together.
-HWY_INLINE void rows8(const double* pos, const uint32_t* t, int v, __m512d (&row)[3]) {
-    const double* p[8];
-    for (int i = 0; i < 8; ++i) p[i] = pos + 3 * std::size_t{t[3 * i + v]};
-    const __m512d r0 = two_vertices(p[0], p[2]), r1 = two_vertices(p[1], p[3]);
-    const __m512d r2 = two_vertices(p[4], p[6]), r3 = two_vertices(p[5], p[7]);
-    const __m512d lo01 = _mm512_mask_unpacklo_pd(r0, kAllLanes, r0, r1);  // x0 x1 | z0 z1 | x2 x3 | z2 z3
-    const __m512d hi01 = _mm512_mask_unpackhi_pd(r0, kAllLanes, r0, r1);  // y0 y1 | .  .  | y2 y3 | .  .
-    const __m512d lo23 = _mm512_mask_unpacklo_pd(r2, kAllLanes, r2, r3);  // x4 x5 | z4 z5 | x6 x7 | z6 z7
-    const __m512d hi23 = _mm512_mask_unpackhi_pd(r2, kAllLanes, r2, r3);
-    row[0] = _mm512_mask_shuffle_f64x2(lo01, kAllLanes, lo01, lo23, 0x88);  // 128-bit lanes 0 and 2 of each
-    row[1] = _mm512_mask_shuffle_f64x2(hi01, kAllLanes, hi01, hi23, 0x88);
-    row[2] = _mm512_mask_shuffle_f64x2(lo01, kAllLanes, lo01, lo23, 0xDD);  // lanes 1 and 3
-}
+    const hn::Half<D> dh;
+    return hn::Combine(D(), hn::LoadU(dh, pos + 3 * std::size_t{t[3 * (i + 4) + v]}),
+                       hn::LoadU(dh, pos + 3 * std::size_t{t[3 * i + v]}));
+#else
+    return hn::LoadU(D(), pos + 3 * std::size_t{t[3 * i + v]});
 #endif
+}
 
-#if POLYVOL_ROWS_AVX2
+// Vertex v of kN triangles (t: their 3 kN indices) as rows of x, y and z,
+// lane j from triangle j, where hardware gathers and masked loads of three
+// doubles would wait on every lane. Registers r_i hold triangles i (and
+// i + 4) as (x, y, z, next); per 128-bit block, interleaving r_0 with r_1
+// gives (x0 x1 | z0 z1), r_2 with r_3 (x2 x3 | z2 z3). The x row is then
+// the lower halves of both (AVX2), or, with a second pair of triangles in
+// the upper 256 bits (AVX-512), the even blocks of the first and the odd
+// of the second swapped.
+HWY_INLINE void rows_of_vertex(const double* pos, const uint32_t* t, int v, V (&row)[3]) {
+    const D d;
+    V r[4];
+    for (int i = 0; i < 4; ++i) r[i] = vertex_quads(pos, t, v, i);
+    const V xz01 = hn::InterleaveLower(d, r[0], r[1]), y01 = hn::InterleaveUpper(d, r[0], r[1]);
+    const V xz23 = hn::InterleaveLower(d, r[2], r[3]), y23 = hn::InterleaveUpper(d, r[2], r[3]);
+    if constexpr (kN == 4) {
+        row[0] = hn::ConcatLowerLower(d, xz23, xz01);
+        row[1] = hn::ConcatLowerLower(d, y23, y01);
+        row[2] = hn::ConcatUpperUpper(d, xz23, xz01);
+    } else {
+        row[0] = hn::OddEvenBlocks(hn::SwapAdjacentBlocks(xz23), xz01);
+        row[1] = hn::OddEvenBlocks(hn::SwapAdjacentBlocks(y23), y01);
+        row[2] = hn::OddEvenBlocks(xz23, hn::SwapAdjacentBlocks(xz01));
+    }
+}
+
 // Rows of kN triangles (t: their 3 kN indices) straight from the positions;
 // block_loads_within must hold for their block.
 HWY_INLINE void rows_of_mesh(const double* pos, const uint32_t* t, V (&a)[3], V (&b)[3], V (&c)[3]) {
-    V* out[3] = {a, b, c};
-#if POLYVOL_ROWS_AVX512
-    static_assert(kN == 8);
-    for (int v = 0; v < 3; ++v) {
-        __m512d row[3];
-        rows8(pos, t, v, row);
-        for (int k = 0; k < 3; ++k) out[v][k] = V{row[k]};
-    }
-#else
-    static_assert(kN == 4);
-    for (int v = 0; v < 3; ++v) {
-        __m256d row[3];
-        rows4(pos, t, v, row);
-        for (int k = 0; k < 3; ++k) out[v][k] = V{row[k]};
-    }
-#endif
+    rows_of_vertex(pos, t, 0, a);
+    rows_of_vertex(pos, t, 1, b);
+    rows_of_vertex(pos, t, 2, c);
 }
 #endif
 
@@ -144,13 +116,13 @@ HWY_INLINE void rows_of_mesh(const double* pos, const uint32_t* t, V (&a)[3], V 
 HWY_INLINE bool gather_block_in_registers(const double* pos, std::size_t nv, const uint32_t* t, Block& blk) {
 #if POLYVOL_ROWS_AVX2
     if (!block_loads_within(nv, t)) return false;
-    for (int g = 0; g < kBlock; g += 4) {
+    const D d;
+    for (int g = 0; g < kBlock; g += kN)
         for (int v = 0; v < 3; ++v) {
-            __m256d row[3];
-            rows4(pos, t + 3 * g, v, row);
-            for (int k = 0; k < 3; ++k) _mm256_store_pd(&blk.c[3 * v + k][g], row[k]);
+            V row[3];
+            rows_of_vertex(pos, t + 3 * g, v, row);
+            for (int k = 0; k < 3; ++k) hn::Store(row[k], d, &blk.c[3 * v + k][g]);
         }
-    }
     blk.n = kBlock;
     return true;
 #else
