@@ -61,18 +61,23 @@ int run_overlap_command(const OverlapArgs& args) {
     if (!b) return Exit::unreadable;
     // A and B in one unit: B converted where it states another; the figures
     // are then scaled to --to, as volume's are.
-    if (!args.unit_flags.to.empty()) {
-        const CommonUnit c = common_unit(std::vector<std::string>{a->unit, b->unit}, args.unit_flags.units,
-                                         args.unit_flags.to);
-        if (!c.error.empty()) {
-            const std::string& who = c.notes[0] == c.error ? args.a + " (A)" : args.b + " (B)";
-            std::cerr << "polyvol: " << who << ": " << c.error << ": --units gives it (" << kLengthUnitNames << ")\n";
-            return Exit::invalid;
-        }
+    const PairUnits units = pair_units(a->unit, b->unit, args.unit_flags.units, args.unit_flags.to);
+    const std::string names[2] = {args.a + " (A)", args.b + " (B)"};
+    if (!units.error.empty()) {
+        if (units.error_operand >= 0)
+            std::cerr << "polyvol: " << names[units.error_operand] << ": " << units.error << ": --units gives it ("
+                      << kLengthUnitNames << ")\n";
+        else
+            std::cerr << "polyvol: " << units.error << "\n";
+        return Exit::invalid;
     }
-    const std::optional<std::string> unit =
-        put_in_common_unit({args.a + " (A)", args.b + " (B)"}, {&*a, &*b}, args.unit_flags.units, "");
-    if (!unit) return Exit::invalid;
+    LoadedMesh* const operand[2] = {&*a, &*b};
+    for (int i = 0; i < 2; ++i) {
+        if (!units.common.notes[i].empty())
+            std::cerr << "polyvol: warning: " << names[i] << ": " << units.common.notes[i] << "\n";
+        operand[i]->coordinate_error =
+            scale_coordinates(operand[i]->mesh, units.common.factors[i], operand[i]->coordinate_error);
+    }
     const auto start = std::chrono::steady_clock::now();
     // Each operand the solid it means, as `volume` takes it.
     SolidOptions policy = args.solid_flags.policy();
@@ -90,9 +95,8 @@ int run_overlap_command(const OverlapArgs& args) {
     }
     // Coordinates a reader computed (3MF transforms, a unit conversion), then the unit asked for.
     widen_for_coordinate_error(r, a->mesh.view(), a->coordinate_error, b->mesh.view(), b->coordinate_error);
-    if (!args.unit_flags.to.empty() && !unit->empty())
-        scale_boolean_volumes(r, length_factor(*length_unit(*unit), *length_unit(args.unit_flags.to)));
-    const std::string out_unit = args.unit_flags.to.empty() ? *unit : length_unit(args.unit_flags.to)->name;
+    scale_boolean_volumes(r, units.figures);
+    const std::string& out_unit = units.unit;
     if (args.json)
         std::cout << overlap_json(args.a, args.b, r, out_unit, seconds).dump(2) << "\n";
     else

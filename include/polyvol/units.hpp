@@ -33,7 +33,11 @@ inline constexpr const char* kLengthUnitNames = "mm, cm, m, in, ft or micron";
 struct LengthFactor {
     double factor = 1;
     double relative_error = 0;
+    // A power of two meant exactly: multiplying by it rounds nothing (in range).
+    bool exact_power_of_two() const;
 };
+// x is a positive power of two (2^k for an integer k).
+bool is_power_of_two(double x);
 // scale_typed_exactly: the scale's text is the double's own decimal (not
 // "1.0000000000000001", which reads as 1).
 LengthFactor length_factor(const LengthUnit& from, const LengthUnit& to, double scale = 1,
@@ -110,6 +114,20 @@ struct CommonUnit {
     std::vector<std::string> notes;    // per mesh: what was assumed or converted ("" for nothing)
 };
 CommonUnit common_unit(std::span<const std::string> declared, std::string_view units, std::string_view to);
+
+// Two operands whose figures are printed in one unit (overlap, a boolean):
+// B is put into A's unit (common_unit without `to`: A's, or B's when A
+// states none), the figures then scaled to `to` when given. With `to`
+// given, an operand whose unit is not known is an error, naming it.
+struct PairUnits {
+    CommonUnit common;       // the operands' factors and notes (without `to`)
+    std::string error;       // "" when they can be put together
+    int error_operand = -1;  // 0: A, 1: B, -1: neither (a unit's name)
+    std::string unit;        // the figures' unit: `to`, else common.unit ("" unknown)
+    LengthFactor figures;    // from common.unit to `unit`
+};
+PairUnits pair_units(const std::string& declared_a, const std::string& declared_b, std::string_view units,
+                     std::string_view to);
 
 // A mesh put into another's unit `to` (a body in a mesh of cells): its unit
 // is `units` when given, else the one it declares, as in common_unit. Where

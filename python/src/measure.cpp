@@ -398,16 +398,13 @@ void bind_measure(py::module_& m) {
             p.shells = false;
             // A and B in one unit (B converted where it states another), then
             // the figures in `to` (polyvol/units.hpp), as `polyvol overlap --units --to`.
-            const std::vector<std::string> declared{units["declared_a"].cast<std::string>(),
-                                                    units["declared_b"].cast<std::string>()};
-            const std::string given = units["units"].cast<std::string>(), to = units["to"].cast<std::string>();
-            for (const std::string& t : {to, std::string()}) {
-                const CommonUnit c = common_unit(declared, given, t);
-                if (!c.error.empty())
-                    throw py::value_error((c.notes[0] == c.error ? "A: " : c.notes[1] == c.error ? "B: " : "") +
-                                          c.error + ": units= gives it (" + kLengthUnitNames + ")");
-            }
-            const CommonUnit c = common_unit(declared, given, "");
+            const PairUnits pu = pair_units(units["declared_a"].cast<std::string>(),
+                                            units["declared_b"].cast<std::string>(), units["units"].cast<std::string>(),
+                                            units["to"].cast<std::string>());
+            if (!pu.error.empty())
+                throw py::value_error(std::string(pu.error_operand == 0 ? "A: " : pu.error_operand == 1 ? "B: " : "") +
+                                      pu.error + ": units= gives it (" + kLengthUnitNames + ")");
+            const CommonUnit& c = pu.common;
             const double error_a = scale_coordinates(a, c.factors[0], units["error_a"].cast<double>());
             const double error_b = scale_coordinates(b, c.factors[1], units["error_b"].cast<double>());
             MeshSolid sa, sb;
@@ -420,15 +417,14 @@ void bind_measure(py::module_& m) {
                     r = solid_booleans(a.view(), sa, b.view(), sb);
                     if (r->status == BooleanStatus::ok) {
                         widen_for_coordinate_error(*r, a.view(), error_a, b.view(), error_b);
-                        if (!to.empty() && !c.unit.empty())
-                            scale_boolean_volumes(*r, length_factor(*length_unit(c.unit), *length_unit(to)));
+                        scale_boolean_volumes(*r, pu.figures);
                     }
                 }
             }
             py::list notes;
             for (std::size_t i = 0; i < 2; ++i)
                 if (!c.notes[i].empty()) notes.append(std::string(i == 0 ? "A: " : "B: ") + c.notes[i]);
-            const std::string unit = to.empty() ? c.unit : length_unit(to)->name;
+            const std::string& unit = pu.unit;
             return py::make_tuple(solid_verdict(sa), solid_verdict(sb), r ? py::cast(*r) : py::none(),
                                   unit.empty() ? py::object(py::none()) : py::object(py::str(unit)), notes);
         },

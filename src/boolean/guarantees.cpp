@@ -34,8 +34,7 @@ void widen_for_coordinate_error(BooleanVolumes& r, const MeshView& a, double a_e
 void scale_boolean_volumes(BooleanVolumes& r, const LengthFactor& f) {
     if (f.factor == 1 && f.relative_error == 0) return;
     const double L = f.factor, L2 = L * L, L3 = L2 * L;
-    int e = 0;
-    const bool exact = f.relative_error == 0 && std::frexp(L, &e) == 0.5;
+    const bool exact = f.exact_power_of_two();
     // A quantity of degree k: k − 1 roundings for L^k, one for the product,
     // k times the factor's own error ε: (k + 1) u + k ε relative.
     const auto added = [&](int k) { return exact ? 0.0 : (k + 1) * kU + k * f.relative_error; };

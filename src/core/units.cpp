@@ -15,12 +15,16 @@ constexpr double kU = 0x1p-53;
 // 2^53 or a power of two: --scale 2, 10, 0.5 are exact, 0.1 is not. (A text
 // with more digits than the double keeps, "1.0000000000000001", is caught by
 // the caller: scale_only's text.)
-bool exact_decimal(double x) {
-    int e = 0;
-    return (x == std::floor(x) && std::fabs(x) < 0x1p53) || std::frexp(x, &e) == 0.5;
-}
+bool exact_decimal(double x) { return (x == std::floor(x) && std::fabs(x) < 0x1p53) || is_power_of_two(x); }
 
 }  // namespace
+
+bool is_power_of_two(double x) {
+    int e = 0;
+    return std::isfinite(x) && x > 0 && std::frexp(x, &e) == 0.5;  // 2^k = 0.5 · 2^(k+1)
+}
+
+bool LengthFactor::exact_power_of_two() const { return relative_error == 0 && is_power_of_two(factor); }
 
 std::optional<LengthUnit> length_unit(std::string_view name) {
     static const std::pair<std::string_view, LengthUnit> kUnits[] = {
@@ -144,8 +148,7 @@ double scale_coordinates(Mesh& mesh, const LengthFactor& f, double coordinate_er
         largest = std::max(largest, std::fabs(x));
     }
     // A power-of-two factor meant exactly moves nothing but the old bound.
-    int e = 0;
-    const bool exact = f.relative_error == 0 && std::frexp(f.factor, &e) == 0.5;
+    const bool exact = f.exact_power_of_two();
     return ((exact ? 0.0 : largest * (kU + f.relative_error)) + std::fabs(f.factor) * coordinate_error) *
            (1 + 0x1p-40);
 }
@@ -187,6 +190,24 @@ CommonUnit common_unit(std::span<const std::string> declared, std::string_view u
                       ", each rounded once)";
     }
     return c;
+}
+
+PairUnits pair_units(const std::string& declared_a, const std::string& declared_b, std::string_view units,
+                     std::string_view to) {
+    PairUnits p;
+    const std::string declared[2] = {declared_a, declared_b};
+    for (const std::string_view t : {to, std::string_view()}) {
+        const CommonUnit c = common_unit(declared, units, t);
+        if (c.error.empty()) continue;
+        p.error = c.error;
+        p.error_operand = c.notes[0] == c.error ? 0 : c.notes[1] == c.error ? 1 : -1;
+        return p;
+    }
+    p.common = common_unit(declared, units, "");
+    p.unit = to.empty() ? p.common.unit : length_unit(to)->name;
+    if (!to.empty() && !p.common.unit.empty())
+        p.figures = length_factor(*length_unit(p.common.unit), *length_unit(to));
+    return p;
 }
 
 UnitChange into_unit(std::string_view declared, std::string_view units, std::string_view to) {

@@ -11,14 +11,10 @@
 #include <limits>
 
 #include "polyvol/measure.hpp"
+#include "polyvol/units.hpp"
 
 namespace polyvol {
 namespace {
-
-bool is_power_of_two(double x) {
-    int e = 0;
-    return std::isfinite(x) && x > 0 && std::frexp(x, &e) == 0.5;
-}
 
 constexpr double kRoundUp = 1 + 0x1p-20;  // covers the rounding of the bounds themselves
 

@@ -93,6 +93,27 @@ TEST(Units, ScaledCoordinatesWithinTheirBound) {
     EXPECT_EQ(twice.positions[5], 2 * before[5]);
 }
 
+TEST(PairUnits, BGoesIntoAsUnitAndTheFiguresIntoTo) {
+    PairUnits p = pair_units("mm", "in", "", "");
+    EXPECT_EQ(p.error, "");
+    EXPECT_EQ(p.unit, "mm");
+    EXPECT_EQ(p.common.factors[0].factor, 1.0);
+    EXPECT_EQ(p.common.factors[1].factor, 25.4);
+    EXPECT_NE(p.common.notes[1].find("converted from in to mm"), std::string::npos) << p.common.notes[1];
+    EXPECT_EQ(p.figures.factor, 1.0);
+    p = pair_units("mm", "in", "", "m");  // the figures in m, the operands still in mm
+    EXPECT_EQ(p.unit, "m");
+    EXPECT_EQ(p.common.factors[1].factor, 25.4);
+    EXPECT_EQ(p.figures.factor, 0.001);
+    p = pair_units("", "mm", "", "m");  // A's unit unknown: named
+    EXPECT_NE(p.error.find("not known"), std::string::npos) << p.error;
+    EXPECT_EQ(p.error_operand, 0);
+    p = pair_units("", "", "", "");  // nothing known: as they are
+    EXPECT_EQ(p.error, "");
+    EXPECT_EQ(p.unit, "");
+    EXPECT_EQ(pair_units("mm", "", "furlong", "").error_operand, -1);
+}
+
 TEST(IntoUnit, ABodyIsPutIntoTheMeshsUnitOrSaysWhatWasAssumed) {
     // --units first, then the file's own; the factor common_unit gives.
     UnitChange u = into_unit("in", "", "m");
