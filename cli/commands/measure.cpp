@@ -175,7 +175,7 @@ int run(Command command, const MeasureCommandOptions& c) {
             break;
         case Command::check:
             for (const auto& r : results)
-                if (r.topology) std::cout << check_report(r);
+                if (r.policy.topology) std::cout << check_report(r);
             break;
     }
     return code;

@@ -30,11 +30,11 @@ std::string mass_text(double mass, double volume_error_times_density, int digits
 
 // The self-crossing line of the reports: none, or the pairs and what became of them.
 std::string self_crossing_line(const FileResult& r) {
-    if (!r.self) return r.self_not_checked;
-    if (r.self->pairs == 0) return "none within a shell";
-    return self_crossing_sentence(*r.self) +
-           (r.solid && r.solid->shells_crossing_themselves > 0 ? "; resolved: the volume is the solid's"
-            : r.self_unresolved ? "; not resolved: it also touches or folds onto itself there"
+    if (!r.policy.self) return r.policy.self_not_checked;
+    if (r.policy.self->pairs == 0) return "none within a shell";
+    return self_crossing_sentence(*r.policy.self) +
+           (r.policy.solid && r.policy.solid->shells_crossing_themselves > 0 ? "; resolved: the volume is the solid's"
+            : r.policy.self_unresolved ? "; not resolved: it also touches or folds onto itself there"
                                 : "");
 }
 
@@ -87,8 +87,8 @@ std::string orient_sentence(const OrientResult& o) {
 
 // The sentence for a file whose shells overlap, or "".
 std::string overlap_sentence(const FileResult& r) {
-    if (!r.solid || !r.solid->differs_from_shells()) return "";
-    const SolidVolume& s = *r.solid;
+    if (!r.policy.solid || !r.policy.solid->differs_from_shells()) return "";
+    const SolidVolume& s = *r.policy.solid;
     std::string what;
     if (s.overlapping_shells > 0)
         what = std::to_string(s.overlapping_shells) + " of " + std::to_string(s.shells) + " shells overlap (" +
@@ -157,23 +157,23 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
                number_text(c[2], error, digits) + ")";
     };
     for (const auto& r : results) {
-        any_fingerprint = any_fingerprint || r.streamed || r.closed_by_fingerprint;
-        if (r.welded) notes += "  " + r.file + ": " + weld_sentence(*r.welded, r.weld_tolerance) + "\n";
+        any_fingerprint = any_fingerprint || r.streamed || r.policy.closed_by_fingerprint;
+        if (r.policy.welded) notes += "  " + r.file + ": " + weld_sentence(*r.policy.welded, r.weld_tolerance) + "\n";
         if (r.loaded && r.loaded->mesh.view().triangle_count() == 0)
             notes += "  " + r.file + ": no faces (a point cloud, or an empty file?): nothing to measure\n";
-        if (r.oriented && r.oriented->orientable) notes += "  " + r.file + ": " + orient_sentence(*r.oriented) + "\n";
+        if (r.policy.oriented && r.policy.oriented->orientable) notes += "  " + r.file + ": " + orient_sentence(*r.policy.oriented) + "\n";
         const std::string tris = r.loaded || r.streamed ? std::to_string(r.triangles) : "-";
         if (r.streamed) streamed_notes += "  " + r.file + "\n";
         out << pad(r.file, name_w) << "  " << pad(tris, 10) << "  ";
         if (!r.mass) {
             out << (r.exit_code == Exit::unreadable ? "unreadable"
-                    : r.topology && !r.topology->closed_2_cycle ? "open surface: not measured"
+                    : r.policy.topology && !r.policy.topology->closed_2_cycle ? "open surface: not measured"
                                                                   : "not measured") << "\n";
             continue;
         }
         const auto& m = *r.mass;
-        const bool overlap = r.solid && r.solid->differs_from_shells();
-        any_checked = any_checked || r.overlap_checked;
+        const bool overlap = r.policy.solid && r.policy.solid->differs_from_shells();
+        any_checked = any_checked || r.policy.overlap_checked;
         (m.volume_correctly_rounded ? any_rounded : any_bound) = true;
         const double volume_error = m.volume_correctly_rounded ? 0 : m.volume_error_bound;
         const std::string vol = m.volume_correctly_rounded ? number_text(m.volume, 0, digits)
@@ -243,13 +243,13 @@ std::string measure_report(const FileResult& r, const Request& request) {
         << "; " << l.vertices_in_file << " vertices, " << l.mesh.face_count() << " faces, "
         << l.mesh.view().triangle_count() << " triangles)\n";
     out << "  method          " << method_name(request.measure.method) << ", density " << density_text(request) << "\n";
-    if (r.welded) out << "  welded          " << weld_sentence(*r.welded, r.weld_tolerance) << "\n";
+    if (r.policy.welded) out << "  welded          " << weld_sentence(*r.policy.welded, r.weld_tolerance) << "\n";
     if (!r.units_source.empty() || r.length_factor != 1) out << "  units           " << units_sentence(r) << "\n";
-    if (r.oriented) out << "  orientation     " << orient_sentence(*r.oriented) << "\n";
-    if (r.turned_outward)
-        out << "  orientation     inside out: " << r.turned_outward->components << " shell(s) turned outward, "
-            << r.turned_outward->flipped << " faces reversed (--signed keeps the signed sums)\n";
-    const bool overlap = r.solid && r.solid->differs_from_shells();
+    if (r.policy.oriented) out << "  orientation     " << orient_sentence(*r.policy.oriented) << "\n";
+    if (r.policy.turned_outward)
+        out << "  orientation     inside out: " << r.policy.turned_outward->components << " shell(s) turned outward, "
+            << r.policy.turned_outward->flipped << " faces reversed (--signed keeps the signed sums)\n";
+    const bool overlap = r.policy.solid && r.policy.solid->differs_from_shells();
     // Each figure shows the digits its guarantee supports (--digits caps them).
     const int digits = request.digits;
     const double volume_error = m.volume_correctly_rounded ? 0 : m.volume_error_bound;
@@ -264,7 +264,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     } else {
         out << "  volume          " << volume_text << unit_suffix(r, 3) << "   [" << volume_guarantee(m) << "]\n";
     }
-    if (r.overlap_checked) out << "  overlap         shells checked against one another\n";
+    if (r.policy.overlap_checked) out << "  overlap         shells checked against one another\n";
     out << "  self-crossing   " << self_crossing_line(r) << "\n";
     out << "  mass            " << mass_text(m.mass, request.measure.density * volume_error, digits)
         << mass_unit_suffix(r, 3) << "\n";
@@ -443,15 +443,15 @@ std::string csv_table(const std::vector<FileResult>& results, bool inertia) {
 
 std::string check_report(const FileResult& r) {
     std::ostringstream out;
-    const auto& t = *r.topology;
+    const auto& t = *r.policy.topology;
     const auto& l = *r.loaded;
     out << r.file << "  (" << format_name(l.format) << ", " << l.encoding << (l.gzip ? ", gzip" : "") << ")\n";
     for (const auto& n : l.notes) out << "  note: " << n << "\n";
-    if (r.welded) out << "  welded          " << weld_sentence(*r.welded, r.weld_tolerance) << "\n";
+    if (r.policy.welded) out << "  welded          " << weld_sentence(*r.policy.welded, r.weld_tolerance) << "\n";
     if (l.format == Format::stl && l.facet_normals_against_winding)
         out << "  facet normals   " << l.facet_normals_against_winding << " of " << t.triangles
             << " point against their triangle's winding (the winding decides the orientation)\n";
-    if (r.oriented) out << "  orientation     " << orient_sentence(*r.oriented) << "\n";
+    if (r.policy.oriented) out << "  orientation     " << orient_sentence(*r.policy.oriented) << "\n";
     out << "  vertices        " << l.vertices_in_file << " read, " << t.vertices_welded << " after welding, "
         << t.vertices_referenced << " used by faces\n";
     out << "  faces           " << t.faces << " (" << t.faces_with_lt3_vertices << " with fewer than 3 vertices, ignored), "
@@ -469,7 +469,7 @@ std::string check_report(const FileResult& r) {
     out << "  components      " << t.components_edge_connected << " edge-connected, " << t.components_vertex_connected
         << " vertex-connected\n";
     out << "  closed 2-cycle  " << (t.closed_2_cycle ? "yes: the volume does not depend on the origin"
-                                                      : "no: " + unbalanced_message(t, r.closes_at_tolerance))
+                                                      : "no: " + unbalanced_message(t, r.policy.closes_at_tolerance))
         << "\n";
     std::size_t shown = 0;
     for (const Shell& s : t.shells) {
@@ -477,7 +477,7 @@ std::string check_report(const FileResult& r) {
             out << "  ... " << (t.shells.size() - 20) << " more shells\n";
             break;
         }
-        const bool crossing = r.solid && s.first_face < r.solid->face_crosses.size() && r.solid->face_crosses[s.first_face];
+        const bool crossing = r.policy.solid && s.first_face < r.policy.solid->face_crosses.size() && r.policy.solid->face_crosses[s.first_face];
         out << "  shell " << shown << ": " << (crossing ? std::string_view("crossing another shell") : shell_role_name(s.role))
             << (s.role == ShellRole::open ? std::string() : ", volume " + shortest(s.signed_volume)) << ", "
             << s.faces << " faces, χ = " << s.euler_characteristic;
@@ -485,15 +485,15 @@ std::string check_report(const FileResult& r) {
         if (s.boundary_edges) out << ", " << s.boundary_edges << " boundary edges";
         out << "\n";
     }
-    if (r.solid && (r.solid->crossing_pairs > 0 || r.solid->overlapping_shells > 0)) {
-        out << "  overlap         " << r.solid->overlapping_shells << " overlapping shells, " << r.solid->crossing_pairs
+    if (r.policy.solid && (r.policy.solid->crossing_pairs > 0 || r.policy.solid->overlapping_shells > 0)) {
+        out << "  overlap         " << r.policy.solid->overlapping_shells << " overlapping shells, " << r.policy.solid->crossing_pairs
             << " crossing triangle pairs";
-        if (r.solid->crossing_example)
-            out << " (e.g. faces " << (*r.solid->crossing_example)[0] << " and " << (*r.solid->crossing_example)[1] << ")";
-        out << "; the solid (winding number >= 1) has volume " << shortest(r.solid->properties.volume)
-            << ", the shells add up to " << shortest(r.solid->winding_volume) << "\n";
+        if (r.policy.solid->crossing_example)
+            out << " (e.g. faces " << (*r.policy.solid->crossing_example)[0] << " and " << (*r.policy.solid->crossing_example)[1] << ")";
+        out << "; the solid (winding number >= 1) has volume " << shortest(r.policy.solid->properties.volume)
+            << ", the shells add up to " << shortest(r.policy.solid->winding_volume) << "\n";
     }
-    if (r.self) out << "  self-crossing   " << self_crossing_line(r) << "\n";
+    if (r.policy.self) out << "  self-crossing   " << self_crossing_line(r) << "\n";
     if (t.cavities || t.inside_out_shells || t.nested_shells)
         out << "  nesting         " << t.cavities << " cavities, " << t.inside_out_shells << " inside-out shells, "
             << t.nested_shells << " shells inside other solids\n";

@@ -90,25 +90,17 @@ struct FileReport {
     std::string error;                       // set when exit_code != ok
     std::string warning;                     // what the figures assume or what was repaired
     std::optional<LoadedMesh> loaded;        // when the file was read (not when streamed)
-    std::optional<TopologyReport> topology;  // when read (not when closed_by_fingerprint)
-    bool closed_by_fingerprint = false;      // the fingerprint found it closed: no analyze_topology
     std::optional<MassProperties> mass;      // when measured (of the solid where shells overlap)
     double seconds_read = 0, seconds_measure = 0;
     // The route: a binary STL streamed (loaded and topology stay empty) or the file loaded.
     bool streamed = false;
     uint64_t triangles = 0;                  // the fan triangles measured (either route)
-    // The solid policy's findings (polyvol/solid.hpp's MeshSolid): the solid
-    // of overlapping or self-crossing shells when resolved, whether shells
-    // were checked for overlap, self-crossings looked for (or why not) and
-    // unresolved, what orienting, turning outward and welding did.
-    std::optional<SolidVolume> solid;
-    bool overlap_checked = false;
-    std::optional<SelfCrossings> self;
-    std::string self_not_checked;
-    bool self_unresolved = false;
-    std::optional<OrientResult> oriented;
-    std::optional<OrientResult> turned_outward;
-    std::optional<ToleranceWeld> welded;
+    // What the solid policy found (polyvol/solid.hpp's MeshSolid, for a file
+    // loaded): the topology (unless closed by the fingerprint), the solid of
+    // overlapping or self-crossing shells when resolved, whether shells were
+    // checked for overlap, self-crossings looked for (or why not), what
+    // orienting, turning outward and welding (at weld_tolerance) did.
+    MeshSolid policy;
     double weld_tolerance = 0;
     // The units of the figures: lengths in `length_unit` ("" when not
     // known), mass in `mass_unit` ("" for density × volume); every

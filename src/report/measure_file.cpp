@@ -142,7 +142,7 @@ MassProperties figures_of(const MeshView& view, const std::vector<uint32_t>& fac
 
 // Each shell's (the first kMaxPieces) and each named part's figures.
 void piece_figures(FileReport& r, const FileOptions& q, const MeshView& view) {
-    const TopologyReport& t = *r.topology;
+    const TopologyReport& t = *r.policy.topology;
     const double delta = r.loaded->coordinate_error;
     if (t.shells.size() > 1 && !t.face_shell.empty()) {
         const std::size_t n = std::min(t.shells.size(), kMaxPieces);
@@ -213,22 +213,10 @@ SolidOptions policy_for(const FileOptions& q) {
 // What the policy found, into the report; false (exit 3) when the mesh is
 // not a solid. `check` reports an open or misoriented surface in its table;
 // every other refusal is said in r.error.
-bool take_solid(FileReport& r, MeshSolid& solid, const FileOptions& q) {
+bool take_solid(FileReport& r, const FileOptions& q) {
+    const MeshSolid& solid = r.policy;
     if (!q.need_mass) r.repairs = repairs_needed(solid);
-    if (solid.welded) {
-        r.welded = solid.welded;
-        r.weld_tolerance = q.weld_tolerance;
-    }
-    r.oriented = solid.oriented;
-    r.turned_outward = solid.turned_outward;
-    r.closed_by_fingerprint = solid.closed_by_fingerprint;
-    r.topology = std::move(solid.topology);
-    r.closes_at_tolerance = solid.closes_at_tolerance;
-    r.self = solid.self;
-    r.self_not_checked = solid.self_not_checked;
-    r.self_unresolved = solid.self_unresolved;
-    r.overlap_checked = solid.overlap_checked;
-    r.solid = solid.solid;
+    if (solid.welded) r.weld_tolerance = q.weld_tolerance;
     const std::string notes = solid.notes_text(r.file);
     if (!notes.empty()) r.warning += (r.warning.empty() ? "" : "; ") + notes;
     if (solid.status == SolidStatus::ok) {
@@ -236,29 +224,30 @@ bool take_solid(FileReport& r, MeshSolid& solid, const FileOptions& q) {
         return true;
     }
     r.exit_code = Exit::invalid;
-    if (q.need_mass || !r.topology) r.error = r.file + ": " + solid.message;
+    if (q.need_mass || !solid.topology) r.error = r.file + ": " + solid.message;
     return false;
 }
 
 // The figures: the mesh's (the solid's where shells overlap), widened for
 // coordinates a reader computed, per shell and part, in the units asked for.
-void measure_figures(FileReport& r, const MeshSolid& solid, const FileOptions& q, double length_error) {
+void measure_figures(FileReport& r, const FileOptions& q, double length_error) {
+    const MeshSolid& solid = r.policy;
     const MeshView view = r.loaded->mesh.view();
     r.mass = q.volume_only ? volume_only_properties(view, q.measure) : mass_properties(view, q.measure);
-    if (solid.resolved()) use_solid_properties(*r.solid, q.measure.density, *r.mass);
+    if (solid.resolved()) use_solid_properties(*r.policy.solid, q.measure.density, *r.mass);
     // Coordinates a reader computed (3MF transforms): every guarantee widened
     // to hold for the coordinates the file defines.
     if (r.loaded->coordinate_error > 0)
         widen_for_coordinate_error(view, r.loaded->coordinate_error, q.measure.density, solid.closed, solid.resolved(),
                                    *r.mass);
-    if (!q.table_only && r.topology) piece_figures(r, q, view);
+    if (!q.table_only && r.policy.topology) piece_figures(r, q, view);
     // Every figure times its power of the length factor.
     const double density_error = q.density_relative_error;  // polyvol::density_in's
     if (r.length_factor != 1 || length_error > 0 || density_error > 0) {
         scale_mass_properties(*r.mass, r.length_factor, length_error, density_error);
         for (auto* list : {&r.shell_figures, &r.part_figures})
             for (FileReport::Piece& p : *list) scale_mass_properties(p.m, r.length_factor, length_error, density_error);
-        if (r.solid) r.solid->winding_volume *= r.length_factor * r.length_factor * r.length_factor;
+        if (r.policy.solid) r.policy.solid->winding_volume *= r.length_factor * r.length_factor * r.length_factor;
     }
 }
 
@@ -279,9 +268,9 @@ FileReport measure_file(const std::string& file, const FileOptions& request, con
         r.error = r.file + ": " + why;
         return r;
     }
-    MeshSolid solid = make_solid(r.loaded->mesh, policy_for(request));
-    if (!take_solid(r, solid, request)) return r;
-    if (request.need_mass) measure_figures(r, solid, request, length_error);
+    r.policy = make_solid(r.loaded->mesh, policy_for(request));
+    if (!take_solid(r, request)) return r;
+    if (request.need_mass) measure_figures(r, request, length_error);
     r.seconds_measure = seconds_since(t0);
     return r;
 }

@@ -56,23 +56,23 @@ nlohmann::json report_json(const FileReport& r, const FileOptions& request) {
         j["vertices"] = l.vertices_in_file;
         j["faces"] = l.mesh.face_count();
         j["triangles"] = l.mesh.view().triangle_count();
-        if (r.welded) {
+        if (r.policy.welded) {
             j["weld_tolerance"] = r.weld_tolerance;
-            j["welded_points_moved"] = r.welded->moved;
-            j["weld_largest_move"] = r.welded->largest_move;
+            j["welded_points_moved"] = r.policy.welded->moved;
+            j["weld_largest_move"] = r.policy.welded->largest_move;
         }
-        if (r.oriented) {
-            j["oriented"] = r.oriented->orientable;
-            j["oriented_faces_flipped"] = r.oriented->flipped;
-            j["oriented_shells_undecided"] = r.oriented->undecided;
+        if (r.policy.oriented) {
+            j["oriented"] = r.policy.oriented->orientable;
+            j["oriented_faces_flipped"] = r.policy.oriented->flipped;
+            j["oriented_shells_undecided"] = r.policy.oriented->undecided;
         }
         if (request.need_mass && !request.keep_signed && !request.orient)
-            j["turned_outward_faces"] = r.turned_outward ? r.turned_outward->flipped : 0;
+            j["turned_outward_faces"] = r.policy.turned_outward ? r.policy.turned_outward->flipped : 0;
     } else if (!r.streamed) {
         j["format"] = nullptr;
     }
-    if (r.topology) {
-        const auto& t = *r.topology;
+    if (r.policy.topology) {
+        const auto& t = *r.policy.topology;
         j["boundary_edges"] = t.boundary_edges;
         j["holes"] = t.holes;
         j["nonmanifold_edges"] = t.nonmanifold_edges;
@@ -87,8 +87,8 @@ nlohmann::json report_json(const FileReport& r, const FileOptions& request) {
             j["unbalanced_example"] = {{e[0], e[1], e[2]}, {e[3], e[4], e[5]}};
         }
     }
-    if (r.topology && !request.volume_only) {  // shells, nesting, degenerate faces: not computed for --volume-only
-        const auto& t = *r.topology;
+    if (r.policy.topology && !request.volume_only) {  // shells, nesting, degenerate faces: not computed for --volume-only
+        const auto& t = *r.policy.topology;
         j["components"] = t.components_edge_connected;
         // zero_area_triangles counts those with a repeated vertex too (their cross product is zero)
         j["degenerate_triangles"] = t.zero_area_triangles;
@@ -103,8 +103,8 @@ nlohmann::json report_json(const FileReport& r, const FileOptions& request) {
                               {"unbalanced_edges", s.unbalanced_edges},
                               {"euler_characteristic", s.euler_characteristic},
                               {"winding_of_others", s.winding_of_others},
-                              {"role", r.solid && s.first_face < r.solid->face_crosses.size() &&
-                                               r.solid->face_crosses[s.first_face]
+                              {"role", r.policy.solid && s.first_face < r.policy.solid->face_crosses.size() &&
+                                               r.policy.solid->face_crosses[s.first_face]
                                            ? std::string("crossing")
                                            : std::string(shell_role_name(s.role))}};
             sj["genus"] = s.genus ? nlohmann::json(*s.genus) : nlohmann::json(nullptr);
@@ -114,18 +114,18 @@ nlohmann::json report_json(const FileReport& r, const FileOptions& request) {
         j["shells"] = std::move(shells);
     }
     if (r.loaded) {  // a surface crossing itself within a shell: looked for, and found
-        j["self_crossing_checked"] = r.self.has_value();
-        if (r.self) {
-            j["self_crossing_pairs"] = r.self->pairs;
-            if (r.self->example) j["self_crossing_example"] = {(*r.self->example)[0], (*r.self->example)[1]};
+        j["self_crossing_checked"] = r.policy.self.has_value();
+        if (r.policy.self) {
+            j["self_crossing_pairs"] = r.policy.self->pairs;
+            if (r.policy.self->example) j["self_crossing_example"] = {(*r.policy.self->example)[0], (*r.policy.self->example)[1]};
         }
     }
     if (!request.need_mass && r.loaded) {  // `check`: the solid, and whether the file is one as it is
-        if (r.solid) {
-            j["solid_volume"] = json_number(r.solid->properties.volume);
-            j["winding_volume"] = json_number(r.solid->winding_volume);
-            j["overlapping_shells"] = r.solid->overlapping_shells;
-            j["crossing_pairs"] = r.solid->crossing_pairs;
+        if (r.policy.solid) {
+            j["solid_volume"] = json_number(r.policy.solid->properties.volume);
+            j["winding_volume"] = json_number(r.policy.solid->winding_volume);
+            j["overlapping_shells"] = r.policy.solid->overlapping_shells;
+            j["crossing_pairs"] = r.policy.solid->crossing_pairs;
         }
         j["ready"] = r.repairs.empty() && r.exit_code == Exit::ok;
         j["repairs"] = r.repairs;
@@ -143,13 +143,13 @@ nlohmann::json report_json(const FileReport& r, const FileOptions& request) {
         j["accuracy"] = m.volume_correctly_rounded ? "correctly-rounded" : "error-bound";
         j["volume"] = json_number(m.volume);
         j["volume_error_bound"] = m.volume_error_bound;
-        j["overlap_checked"] = r.overlap_checked;  // the volume above is already the solid's (use_solid_properties)
-        if (r.solid) {
-            j["winding_volume"] = json_number(r.solid->winding_volume);
-            j["overlapping_shells"] = r.solid->overlapping_shells;
-            j["crossing_pairs"] = r.solid->crossing_pairs;
-            j["self_crossing_resolved"] = r.solid->shells_crossing_themselves > 0;
-        } else if (r.overlap_checked) {
+        j["overlap_checked"] = r.policy.overlap_checked;  // the volume above is already the solid's (use_solid_properties)
+        if (r.policy.solid) {
+            j["winding_volume"] = json_number(r.policy.solid->winding_volume);
+            j["overlapping_shells"] = r.policy.solid->overlapping_shells;
+            j["crossing_pairs"] = r.policy.solid->crossing_pairs;
+            j["self_crossing_resolved"] = r.policy.solid->shells_crossing_themselves > 0;
+        } else if (r.policy.overlap_checked) {
             j["winding_volume"] = json_number(m.volume);
             j["overlapping_shells"] = 0;
             j["crossing_pairs"] = 0;

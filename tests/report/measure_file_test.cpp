@@ -75,8 +75,8 @@ TEST(MeasureFile, TheRouteIsTheLibrarysAndTheFiguresAgree) {
     EXPECT_EQ(loaded.mass->area, 24.0);
     const FileReport full = measure_file(stl, FileOptions{});  // `measure`
     EXPECT_FALSE(full.streamed);
-    ASSERT_TRUE(full.topology.has_value());
-    EXPECT_TRUE(full.topology->closed_2_cycle);
+    ASSERT_TRUE(full.policy.topology.has_value());
+    EXPECT_TRUE(full.policy.topology->closed_2_cycle);
     EXPECT_EQ(full.mass->centroid[0], 1.0);
     fs::remove(stl);
 }
@@ -85,7 +85,7 @@ TEST(MeasureFile, InsideOutIsTurnedOpenIsRefusedUnreadableIsTwo) {
     const std::string inverted = write_stl(test::box({0, 0, 0}, {1, 1, 1}, {.inverted = true}), "inverted.stl");
     const FileReport turned = measure_file(inverted, table());
     EXPECT_FALSE(turned.streamed);  // the stream found it inside out: loaded to be turned
-    EXPECT_TRUE(turned.turned_outward.has_value());
+    EXPECT_TRUE(turned.policy.turned_outward.has_value());
     EXPECT_EQ(turned.mass->volume, 1.0);
     EXPECT_NE(turned.warning.find("inside out"), std::string::npos) << turned.warning;
     FileOptions check;
