@@ -102,8 +102,11 @@ py::tuple solid_verdict(const MeshSolid& s) {
     return py::make_tuple(solid_status_name(s.status), s.message, notes);
 }
 
-void bind_measure(py::module_& m) {
-    py::class_<MassProperties>(m, "MassProperties")
+namespace {
+
+// Mass properties and the solid policy: measure_solid, solid_repairs, solid_parts, signed_volume, closedness.
+void bind_mass(py::module_& m) {
+    py::class_<MassProperties>(m, "_MassProperties")
         .def_readonly("volume", &MassProperties::volume)
         .def_readonly("mass", &MassProperties::mass)
         .def_readonly("area", &MassProperties::area)
@@ -261,7 +264,11 @@ void bind_measure(py::module_& m) {
         },
         py::arg("positions"), py::arg("indices"), py::arg("offsets"));
 
-    py::class_<Shell>(m, "Shell")
+}
+
+// Topology: shells, the topology report, self-crossings.
+void bind_topology(py::module_& m) {
+    py::class_<Shell>(m, "_Shell")
         .def_readonly("signed_volume", &Shell::signed_volume)
         .def_readonly("faces", &Shell::faces)
         .def_readonly("vertices", &Shell::vertices)
@@ -311,7 +318,7 @@ void bind_measure(py::module_& m) {
         },
         py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("shells"));
 
-    py::class_<SelfCrossings>(m, "SelfCrossings")
+    py::class_<SelfCrossings>(m, "_SelfCrossings")
         .def_property_readonly("status", [](const SelfCrossings& s) { return std::string(status_name(s.status)); })
         .def_readonly("pairs", &SelfCrossings::pairs)
         .def_readonly("candidate_pairs", &SelfCrossings::candidate_pairs)
@@ -325,7 +332,11 @@ void bind_measure(py::module_& m) {
         },
         py::arg("positions"), py::arg("indices"), py::arg("offsets"));
 
-    py::class_<SolidVolume>(m, "SolidVolume")
+}
+
+// Solids of overlapping shells and the booleans, with their units.
+void bind_booleans(py::module_& m) {
+    py::class_<SolidVolume>(m, "_SolidVolume")
         .def_property_readonly("status", [](const SolidVolume& s) { return std::string(status_name(s.status)); })
         .def_property_readonly("message",
                                [](const SolidVolume& s) { return std::string(boolean_status_message(s.status)); })
@@ -363,7 +374,7 @@ void bind_measure(py::module_& m) {
         py::arg("positions"), py::arg("indices"), py::arg("offsets"), py::arg("moments"),
         py::arg("within_shells") = false);
 
-    py::class_<BooleanVolumes>(m, "BooleanVolumes")
+    py::class_<BooleanVolumes>(m, "_BooleanVolumes")
         .def_property_readonly("status", [](const BooleanVolumes& b) { return std::string(status_name(b.status)); })
         .def_property_readonly("message",
                                [](const BooleanVolumes& b) { return std::string(boolean_status_message(b.status)); })
@@ -455,6 +466,14 @@ void bind_measure(py::module_& m) {
         },
         py::arg("positions_a"), py::arg("indices_a"), py::arg("offsets_a"), py::arg("positions_b"),
         py::arg("indices_b"), py::arg("offsets_b"));
+}
+
+}  // namespace
+
+void bind_measure(py::module_& m) {
+    bind_mass(m);
+    bind_topology(m);
+    bind_booleans(m);
 }
 
 }  // namespace polyvol::python
