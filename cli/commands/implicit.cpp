@@ -24,6 +24,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -188,7 +189,11 @@ CLI::App* add_implicit_command(CLI::App& app, ImplicitArgs& a) {
     return cmd;
 }
 
-int run_implicit_command(const ImplicitArgs& a) {
+namespace {
+
+// The options the arguments give, or the usage error's exit code after
+// printing it; limit: the memory limit in bytes.
+std::variant<ImplicitOptions, int> implicit_options(const ImplicitArgs& a, uint64_t& limit) {
     int dimension = a.dimension;
     try {
         if (dimension == 0) dimension = std::max(2, expression_coordinates(a.expression));
@@ -232,17 +237,27 @@ int run_implicit_command(const ImplicitArgs& a) {
         return Exit::usage;
     }
     o.keep_chain = !a.stl.empty();
-    const std::optional<uint64_t> limit =
+    const std::optional<uint64_t> limit_given =
         a.max_memory.empty() ? std::optional<uint64_t>(default_memory_limit()) : parse_bytes(a.max_memory);
-    if (!limit) {
+    if (!limit_given) {
         std::cerr << "polyvol: --max-memory takes a size such as 8G or 512M, not '" << a.max_memory << "'\n";
         return Exit::usage;
     }
-    o.max_memory_bytes = static_cast<std::size_t>(*limit);
+    o.max_memory_bytes = static_cast<std::size_t>(*limit_given);
+    limit = *limit_given;
+    return o;
+}
 
+}  // namespace
+
+int run_implicit_command(const ImplicitArgs& a) {
+    uint64_t limit = 0;
+    auto parsed = implicit_options(a, limit);
+    if (const int* code = std::get_if<int>(&parsed)) return *code;
+    ImplicitOptions& o = std::get<ImplicitOptions>(parsed);
     ImplicitVolume r;
     try {
-        const ImplicitFunction f = parse_implicit_expression(a.expression, dimension);
+        const ImplicitFunction f = parse_implicit_expression(a.expression, o.dimension);
         ProgressBar bar;
         o.progress = [&bar](const ImplicitProgress& p) { bar(p); };
         r = implicit_volume(f, o);
@@ -255,7 +270,7 @@ int run_implicit_command(const ImplicitArgs& a) {
         std::cerr << "polyvol: " << e.what();
         if (e.code() == ImplicitError::Code::too_large && std::string(e.what()).find("memory") != std::string::npos)
             std::cerr << " (the limit: " << (a.max_memory.empty() ? "three quarters of this machine's memory, " : "--max-memory ")
-                      << bytes_text(static_cast<double>(*limit)) << ")";
+                      << bytes_text(static_cast<double>(limit)) << ")";
         std::cerr << "\n";
         return Exit::invalid;
     } catch (const std::invalid_argument& e) {
