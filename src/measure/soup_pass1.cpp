@@ -18,10 +18,15 @@
 // records into a block of doubles; AVX-512 with IFMA and VAES: the same
 // transposes in registers), and so does the way the hash is computed (one
 // vertex at a time by Highway's AESRound below AVX2, its scalar twin on
-// HWY_SCALAR; two triangles at a time by AES-NI; with IFMA and VAES, fused
+// HWY_SCALAR; two triangles at a time on AVX2; with IFMA and VAES, fused
 // into the loop). Every target gives the same sums and the same
-// fingerprint, bit for bit. The error analysis is in docs/numerics.md, "The
-// streamed soup".
+// fingerprint, bit for bit (tests/measure/soup_test.cpp at every level).
+// All of it is Highway operations but the one block marked "AVX-512 with
+// IFMA and VAES": Debian's Highway 1.0.3 has no 52-bit multiply-add, and
+// AES on 512-bit vectors only in its AVX3_DL target, which the library
+// does not compile (hwy_targets.hpp); that block is chosen at run time
+// within the AVX3 target and checked against the others bit for bit. The
+// error analysis is in docs/numerics.md, "The streamed soup".
 #include "core/hwy_targets.hpp"  // before Highway
 
 #undef HWY_TARGET_INCLUDE
@@ -190,20 +195,25 @@ HWY_INLINE double lanes_sum(const V (&v)[kQ]) {
 }
 
 #if POLYVOL_SOUP_AVX512
-// Σ of each of eight vectors, in lane_sum8's order: {lane_sum8(v[0]), ..., lane_sum8(v[7])}.
-HWY_INLINE __m512d lane_sums8(const __m512d v[8]) {
-    // [a0+a1, b0+b1, a2+a3, b2+b3, a4+a5, b4+b5, a6+a7, b6+b7] for the pairs (a, b).
-    __m512d t[4];
-    for (int j = 0; j < 4; ++j)
-        t[j] = _mm512_add_pd(_mm512_unpacklo_pd(v[2 * j], v[2 * j + 1]), _mm512_unpackhi_pd(v[2 * j], v[2 * j + 1]));
-    // [a0..3, b0..3, a4..7, b4..7, c0..3, d0..3, c4..7, d4..7] for the quadruples (a, b, c, d).
-    __m512d u[2];
-    for (int j = 0; j < 2; ++j)
-        u[j] = _mm512_add_pd(_mm512_shuffle_f64x2(t[2 * j], t[2 * j + 1], 0x88),
-                             _mm512_shuffle_f64x2(t[2 * j], t[2 * j + 1], 0xDD));
-    return _mm512_add_pd(_mm512_shuffle_f64x2(u[0], u[1], 0x88), _mm512_shuffle_f64x2(u[0], u[1], 0xDD));
+// Σ of each of eight vectors, in lane_sum8's order: lane k of the result is
+// lane_sum8(v[k]) (8 lanes: AVX-512). Adjacent lanes added (p_b = a_2b +
+// a_2b+1, two vectors interleaved), then adjacent blocks (q0 = p0 + p1, q1 =
+// p2 + p3), then the 256-bit halves (q0 + q1); additions are commutative,
+// so the swapped copies hold the same values.
+HWY_INLINE V lane_sums8(const V (&v)[8]) {
+    const D d;
+    V s[4];
+    for (int j = 0; j < 4; ++j) {
+        const V t = hn::Add(hn::InterleaveLower(d, v[2 * j], v[2 * j + 1]), hn::InterleaveUpper(d, v[2 * j], v[2 * j + 1]));
+        s[j] = hn::Add(t, hn::SwapAdjacentBlocks(t));  // blocks: q0, q0, q1, q1 of v[2j], v[2j + 1]
+    }
+    V w[2];
+    for (int j = 0; j < 2; ++j) {
+        const V u = hn::OddEvenBlocks(s[2 * j + 1], s[2 * j]);  // q0 of v[4j..4j+3] in the lower half, q1 in the upper
+        w[j] = hn::Add(u, hn::ConcatLowerUpper(d, u, u));
+    }
+    return hn::ConcatLowerLower(d, w[1], w[0]);
 }
-
 #endif
 
 // A block's plain sums (each lane_sum8 of its lanes).
@@ -211,11 +221,9 @@ template <Moments kM>
 HWY_INLINE void finish_block(const BlockLanes& s, Pass1Block& out) {
 #if POLYVOL_SOUP_AVX512
     if constexpr (kM == kPlain) {
-        static_assert(kQ == 1);
         alignas(64) double sums[8];
-        const __m512d lanes[8] = {s.M[0][0].raw, s.M[1][0].raw, s.M[2][0].raw, s.AD[0].raw,
-                                  s.X[0].raw,    s.T[0].raw,    s.T[0].raw,    s.T[0].raw};
-        _mm512_store_pd(sums, lane_sums8(lanes));
+        const V lanes[8] = {s.M[0][0], s.M[1][0], s.M[2][0], s.AD[0], s.X[0], s.T[0], s.T[0], s.T[0]};
+        hn::Store(lane_sums8(lanes), D(), sums);
         for (int k = 0; k < 3; ++k) out.mom[k] = sums[k];
         out.abs_d = sums[3];
         out.cross = sums[4];
@@ -362,127 +370,145 @@ HWY_INLINE void fingerprint_portable(const Words& w, int n, const Keys& key, uin
 }
 
 #if POLYVOL_SOUP_AVX2
+// Eight floats (256 bits) and what their transposes view them as.
+using DF8 = hn::CappedTag<float, 8>;
+using DU8 = hn::RebindToUnsigned<DF8>;
+using DD4 = hn::Repartition<double, DF8>;           // the same 256 bits as 4 doubles (64-bit interleaves)
+using DW4 = hn::Rebind<double, hn::Half<DF8>>;      // 4 floats widened
+
 // Loads a block from the records (base: first coordinate of triangle 0) into
 // structure of arrays: 8 rows of coordinates 0..7 per 8 triangles, an 8x8
-// transpose, coordinate 8 apart. Returns the largest
+// transpose (32-bit interleaves, 64-bit interleaves, then the 128-bit
+// halves put together), coordinate 8 apart. Returns the largest
 // |coordinate| bit pattern (>= 0x7F800000: NaN or infinity).
-HWY_INLINE uint32_t load_block_avx2(const std::byte* base, std::size_t stride,
-                                                                            int n, Coords& co) {
-    const __m256i absmask = _mm256_set1_epi32(0x7FFFFFFF);
-    __m256i mx = _mm256_setzero_si256();
+HWY_INLINE uint32_t load_block_avx2(const std::byte* base, std::size_t stride, int n, Coords& co) {
+    const DF8 df;
+    const DU8 du;
+    const DD4 dd;
+    const DW4 dw;
+    using VF = hn::Vec<DF8>;
+    const auto lo64 = [&](VF a, VF b) HWY_ATTR {
+        return hn::BitCast(df, hn::InterleaveLower(dd, hn::BitCast(dd, a), hn::BitCast(dd, b)));
+    };
+    const auto hi64 = [&](VF a, VF b) HWY_ATTR {
+        return hn::BitCast(df, hn::InterleaveUpper(dd, hn::BitCast(dd, a), hn::BitCast(dd, b)));
+    };
+    const auto absmask = hn::Set(du, 0x7FFFFFFFu);
+    auto mx = hn::Zero(du);
     for (int i0 = 0; i0 < kB; i0 += 8) {
         const int m = std::min(8, n - i0);
-        __m256 row[8];
-        float last[8];
+        VF row[8];
+        alignas(32) float last[8];
         for (int j = 0; j < 8; ++j) {
             if (j < m) {
                 const std::byte* r = base + static_cast<std::size_t>(i0 + j) * stride;
-                row[j] = _mm256_loadu_ps(reinterpret_cast<const float*>(r));
+                row[j] = hn::LoadU(df, reinterpret_cast<const float*>(r));
                 std::memcpy(&last[j], r + 32, 4);
             } else {
-                row[j] = _mm256_setzero_ps();
+                row[j] = hn::Zero(df);
                 last[j] = 0;
             }
         }
-        const __m256 t0 = _mm256_unpacklo_ps(row[0], row[1]), t1 = _mm256_unpackhi_ps(row[0], row[1]);
-        const __m256 t2 = _mm256_unpacklo_ps(row[2], row[3]), t3 = _mm256_unpackhi_ps(row[2], row[3]);
-        const __m256 t4 = _mm256_unpacklo_ps(row[4], row[5]), t5 = _mm256_unpackhi_ps(row[4], row[5]);
-        const __m256 t6 = _mm256_unpacklo_ps(row[6], row[7]), t7 = _mm256_unpackhi_ps(row[6], row[7]);
-        const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
-        const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
-        const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xEE);
-        const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xEE);
-        const __m256 col[9] = {_mm256_permute2f128_ps(u0, u4, 0x20), _mm256_permute2f128_ps(u1, u5, 0x20),
-                               _mm256_permute2f128_ps(u2, u6, 0x20), _mm256_permute2f128_ps(u3, u7, 0x20),
-                               _mm256_permute2f128_ps(u0, u4, 0x31), _mm256_permute2f128_ps(u1, u5, 0x31),
-                               _mm256_permute2f128_ps(u2, u6, 0x31), _mm256_permute2f128_ps(u3, u7, 0x31),
-                               _mm256_loadu_ps(last)};
+        const VF t0 = hn::InterleaveLower(df, row[0], row[1]), t1 = hn::InterleaveUpper(df, row[0], row[1]);
+        const VF t2 = hn::InterleaveLower(df, row[2], row[3]), t3 = hn::InterleaveUpper(df, row[2], row[3]);
+        const VF t4 = hn::InterleaveLower(df, row[4], row[5]), t5 = hn::InterleaveUpper(df, row[4], row[5]);
+        const VF t6 = hn::InterleaveLower(df, row[6], row[7]), t7 = hn::InterleaveUpper(df, row[6], row[7]);
+        const VF u0 = lo64(t0, t2), u1 = hi64(t0, t2), u2 = lo64(t1, t3), u3 = hi64(t1, t3);
+        const VF u4 = lo64(t4, t6), u5 = hi64(t4, t6), u6 = lo64(t5, t7), u7 = hi64(t5, t7);
+        const VF col[9] = {hn::ConcatLowerLower(df, u4, u0), hn::ConcatLowerLower(df, u5, u1),
+                           hn::ConcatLowerLower(df, u6, u2), hn::ConcatLowerLower(df, u7, u3),
+                           hn::ConcatUpperUpper(df, u4, u0), hn::ConcatUpperUpper(df, u5, u1),
+                           hn::ConcatUpperUpper(df, u6, u2), hn::ConcatUpperUpper(df, u7, u3),
+                           hn::Load(df, last)};
         for (int k = 0; k < 9; ++k) {
             // (-0.0 stays: it adds the same exact 0 to every sum as +0.0.)
-            mx = _mm256_max_epu32(mx, _mm256_and_si256(_mm256_castps_si256(col[k]), absmask));
-            _mm256_store_pd(&co.c[k][i0], _mm256_cvtps_pd(_mm256_castps256_ps128(col[k])));
-            _mm256_store_pd(&co.c[k][i0 + 4], _mm256_cvtps_pd(_mm256_extractf128_ps(col[k], 1)));
+            mx = hn::Max(mx, hn::And(hn::BitCast(du, col[k]), absmask));
+            hn::Store(hn::PromoteTo(dw, hn::LowerHalf(col[k])), dw, &co.c[k][i0]);
+            hn::Store(hn::PromoteTo(dw, hn::UpperHalf(hn::Half<DF8>(), col[k])), dw, &co.c[k][i0 + 4]);
         }
     }
-    __m128i m4 = _mm_max_epu32(_mm256_castsi256_si128(mx), _mm256_extracti128_si256(mx, 1));
-    m4 = _mm_max_epu32(m4, _mm_shuffle_epi32(m4, 0x4E));
-    m4 = _mm_max_epu32(m4, _mm_shuffle_epi32(m4, 0xB1));
-    return static_cast<uint32_t>(_mm_cvtsi128_si32(m4));
+    return hn::GetLane(hn::MaxOfLanes(du, mx));
 }
 
+using DV4 = hn::Full128<uint32_t>;  // a vertex (x, y, z, 0) as words, or its four hash lanes
+using DV8 = hn::CappedTag<uint32_t, 8>;
+using DQ4 = hn::Repartition<uint64_t, DV8>;
+
 // The vertices of triangle r (r: its first coordinate) at bytes [0,12),
-// [12,24), [24,36) as 128-bit values with a zero top word, -0.0 mapped to
-// +0.0; no load leaves [0, 36).
-HWY_INLINE void vertices(const std::byte* r, __m128i& a, __m128i& b, __m128i& c) {
-    const __m128i low96 = _mm_set_epi32(0, -1, -1, -1);
-    const __m128i sign = _mm_set1_epi32(static_cast<int>(0x80000000u));
-    a = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r)), low96);
-    b = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r + 12)), low96);
-    c = _mm_srli_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r + 20)), 4);
-    a = _mm_andnot_si128(_mm_cmpeq_epi32(a, sign), a);
-    b = _mm_andnot_si128(_mm_cmpeq_epi32(b, sign), b);
-    c = _mm_andnot_si128(_mm_cmpeq_epi32(c, sign), c);
+// [12,24), [24,36) as words with a zero top word, -0.0 mapped to +0.0; no
+// load leaves [0, 36).
+HWY_INLINE void vertices(const std::byte* r, hn::Vec<DV4> (&v)[3]) {
+    const DV4 d;
+    alignas(16) static constexpr uint32_t kLow96[4] = {~0u, ~0u, ~0u, 0u};
+    const auto low96 = hn::Load(d, kLow96), sign = hn::Set(d, 0x80000000u);
+    v[0] = hn::And(hn::LoadU(d, reinterpret_cast<const uint32_t*>(r)), low96);
+    v[1] = hn::And(hn::LoadU(d, reinterpret_cast<const uint32_t*>(r + 12)), low96);
+    v[2] = hn::ShiftRightLanes<1>(d, hn::LoadU(d, reinterpret_cast<const uint32_t*>(r + 20)));
+    for (auto& x : v) x = hn::IfThenZeroElse(hn::Eq(x, sign), x);
 }
 
 // x ≡ fold(x) (mod p) on 64-bit lanes.
-HWY_INLINE __m256i fold4(__m256i x) {
-    return _mm256_add_epi64(_mm256_and_si256(x, _mm256_set1_epi64x(static_cast<long long>(kP))), _mm256_srli_epi64(x, 31));
+HWY_INLINE hn::Vec<DQ4> fold4(hn::Vec<DQ4> x) {
+    const DQ4 d;
+    return hn::Add(hn::And(x, hn::Set(d, uint64_t{kP})), hn::ShiftRight<31>(x));
+}
+
+// The odd 32-bit lanes moved to the even ones (the top halves of the 64-bit lanes).
+HWY_INLINE hn::Vec<DV8> odd_lanes(hn::Vec<DV8> x) {
+    return hn::BitCast(DV8(), hn::ShiftRight<32>(hn::BitCast(DQ4(), x)));
 }
 
 // Vandermonde products of two triangles at once (one per 128-bit half; four
 // 31-bit lanes each), mod p: differences + p (<= 2p < 2^32), 32 x 32 -> 64-bit
 // products of the even and odd lanes apart, folded mod p.
-HWY_INLINE void vandermonde8(__m256i A, __m256i B, __m256i C, __m256i& even,
-                                                                      __m256i& odd) {
-    const __m256i P = _mm256_set1_epi32(static_cast<int>(kP));
-    const __m256i d1 = _mm256_add_epi32(_mm256_sub_epi32(B, A), P);
-    const __m256i d2 = _mm256_add_epi32(_mm256_sub_epi32(C, A), P);
-    const __m256i d3 = _mm256_add_epi32(_mm256_sub_epi32(C, B), P);
-    __m256i e = fold4(fold4(_mm256_mul_epu32(d1, d2)));  // < 2^31 + 8
-    __m256i o = fold4(fold4(_mm256_mul_epu32(_mm256_srli_epi64(d1, 32), _mm256_srli_epi64(d2, 32))));
-    even = _mm256_add_epi64(even, fold4(_mm256_mul_epu32(e, d3)));  // each < 2^31 + 2^33
-    odd = _mm256_add_epi64(odd, fold4(_mm256_mul_epu32(o, _mm256_srli_epi64(d3, 32))));
+HWY_INLINE void vandermonde8(hn::Vec<DV8> A, hn::Vec<DV8> B, hn::Vec<DV8> C, hn::Vec<DQ4>& even,
+                             hn::Vec<DQ4>& odd) {
+    const DV8 d;
+    const auto P = hn::Set(d, static_cast<uint32_t>(kP));
+    const auto d1 = hn::Add(hn::Sub(B, A), P), d2 = hn::Add(hn::Sub(C, A), P), d3 = hn::Add(hn::Sub(C, B), P);
+    const auto e = fold4(fold4(hn::MulEven(d1, d2)));  // < 2^31 + 8
+    const auto o = fold4(fold4(hn::MulEven(odd_lanes(d1), odd_lanes(d2))));
+    even = hn::Add(even, fold4(hn::MulEven(hn::BitCast(d, e), d3)));  // each < 2^31 + 2^33
+    odd = hn::Add(odd, fold4(hn::MulEven(hn::BitCast(d, o), odd_lanes(d3))));
 }
 
-HWY_INLINE void finish_lanes(__m256i even, __m256i odd, uint64_t fp[kFpLanes]) {
+// The fingerprint of a block with AES-NI: each vertex through three AES
+// rounds (after whitening), the four 32-bit words cut to 31 bits as lanes.
+HWY_INLINE void fingerprint_aesni(const std::byte* base, std::size_t stride, int n, const Keys& key,
+                                  uint64_t fp[kFpLanes]) {
+    const hn::Full128<uint8_t> d8;
+    const DV4 d4;
+    const DV8 d;
+    const DQ4 dq;
+    hn::Vec<hn::Full128<uint8_t>> k[4];
+    for (int r = 0; r < 4; ++r) k[r] = hn::Load(d8, reinterpret_cast<const uint8_t*>(key.aes[r]));
+    const auto P = hn::Set(d4, static_cast<uint32_t>(kP));
+    auto even = hn::Zero(dq), odd = hn::Zero(dq);
+    for (int i = 0; i < n; i += 2) {
+        hn::Vec<DV4> v[2][3];
+        for (int h = 0; h < 2; ++h) {
+            if (i + h < n) {
+                vertices(base + static_cast<std::size_t>(i + h) * stride, v[h]);
+                for (auto& x : v[h]) {
+                    auto y = hn::AESRound(hn::Xor(hn::BitCast(d8, x), k[0]), k[1]);
+                    y = hn::AESRound(hn::AESRound(y, k[2]), k[3]);
+                    x = hn::And(hn::BitCast(d4, y), P);
+                }
+            } else {
+                v[h][0] = v[h][1] = v[h][2] = hn::Zero(d4);  // a degenerate triangle adds 0
+            }
+        }
+        vandermonde8(hn::Combine(d, v[1][0], v[0][0]), hn::Combine(d, v[1][1], v[0][1]),
+                     hn::Combine(d, v[1][2], v[0][2]), even, odd);
+    }
     alignas(32) uint64_t ev[4], od[4];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(ev), even);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(od), odd);
+    hn::Store(even, dq, ev);
+    hn::Store(odd, dq, od);
     // 64-bit element j of `even` is lane 2 (j mod 2) of the triangle in half j / 2.
     fp[0] = reduce(ev[0] + ev[2]);
     fp[1] = reduce(od[0] + od[2]);
     fp[2] = reduce(ev[1] + ev[3]);
     fp[3] = reduce(od[1] + od[3]);
-}
-
-// The fingerprint of a block with AES-NI: each vertex through three AES
-// rounds (after whitening), the four 32-bit words cut to 31 bits as lanes.
-HWY_INLINE void fingerprint_aesni(const std::byte* base, std::size_t stride, int n,
-                                                           const Keys& key, uint64_t fp[kFpLanes]) {
-    const __m128i k0 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[0]));
-    const __m128i k1 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[1]));
-    const __m128i k2 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[2]));
-    const __m128i k3 = _mm_load_si128(reinterpret_cast<const __m128i*>(key.aes[3]));
-    const __m128i P = _mm_set1_epi32(static_cast<int>(kP));
-    __m256i even = _mm256_setzero_si256(), odd = _mm256_setzero_si256();
-    for (int i = 0; i < n; i += 2) {
-        __m128i v[2][3];
-        for (int h = 0; h < 2; ++h) {
-            if (i + h < n) {
-                vertices(base + static_cast<std::size_t>(i + h) * stride, v[h][0], v[h][1], v[h][2]);
-                for (int j = 0; j < 3; ++j) {
-                    __m128i x = _mm_aesenc_si128(_mm_xor_si128(v[h][j], k0), k1);
-                    x = _mm_aesenc_si128(x, k2);
-                    v[h][j] = _mm_and_si128(_mm_aesenc_si128(x, k3), P);
-                }
-            } else {
-                v[h][0] = v[h][1] = v[h][2] = _mm_setzero_si128();  // a degenerate triangle adds 0
-            }
-        }
-        vandermonde8(_mm256_set_m128i(v[1][0], v[0][0]), _mm256_set_m128i(v[1][1], v[0][1]),
-                     _mm256_set_m128i(v[1][2], v[0][2]), even, odd);
-    }
-    finish_lanes(even, odd, fp);
 }
 
 #endif
