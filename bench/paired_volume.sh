@@ -21,5 +21,8 @@ out=$(for isa in $ISAS; do
   done
 done)
 echo "$out" | awk '{k=$1" "$2" "$3; a[k]=a[k]" "$4} END{for (k in a) print k ":" a[k]}' | sort
-echo "$out" | awk '{k=$1" "$2" "$3; n[k]++; v[k, n[k]]=$4}
-  END{for (k in n) {m=n[k]; for (i=1;i<=m;i++) x[i]=v[k,i]; asort(x); print k, "median", x[int((m+1)/2)]; delete x}}' | sort
+echo "$out" | awk '{print $1" "$2" "$3}' | sort -u | while read -r isa tool what; do
+  values=$(echo "$out" | awk -v k="$isa $tool $what" '$1" "$2" "$3 == k {print $4}' | sort -n)
+  n=$(echo "$values" | wc -l)
+  echo "$isa $tool $what median $(echo "$values" | sed -n "$(( (n + 1) / 2 ))p")"
+done
