@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cells/cell_faces.hpp"
 #include "polyvol/cell_mesh.hpp"
 #include "polyvol/mesh.hpp"
 
@@ -34,16 +35,7 @@ inline Mesh cell_surface(const CellMeshView& m, std::size_t c) {
 }
 
 // The mesh's boundary faces as one triangle mesh over all its points: the
-// surface of the region the cells fill.
-inline Mesh boundary_surface(const CellMeshView& m) {
-    Mesh out;
-    out.positions.assign(m.points.begin(), m.points.end());
-    for (std::size_t f = 0; f < m.face_count(); ++f)
-        if (m.neighbour[f] == kNoCell)
-            face_triangles(m.face(f), m.points, [&](uint32_t a, uint32_t b, uint32_t d) {
-                out.indices.insert(out.indices.end(), {a, b, d});
-            });
-    return out;
-}
+// surface of the region the cells fill (the library's own, cells/cell_faces.hpp).
+inline Mesh boundary_surface(const CellMeshView& m) { return cells::boundary_surface(m); }
 
 }  // namespace polyvol::test
