@@ -121,6 +121,11 @@ std::optional<LoadedMesh> read_body(const std::string& file, const CellsArgs& a,
         return std::nullopt;
     }
     const UnitChange change = into_unit(body->unit, a.units, mesh_unit);
+    if (!change.error.empty()) {
+        std::cerr << "polyvol: " << file << ": " << change.error << "\n";
+        code = Exit::invalid;
+        return std::nullopt;
+    }
     body->coordinate_error = scale_coordinates(body->mesh, change.factor, body->coordinate_error);
     if (!change.note.empty()) std::cerr << "polyvol: warning: " << file << ": " << change.note << "\n";
     solid = solid_or_report(file, body->mesh, a.solid_flags.policy());
@@ -224,13 +229,17 @@ void print_table(const nlohmann::json& j) {
                           ? "on vertical pillars the cells still tile, and every total is conserved\n"
                           : "off vertical pillars they may overlap or leave gaps\n");
     if (!j["cells_tile"].get<bool>()) {
-        std::cout << "the cells cover " << shortest(m["covered_volume"].get<double>()) << cubed
-                  << ", each point once (their volumes add up to " << shortest(m["volume"].get<double>()) << cubed
-                  << "); inside the mesh: the body in the region they cover\n";
+        // null: the region the cells cover is not decided (docs/cells.md); the totals are then the cells' sums.
+        const auto figure = [&](const nlohmann::json& v) {
+            return v.is_null() ? std::string("not decided") : shortest(v.get<double>()) + cubed;
+        };
+        std::cout << "the cells cover " << figure(m["covered_volume"]) << ", each point once (their volumes add up to "
+                  << shortest(m["volume"].get<double>()) << cubed << "); inside the mesh: the body in the region "
+                  << "they cover\n";
         for (const auto& b : j["bodies"])
             std::cout << b["file"].get<std::string>() << ": counted more than once where cells overlap: "
-                      << shortest(b["in_overlaps"].get<double>()) << cubed << " (its cells add up to "
-                      << shortest(b["cells_sum"].get<double>()) << cubed << ")\n";
+                      << figure(b["in_overlaps"]) << " (its cells add up to " << shortest(b["cells_sum"].get<double>())
+                      << cubed << ")\n";
     }
     if (j.contains("union"))
         std::cout << "union: inside the mesh " << shortest(j["union"]["inside_mesh"].get<double>()) << cubed

@@ -94,7 +94,8 @@ struct BodyInCells {
     // in the cells' overlaps counts in cells_sum once per covering cell:
     // in_overlaps = cells_sum − total, the difference of the two rounded
     // values (within an ulp of each). NaN where the covered region is not
-    // decided (its boundary touches itself where it crosses itself): total
+    // decided (its boundary touches itself where it crosses itself; or the
+    // body's own surface does, both being resolved as solids there): total
     // is then cells_sum. The body in a gap between cells is in no cell and
     // counts as outside M. 0 where the cells tile.
     double in_overlaps = 0;

@@ -116,7 +116,6 @@ struct FileReport {
     };
     std::vector<Piece> shell_figures, part_figures;
     std::vector<std::string> repairs;  // `check`: what the file needs to be a solid as it is; empty: ready
-    double closes_at_tolerance = 0;    // an open surface that merging points below 1e-9 of its size closes
 };
 
 // Reads, analyses and measures one file (member: one mesh of a zip archive
