@@ -2,6 +2,7 @@
 `polyvol cells` (the same bits), closed forms and the one solid policy."""
 import json
 import math
+import pathlib
 import subprocess
 from fractions import Fraction
 
@@ -425,3 +426,21 @@ def test_a_rectilinear_mesh_as_polymesh_or_vtu_gives_the_grids_numbers(tmp_path)
     bound = 3.5e-16 * own + np.spacing(own)
     assert np.all(np.abs(cells - g.volumes) <= bound)
     assert 0 < r.cut_cells[0] < n ** 3 and np.count_nonzero((cells > 0) & (cells < own)) == r.cut_cells[0]
+
+
+def test_a_bodys_declared_unit_is_converted_or_overridden_by_units_as_grid_does(tmp_path):
+    # A corner tetrahedron of side 2 in a 3MF that says inch (4/3 in³),
+    # inside a case in metres: converted from its unit, or, with --units,
+    # taken in the unit given (the file's unit overridden, with a warning).
+    body = pathlib.Path(__file__).resolve().parents[1] / "data" / "units" / "tetra_inch.3mf"
+    case = write_polymesh(tmp_path / "case", -1.0, 3.0, 2)
+    out = subprocess.run([CLI, "cells", case, body, "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "converted from in to m" in out.stderr
+    inside = json.loads(out.stdout)["bodies"][0]["inside_mesh"]
+    assert math.isclose(inside, 4 / 3 * 0.0254 ** 3, rel_tol=1e-15)
+    out = subprocess.run([CLI, "cells", case, body, "--units", "m", "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "declares its unit as in; m is used instead" in out.stderr
+    b = json.loads(out.stdout)["bodies"][0]
+    assert b["inside_mesh"] == b["volume"] == float(Fraction(4, 3))
