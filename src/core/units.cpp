@@ -196,14 +196,17 @@ PairUnits pair_units(const std::string& declared_a, const std::string& declared_
                      std::string_view to) {
     PairUnits p;
     const std::string declared[2] = {declared_a, declared_b};
-    for (const std::string_view t : {to, std::string_view()}) {
-        const CommonUnit c = common_unit(declared, units, t);
-        if (c.error.empty()) continue;
+    // The error of common_unit's plan c, naming the operand its note names; false when none.
+    const auto refused = [&p](const CommonUnit& c) {
+        if (c.error.empty()) return false;
         p.error = c.error;
         p.error_operand = c.notes[0] == c.error ? 0 : c.notes[1] == c.error ? 1 : -1;
-        return p;
-    }
+        return true;
+    };
+    // With `to`, both units must be known (the figures go into it); the operands go into A's.
+    if (!to.empty() && refused(common_unit(declared, units, to))) return p;
     p.common = common_unit(declared, units, "");
+    if (refused(p.common)) return p;
     p.unit = to.empty() ? p.common.unit : length_unit(to)->name;
     if (!to.empty() && !p.common.unit.empty())
         p.figures = length_factor(*length_unit(p.common.unit), *length_unit(to));
