@@ -342,6 +342,22 @@ HWY_INLINE uint32_t load_block_portable(const std::byte* base, std::size_t strid
 // the key k0 added, three AES rounds with k1, k2, k3, each 32-bit word cut
 // to 31 bits a lane. By Highway's AESRound (AES-NI on SSE4, its emulation
 // on EMU128 and NEON), on HWY_SCALAR by the scalar twin (core/aes_round.hpp).
+#if HWY_TARGET != HWY_SCALAR
+using D8 = hn::Full128<uint8_t>;
+
+// The round keys as vectors (once per block, not per vertex).
+HWY_INLINE void load_round_keys(const Keys& key, hn::Vec<D8> (&k)[4]) {
+    for (int r = 0; r < 4; ++r) k[r] = hn::Load(D8(), reinterpret_cast<const uint8_t*>(key.aes[r]));
+}
+
+// The hash's rounds on a vertex's 16 bytes: k0 added, then AES rounds with k1, k2, k3.
+HWY_INLINE hn::Vec<D8> aes_rounds(hn::Vec<D8> x, const hn::Vec<D8> (&k)[4]) {
+    x = hn::Xor(x, k[0]);
+    for (int r = 1; r < 4; ++r) x = hn::AESRound(x, k[r]);
+    return x;
+}
+#endif
+
 HWY_INLINE void aes_hash(const uint32_t* xyz, const Keys& key, uint32_t h[kFpLanes]) {
     alignas(16) uint32_t s[4] = {xyz[0], xyz[1], xyz[2], 0};
     auto* bytes = reinterpret_cast<uint8_t*>(s);
@@ -350,10 +366,9 @@ HWY_INLINE void aes_hash(const uint32_t* xyz, const Keys& key, uint32_t h[kFpLan
     for (int i = 0; i < 16; ++i) bytes[i] = static_cast<uint8_t>(bytes[i] ^ k0[i]);
     for (int r = 1; r < 4; ++r) core::aes_round(bytes, reinterpret_cast<const uint8_t*>(key.aes[r]));
 #else
-    const hn::Full128<uint8_t> d8;
-    auto x = hn::Xor(hn::Load(d8, bytes), hn::Load(d8, reinterpret_cast<const uint8_t*>(key.aes[0])));
-    for (int r = 1; r < 4; ++r) x = hn::AESRound(x, hn::Load(d8, reinterpret_cast<const uint8_t*>(key.aes[r])));
-    hn::Store(x, d8, bytes);
+    hn::Vec<D8> k[4];
+    load_round_keys(key, k);
+    hn::Store(aes_rounds(hn::Load(D8(), bytes), k), D8(), bytes);
 #endif
     for (int l = 0; l < kFpLanes; ++l) h[l] = static_cast<uint32_t>(s[l] & kP);
 }
@@ -476,12 +491,11 @@ HWY_INLINE void vandermonde8(hn::Vec<DV8> A, hn::Vec<DV8> B, hn::Vec<DV8> C, hn:
 // rounds (after whitening), the four 32-bit words cut to 31 bits as lanes.
 HWY_INLINE void fingerprint_aesni(const std::byte* base, std::size_t stride, int n, const Keys& key,
                                   uint64_t fp[kFpLanes]) {
-    const hn::Full128<uint8_t> d8;
     const DV4 d4;
     const DV8 d;
     const DQ4 dq;
-    hn::Vec<hn::Full128<uint8_t>> k[4];
-    for (int r = 0; r < 4; ++r) k[r] = hn::Load(d8, reinterpret_cast<const uint8_t*>(key.aes[r]));
+    hn::Vec<D8> k[4];
+    load_round_keys(key, k);
     const auto P = hn::Set(d4, static_cast<uint32_t>(kP));
     auto even = hn::Zero(dq), odd = hn::Zero(dq);
     for (int i = 0; i < n; i += 2) {
@@ -489,11 +503,7 @@ HWY_INLINE void fingerprint_aesni(const std::byte* base, std::size_t stride, int
         for (int h = 0; h < 2; ++h) {
             if (i + h < n) {
                 vertices(base + static_cast<std::size_t>(i + h) * stride, v[h]);
-                for (auto& x : v[h]) {
-                    auto y = hn::AESRound(hn::Xor(hn::BitCast(d8, x), k[0]), k[1]);
-                    y = hn::AESRound(hn::AESRound(y, k[2]), k[3]);
-                    x = hn::And(hn::BitCast(d4, y), P);
-                }
+                for (auto& x : v[h]) x = hn::And(hn::BitCast(d4, aes_rounds(hn::BitCast(D8(), x), k)), P);
             } else {
                 v[h][0] = v[h][1] = v[h][2] = hn::Zero(d4);  // a degenerate triangle adds 0
             }
