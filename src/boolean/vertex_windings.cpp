@@ -3,14 +3,21 @@
 //
 // Along an edge x -> y the winding number w of a closed surface changes by
 // the signed count of its triangles the edge crosses (+1 entering the solid):
-// w(y) = w(x) + k(x, y). A union–find with offsets collects these relations
-// per connected part of the operand; each part then needs one value: 0 for a
-// vertex outside the other operand's box, else the signed crossings of a ray
-// from the vertex to a point beyond that box (where w = 0).
+// w(y) = w(x) + k(x, y). Almost every edge crosses nothing (k = 0): a
+// union–find over those edges, in parallel, gives the parts of one winding;
+// a union–find with offsets relates the parts over the few crossed edges
+// (and finds a contradiction there: a body that is not closed). Each group
+// of related parts then needs one value: 0 at a vertex outside the other
+// operand's box, else the signed crossings of a ray from a vertex to a
+// point beyond that box (where w = 0).
 #include <gmpxx.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -71,6 +78,39 @@ private:
     std::vector<uint32_t> parent_;
     std::vector<int64_t> offset_;
     std::vector<uint32_t> size_;
+};
+
+// Union–find that many threads may unite in at once: a root is linked
+// under another by compare-and-swap, always the larger under the smaller,
+// so each part's final root is its smallest vertex whatever the threads'
+// order (parent pointers only decrease: no cycles, and find ends).
+class Parts {
+public:
+    explicit Parts(std::size_t n) : parent_(n) {
+        for (std::size_t v = 0; v < n; ++v) parent_[v].store(static_cast<uint32_t>(v), std::memory_order_relaxed);
+    }
+    uint32_t find(uint32_t v) {
+        for (;;) {
+            uint32_t p = parent_[v].load(std::memory_order_relaxed);
+            if (p == v) return v;
+            const uint32_t g = parent_[p].load(std::memory_order_relaxed);
+            if (g != p) parent_[v].compare_exchange_weak(p, g, std::memory_order_relaxed);  // path halving
+            v = g;
+        }
+    }
+    void unite(uint32_t x, uint32_t y) {
+        for (;;) {
+            x = find(x);
+            y = find(y);
+            if (x == y) return;
+            if (x < y) std::swap(x, y);
+            uint32_t expected = x;
+            if (parent_[x].compare_exchange_strong(expected, y, std::memory_order_relaxed)) return;
+        }
+    }
+
+private:
+    std::vector<std::atomic<uint32_t>> parent_;
 };
 
 bool strictly_outside(const double* p, const std::array<double, 6>& box) {
@@ -202,49 +242,97 @@ WindingSeed own_front_seed(const Operand& op, uint32_t body, int front, const st
 
 std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, const std::vector<EdgeHit>& hits,
                                      const std::vector<WindingSeed>& seeds) {
-    const std::size_t nv = self.mesh.vertex_count();
+    const std::size_t nv = self.mesh.vertex_count(), nt = self.triangles();
     const bool same = &self == &other;
-    std::vector<int64_t> k(self.tri.size(), 0);  // per triangle edge: signed crossings
-    for (const EdgeHit& h : hits) k[3 * std::size_t{h.tri} + h.edge] += h.sign;
-    OffsetForest forest(nv);
-    std::vector<uint8_t> used(nv, 0);
-    std::vector<uint32_t> triangle_of(nv, 0);  // one triangle using the vertex (its body)
-    for (std::size_t t = 0; t < self.triangles(); ++t) {
-        for (int e = 0; e < 3; ++e) {
-            const uint32_t x = self.tri[3 * t + e], y = self.tri[3 * t + (e + 1) % 3];
-            used[x] = 1;
-            triangle_of[x] = static_cast<uint32_t>(t);
-            if (!forest.relate(x, y, k[3 * t + e]))
-                throw Contradiction("boolean: winding numbers along edges disagree (an operand is not closed)");
-        }
+    // The edges some hit crosses, with their signed counts k (3 t + e each);
+    // every other edge joins two vertices of one winding.
+    std::vector<std::pair<std::size_t, int64_t>> crossed;
+    crossed.reserve(hits.size());
+    for (const EdgeHit& h : hits) crossed.emplace_back(3 * std::size_t{h.tri} + h.edge, h.sign);
+    std::sort(crossed.begin(), crossed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < crossed.size(); ++i) {
+        if (kept > 0 && crossed[kept - 1].first == crossed[i].first)
+            crossed[kept - 1].second += crossed[i].second;
+        else
+            crossed[kept++] = crossed[i];
     }
+    crossed.resize(kept);
+    std::vector<uint8_t> crossed_edges(nt, 0);  // bit e: edge e of the triangle is in `crossed`
+    for (const auto& [edge, k] : crossed) crossed_edges[edge / 3] |= uint8_t(1u << (edge % 3));
+
+    // Parts of equal winding: the vertices joined by uncrossed edges.
+    Parts parts(nv);
+    std::vector<std::atomic<uint8_t>> used(nv);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const auto& range) {
+        for (std::size_t t = range.begin(); t != range.end(); ++t)
+            for (int e = 0; e < 3; ++e) {
+                const uint32_t x = self.tri[3 * t + e], y = self.tri[3 * t + (e + 1) % 3];
+                used[x].store(1, std::memory_order_relaxed);
+                if (!(crossed_edges[t] >> e & 1)) parts.unite(x, y);
+            }
+    });
+    std::vector<uint32_t> part(nv);  // the part's root (its smallest vertex)
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(nv), 4096), [&](const auto& range) {
+        for (uint32_t v = range.begin(); v != range.end(); ++v) part[v] = parts.find(v);
+    });
+
+    // The parts related by the crossed edges: w(y) - w(x) = k between their
+    // parts, in an offset forest over the parts' roots (few: those the
+    // crossed edges touch stand apart, the rest are their own groups).
+    std::vector<uint32_t> roots;
+    for (uint32_t v = 0; v < nv; ++v)
+        if (part[v] == v && used[v].load(std::memory_order_relaxed) != 0) roots.push_back(v);
+    auto group_of = [&](uint32_t v) {
+        return static_cast<uint32_t>(std::lower_bound(roots.begin(), roots.end(), part[v]) - roots.begin());
+    };
+    OffsetForest groups(roots.size());
+    for (const auto& [edge, k] : crossed) {
+        const std::size_t t = edge / 3;
+        const int e = static_cast<int>(edge % 3);
+        if (!groups.relate(group_of(self.tri[3 * t + e]), group_of(self.tri[3 * t + (e + 1) % 3]), k))
+            throw Contradiction("boolean: winding numbers along edges disagree (an operand is not closed)");
+    }
+    std::vector<uint32_t> group_root(roots.size());  // each group's root in `groups`
+    std::vector<int64_t> group_offset(roots.size());  // w(group) - w(its root)
+    std::size_t unknown = 0;                          // roots without a value
+    for (uint32_t g = 0; g < roots.size(); ++g) {
+        group_root[g] = groups.find(g, group_offset[g]);
+        unknown += group_root[g] == g;
+    }
+    // One value per root: a seed's, 0 at a vertex outside the other's box,
+    // else a ray's.
     constexpr int64_t kUnknown = INT64_MIN;
-    std::vector<int64_t> root_value(nv, kUnknown);
-    for (const WindingSeed& seed : seeds) {  // bodies crossing themselves: their own part too
-        int64_t off;
-        const uint32_t r = forest.find(seed.vertex, off);
-        const uint32_t t = triangle_of[seed.vertex];
-        root_value[r] = ray_winding(self.point(seed.vertex), self.body(t), self.shift(t), other, same) + seed.own - off;
-    }
+    std::vector<int64_t> value(roots.size(), kUnknown);
+    auto unknown_at = [&](uint32_t v) { return value[group_root[group_of(v)]] == kUnknown; };
+    auto settle = [&](uint32_t v, int64_t w_at_v) {  // w(v) = w_at_v, where v's root has no value yet
+        const uint32_t g = group_of(v);
+        if (value[group_root[g]] != kUnknown) return;
+        value[group_root[g]] = w_at_v - group_offset[g];
+        --unknown;
+    };
+    auto ray = [&](uint32_t v) {
+        std::size_t corner = 0;  // a triangle using v: its body and shift
+        while (self.tri[corner] != v) ++corner;
+        const std::size_t t = corner / 3;
+        return ray_winding(self.point(v), self.body(t), self.shift(t), other, same);
+    };
+    for (const WindingSeed& seed : seeds)  // bodies crossing themselves: their own part too
+        settle(seed.vertex, ray(seed.vertex) + seed.own);
+    auto is_used = [&](uint32_t v) { return used[v].load(std::memory_order_relaxed) != 0; };
     const bool far_away_exists = other.triangles() > 0;
-    for (uint32_t v = 0; v < nv; ++v) {
-        if (!used[v]) continue;
-        int64_t off;
-        const uint32_t r = forest.find(v, off);
-        if (root_value[r] == kUnknown && (!far_away_exists || (!same && strictly_outside(self.point(v), other.bounds))))
-            root_value[r] = -off;  // w(v) = 0
-    }
+    for (uint32_t v = 0; v < nv && unknown > 0; ++v)
+        if (is_used(v) && (!far_away_exists || (!same && strictly_outside(self.point(v), other.bounds)))) settle(v, 0);
+    for (uint32_t v = 0; v < nv && unknown > 0; ++v)
+        if (is_used(v) && unknown_at(v)) settle(v, ray(v));
     std::vector<int32_t> w(nv, 0);
-    for (uint32_t v = 0; v < nv; ++v) {
-        if (!used[v]) continue;
-        int64_t off;
-        const uint32_t r = forest.find(v, off);
-        if (root_value[r] == kUnknown) {
-            const uint32_t t = triangle_of[v];
-            root_value[r] = ray_winding(self.point(v), self.body(t), self.shift(t), other, same) - off;
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(nv), 4096), [&](const auto& range) {
+        for (uint32_t v = range.begin(); v != range.end(); ++v) {
+            if (!is_used(v)) continue;
+            const uint32_t g = group_of(v);
+            w[v] = static_cast<int32_t>(value[group_root[g]] + group_offset[g]);
         }
-        w[v] = static_cast<int32_t>(root_value[r] + off);
-    }
+    });
     return w;
 }
 
