@@ -22,6 +22,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "boolean/operand.hpp"
 #include "boolean/predicates.hpp"
@@ -33,22 +34,32 @@ void finish_operand(Operand& op) {
     const std::size_t n = op.triangles();
     op.degenerate.resize(n);
     op.box.resize(6 * n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
-        for (std::size_t t = range.begin(); t != range.end(); ++t) {
-            const double* c[3] = {op.corner(t, 0), op.corner(t, 1), op.corner(t, 2)};
-            op.degenerate[t] = first_cross_sign(c[0], c[1], c[0], c[2]) == 0;
-            for (int k = 0; k < 3; ++k) {
-                op.box[6 * t + k] = std::min({c[0][k], c[1][k], c[2][k]});
-                op.box[6 * t + 3 + k] = std::max({c[0][k], c[1][k], c[2][k]});
+    using Bounds = std::array<double, 6>;
+    const Bounds empty = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    op.bounds = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 4096), empty,
+        [&](const auto& range, Bounds bounds) {
+            for (std::size_t t = range.begin(); t != range.end(); ++t) {
+                const double* c[3] = {op.corner(t, 0), op.corner(t, 1), op.corner(t, 2)};
+                op.degenerate[t] = first_cross_sign(c[0], c[1], c[0], c[2]) == 0;
+                for (int k = 0; k < 3; ++k) {
+                    const double lo = std::min({c[0][k], c[1][k], c[2][k]});
+                    const double hi = std::max({c[0][k], c[1][k], c[2][k]});
+                    op.box[6 * t + k] = box_below(lo);
+                    op.box[6 * t + 3 + k] = box_above(hi);
+                    bounds[k] = std::min(bounds[k], lo);
+                    bounds[3 + k] = std::max(bounds[3 + k], hi);
+                }
             }
-        }
-    });
-    op.bounds = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    for (std::size_t t = 0; t < n; ++t)
-        for (int k = 0; k < 3; ++k) {
-            op.bounds[k] = std::min(op.bounds[k], op.box[6 * t + k]);
-            op.bounds[3 + k] = std::max(op.bounds[3 + k], op.box[6 * t + 3 + k]);
-        }
+            return bounds;
+        },
+        [](Bounds x, const Bounds& y) {
+            for (int k = 0; k < 3; ++k) {
+                x[k] = std::min(x[k], y[k]);
+                x[3 + k] = std::max(x[3 + k], y[3 + k]);
+            }
+            return x;
+        });
 }
 
 Operand make_operand(const MeshView& view, int32_t shift) {
@@ -71,7 +82,8 @@ Operand make_operand(const MeshView& view, int32_t shift) {
 
 namespace {
 
-bool boxes_meet(const double* p, const double* q) {
+template <class P, class Q>
+bool boxes_meet(const P* p, const Q* q) {
     return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] && q[2] <= p[5];
 }
 
@@ -235,6 +247,7 @@ void check_fold(const Operand& op, uint32_t t, uint32_t s) {
 struct CellGrid {
     std::array<double, 6> box{};
     std::array<uint32_t, 3> dims{1, 1, 1};
+    std::array<double, 3> per_unit{};  // cells per unit length along each axis
 
     CellGrid(const std::array<double, 6>& b, std::size_t target) : box(b) {
         const double ext[3] = {b[3] - b[0], b[4] - b[1], b[5] - b[2]};
@@ -247,21 +260,25 @@ struct CellGrid {
                 dims[k] = static_cast<uint32_t>(std::clamp(std::ceil(ext[k] / h), 1.0, 1024.0));
                 total *= dims[k];
             }
-            if (total <= 8 * std::max<std::size_t>(target, 1)) return;
+            if (total <= 8 * std::max<std::size_t>(target, 1)) break;
             h *= 1.5;
         }
+        for (int k = 0; k < 3; ++k) {
+            const double d = ext[k] > 0 ? dims[k] / ext[k] : 0;
+            per_unit[k] = std::isfinite(d) ? d : 0;  // a subnormal extent: one cell along k
+        }
     }
+    // Cell k-index of coordinate x: floor((x - lo) · dims / extent), clamped.
     uint32_t index(int k, double x) const {
-        const double ext = box[3 + k] - box[k];
-        if (!(ext > 0)) return 0;
-        const double f = std::floor((x - box[k]) / ext * dims[k]);
+        if (!(per_unit[k] > 0)) return 0;
+        const double f = std::floor((x - box[k]) * per_unit[k]);
         return static_cast<uint32_t>(std::clamp(f, 0.0, static_cast<double>(dims[k] - 1)));
     }
     std::size_t cells() const { return std::size_t{dims[0]} * dims[1] * dims[2]; }
     std::size_t cell(uint32_t i, uint32_t j, uint32_t k) const { return (std::size_t{i} * dims[1] + j) * dims[2] + k; }
     // Calls f(cell) for every cell a box {xmin..zmax} overlaps.
     template <class F>
-    void for_cells(const double* b, F&& f) const {
+    void for_cells(const float* b, F&& f) const {
         const uint32_t lo[3] = {index(0, b[0]), index(1, b[1]), index(2, b[2])};
         const uint32_t hi[3] = {index(0, b[3]), index(1, b[4]), index(2, b[5])};
         for (uint32_t i = lo[0]; i <= hi[0]; ++i)
@@ -356,7 +373,7 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
         Local& local = locals.local();
         for (std::size_t r = range.begin(); r != range.end(); ++r) {
             const uint32_t ta = a_near[r];
-            const double* box = &A.box[6 * std::size_t{ta}];
+            const float* box = &A.box[6 * std::size_t{ta}];
             // Each pair once, in the cell holding the low corner of the two boxes' overlap.
             grid.for_cells(box, [&](std::size_t c) {
                 if (same && !within && !mixed[c]) return;
@@ -366,7 +383,7 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
                     if (same && (B.body(tb) == A.body(ta)) != within) continue;
                     const bool neighbours = within && A.share_corner(ta, tb);
                     if (neighbours && !strict) continue;
-                    const double* other = &B.box[6 * std::size_t{tb}];
+                    const float* other = &B.box[6 * std::size_t{tb}];
                     if (!boxes_meet(box, other)) continue;
                     if (grid.cell(grid.index(0, std::max(box[0], other[0])), grid.index(1, std::max(box[1], other[1])),
                                   grid.index(2, std::max(box[2], other[2]))) != c)

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <bit>
+#include <limits>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -35,8 +37,10 @@ struct Operand {
     Mesh mesh;                       // welded(input): one vertex per position
     std::vector<uint32_t> tri;       // 3 per fan triangle
     std::vector<uint8_t> degenerate; // 1 where (b - a) × (c - a) == 0 exactly
-    std::vector<double> box;         // 6 per triangle: xmin ymin zmin xmax ymax zmax
-    std::array<double, 6> bounds{};  // of the used vertices (empty operand: inverted)
+    // 6 per triangle: xmin ymin zmin xmax ymax zmax, rounded outward to
+    // float (box_below, box_above): a filter, half the bytes of doubles.
+    std::vector<float> box;
+    std::array<double, 6> bounds{};  // of the used vertices, exact (empty operand: inverted)
     std::vector<uint32_t> body_of_triangle;  // empty: every triangle in body 0
     std::vector<int32_t> body_shift{0};      // per body: the multiple of δ it is moved by
     std::vector<uint8_t> body_crosses;       // per body: 1 when it crosses itself (empty: none does)
@@ -61,6 +65,24 @@ struct Operand {
     const double* point(uint32_t v) const { return mesh.positions.data() + 3 * std::size_t{v}; }
     const double* corner(std::size_t t, int i) const { return point(tri[3 * t + i]); }
 };
+
+// The largest float <= x and the smallest float >= x (x finite): a box
+// rounded outward holds the triangle. One step of the float's bits moves
+// it one float away from zero (or toward it, for the other sign).
+inline float box_below(double x) {
+    const float f = static_cast<float>(x);
+    if (!(static_cast<double>(f) > x)) return f;
+    if (f == 0) return -std::numeric_limits<float>::denorm_min();
+    const uint32_t bits = std::bit_cast<uint32_t>(f);
+    return std::bit_cast<float>(f > 0 ? bits - 1 : bits + 1);
+}
+inline float box_above(double x) {
+    const float f = static_cast<float>(x);
+    if (!(static_cast<double>(f) < x)) return f;
+    if (f == 0) return std::numeric_limits<float>::denorm_min();
+    const uint32_t bits = std::bit_cast<uint32_t>(f);
+    return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
+}
 
 // Fills degenerate, box and bounds from mesh and tri.
 void finish_operand(Operand& op);

@@ -50,7 +50,8 @@ void widen_scale(const Operand& op, const char* what, int& e0, double& max_coord
 }
 
 // The buckets (n per axis over `all`) a box (xmin ymin zmin xmax ymax zmax) meets, per axis.
-void bucket_range(const std::array<double, 6>& all, int n, const double* box, int* lo, int* hi) {
+template <class T>
+void bucket_range(const std::array<double, 6>& all, int n, const T* box, int* lo, int* hi) {
     for (int k = 0; k < 3; ++k) {
         lo[k] = bucket_of(box[k], all[k], all[3 + k], n);
         hi[k] = bucket_of(box[3 + k], all[k], all[3 + k], n);
@@ -71,7 +72,7 @@ void PreparedBody::triangles_meeting(const std::array<double, 6>& b, std::vector
             for (int k = lo[2]; k <= hi[2]; ++k) {
                 const std::size_t bucket = (static_cast<std::size_t>(i) * n + j) * n + k;
                 for (uint32_t x = offsets[bucket]; x < offsets[bucket + 1]; ++x) {
-                    const double* t = &body.box[6 * std::size_t{items[x]}];
+                    const float* t = &body.box[6 * std::size_t{items[x]}];
                     if (t[0] <= b[3] && b[0] <= t[3] && t[1] <= b[4] && b[1] <= t[4] && t[2] <= b[5] && b[2] <= t[5])
                         out.push_back(items[x]);
                 }
@@ -102,7 +103,7 @@ std::shared_ptr<const PreparedBody> prepare_body(const MeshView& view) {
     const auto& all = p.body.bounds;
     auto for_each_bucket = [&](auto&& fn) {
         for (uint32_t t = 0; t < nt; ++t) {
-            const double* b = &p.body.box[6 * std::size_t{t}];
+            const float* b = &p.body.box[6 * std::size_t{t}];
             int lo[3], hi[3];
             bucket_range(all, n, b, lo, hi);
             for (int i = lo[0]; i <= hi[0]; ++i)

@@ -127,7 +127,7 @@ int64_t ray_winding(const double* p, uint32_t body, int32_t shift, const Operand
     const double far[3] = {reach, p[1], p[2]};
     int64_t crossings = 0;
     for (std::size_t s = 0; s < other.triangles(); ++s) {
-        const double* box = &other.box[6 * s];
+        const float* box = &other.box[6 * s];
         if (other.degenerate[s] || (same && other.body(s) == body) || box[3] < p[0] || box[1] > p[1] ||
             box[4] < p[1] || box[2] > p[2] || box[5] < p[2])
             continue;
@@ -183,7 +183,7 @@ int64_t own_front_at_corner(const Operand& op, uint32_t body, uint32_t t) {
     int64_t entering = 0, along = 0;
     for (std::size_t s = 0; s < op.triangles(); ++s) {
         if (s == t || op.body(s) != body || op.degenerate[s]) continue;
-        const double* box = &op.box[6 * s];
+        const float* box = &op.box[6 * s];
         const bool on_ray = box[ii] <= qd[ii] + mi && box[3 + ii] >= qd[ii] - mi && box[jj] <= qd[jj] + mj &&
                             box[3 + jj] >= qd[jj] - mj;
         const bool on_segment = box[0] <= hi[0] && box[3] >= lo[0] && box[1] <= hi[1] && box[4] >= lo[1] &&
