@@ -248,19 +248,11 @@ BooleanVolumes boolean_volumes(const MeshView& a_view, const MeshView& b_view) {
     r.triangles_b = B.triangles();
 
     // Coordinates: finite, in the exact kernels' range, and a common scale.
-    int e0 = std::numeric_limits<int>::max();
-    double max_coordinate = 0;
-    for (const Operand* op : {&A, &B}) {
-        for (uint32_t v : op->tri) {
-            for (int k = 0; k < 3; ++k) {
-                const double x = op->point(v)[k];
-                if (!in_predicate_range(x)) return fail(BooleanStatus::invalid_coordinates);
-                if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
-                max_coordinate = std::max(max_coordinate, std::fabs(x));
-            }
-        }
-    }
-    if (e0 == std::numeric_limits<int>::max()) e0 = 0;
+    CoordinateScale scale = A.scale;
+    scale.widen(B.scale);
+    if (!scale.in_range) return fail(BooleanStatus::invalid_coordinates);
+    const int e0 = scale.e0 == std::numeric_limits<int>::max() ? 0 : scale.e0;
+    const double max_coordinate = scale.max_coordinate;
 
 
     const Crossings cross = find_crossings(A, B);

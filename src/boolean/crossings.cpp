@@ -24,6 +24,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "boolean/exact_terms.hpp"
 #include "boolean/operand.hpp"
 #include "boolean/predicates.hpp"
 #include "boolean/symbolic.hpp"
@@ -34,11 +35,13 @@ void finish_operand(Operand& op) {
     const std::size_t n = op.triangles();
     op.degenerate.resize(n);
     op.box.resize(6 * n);
-    using Bounds = std::array<double, 6>;
-    const Bounds empty = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    op.bounds = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, n, 4096), empty,
-        [&](const auto& range, Bounds bounds) {
+    struct Extent {
+        std::array<double, 6> bounds{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+        CoordinateScale scale;
+    };
+    const Extent all = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 4096), Extent{},
+        [&](const auto& range, Extent e) {
             for (std::size_t t = range.begin(); t != range.end(); ++t) {
                 const double* c[3] = {op.corner(t, 0), op.corner(t, 1), op.corner(t, 2)};
                 op.degenerate[t] = first_cross_sign(c[0], c[1], c[0], c[2]) == 0;
@@ -47,19 +50,28 @@ void finish_operand(Operand& op) {
                     const double hi = std::max({c[0][k], c[1][k], c[2][k]});
                     op.box[6 * t + k] = box_below(lo);
                     op.box[6 * t + 3 + k] = box_above(hi);
-                    bounds[k] = std::min(bounds[k], lo);
-                    bounds[3 + k] = std::max(bounds[3 + k], hi);
+                    e.bounds[k] = std::min(e.bounds[k], lo);
+                    e.bounds[3 + k] = std::max(e.bounds[3 + k], hi);
+                    for (int i = 0; i < 3; ++i) {
+                        const double x = c[i][k];
+                        e.scale.in_range = e.scale.in_range && in_predicate_range(x);
+                        if (x != 0) e.scale.e0 = std::min(e.scale.e0, lowest_bit_exponent(x));
+                        e.scale.max_coordinate = std::max(e.scale.max_coordinate, std::fabs(x));
+                    }
                 }
             }
-            return bounds;
+            return e;
         },
-        [](Bounds x, const Bounds& y) {
+        [](Extent x, const Extent& y) {
             for (int k = 0; k < 3; ++k) {
-                x[k] = std::min(x[k], y[k]);
-                x[3 + k] = std::max(x[3 + k], y[3 + k]);
+                x.bounds[k] = std::min(x.bounds[k], y.bounds[k]);
+                x.bounds[3 + k] = std::max(x.bounds[3 + k], y.bounds[3 + k]);
             }
+            x.scale.widen(y.scale);
             return x;
         });
+    op.bounds = all.bounds;
+    op.scale = all.scale;
 }
 
 Operand make_operand(const MeshView& view, int32_t shift) {

@@ -2,6 +2,7 @@
 // crossing search finds between two operands.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <limits>
@@ -27,6 +28,20 @@ struct SelfContact : std::logic_error {
     using std::logic_error::logic_error;
 };
 
+// The coordinates of an operand's triangle corners: whether all are in the
+// exact predicates' range (in_predicate_range), the lowest bit exponent of
+// the nonzero ones (INT_MAX when none), the largest magnitude.
+struct CoordinateScale {
+    bool in_range = true;
+    int e0 = std::numeric_limits<int>::max();
+    double max_coordinate = 0;
+    void widen(const CoordinateScale& o) {
+        in_range = in_range && o.in_range;
+        e0 = std::min(e0, o.e0);
+        max_coordinate = std::max(max_coordinate, o.max_coordinate);
+    }
+};
+
 // One operand: its welded vertices and fan triangles (v0, vi, vi+1).
 //   corner(t, i) = positions of vertex tri[3 t + i]
 //   edge e of triangle t runs from corner e to corner (e + 1) % 3
@@ -41,6 +56,7 @@ struct Operand {
     // float (box_below, box_above): a filter, half the bytes of doubles.
     std::vector<float> box;
     std::array<double, 6> bounds{};  // of the used vertices, exact (empty operand: inverted)
+    CoordinateScale scale;           // of the used vertices
     std::vector<uint32_t> body_of_triangle;  // empty: every triangle in body 0
     std::vector<int32_t> body_shift{0};      // per body: the multiple of δ it is moved by
     std::vector<uint8_t> body_crosses;       // per body: 1 when it crosses itself (empty: none does)
@@ -84,7 +100,7 @@ inline float box_above(double x) {
     return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
 }
 
-// Fills degenerate, box and bounds from mesh and tri.
+// Fills degenerate, box, bounds and scale from mesh and tri, in one parallel pass.
 void finish_operand(Operand& op);
 
 // welded(view) and its fan triangles, one body moved by `shift` δ.

@@ -38,15 +38,11 @@ int bucket_of(double x, double lo, double hi, int n) {
 // lowest bit exponent and raises max_coordinate to the largest magnitude
 // among them (boolean_volumes' common scale).
 void widen_scale(const Operand& op, const char* what, int& e0, double& max_coordinate) {
-    for (const uint32_t v : op.tri)
-        for (int k = 0; k < 3; ++k) {
-            const double x = op.point(v)[k];
-            if (!in_predicate_range(x))
-                throw std::invalid_argument(std::string("a coordinate of the ") + what +
-                                            " is not finite or outside 0 and 2^-160 .. 2^180");
-            if (x != 0) e0 = std::min(e0, lowest_bit_exponent(x));
-            max_coordinate = std::max(max_coordinate, std::fabs(x));
-        }
+    if (!op.scale.in_range)
+        throw std::invalid_argument(std::string("a coordinate of the ") + what +
+                                    " is not finite or outside 0 and 2^-160 .. 2^180");
+    e0 = std::min(e0, op.scale.e0);
+    max_coordinate = std::max(max_coordinate, op.scale.max_coordinate);
 }
 
 // The buckets (n per axis over `all`) a box (xmin ymin zmin xmax ymax zmax) meets, per axis.
