@@ -20,9 +20,28 @@ void negate(int n, double* e) {
     for (int i = 0; i < n; ++i) e[i] = -e[i];
 }
 
-// orient(a, b, c, d) = det(b,c,d) - det(a,c,d) + det(a,b,d) - det(a,b,c)
+// orient(a, b, c, d) = det(b - a, c - a, d - a): one det3 expansion where
+// the nine differences are doubles exactly (two_sum's error 0, as for most
+// nearby coordinates); else det(b,c,d) - det(a,c,d) + det(a,b,d) - det(a,b,c)
 // (the 4x4 determinant with a column of ones), each det3 an exact expansion.
+// Both exact in the safe range: differences of coordinates there are
+// multiples of 2^-212 below 2^191, as eft.hpp's conditions ask.
 int orient3d_exact_sign(const double* a, const double* b, const double* c, const double* d) {
+    double diff[3][3];
+    bool exact_differences = true;
+    for (int k = 0; k < 3; ++k) {
+        const double* p[3] = {b, c, d};
+        for (int i = 0; i < 3; ++i) {
+            double err;
+            exact::two_sum(p[i][k], -a[k], diff[i][k], err);
+            exact_differences = exact_differences && err == 0;
+        }
+    }
+    if (exact_differences) {
+        double det[exact::kDetTerms];
+        const int n = exact::det3_exact<false>(diff[0], diff[1], diff[2], det);
+        return expansion_sign(n, det);
+    }
     double bcd[exact::kDetTerms], acd[exact::kDetTerms], abd[exact::kDetTerms], abc[exact::kDetTerms];
     const int n1 = exact::det3_exact<false>(b, c, d, bcd);
     const int n2 = exact::det3_exact<false>(a, c, d, acd);
