@@ -83,83 +83,128 @@ struct Inputs {
     double max_coordinate;
 };
 
+// What sum_pieces gathers from a run of hits and cuts: joined in a fixed
+// tree (parallel_deterministic_reduce), so every run gives the same bits.
+struct PiecePart {
+    PieceSum volume;
+    AreaSum a_in_b, b_in_a;
+    VectorAreaSum b_normal;
+    void join(PiecePart& other) {
+        volume.integer += other.volume.integer;
+        volume.fractions.insert(volume.fractions.end(), std::make_move_iterator(other.volume.fractions.begin()),
+                                std::make_move_iterator(other.volume.fractions.end()));
+        a_in_b.merge(other.a_in_b);
+        b_in_a.merge(other.b_in_a);
+        b_normal.merge(other.b_normal);
+    }
+};
+
+// A hit of edge b -> c of op's triangle through other's triangle:
+// σ (1 - λ) det(a, b, c), 1 - λ = D_c / (D_c - D_b), and its area term.
+void add_edge_term(const Operand& op, const Operand& other, const EdgeHit& h, const Scale& scale, PieceSum& volume,
+                   AreaSum& area, VectorAreaSum* vector) {
+    if (h.edge != 1) return;
+    const IntPoint a = scale.of(op.corner(h.tri, 0)), b = scale.of(op.corner(h.tri, 1)), c = scale.of(op.corner(h.tri, 2));
+    const IntPoint s[3] = {scale.of(other.corner(h.other, 0)), scale.of(other.corner(h.other, 1)),
+                           scale.of(other.corner(h.other, 2))};
+    const mpz_class db = orient(s[0], s[1], s[2], b), dc = orient(s[0], s[1], s[2], c);
+    if (dc == 0) return;
+    const Geometry g = triangle_geometry(op.corner(h.tri, 0), op.corner(h.tri, 1), op.corner(h.tri, 2));
+    const double error = 8 * kU * g.normal_length + g.normal_error;
+    if (db == 0) {
+        volume.integer += h.sign * det3(a, b, c);
+        area.add(h.sign * g.normal_length, error);
+        if (vector != nullptr) vector->add(h.sign * g.normal_length, error, g);
+        return;
+    }
+    const mpz_class den = dc - db;
+    volume.add_fraction(h.sign * dc * det3(a, b, c), den);
+    const double term = h.sign * approx_ratio(dc, den, 0) * g.normal_length;
+    area.add(term, error);
+    if (vector != nullptr) vector->add(term, error, g);
+}
+
+// 2 × the area ±|(p - a) × (q - a)| of a cut's side in triangle (a, ·, ·)
+// of normal g, with its bound (M: the largest coordinate magnitude).
+void add_cut_area(const double* a, const std::array<double, 3>& p, const std::array<double, 3>& q, const Geometry& g,
+                  double M, AreaSum& area, VectorAreaSum* vector) {
+    const double u[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    const double v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+    const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double len = norm3(c), lu = norm3(u), lv = norm3(v);
+    const double along = c[0] * g.n[0] + c[1] * g.n[1] + c[2] * g.n[2];
+    double error = 6 * 16 * kU * (M * (lu + lv) + lu * lv + 4 * kU * M * M);
+    if (!(g.normal_length > 4 * g.normal_error)) error += 2 * len;  // the side may be misjudged
+    area.add(along >= 0 ? len : -len, error);
+    if (vector != nullptr) vector->add(along >= 0 ? len : -len, error, g);
+}
+
+// A cut segment P -> Q of triangles a (A) and b (B): det(a_t - a_s, P, Q)
+// and the two sides' areas.
+void add_cut_term(const Inputs& in, const Cut& cut, PiecePart& part, bool with_normal) {
+    const Scale& scale = in.scale;
+    const IntPoint at = scale.of(in.A.corner(cut.a, 0)), as = scale.of(in.B.corner(cut.b, 0));
+    auto end_point = [&](const CutEnd& e) {
+        const Operand& owner = e.of_b ? in.B : in.A;
+        const Operand& plane = e.of_b ? in.A : in.B;
+        const uint32_t t = e.of_b ? cut.b : cut.a, s = e.of_b ? cut.a : cut.b;
+        const double* pd = owner.corner(t, e.edge);
+        const double* qd = owner.corner(t, (e.edge + 1) % 3);
+        const IntPoint sp[3] = {scale.of(plane.corner(s, 0)), scale.of(plane.corner(s, 1)), scale.of(plane.corner(s, 2))};
+        return crossing_point(scale.of(pd), scale.of(qd), sp, pd, qd, scale);
+    };
+    const CrossPoint P = end_point(cut.start), Q = end_point(cut.end);
+    const IntPoint d = {at[0] - as[0], at[1] - as[1], at[2] - as[2]};
+    const mpz_class n = det3(d, P.num, Q.num);
+    const mpz_class den = P.den * Q.den;
+    if (den == 1)
+        part.volume.integer += n;
+    else
+        part.volume.add_fraction(n, den);
+    const double* a = in.A.corner(cut.a, 0);
+    const double* b = in.B.corner(cut.b, 0);
+    add_cut_area(a, P.xyz, Q.xyz, triangle_geometry(a, in.A.corner(cut.a, 1), in.A.corner(cut.a, 2)),
+                 in.max_coordinate, part.a_in_b, nullptr);
+    add_cut_area(b, Q.xyz, P.xyz, triangle_geometry(b, in.B.corner(cut.b, 1), in.B.corner(cut.b, 2)),
+                 in.max_coordinate, part.b_in_a, with_normal ? &part.b_normal : nullptr);
+}
+
 // The pieces' volume (integers and fractions; the whole triangles are the
 // caller's) and the areas of each operand's surface inside the other; with
-// b_normal, also the vector area of B's surface inside A.
+// b_normal, also the vector area of B's surface inside A. The terms in
+// parallel (their exact GMP arithmetic is most of the time), joined in a
+// fixed order.
 void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSum& area_b_in_a,
                 VectorAreaSum* b_normal = nullptr) {
-    const Scale& scale = in.scale;
-    // Crossings of edge b -> c: σ (1 - λ) det(a, b, c), 1 - λ = D_c / (D_c - D_b).
-    auto edge_terms = [&](const Operand& op, const Operand& other, const std::vector<EdgeHit>& hits, AreaSum& area,
-                          VectorAreaSum* vector) {
-        for (const EdgeHit& h : hits) {
-            if (h.edge != 1) continue;
-            const IntPoint a = scale.of(op.corner(h.tri, 0)), b = scale.of(op.corner(h.tri, 1)),
-                           c = scale.of(op.corner(h.tri, 2));
-            const IntPoint s[3] = {scale.of(other.corner(h.other, 0)), scale.of(other.corner(h.other, 1)),
-                                   scale.of(other.corner(h.other, 2))};
-            const mpz_class db = orient(s[0], s[1], s[2], b), dc = orient(s[0], s[1], s[2], c);
-            if (dc == 0) continue;
-            const Geometry g = triangle_geometry(op.corner(h.tri, 0), op.corner(h.tri, 1), op.corner(h.tri, 2));
-            const double error = 8 * kU * g.normal_length + g.normal_error;
-            if (db == 0) {
-                volume.integer += h.sign * det3(a, b, c);
-                area.add(h.sign * g.normal_length, error);
-                if (vector != nullptr) vector->add(h.sign * g.normal_length, error, g);
-                continue;
+    const std::vector<EdgeHit>& ha = in.cross.a_hits;
+    const std::vector<EdgeHit>& hb = in.cross.b_hits;
+    const std::vector<Cut>& cuts = in.cross.cuts;
+    const std::size_t n = ha.size() + hb.size() + cuts.size();
+    const bool with_normal = b_normal != nullptr;
+    PiecePart all = tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 64), PiecePart{},
+        [&](const tbb::blocked_range<std::size_t>& range, PiecePart part) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                if (i < ha.size())
+                    add_edge_term(in.A, in.B, ha[i], in.scale, part.volume, part.a_in_b, nullptr);
+                else if (i < ha.size() + hb.size())
+                    add_edge_term(in.B, in.A, hb[i - ha.size()], in.scale, part.volume, part.b_in_a,
+                                  with_normal ? &part.b_normal : nullptr);
+                else
+                    add_cut_term(in, cuts[i - ha.size() - hb.size()], part, with_normal);
             }
-            const mpz_class den = dc - db;
-            volume.add_fraction(h.sign * dc * det3(a, b, c), den);
-            const double term = h.sign * approx_ratio(dc, den, 0) * g.normal_length;
-            area.add(term, error);
-            if (vector != nullptr) vector->add(term, error, g);
-        }
-    };
-    edge_terms(in.A, in.B, in.cross.a_hits, area_a_in_b, nullptr);
-    edge_terms(in.B, in.A, in.cross.b_hits, area_b_in_a, b_normal);
-
-    // Cut segments: det(a_t - a_s, P, Q); areas ±|(P - a) × (Q - a)| per side.
-    const double M = in.max_coordinate;
-    auto cut_area = [&](const double* a, const std::array<double, 3>& p, const std::array<double, 3>& q,
-                        const Geometry& g, AreaSum& area, VectorAreaSum* vector) {
-        const double u[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-        const double v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
-        const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-        const double len = norm3(c), lu = norm3(u), lv = norm3(v);
-        const double along = c[0] * g.n[0] + c[1] * g.n[1] + c[2] * g.n[2];
-        double error = 6 * 16 * kU * (M * (lu + lv) + lu * lv + 4 * kU * M * M);
-        if (!(g.normal_length > 4 * g.normal_error)) error += 2 * len;  // the side may be misjudged
-        area.add(along >= 0 ? len : -len, error);
-        if (vector != nullptr) vector->add(along >= 0 ? len : -len, error, g);
-    };
-    for (const Cut& cut : in.cross.cuts) {
-        const IntPoint at = scale.of(in.A.corner(cut.a, 0)), as = scale.of(in.B.corner(cut.b, 0));
-        auto end_point = [&](const CutEnd& e) {
-            const Operand& owner = e.of_b ? in.B : in.A;
-            const Operand& plane = e.of_b ? in.A : in.B;
-            const uint32_t t = e.of_b ? cut.b : cut.a, s = e.of_b ? cut.a : cut.b;
-            const double* pd = owner.corner(t, e.edge);
-            const double* qd = owner.corner(t, (e.edge + 1) % 3);
-            const IntPoint sp[3] = {scale.of(plane.corner(s, 0)), scale.of(plane.corner(s, 1)),
-                                    scale.of(plane.corner(s, 2))};
-            return crossing_point(scale.of(pd), scale.of(qd), sp, pd, qd, scale);
-        };
-        const CrossPoint P = end_point(cut.start), Q = end_point(cut.end);
-        const IntPoint d = {at[0] - as[0], at[1] - as[1], at[2] - as[2]};
-        const mpz_class n = det3(d, P.num, Q.num);
-        const mpz_class den = P.den * Q.den;
-        if (den == 1) {
-            volume.integer += n;
-        } else {
-            volume.add_fraction(n, den);
-        }
-        const double* a = in.A.corner(cut.a, 0);
-        const double* b = in.B.corner(cut.b, 0);
-        cut_area(a, P.xyz, Q.xyz, triangle_geometry(a, in.A.corner(cut.a, 1), in.A.corner(cut.a, 2)), area_a_in_b,
-                 nullptr);
-        cut_area(b, Q.xyz, P.xyz, triangle_geometry(b, in.B.corner(cut.b, 1), in.B.corner(cut.b, 2)), area_b_in_a,
-                 b_normal);
-    }
+            return part;
+        },
+        [](PiecePart x, PiecePart y) {
+            x.join(y);
+            return x;
+        });
+    volume.integer += all.volume.integer;
+    volume.fractions.insert(volume.fractions.end(), std::make_move_iterator(all.volume.fractions.begin()),
+                            std::make_move_iterator(all.volume.fractions.end()));
+    area_a_in_b.merge(all.a_in_b);
+    area_b_in_a.merge(all.b_in_a);
+    if (b_normal != nullptr) b_normal->merge(all.b_normal);
 }
 
 // 6 × the volume of an operand's triangles (all, or those listed in `subset`).

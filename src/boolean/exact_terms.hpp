@@ -98,6 +98,10 @@ struct VectorAreaSum {
         if (!(g.normal_length > 0)) return;
         for (int k = 0; k < 3; ++k) sum[k].add(s * (g.n[k] / g.normal_length));
     }
+    void merge(const VectorAreaSum& other) {
+        for (int k = 0; k < 3; ++k) sum[k].merge(other.sum[k]);
+        bound += other.bound;
+    }
 };
 
 // The part of B's surface inside A, as intersection_given_windings can give
