@@ -52,25 +52,32 @@ constexpr double kU = 0x1p-53;
 
 // A crossing point num / den (den > 0) in units of 2^e0, and its double.
 struct CrossPoint {
-    IntPoint num;
-    mpz_class den;
+    ExactPoint at;
     std::array<double, 3> xyz;
+};
+
+// The integers one run of terms reuses (sum_pieces keeps one per run), so
+// that GMP allocates only while they grow.
+struct TermScratch {
+    IntPoint a, b, c, s[3], p, q, d, at, as;
+    DetScratch det;
+    mpz_class db, dc, dp, dq, n, den;
+    CrossPoint P, Q;
 };
 
 // Where segment p -> q crosses the plane of s: D_p q - D_q p over D_p - D_q;
 // exactly p (q) when D_p (D_q) is 0.
-CrossPoint crossing_point(const IntPoint& p, const IntPoint& q, const IntPoint* s, const double* pd,
-                          const double* qd, const Scale& scale) {
-    const mpz_class dp = orient(s[0], s[1], s[2], p), dq = orient(s[0], s[1], s[2], q);
-    ExactPoint e = plane_crossing(p, q, dp, dq);
-    CrossPoint x{std::move(e.num), std::move(e.den), {}};
-    if (dp == 0 || dq == 0) {
-        const double* v = dp == 0 ? pd : qd;
+void crossing_point(CrossPoint& x, const IntPoint& p, const IntPoint& q, const IntPoint* s, const double* pd,
+                    const double* qd, const Scale& scale, TermScratch& z) {
+    orient_into(z.dp, s[0], s[1], s[2], p, z.det);
+    orient_into(z.dq, s[0], s[1], s[2], q, z.det);
+    plane_crossing_into(x.at, p, q, z.dp, z.dq);
+    if (z.dp == 0 || z.dq == 0) {
+        const double* v = z.dp == 0 ? pd : qd;
         x.xyz = {v[0], v[1], v[2]};
-        return x;
+        return;
     }
-    for (int k = 0; k < 3; ++k) x.xyz[k] = approx_ratio(x.num[k], x.den, scale.e0);
-    return x;
+    for (int k = 0; k < 3; ++k) x.xyz[k] = approx_ratio(x.at.num[k], x.at.den, scale.e0);
 }
 
 struct Inputs {
@@ -102,24 +109,29 @@ struct PiecePart {
 // A hit of edge b -> c of op's triangle through other's triangle:
 // σ (1 - λ) det(a, b, c), 1 - λ = D_c / (D_c - D_b), and its area term.
 void add_edge_term(const Operand& op, const Operand& other, const EdgeHit& h, const Scale& scale, PieceSum& volume,
-                   AreaSum& area, VectorAreaSum* vector) {
+                   AreaSum& area, VectorAreaSum* vector, TermScratch& z) {
     if (h.edge != 1) return;
-    const IntPoint a = scale.of(op.corner(h.tri, 0)), b = scale.of(op.corner(h.tri, 1)), c = scale.of(op.corner(h.tri, 2));
-    const IntPoint s[3] = {scale.of(other.corner(h.other, 0)), scale.of(other.corner(h.other, 1)),
-                           scale.of(other.corner(h.other, 2))};
-    const mpz_class db = orient(s[0], s[1], s[2], b), dc = orient(s[0], s[1], s[2], c);
-    if (dc == 0) return;
+    scale.set(z.a, op.corner(h.tri, 0));
+    scale.set(z.b, op.corner(h.tri, 1));
+    scale.set(z.c, op.corner(h.tri, 2));
+    for (int i = 0; i < 3; ++i) scale.set(z.s[i], other.corner(h.other, i));
+    orient_into(z.db, z.s[0], z.s[1], z.s[2], z.b, z.det);
+    orient_into(z.dc, z.s[0], z.s[1], z.s[2], z.c, z.det);
+    if (z.dc == 0) return;
     const Geometry g = triangle_geometry(op.corner(h.tri, 0), op.corner(h.tri, 1), op.corner(h.tri, 2));
     const double error = 8 * kU * g.normal_length + g.normal_error;
-    if (db == 0) {
-        volume.integer += h.sign * det3(a, b, c);
+    det3_into(z.n, z.a, z.b, z.c, z.det.t);
+    if (h.sign < 0) mpz_neg(z.n.get_mpz_t(), z.n.get_mpz_t());
+    if (z.db == 0) {
+        volume.integer += z.n;
         area.add(h.sign * g.normal_length, error);
         if (vector != nullptr) vector->add(h.sign * g.normal_length, error, g);
         return;
     }
-    const mpz_class den = dc - db;
-    volume.add_fraction(h.sign * dc * det3(a, b, c), den);
-    const double term = h.sign * approx_ratio(dc, den, 0) * g.normal_length;
+    mpz_sub(z.den.get_mpz_t(), z.dc.get_mpz_t(), z.db.get_mpz_t());
+    mpz_mul(z.n.get_mpz_t(), z.n.get_mpz_t(), z.dc.get_mpz_t());
+    volume.add_fraction(z.n, z.den);
+    const double term = h.sign * approx_ratio(z.dc, z.den, 0) * g.normal_length;
     area.add(term, error);
     if (vector != nullptr) vector->add(term, error, g);
 }
@@ -141,31 +153,35 @@ void add_cut_area(const double* a, const std::array<double, 3>& p, const std::ar
 
 // A cut segment P -> Q of triangles a (A) and b (B): det(a_t - a_s, P, Q)
 // and the two sides' areas.
-void add_cut_term(const Inputs& in, const Cut& cut, PiecePart& part, bool with_normal) {
+void add_cut_term(const Inputs& in, const Cut& cut, PiecePart& part, bool with_normal, TermScratch& z) {
     const Scale& scale = in.scale;
-    const IntPoint at = scale.of(in.A.corner(cut.a, 0)), as = scale.of(in.B.corner(cut.b, 0));
-    auto end_point = [&](const CutEnd& e) {
+    auto end_point = [&](const CutEnd& e, CrossPoint& x) {
         const Operand& owner = e.of_b ? in.B : in.A;
         const Operand& plane = e.of_b ? in.A : in.B;
         const uint32_t t = e.of_b ? cut.b : cut.a, s = e.of_b ? cut.a : cut.b;
         const double* pd = owner.corner(t, e.edge);
         const double* qd = owner.corner(t, (e.edge + 1) % 3);
-        const IntPoint sp[3] = {scale.of(plane.corner(s, 0)), scale.of(plane.corner(s, 1)), scale.of(plane.corner(s, 2))};
-        return crossing_point(scale.of(pd), scale.of(qd), sp, pd, qd, scale);
+        for (int i = 0; i < 3; ++i) scale.set(z.s[i], plane.corner(s, i));
+        scale.set(z.p, pd);
+        scale.set(z.q, qd);
+        crossing_point(x, z.p, z.q, z.s, pd, qd, scale, z);
     };
-    const CrossPoint P = end_point(cut.start), Q = end_point(cut.end);
-    const IntPoint d = {at[0] - as[0], at[1] - as[1], at[2] - as[2]};
-    const mpz_class n = det3(d, P.num, Q.num);
-    const mpz_class den = P.den * Q.den;
-    if (den == 1)
-        part.volume.integer += n;
+    end_point(cut.start, z.P);
+    end_point(cut.end, z.Q);
+    scale.set(z.at, in.A.corner(cut.a, 0));
+    scale.set(z.as, in.B.corner(cut.b, 0));
+    for (int k = 0; k < 3; ++k) mpz_sub(z.d[k].get_mpz_t(), z.at[k].get_mpz_t(), z.as[k].get_mpz_t());
+    det3_into(z.n, z.d, z.P.at.num, z.Q.at.num, z.det.t);
+    mpz_mul(z.den.get_mpz_t(), z.P.at.den.get_mpz_t(), z.Q.at.den.get_mpz_t());
+    if (z.den == 1)
+        part.volume.integer += z.n;
     else
-        part.volume.add_fraction(n, den);
+        part.volume.add_fraction(z.n, z.den);
     const double* a = in.A.corner(cut.a, 0);
     const double* b = in.B.corner(cut.b, 0);
-    add_cut_area(a, P.xyz, Q.xyz, triangle_geometry(a, in.A.corner(cut.a, 1), in.A.corner(cut.a, 2)),
+    add_cut_area(a, z.P.xyz, z.Q.xyz, triangle_geometry(a, in.A.corner(cut.a, 1), in.A.corner(cut.a, 2)),
                  in.max_coordinate, part.a_in_b, nullptr);
-    add_cut_area(b, Q.xyz, P.xyz, triangle_geometry(b, in.B.corner(cut.b, 1), in.B.corner(cut.b, 2)),
+    add_cut_area(b, z.Q.xyz, z.P.xyz, triangle_geometry(b, in.B.corner(cut.b, 1), in.B.corner(cut.b, 2)),
                  in.max_coordinate, part.b_in_a, with_normal ? &part.b_normal : nullptr);
 }
 
@@ -184,14 +200,15 @@ void sum_pieces(const Inputs& in, PieceSum& volume, AreaSum& area_a_in_b, AreaSu
     PiecePart all = tbb::parallel_deterministic_reduce(
         tbb::blocked_range<std::size_t>(0, n, 64), PiecePart{},
         [&](const tbb::blocked_range<std::size_t>& range, PiecePart part) {
+            TermScratch z;
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 if (i < ha.size())
-                    add_edge_term(in.A, in.B, ha[i], in.scale, part.volume, part.a_in_b, nullptr);
+                    add_edge_term(in.A, in.B, ha[i], in.scale, part.volume, part.a_in_b, nullptr, z);
                 else if (i < ha.size() + hb.size())
                     add_edge_term(in.B, in.A, hb[i - ha.size()], in.scale, part.volume, part.b_in_a,
-                                  with_normal ? &part.b_normal : nullptr);
+                                  with_normal ? &part.b_normal : nullptr, z);
                 else
-                    add_cut_term(in, cuts[i - ha.size() - hb.size()], part, with_normal);
+                    add_cut_term(in, cuts[i - ha.size() - hb.size()], part, with_normal, z);
             }
             return part;
         },

@@ -42,31 +42,62 @@ Geometry triangle_geometry(const double* a, const double* b, const double* c) {
     return g;
 }
 
+// a0 (b1 c2 - b2 c1) + a1 (b2 c0 - b0 c2) + a2 (b0 c1 - b1 c0), each minor in t.
+void det3_into(mpz_class& out, const IntPoint& a, const IntPoint& b, const IntPoint& c, mpz_class& t) {
+    mpz_mul(t.get_mpz_t(), b[1].get_mpz_t(), c[2].get_mpz_t());
+    mpz_submul(t.get_mpz_t(), b[2].get_mpz_t(), c[1].get_mpz_t());
+    mpz_mul(out.get_mpz_t(), a[0].get_mpz_t(), t.get_mpz_t());
+    mpz_mul(t.get_mpz_t(), b[2].get_mpz_t(), c[0].get_mpz_t());
+    mpz_submul(t.get_mpz_t(), b[0].get_mpz_t(), c[2].get_mpz_t());
+    mpz_addmul(out.get_mpz_t(), a[1].get_mpz_t(), t.get_mpz_t());
+    mpz_mul(t.get_mpz_t(), b[0].get_mpz_t(), c[1].get_mpz_t());
+    mpz_submul(t.get_mpz_t(), b[1].get_mpz_t(), c[0].get_mpz_t());
+    mpz_addmul(out.get_mpz_t(), a[2].get_mpz_t(), t.get_mpz_t());
+}
+
 mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c) {
-    return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
-           a[2] * (b[0] * c[1] - b[1] * c[0]);
+    mpz_class out, t;
+    det3_into(out, a, b, c, t);
+    return out;
+}
+
+void orient_into(mpz_class& out, const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x,
+                 DetScratch& d) {
+    for (int k = 0; k < 3; ++k) {
+        mpz_sub(d.u[k].get_mpz_t(), s1[k].get_mpz_t(), s0[k].get_mpz_t());
+        mpz_sub(d.v[k].get_mpz_t(), s2[k].get_mpz_t(), s0[k].get_mpz_t());
+        mpz_sub(d.w[k].get_mpz_t(), x[k].get_mpz_t(), s0[k].get_mpz_t());
+    }
+    det3_into(out, d.u, d.v, d.w, d.t);
 }
 
 mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x) {
-    const IntPoint u = {s1[0] - s0[0], s1[1] - s0[1], s1[2] - s0[2]};
-    const IntPoint v = {s2[0] - s0[0], s2[1] - s0[1], s2[2] - s0[2]};
-    const IntPoint w = {x[0] - s0[0], x[1] - s0[1], x[2] - s0[2]};
-    return det3(u, v, w);
+    mpz_class out;
+    DetScratch d;
+    orient_into(out, s0, s1, s2, x, d);
+    return out;
+}
+
+void plane_crossing_into(ExactPoint& x, const IntPoint& p, const IntPoint& q, const mpz_class& dp, const mpz_class& dq) {
+    if (dp == 0 || dq == 0) {
+        x.num = dp == 0 ? p : q;
+        x.den = 1;
+        return;
+    }
+    mpz_sub(x.den.get_mpz_t(), dp.get_mpz_t(), dq.get_mpz_t());
+    for (int k = 0; k < 3; ++k) {
+        mpz_mul(x.num[k].get_mpz_t(), dp.get_mpz_t(), q[k].get_mpz_t());
+        mpz_submul(x.num[k].get_mpz_t(), dq.get_mpz_t(), p[k].get_mpz_t());
+    }
+    if (x.den < 0) {
+        mpz_neg(x.den.get_mpz_t(), x.den.get_mpz_t());
+        for (auto& c : x.num) mpz_neg(c.get_mpz_t(), c.get_mpz_t());
+    }
 }
 
 ExactPoint plane_crossing(const IntPoint& p, const IntPoint& q, const mpz_class& dp, const mpz_class& dq) {
     ExactPoint x;
-    if (dp == 0 || dq == 0) {
-        x.num = dp == 0 ? p : q;
-        x.den = 1;
-        return x;
-    }
-    x.den = dp - dq;
-    for (int k = 0; k < 3; ++k) x.num[k] = dp * q[k] - dq * p[k];
-    if (x.den < 0) {
-        x.den = -x.den;
-        for (auto& c : x.num) c = -c;
-    }
+    plane_crossing_into(x, p, q, dp, dq);
     return x;
 }
 

@@ -34,6 +34,10 @@ struct Scale {
     int e0 = 0;
     mpz_class of(double x) const { return mpz_class(std::ldexp(x, -e0)); }
     IntPoint of(const double* p) const { return {of(p[0]), of(p[1]), of(p[2])}; }
+    // of(p) into existing integers (no allocation once they are large enough).
+    void set(IntPoint& out, const double* p) const {
+        for (int k = 0; k < 3; ++k) mpz_set_d(out[k].get_mpz_t(), std::ldexp(p[k], -e0));
+    }
 };
 
 // The exponent of the lowest set bit of x != 0.
@@ -48,6 +52,18 @@ mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c);
 // orient(s0, s1, s2, x) = det(s1 - s0, s2 - s0, x - s0)
 mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x);
 
+// The integers det3 and orient use, kept from call to call by one thread:
+// GMP then allocates only while they grow (most terms of a boolean reuse them).
+struct DetScratch {
+    IntPoint u, v, w;
+    mpz_class t;
+};
+// out = det3(a, b, c); out must not be t.
+void det3_into(mpz_class& out, const IntPoint& a, const IntPoint& b, const IntPoint& c, mpz_class& t);
+// out = orient(s0, s1, s2, x).
+void orient_into(mpz_class& out, const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x,
+                 DetScratch& scratch);
+
 // Where segment p -> q crosses the plane with orient values D_p, D_q
 // (opposite signs, or one zero): num / den = (D_p q - D_q p) / (D_p - D_q)
 // with den > 0; exactly p (or q), den = 1, when D_p (or D_q) is 0.
@@ -56,6 +72,8 @@ struct ExactPoint {
     mpz_class den;
 };
 ExactPoint plane_crossing(const IntPoint& p, const IntPoint& q, const mpz_class& dp, const mpz_class& dq);
+// The same into x (whose integers are reused).
+void plane_crossing_into(ExactPoint& x, const IntPoint& p, const IntPoint& q, const mpz_class& dp, const mpz_class& dq);
 
 // n / d 2^e in double (relative error below 2^-51), without overflow on the way.
 double approx_ratio(const mpz_class& n, const mpz_class& d, int e);
