@@ -31,13 +31,40 @@
 
 namespace polyvol::boolean {
 
+namespace {
+
+// The scale of the vertices the triangles use (each once, not once per corner).
+CoordinateScale used_vertex_scale(const Operand& op) {
+    std::vector<uint8_t> used(op.mesh.vertex_count(), 0);
+    for (const uint32_t v : op.tri) used[v] = 1;
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, used.size(), 4096), CoordinateScale{},
+        [&](const auto& range, CoordinateScale scale) {
+            for (std::size_t v = range.begin(); v != range.end(); ++v) {
+                if (used[v] == 0) continue;
+                for (int k = 0; k < 3; ++k) {
+                    const double x = op.point(static_cast<uint32_t>(v))[k];
+                    scale.in_range = scale.in_range && in_predicate_range(x);
+                    if (x != 0) scale.e0 = std::min(scale.e0, lowest_bit_exponent(x));
+                    scale.max_coordinate = std::max(scale.max_coordinate, std::fabs(x));
+                }
+            }
+            return scale;
+        },
+        [](CoordinateScale x, const CoordinateScale& y) {
+            x.widen(y);
+            return x;
+        });
+}
+
+}  // namespace
+
 void finish_operand(Operand& op) {
     const std::size_t n = op.triangles();
     op.degenerate.resize(n);
     op.box.resize(6 * n);
     struct Extent {
         std::array<double, 6> bounds{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
-        CoordinateScale scale;
     };
     const Extent all = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, n, 4096), Extent{},
@@ -52,12 +79,6 @@ void finish_operand(Operand& op) {
                     op.box[6 * t + 3 + k] = box_above(hi);
                     e.bounds[k] = std::min(e.bounds[k], lo);
                     e.bounds[3 + k] = std::max(e.bounds[3 + k], hi);
-                    for (int i = 0; i < 3; ++i) {
-                        const double x = c[i][k];
-                        e.scale.in_range = e.scale.in_range && in_predicate_range(x);
-                        if (x != 0) e.scale.e0 = std::min(e.scale.e0, lowest_bit_exponent(x));
-                        e.scale.max_coordinate = std::max(e.scale.max_coordinate, std::fabs(x));
-                    }
                 }
             }
             return e;
@@ -67,11 +88,10 @@ void finish_operand(Operand& op) {
                 x.bounds[k] = std::min(x.bounds[k], y.bounds[k]);
                 x.bounds[3 + k] = std::max(x.bounds[3 + k], y.bounds[3 + k]);
             }
-            x.scale.widen(y.scale);
             return x;
         });
     op.bounds = all.bounds;
-    op.scale = all.scale;
+    op.scale = used_vertex_scale(op);
 }
 
 Operand make_operand(const MeshView& view, int32_t shift) {
@@ -79,13 +99,18 @@ Operand make_operand(const MeshView& view, int32_t shift) {
     op.body_shift = {shift};
     op.mesh = welded(view);
     const MeshView m = op.mesh.view();
-    op.tri.reserve(3 * m.triangle_count());
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-        const auto face = m.face(f);
-        for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-            op.tri.push_back(face[0]);
-            op.tri.push_back(face[i]);
-            op.tri.push_back(face[i + 1]);
+    if (m.all_triangles()) {
+        op.tri = std::move(op.mesh.indices);  // the fan triangles are the faces
+        op.mesh.indices.clear();
+    } else {
+        op.tri.reserve(3 * m.triangle_count());
+        for (std::size_t f = 0; f < m.face_count(); ++f) {
+            const auto face = m.face(f);
+            for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+                op.tri.push_back(face[0]);
+                op.tri.push_back(face[i]);
+                op.tri.push_back(face[i + 1]);
+            }
         }
     }
     finish_operand(op);

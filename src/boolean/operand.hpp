@@ -49,7 +49,8 @@ struct CoordinateScale {
 // each triangle, and each body translated by shift(body) δ for the symbolic
 // perturbation (predicates.hpp). Bodies share no vertex.
 struct Operand {
-    Mesh mesh;                       // welded(input): one vertex per position
+    Mesh mesh;                       // welded(input): one vertex per position (make_operand moves
+                                     // a triangle mesh's indices into tri: read tri, not mesh's faces)
     std::vector<uint32_t> tri;       // 3 per fan triangle
     std::vector<uint8_t> degenerate; // 1 where (b - a) × (c - a) == 0 exactly
     // 6 per triangle: xmin ymin zmin xmax ymax zmax, rounded outward to
