@@ -305,11 +305,13 @@ struct CellGrid {
             per_unit[k] = std::isfinite(d) ? d : 0;  // a subnormal extent: one cell along k
         }
     }
-    // Cell k-index of coordinate x: floor((x - lo) · dims / extent), clamped.
+    // Cell k-index of coordinate x: floor((x - lo) · dims / extent), clamped
+    // to the grid (a truncation, which is the floor where it is not clamped).
     uint32_t index(int k, double x) const {
-        if (!(per_unit[k] > 0)) return 0;
-        const double f = std::floor((x - box[k]) * per_unit[k]);
-        return static_cast<uint32_t>(std::clamp(f, 0.0, static_cast<double>(dims[k] - 1)));
+        const double f = (x - box[k]) * per_unit[k];
+        if (!(f > 0)) return 0;
+        if (f >= dims[k]) return dims[k] - 1;
+        return static_cast<uint32_t>(f);
     }
     std::size_t cells() const { return std::size_t{dims[0]} * dims[1] * dims[2]; }
     std::size_t cell(uint32_t i, uint32_t j, uint32_t k) const { return (std::size_t{i} * dims[1] + j) * dims[2] + k; }
