@@ -390,9 +390,14 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
     for (uint32_t t : b_near) grid.for_cells(&B.box[6 * std::size_t{t}], [&](std::size_t c) { ++start[c + 1]; });
     for (std::size_t c = 0; c < grid.cells(); ++c) start[c + 1] += start[c];
     std::vector<uint32_t> binned(start.back());
+    std::vector<float> binned_box(6 * start.back());  // each entry's box beside it: read in order
     {
         std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-        for (uint32_t t : b_near) grid.for_cells(&B.box[6 * std::size_t{t}], [&](std::size_t c) { binned[fill[c]++] = t; });
+        for (uint32_t t : b_near)
+            grid.for_cells(&B.box[6 * std::size_t{t}], [&](std::size_t c) {
+                std::copy_n(&B.box[6 * std::size_t{t}], 6, &binned_box[6 * fill[c]]);
+                binned[fill[c]++] = t;
+            });
     }
     // One operand: only cells holding triangles of two or more bodies can
     // hold a pair (most cells hold one body's surface only).
@@ -419,11 +424,11 @@ Crossings find_crossings(const Operand& A, const Operand& B, Pairs pairs) {
                 for (std::size_t i = start[c]; i < start[c + 1]; ++i) {
                     const uint32_t tb = binned[i];
                     if (same && tb <= ta) continue;
+                    const float* other = &binned_box[6 * i];
+                    if (!boxes_meet(box, other)) continue;
                     if (same && (B.body(tb) == A.body(ta)) != within) continue;
                     const bool neighbours = within && A.share_corner(ta, tb);
                     if (neighbours && !strict) continue;
-                    const float* other = &B.box[6 * std::size_t{tb}];
-                    if (!boxes_meet(box, other)) continue;
                     if (grid.cell(grid.index(0, std::max(box[0], other[0])), grid.index(1, std::max(box[1], other[1])),
                                   grid.index(2, std::max(box[2], other[2]))) != c)
                         continue;
