@@ -294,6 +294,12 @@ private:
         auto it = std::lower_bound(hits_.begin(), hits_.end(), probe, [](const EdgeHit& x, const EdgeHit& y) {
             return std::tie(x.tri, x.edge) < std::tie(y.tri, y.edge);
         });
+        if (it == hits_.end() || it->tri != t || it->edge != e) {  // nothing crosses the edge (most edges)
+            static const std::vector<WalkEntry> none;
+            if (w_[g_.tri[3 * t + e]] != w_[g_.tri[3 * t + (e + 1) % 3]])
+                throw Contradiction("boolean: windings along an edge disagree with its end (a shell crosses itself?)");
+            return none;
+        }
         for (; it != hits_.end() && it->tri == t && it->edge == e; ++it) {
             Lambda l{{t, static_cast<uint8_t>(e), it->other}, it->sign, 0, 0};
             mpz_class dq;
