@@ -9,7 +9,9 @@
 #include <benchmark/benchmark.h>
 
 #include "common/generate.hpp"
+#include "common/real_pairs.hpp"
 #include "polyvol/boolean.hpp"
+#include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/topology.hpp"
 
@@ -114,5 +116,32 @@ BENCHMARK(SelfCrossings)
     ->UseRealTime();
 
 BENCHMARK(BooleanSpheres)->Arg(20000)->Arg(100000)->Arg(500000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// BooleanPairs: the real pairs of the CGAL oracle test (common/real_pairs.hpp),
+// in process: boolean_volumes on a corpus part and a moved copy of it.
+// part: the index in kRealParts; move: 0 exact offset, 1 exact offset along x
+// (coplanar faces), 2 generic rotation.
+constexpr const char* kRealParts[] = {
+    "meshes/netgen-doc/hinge.stl",         "meshes/prusa-slicer/printbed-v2-250.stl", "meshes/gmsh-doc/t13_data.stl.gz",
+    "meshes/cura/FelixPro2_platform.obj",  "meshes/stl-models/gearwheel.ascii.stl",   "meshes/prusa-slicer/torus.stl",
+    "meshes/libcgal-demo/armadillo.off"};
+void BooleanPairs(benchmark::State& state) {
+    const polyvol::Mesh part =
+        polyvol::read_mesh_file(std::string(POLYVOL_CORPUS_DIR) + "/" + kRealParts[state.range(0)]).mesh;
+    const auto [a, b] = polyvol::test::real_pair(part, static_cast<polyvol::test::Move>(state.range(1)));
+    polyvol::BooleanVolumes r;
+    for (auto _ : state) {
+        r = polyvol::boolean_volumes(a.view(), b.view());
+        benchmark::DoNotOptimize(r.intersection);
+    }
+    if (r.status != polyvol::BooleanStatus::ok) state.SkipWithError(polyvol::boolean_status_message(r.status));
+    state.counters["crossing_pairs"] = static_cast<double>(r.crossing_pairs);
+    state.counters["triangles"] = static_cast<double>(r.triangles_a + r.triangles_b);
+}
+BENCHMARK(BooleanPairs)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {0, 1, 2}})
+    ->ArgNames({"part", "move"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

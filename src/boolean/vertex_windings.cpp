@@ -4,7 +4,7 @@
 // Along an edge x -> y the winding number w of a closed surface changes by
 // the signed count of its triangles the edge crosses (+1 entering the solid):
 // w(y) = w(x) + k(x, y). Almost every edge crosses nothing (k = 0): a
-// union–find over those edges, in parallel, gives the parts of one winding;
+// union–find over those edges gives the parts of one winding;
 // a union–find with offsets relates the parts over the few crossed edges
 // (and finds a contradiction there: a body that is not closed). Each group
 // of related parts then needs one value: 0 at a vertex outside the other
@@ -17,13 +17,13 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <climits>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
 
 #include "boolean/operand.hpp"
+#include "core/union_find.hpp"
 #include "boolean/predicates.hpp"
 #include "boolean/symbolic.hpp"
 
@@ -78,39 +78,6 @@ private:
     std::vector<uint32_t> parent_;
     std::vector<int64_t> offset_;
     std::vector<uint32_t> size_;
-};
-
-// Union–find that many threads may unite in at once: a root is linked
-// under another by compare-and-swap, always the larger under the smaller,
-// so each part's final root is its smallest vertex whatever the threads'
-// order (parent pointers only decrease: no cycles, and find ends).
-class Parts {
-public:
-    explicit Parts(std::size_t n) : parent_(n) {
-        for (std::size_t v = 0; v < n; ++v) parent_[v].store(static_cast<uint32_t>(v), std::memory_order_relaxed);
-    }
-    uint32_t find(uint32_t v) {
-        for (;;) {
-            uint32_t p = parent_[v].load(std::memory_order_relaxed);
-            if (p == v) return v;
-            const uint32_t g = parent_[p].load(std::memory_order_relaxed);
-            if (g != p) parent_[v].compare_exchange_weak(p, g, std::memory_order_relaxed);  // path halving
-            v = g;
-        }
-    }
-    void unite(uint32_t x, uint32_t y) {
-        for (;;) {
-            x = find(x);
-            y = find(y);
-            if (x == y) return;
-            if (x < y) std::swap(x, y);
-            uint32_t expected = x;
-            if (parent_[x].compare_exchange_strong(expected, y, std::memory_order_relaxed)) return;
-        }
-    }
-
-private:
-    std::vector<std::atomic<uint32_t>> parent_;
 };
 
 bool strictly_outside(const double* p, const std::array<double, 6>& box) {
@@ -261,28 +228,26 @@ std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, 
     std::vector<uint8_t> crossed_edges(nt, 0);  // bit e: edge e of the triangle is in `crossed`
     for (const auto& [edge, k] : crossed) crossed_edges[edge / 3] |= uint8_t(1u << (edge % 3));
 
-    // Parts of equal winding: the vertices joined by uncrossed edges.
-    Parts parts(nv);
-    std::vector<std::atomic<uint8_t>> used(nv);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const auto& range) {
-        for (std::size_t t = range.begin(); t != range.end(); ++t)
-            for (int e = 0; e < 3; ++e) {
-                const uint32_t x = self.tri[3 * t + e], y = self.tri[3 * t + (e + 1) % 3];
-                used[x].store(1, std::memory_order_relaxed);
-                if (!(crossed_edges[t] >> e & 1)) parts.unite(x, y);
-            }
-    });
-    std::vector<uint32_t> part(nv);  // the part's root (its smallest vertex)
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(nv), 4096), [&](const auto& range) {
-        for (uint32_t v = range.begin(); v != range.end(); ++v) part[v] = parts.find(v);
-    });
+    // Parts of equal winding: the vertices joined by uncrossed edges. One
+    // thread: a concurrent union–find was slower on two cores, its threads
+    // writing the same cache lines wherever the vertex order is not spatial.
+    core::UnionFind parts(nv);
+    std::vector<uint8_t> used(nv, 0);
+    for (std::size_t t = 0; t < nt; ++t)
+        for (int e = 0; e < 3; ++e) {
+            const uint32_t x = self.tri[3 * t + e], y = self.tri[3 * t + (e + 1) % 3];
+            used[x] = 1;
+            if (!(crossed_edges[t] >> e & 1)) parts.unite(x, y);
+        }
+    std::vector<uint32_t> part(nv);  // the part's root
+    for (uint32_t v = 0; v < nv; ++v) part[v] = parts.find(v);
 
     // The parts related by the crossed edges: w(y) - w(x) = k between their
     // parts, in an offset forest over the parts' roots (few: those the
     // crossed edges touch stand apart, the rest are their own groups).
     std::vector<uint32_t> roots;
     for (uint32_t v = 0; v < nv; ++v)
-        if (part[v] == v && used[v].load(std::memory_order_relaxed) != 0) roots.push_back(v);
+        if (part[v] == v && used[v] != 0) roots.push_back(v);
     auto group_of = [&](uint32_t v) {
         return static_cast<uint32_t>(std::lower_bound(roots.begin(), roots.end(), part[v]) - roots.begin());
     };
@@ -319,7 +284,7 @@ std::vector<int32_t> vertex_windings(const Operand& self, const Operand& other, 
     };
     for (const WindingSeed& seed : seeds)  // bodies crossing themselves: their own part too
         settle(seed.vertex, ray(seed.vertex) + seed.own);
-    auto is_used = [&](uint32_t v) { return used[v].load(std::memory_order_relaxed) != 0; };
+    auto is_used = [&](uint32_t v) { return used[v] != 0; };
     const bool far_away_exists = other.triangles() > 0;
     for (uint32_t v = 0; v < nv && unknown > 0; ++v)
         if (is_used(v) && (!far_away_exists || (!same && strictly_outside(self.point(v), other.bounds)))) settle(v, 0);

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "boolean_oracle/cgal_support.hpp"
+#include "common/real_pairs.hpp"
 #include "exact/rational.hpp"
 #include "polyvol/boolean.hpp"
 #include "polyvol/io.hpp"
@@ -238,57 +239,15 @@ INSTANTIATE_TEST_SUITE_P(Corpus, BooleanCgalOracleCorpus,
 
 // ---- Real pairs (issue #36) ------------------------------------------------
 //
-// Corpus parts against copies of themselves: moved by an exact offset (B is
-// A translated exactly, so |A| = |B| bit for bit), by an exact offset along
-// x only (faces parallel to the offset stay exactly coplanar: CAD parts then
-// meet in coplanar faces everywhere, the symbolic perturbation's case), and
-// rotated about a generic axis and moved (every coordinate rounded: B is
-// another mesh). For an exact offset the part's coordinates are first
-// snapped to multiples of 2^E, E = 40 bits below its largest coordinate, so
-// that every x + d is a double. Each pair is checked against CGAL bit for
-// bit and against polyvol's own independent identities: the solid route
+// Corpus parts against copies of themselves (common/real_pairs.hpp: an exact
+// offset, an exact offset along x with coplanar faces everywhere, a generic
+// rotation). Each pair is checked against CGAL bit for bit and against
+// polyvol's own independent identities: the solid route
 // (solid_boolean_volumes: three solids, no one-pass pieces) gives the same
 // bits, swapping the operands swaps A − B and B − A, and moving both by an
 // exact offset changes nothing.
 
-enum class Move { offset, axis_offset, rotation };
-
-Vec3 size_of(const Mesh& m) {
-    Vec3 lo = {m.positions[0], m.positions[1], m.positions[2]}, hi = lo;
-    for (std::size_t i = 0; i < m.positions.size(); ++i) {
-        lo[i % 3] = std::min(lo[i % 3], m.positions[i]);
-        hi[i % 3] = std::max(hi[i % 3], m.positions[i]);
-    }
-    return {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
-}
-
-// The exponent E of the grid snapped() puts m on: 40 bits below its largest coordinate.
-int snap_exponent(const Mesh& m) {
-    double largest = 0;
-    for (const double x : m.positions) largest = std::max(largest, std::fabs(x));
-    return std::ilogb(largest) - 40;
-}
-
-Mesh snapped(const Mesh& m, int e) {
-    Mesh out = m;
-    for (double& x : out.positions) x = std::ldexp(std::nearbyint(std::ldexp(x, -e)), e);
-    return out;
-}
-
-// f · size, rounded to a multiple of 2^e.
-Vec3 offset_on_grid(const Vec3& f, const Vec3& size, int e) {
-    Vec3 d;
-    for (int k = 0; k < 3; ++k) d[k] = std::ldexp(std::nearbyint(std::ldexp(f[k] * size[k], -e)), e);
-    return d;
-}
-
-// m + d, asserting every coordinate sum is a double (no rounding).
-Mesh translated_exactly(const Mesh& m, const Vec3& d) {
-    Mesh out = translated(m, d);
-    for (std::size_t i = 0; i < m.positions.size(); ++i)
-        EXPECT_EQ(out.positions[i] - d[i % 3], m.positions[i]) << "the offset is not exact at coordinate " << i;
-    return out;
-}
+using test::Move;
 
 bool same_bits(double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; }
 
@@ -310,21 +269,13 @@ TEST_P(BooleanRealPairs, MatchCgalAndTheirIdentities) {
     ASSERT_TRUE(std::filesystem::exists(file)) << file;
     const Mesh part = read_mesh_file(file.string()).mesh;
     ASSERT_GT(part.vertex_count(), 0u);
-    const Vec3 size = size_of(part);
-    const int e = snap_exponent(part);
-    Mesh a, b;
-    if (move == Move::rotation) {
-        a = part;
-        Vec3 centre{};
-        for (std::size_t i = 0; i < part.positions.size(); ++i) centre[i % 3] += part.positions[i] / double(part.vertex_count());
-        // About the centre: rotate(p - c) + c + 0.31 size_x e_x + ...
-        const Mesh moved = translated(part, {-centre[0], -centre[1], -centre[2]});
-        b = transformed(moved, {0.42, 0.77, -0.31}, 0.37,
-                        {centre[0] + 0.31 * size[0], centre[1] + 0.17 * size[1], centre[2] + 0.23 * size[2]});
-    } else {
-        a = snapped(part, e);
-        const Vec3 f = move == Move::offset ? Vec3{0.31, 0.17, 0.23} : Vec3{0.25, 0, 0};
-        b = translated_exactly(a, offset_on_grid(f, size, e));
+    const auto [a, b] = test::real_pair(part, move);
+    const int e = test::snap_exponent(part);
+    const std::array<double, 3> size = test::size_of(part);
+    if (move != Move::rotation) {
+        const std::array<double, 3> f = move == Move::offset ? std::array<double, 3>{0.31, 0.17, 0.23}
+                                                              : std::array<double, 3>{0.25, 0, 0};
+        ASSERT_TRUE(test::moved_exactly(a, b, test::offset_on_grid(f, size, e))) << "the offset is not exact";
     }
     std::string why;
     const auto ca = to_cgal(a, why), cb = to_cgal(b, why);
@@ -340,10 +291,11 @@ TEST_P(BooleanRealPairs, MatchCgalAndTheirIdentities) {
     }
     expect_same_volumes(r, solid_boolean_volumes(a.view(), b.view()), false, "the solid route");
     expect_same_volumes(r, boolean_volumes(b.view(), a.view()), true, "B and A swapped");
-    const Vec3 far = offset_on_grid({8, -4, 2}, size, e);
     if (move != Move::rotation) {  // both moved by an exact offset: the same solids, moved
-        expect_same_volumes(r, boolean_volumes(translated_exactly(a, far).view(), translated_exactly(b, far).view()),
-                            false, "both moved exactly");
+        const std::array<double, 3> far = test::offset_on_grid({8, -4, 2}, size, e);
+        const Mesh fa = test::moved(a, far), fb = test::moved(b, far);
+        ASSERT_TRUE(test::moved_exactly(a, fa, far) && test::moved_exactly(b, fb, far));
+        expect_same_volumes(r, boolean_volumes(fa.view(), fb.view()), false, "both moved exactly");
     }
 }
 
