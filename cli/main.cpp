@@ -27,12 +27,14 @@
 #include "commands/ndim.hpp"
 #include "commands/overlap.hpp"
 #include "grammar.hpp"
+#include "memory.hpp"
 #include "output/format.hpp"
 #include "worker_warm_up.hpp"
 
 using namespace polyvol::cli;
 
 int main(int argc, char** argv) {
+    polyvol::cli::keep_freed_memory();
     CLI::App app{"polyvol: exact volume, area, centroid, inertia and topology of polyhedral meshes.\n"
                  "Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid for the request "
                  "(check: not a closed 2-cycle)."};

@@ -9,6 +9,13 @@
 
 namespace polyvol::cli {
 
+// For a command that runs once and exits: the allocator keeps memory freed
+// during the run for the next allocations instead of handing it back to the
+// system, so arrays freed by one stage are reused by the next without a page
+// fault per 4 KiB (glibc's mallopt: no trimming, mmap only above 256 MiB;
+// nothing elsewhere). docs/benchmarks.md, "The command's allocator".
+void keep_freed_memory();
+
 // Physical memory in bytes (sysconf), 0 when unknown.
 uint64_t physical_memory();
 
