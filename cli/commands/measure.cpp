@@ -131,6 +131,7 @@ int run(Command command, const MeasureCommandOptions& c) {
     // The table's figures (the library streams a binary STL for them when it can).
     request.table_only = command == Command::volume && (!c.json || request.volume_only || c.stream);
     request.mesh_counts = c.json && !c.stream;
+    request.stream_any_size = c.stream;
     request.edge_counts = !(command == Command::volume && !c.json);  // the table: closedness by fingerprint
     request.moments_bounded = command == Command::volume && !c.json;
     if (request.table_only) {
@@ -187,8 +188,9 @@ void add_measure_commands(CLI::App& app, MeasureCommands& c) {
     c.volume = app.add_subcommand("volume", "Volume, area and centroid, one row per file");
     add_measure_options(c.volume, c.volume_opts);
     c.volume->add_flag("--stream", c.volume_opts.stream,
-                     "With --json: only the table's figures (volume, area, centroid, closedness), so that a binary "
-                     "STL is streamed in constant memory, as for the table");
+                     "Only the table's figures (volume, area, centroid, closedness; with --json too), a binary STL "
+                     "streamed in constant memory whatever its size (by default only above 250000 triangles): its "
+                     "shells are then not checked for overlap, the figures are their sums");
     c.volume->add_flag("--volume-only", c.volume_opts.volume_only,
                      "Only the volume with its guarantee (and the closedness check), in the table and the JSON: "
                      "the fastest path, e.g. a third less work per triangle for a streamed binary STL");

@@ -23,7 +23,7 @@ struct MeasureCommandOptions {
     std::string units, to;     // --units, --to
     std::string mass_unit = "kg";  // --mass-unit (with a density that has a unit)
     std::string scale = "1";   // --scale (its text: whether it is exact)
-    bool stream = false;       // volume --stream: the JSON has the table's figures (a binary STL streams)
+    bool stream = false;       // volume --stream: the table's figures, a binary STL streamed whatever its size
     bool volume_only = false;  // volume --volume-only
     bool solid = false;        // volume/measure --solid: the full overlap and self-crossing check
     SolidFlags solid_flags;    // --orient, --weld-tolerance, --signed

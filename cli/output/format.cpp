@@ -13,8 +13,12 @@ namespace polyvol::cli {
 std::string shortest(double v) {
     if (std::isnan(v)) return "nan";
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    char buf[64];
-    auto res = std::to_chars(buf, buf + sizeof buf, v);
+    char buf[400];
+    // The shortest digits that read back as v; positional in [1e-4, 1e15)
+    // (1000000, not 1e+06), as significant_text writes rounded values.
+    const double a = std::fabs(v);
+    const auto format = a >= 1e-4 && a < 1e15 ? std::chars_format::fixed : std::chars_format::general;
+    auto res = std::to_chars(buf, buf + sizeof buf, v, format);
     return std::string(buf, res.ptr);
 }
 

@@ -16,7 +16,8 @@ namespace polyvol::cli {
 using polyvol::Exit;
 using polyvol::json_number;
 
-// Shortest decimal that reads back as the same double ("nan", "inf" spelled out).
+// Shortest decimal that reads back as the same double, positional in [1e-4,
+// 1e15) ("nan", "inf" spelled out).
 std::string shortest(double v);
 // v as the tables show it: the digits its guarantee supports, down to the
 // leading digit of abs_error (abs_error 0: correctly rounded, every digit of

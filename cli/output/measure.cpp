@@ -151,7 +151,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
     else
         out << "volume" << in(unit_power(unit, 3)) << "\n";
     bool any_rounded = false, any_bound = false, any_fingerprint = false, any_checked = false;
-    std::string streamed_notes, figure_notes, overlap_notes, notes;
+    std::string figure_notes, overlap_notes, notes;
     const auto centroid_text = [&](const std::array<double, 3>& c, double error) {
         return "(" + number_text(c[0], error, digits) + ", " + number_text(c[1], error, digits) + ", " +
                number_text(c[2], error, digits) + ")";
@@ -163,7 +163,9 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
             notes += "  " + r.file + ": no faces (a point cloud, or an empty file?): nothing to measure\n";
         if (r.policy.oriented && r.policy.oriented->orientable) notes += "  " + r.file + ": " + orient_sentence(*r.policy.oriented) + "\n";
         const std::string tris = r.loaded || r.streamed ? std::to_string(r.triangles) : "-";
-        if (r.streamed) streamed_notes += "  " + r.file + "\n";
+        if (r.streamed)
+            notes += "  " + r.file + ": streamed: its shells were not checked for overlap, so the figures are "
+                     "the shells' sums (--solid checks)\n";
         out << pad(r.file, name_w) << "  " << pad(tris, 10) << "  ";
         if (!r.mass) {
             out << (r.exit_code == Exit::unreadable ? "unreadable"
@@ -223,10 +225,6 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
             out << "Closed 2-cycle checked by a randomized edge fingerprint (an open surface passes with probability "
                    "< 2^-113); a file it finds open, or cannot decide (e.g. a NaN or infinite coordinate), is analysed "
                    "in full and its unbalanced edges reported.\n";
-        if (!streamed_notes.empty())
-            out << "Streamed binary STL (constant memory, nothing welded; shells not checked for overlap: --solid "
-                   "checks):\n"
-                << streamed_notes;
         if (any_checked)
             out << "Shells checked for overlap with one another; a shell crossing itself looked for in files up to "
                 << kSelfCheckTriangles << " triangles (--solid: in every file).\n";

@@ -45,6 +45,10 @@ struct FileOptions {
     // figures. A binary STL is then streamed (polyvol/soup.hpp: constant
     // memory, the same figures) when nothing asks for the loaded mesh.
     bool table_only = false;
+    // With table_only: a binary STL streamed whatever its size (by default
+    // only above kStreamAboveTriangles); its shells are then not checked for
+    // overlap, and the report says so.
+    bool stream_any_size = false;
     // Only the volume with its guarantee and the closedness check: the
     // streamed pass skips area and first moments, the loaded route calls
     // signed_volume when the volume is correctly rounded.
@@ -80,6 +84,14 @@ struct FileOptions {
     std::string mass_unit = "kg";
     bool metres_when_known = false;     // SI whenever the unit is known (URDF, SDF)
 };
+
+// A binary STL is streamed (FileOptions::table_only) only above this many
+// triangles: up to it the file is loaded and checked in full, as every other
+// file is (shells overlapping one another resolved, a shell crossing itself
+// looked for), so that a multi-part print gives its solid's volume through
+// the table too. Above it the stream's figures are the shells' sum, and the
+// report says the shells were not checked (--solid loads and checks).
+inline constexpr uint64_t kStreamAboveTriangles = kSelfCheckTriangles;
 
 // Per-shell figures are given for at most this many shells.
 inline constexpr std::size_t kMaxPieces = 1000;

@@ -42,8 +42,9 @@ MassProperties volume_only_properties(const MeshView& view, const MeasureOptions
     return m;
 }
 
-// The route, decided here only: a binary STL is streamed (constant memory,
-// nothing loaded or welded) when what is wanted is what streaming computes
+// The route, decided here only: a binary STL of more than
+// kStreamAboveTriangles triangles (any size with stream_any_size) is streamed (constant memory, nothing
+// loaded or welded) when what is wanted is what streaming computes
 // (FileOptions::table_only; the cone rule) and nothing asks for the loaded
 // mesh (its counts, a weld, orientation, units, a scale, the full overlap
 // and self-crossing check, an archive member). A streamed file the
@@ -65,6 +66,7 @@ std::optional<FileReport> stream_binary_stl(const std::string& path, const FileO
         return std::nullopt;
     }
     if (!file->probe().binary_stl) return std::nullopt;
+    if (file->probe().triangles <= kStreamAboveTriangles && !q.stream_any_size) return std::nullopt;  // checked in full
     FileReport r;
     r.file = path;
     const auto t0 = std::chrono::steady_clock::now();

@@ -69,9 +69,9 @@ TEST(CliStream, EveryClosedBinaryStlStreamsToTheManifestVolume) {
 
 TEST(CliStream, TableStreamsAndStatesTheGuarantees) {
     const fs::path torus = kCorpus / "meshes/prusa-slicer/torus.stl";
-    const CliRun r = polyvol("volume --verbose " + quoted(torus));
+    const CliRun r = polyvol("volume --verbose --stream " + quoted(torus));
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("Streamed binary STL"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("streamed: its shells were not checked for overlap"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("correctly rounded"), std::string::npos);
     EXPECT_NE(r.out.find("area relative error <="), std::string::npos);
     EXPECT_NE(r.out.find("centroid within"), std::string::npos);  // the table's: pass 1's bound
@@ -93,6 +93,60 @@ TEST(CliStream, TableStreamsAndStatesTheGuarantees) {
     EXPECT_EQ(a["moments_accuracy"], j["moments_accuracy"]);
 }
 
+// Two cubes of side 2 overlapping in a unit cube, as one binary STL: the
+// solid is 15, the shells' sum 16.
+fs::path two_overlapping_cubes_stl() {
+    const fs::path p = fs::temp_directory_path() / ("polyvol_stream_two_cubes_" + std::to_string(::getpid()) + ".stl");
+    std::ofstream out(p, std::ios::binary);
+    const char header[80] = {};
+    out.write(header, 80);
+    const uint32_t n = 24;
+    out.write(reinterpret_cast<const char*>(&n), 4);
+    const int faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                              {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+    for (const float o : {0.0f, 1.0f}) {
+        const float v[8][3] = {{o, o, o},         {o + 2, o, o},     {o + 2, o + 2, o},     {o, o + 2, o},
+                               {o, o, o + 2},     {o + 2, o, o + 2}, {o + 2, o + 2, o + 2}, {o, o + 2, o + 2}};
+        for (const auto& f : faces) {
+            float record[12] = {};
+            for (int i = 0; i < 3; ++i)
+                for (int k = 0; k < 3; ++k) record[3 + 3 * i + k] = v[f[i]][k];
+            out.write(reinterpret_cast<const char*>(record), sizeof record);
+            const uint16_t attribute = 0;
+            out.write(reinterpret_cast<const char*>(&attribute), 2);
+        }
+    }
+    return p;
+}
+
+TEST(CliStream, ABinaryStlOfOverlappingShellsGivesItsSolidInTheTable) {
+    // Up to 250000 triangles a binary STL is checked in full, as every other
+    // file: the table gives the solid, as the JSON does.
+    const fs::path two = two_overlapping_cubes_stl();
+    const CliRun table = polyvol("volume " + quoted(two));
+    ASSERT_EQ(table.code, 0) << table.err;
+    EXPECT_NE(table.out.find(" 15 "), std::string::npos) << table.out;
+    EXPECT_EQ(table.out.find(" 16 "), std::string::npos) << table.out;
+    EXPECT_EQ(table.out.find("streamed"), std::string::npos) << table.out;
+    const CliRun only = polyvol("volume --volume-only " + quoted(two));
+    EXPECT_NE(only.out.find(" 15"), std::string::npos) << only.out;
+    const json j = json::parse(polyvol("volume --json " + quoted(two)).out)[0];
+    EXPECT_EQ(j["volume"].get<double>(), 15.0);
+    // --stream asks for the stream at any size: the shells' sum, and the
+    // table says the shells were not checked.
+    const CliRun streamed = polyvol("volume --stream " + quoted(two));
+    ASSERT_EQ(streamed.code, 0) << streamed.err;
+    EXPECT_NE(streamed.out.find(" 16 "), std::string::npos) << streamed.out;
+    EXPECT_NE(streamed.out.find("streamed: its shells were not checked for overlap, so the figures are the shells' sums"),
+              std::string::npos)
+        << streamed.out;
+    const json s = json::parse(polyvol("volume --json --stream " + quoted(two)).out)[0];
+    EXPECT_TRUE(s.value("streamed", false));
+    EXPECT_EQ(s["overlap_checked"], false);
+    EXPECT_EQ(s["volume"].get<double>(), 16.0);
+    fs::remove(two);
+}
+
 TEST(CliStream, OpenSurfaceInTheTableIsCheckedInFull) {
     const CliRun r = polyvol("volume " + quoted(kCorpus / "meshes/stl-models/bunny.bin.stl"));
     EXPECT_EQ(r.code, 3);
@@ -101,16 +155,16 @@ TEST(CliStream, OpenSurfaceInTheTableIsCheckedInFull) {
     // --allow-open measures it anyway, through the full path.
     const CliRun allowed = polyvol("volume --verbose --allow-open " + quoted(kCorpus / "meshes/stl-models/bunny.bin.stl"));
     EXPECT_EQ(allowed.code, 0) << allowed.err;
-    EXPECT_EQ(allowed.out.find("Streamed binary STL"), std::string::npos);
+    EXPECT_EQ(allowed.out.find("streamed: its shells"), std::string::npos);
 }
 
 TEST(CliStream, OtherMethodsAndFormatsUseTheFullPath) {
     const CliRun prism = polyvol("volume --verbose --method prism " + quoted(kCorpus / "meshes/prusa-slicer/torus.stl"));
     EXPECT_EQ(prism.code, 0);
-    EXPECT_EQ(prism.out.find("Streamed binary STL"), std::string::npos);
+    EXPECT_EQ(prism.out.find("streamed: its shells"), std::string::npos);
     const CliRun ascii = polyvol("volume --verbose " + quoted(kCorpus / "meshes/stl-models/unitCube.ascii.stl"));
     EXPECT_EQ(ascii.code, 0);
-    EXPECT_EQ(ascii.out.find("Streamed binary STL"), std::string::npos);
+    EXPECT_EQ(ascii.out.find("streamed: its shells"), std::string::npos);
 }
 
 TEST(CliStream, VolumeOnlyGivesTheManifestVolumeOnEveryPath) {
@@ -173,13 +227,13 @@ TEST(CliStream, VolumeOnlyGivesTheManifestVolumeOnEveryPath) {
 TEST(CliStream, VolumeOnlyTable) {
     const fs::path torus = kCorpus / "meshes/prusa-slicer/torus.stl";
     const fs::path cube = kCorpus / "meshes/stl-models/unitCube.ascii.stl";
-    const CliRun r = polyvol("volume --verbose --volume-only " + quoted(torus) + " " + quoted(cube));
+    const CliRun r = polyvol("volume --verbose --volume-only --stream " + quoted(torus) + " " + quoted(cube));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("volume"), std::string::npos);
     EXPECT_EQ(r.out.find("area"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("centroid"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("correctly rounded"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("Streamed binary STL"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("streamed: its shells were not checked for overlap"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("1791.8163324528632"), std::string::npos) << r.out;  // the torus, as the full path prints it
     // The JSON without --stream keeps the loaded mesh's edge counts: a binary STL is loaded for it.
     const json loaded = json::parse(polyvol("volume --volume-only --json " + quoted(torus)).out)[0];

@@ -6,6 +6,7 @@ check and measure_file — or every door refuses it for the same reason
 DOORS."""
 import json
 import pathlib
+import struct
 import subprocess
 import warnings
 import zipfile
@@ -50,6 +51,18 @@ def write_obj(path, cubes, flip=(), drop=(), move=None):
     return path
 
 
+def write_binary_stl(path, cubes):
+    """Cubes (lo, side) as one binary STL, in triangles (float32 coordinates)."""
+    records = []
+    for lo, side in cubes:
+        points = cube(lo, side)
+        for a, b, c, d in QUADS:
+            for tri in ((a, b, c), (a, c, d)):
+                records.append(struct.pack("<12fH", 0, 0, 0, *(x for i in tri for x in points[i]), 0))
+    path.write_bytes(bytes(80) + struct.pack("<I", len(records)) + b"".join(records))
+    return path
+
+
 def write_3mf(path, cubes):
     """Cubes (lo, side) as one 3MF object (millimetres), in triangles."""
     vertices, triangles = [], []
@@ -90,6 +103,7 @@ CASES = {
     "clean cube": (lambda d: write_obj(d / "cube.obj", ONE), 8.0, True, ()),
     "two cubes (OBJ)": (lambda d: write_obj(d / "two.obj", TWO), 15.0, True, ()),
     "two cubes (3MF)": (lambda d: write_3mf(d / "two.3mf", TWO), 15.0, True, ()),
+    "two cubes (binary STL)": (lambda d: write_binary_stl(d / "two.stl", TWO), 15.0, True, ()),
     "inside-out cube": (lambda d: write_obj(d / "inside_out.obj", ONE, flip={("all", 0)}), 8.0, False, ()),
     "self-crossing shell": (lambda d: SELF, SELF_VOLUME, True, ("grid", "grid --union", "py grid")),
     "flipped face": (lambda d: write_obj(d / "flipped.obj", ONE, flip={(0, 1)}), "misoriented", False, ()),
@@ -134,8 +148,19 @@ def big_box(tmp_path_factory):
     return write_obj(d / "box.obj", [((-10.0, -10.0, -10.0), 30.0)])
 
 
+def cli_table_volume(args):
+    """The volume column of the table a CLI door prints, or ("refused", stderr) on exit 3."""
+    code, out, err = cli(*args)
+    if code == 3:
+        return "refused", err
+    assert code == 0, err
+    return float(out.splitlines()[1].split()[2]), err
+
+
 DOORS = {
     "volume": lambda f, box, d: cli_volume(["volume", "--json", f], lambda j: j[0]["volume"]),
+    "volume (table)": lambda f, box, d: cli_table_volume(["volume", f]),
+    "volume --volume-only (table)": lambda f, box, d: cli_table_volume(["volume", "--volume-only", f]),
     "measure": lambda f, box, d: cli_volume(["measure", "--json", f], lambda j: j[0]["volume"]),
     "overlap A": lambda f, box, d: cli_volume(["overlap", "--json", f, box], lambda j: j["intersection"]),
     "overlap B": lambda f, box, d: cli_volume(["overlap", "--json", box, f], lambda j: j["intersection"]),

@@ -60,8 +60,15 @@ FileOptions table() {  // `polyvol volume`'s table
 
 TEST(MeasureFile, TheRouteIsTheLibrarysAndTheFiguresAgree) {
     const std::string stl = write_stl(test::box({0, 0, 0}, {2, 2, 2}), "box.stl");
-    const FileReport streamed = measure_file(stl, table());
+    // Up to kStreamAboveTriangles a binary STL is loaded and checked in full.
+    const FileReport small = measure_file(stl, table());
+    EXPECT_FALSE(small.streamed);
+    EXPECT_TRUE(small.policy.overlap_checked);
+    FileOptions stream = table();
+    stream.stream_any_size = true;  // `volume --stream`
+    const FileReport streamed = measure_file(stl, stream);
     EXPECT_TRUE(streamed.streamed);
+    EXPECT_FALSE(streamed.policy.overlap_checked);
     EXPECT_FALSE(streamed.loaded.has_value());
     ASSERT_TRUE(streamed.mass.has_value());
     EXPECT_EQ(streamed.mass->volume, 8.0);
@@ -83,7 +90,9 @@ TEST(MeasureFile, TheRouteIsTheLibrarysAndTheFiguresAgree) {
 
 TEST(MeasureFile, InsideOutIsTurnedOpenIsRefusedUnreadableIsTwo) {
     const std::string inverted = write_stl(test::box({0, 0, 0}, {1, 1, 1}, {.inverted = true}), "inverted.stl");
-    const FileReport turned = measure_file(inverted, table());
+    FileOptions stream = table();
+    stream.stream_any_size = true;
+    const FileReport turned = measure_file(inverted, stream);
     EXPECT_FALSE(turned.streamed);  // the stream found it inside out: loaded to be turned
     EXPECT_TRUE(turned.policy.turned_outward.has_value());
     EXPECT_EQ(turned.mass->volume, 1.0);
