@@ -64,9 +64,10 @@ CellVolumes cell_volumes(const CellMeshView& mesh);
 double covered_volume(const CellMeshView& mesh);
 
 // A body's volume in every cell: |B ∩ c| for each cell c, correctly rounded.
-//   * Cells whose box meets the box of one of the body's triangles are
-//     "touched": each is intersected with the body exactly (boolean_volumes
-//     with the cell's closed surface of face triangles as A).
+//   * Cells whose box meets the box of one of the body's triangles (that
+//     box rounded outward to floats: a few more cells near the surface may
+//     count) are "touched": each is intersected with the body exactly
+//     (boolean_volumes with the cell's closed surface of face triangles as A).
 //   * The other cells are full or empty. Two such cells sharing a face are
 //     alike (no part of the body's surface can lie between them), so each
 //     connected region of them takes one exact decision.

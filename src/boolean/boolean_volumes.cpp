@@ -245,7 +245,8 @@ WholeSums whole_triangles(const Operand& op, const std::vector<int32_t>& other_w
     struct Areas {
         AreaSum all, inside;
     };
-    const Areas areas = tbb::parallel_reduce(
+    // One join tree for every run (the bounds are double sums, whose bits depend on the order).
+    const Areas areas = tbb::parallel_deterministic_reduce(
         tbb::blocked_range<std::size_t>(0, op.triangles(), 4096), Areas{},
         [&](const tbb::blocked_range<std::size_t>& range, Areas sums) {
             for (std::size_t t = range.begin(); t != range.end(); ++t) {

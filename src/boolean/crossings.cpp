@@ -28,6 +28,7 @@
 #include "boolean/operand.hpp"
 #include "boolean/predicates.hpp"
 #include "boolean/symbolic.hpp"
+#include "core/fan_triangles.hpp"
 
 namespace polyvol::boolean {
 
@@ -103,15 +104,7 @@ Operand make_operand(const MeshView& view, int32_t shift) {
         op.tri = std::move(op.mesh.indices);  // the fan triangles are the faces
         op.mesh.indices.clear();
     } else {
-        op.tri.reserve(3 * m.triangle_count());
-        for (std::size_t f = 0; f < m.face_count(); ++f) {
-            const auto face = m.face(f);
-            for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-                op.tri.push_back(face[0]);
-                op.tri.push_back(face[i]);
-                op.tri.push_back(face[i + 1]);
-            }
-        }
+        core::append_fan_triangles(m, op.tri);
     }
     finish_operand(op);
     return op;

@@ -28,9 +28,12 @@ struct PreparedBody {
 
 namespace {
 
+// The bucket of x among n over [lo, hi], clamped (in double: a box
+// coordinate may be ±inf, a float box of a coordinate beyond FLT_MAX).
 int bucket_of(double x, double lo, double hi, int n) {
     if (!(hi > lo)) return 0;
-    return std::clamp(static_cast<int>(std::floor((x - lo) / (hi - lo) * n)), 0, n - 1);
+    const double f = std::floor((x - lo) / (hi - lo) * n);
+    return f > 0 ? static_cast<int>(std::min(f, static_cast<double>(n - 1))) : 0;
 }
 
 // Checks that every coordinate of op's triangles is in the exact predicates'
@@ -125,8 +128,8 @@ std::vector<int32_t> windings_at(const PreparedBody& body, std::span<const doubl
     s.body_shift = {0};
     int e0 = 0;
     double max_coordinate = 0;
-    widen_scale(s, "mesh", e0, max_coordinate);  // the range check
     finish_operand(s);
+    widen_scale(s, "mesh", e0, max_coordinate);  // the range check (of the scale finish_operand takes)
     const Crossings cross = find_crossings(s, body.body);
     return vertex_windings(s, body.body, cross.a_hits);
 }

@@ -150,7 +150,13 @@ int64_t own_front_at_corner(const Operand& op, uint32_t body, uint32_t t) {
     int64_t entering = 0, along = 0;
     for (std::size_t s = 0; s < op.triangles(); ++s) {
         if (s == t || op.body(s) != body || op.degenerate[s]) continue;
-        const float* box = &op.box[6 * s];
+        // s's exact box: a triangle admitted here whose plane holds q throws
+        // Touch, so the float filter's wider box would refuse more seeds.
+        double box[6];
+        for (int d = 0; d < 3; ++d) {
+            box[d] = std::min({op.corner(s, 0)[d], op.corner(s, 1)[d], op.corner(s, 2)[d]});
+            box[3 + d] = std::max({op.corner(s, 0)[d], op.corner(s, 1)[d], op.corner(s, 2)[d]});
+        }
         const bool on_ray = box[ii] <= qd[ii] + mi && box[3 + ii] >= qd[ii] - mi && box[jj] <= qd[jj] + mj &&
                             box[3 + jj] >= qd[jj] - mj;
         const bool on_segment = box[0] <= hi[0] && box[3] >= lo[0] && box[1] <= hi[1] && box[4] >= lo[1] &&

@@ -32,6 +32,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "core/fan_triangles.hpp"
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "grid/axis.hpp"
@@ -71,15 +72,7 @@ Triangles fan_triangles(const MeshView& m) {
         t.index = m.indices.first(m.indices.size() / 3 * 3);
         return t;
     }
-    t.storage.reserve(3 * m.triangle_count());
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-        const auto face = m.face(f);
-        for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-            t.storage.push_back(face[0]);
-            t.storage.push_back(face[i]);
-            t.storage.push_back(face[i + 1]);
-        }
-    }
+    core::append_fan_triangles(m, t.storage);
     t.index = t.storage;
     return t;
 }

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 
+#include "core/fan_triangles.hpp"
+
 namespace polyvol {
 
 OrientResult orient_mesh(Mesh& mesh) {
@@ -18,15 +20,10 @@ OrientResult orient_mesh(Mesh& mesh) {
     Chain chain;
     chain.dimension = 3;
     chain.coordinates = mesh.positions;
-    chain.simplices.reserve(3 * view.triangle_count());
-    std::vector<std::size_t> first_triangle(view.face_count() + 1, 0);
-    for (std::size_t f = 0; f < view.face_count(); ++f) {
-        first_triangle[f] = chain.simplices.size() / 3;
-        const auto face = view.face(f);
-        for (std::size_t i = 1; i + 1 < face.size(); ++i)
-            chain.simplices.insert(chain.simplices.end(), {face[0], face[i], face[i + 1]});
-    }
-    first_triangle[view.face_count()] = chain.simplices.size() / 3;
+    core::append_fan_triangles(view, chain.simplices);
+    std::vector<std::size_t> first_triangle(view.face_count() + 1, 0);  // each face's first fan triangle
+    for (std::size_t f = 0; f < view.face_count(); ++f)
+        first_triangle[f + 1] = first_triangle[f] + (view.face_size(f) >= 3 ? view.face_size(f) - 2 : 0);
     const std::vector<uint32_t> before = chain.simplices;
     OrientResult r = orient_chain(chain);
     if (!r.orientable) return r;

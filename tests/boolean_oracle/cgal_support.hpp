@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/real_pairs.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace polyvol::oracle {
@@ -92,21 +93,7 @@ inline Mesh torus(double R, double r, uint32_t nu, uint32_t nv) {
 
 // m with every vertex p replaced by rot(axis, angle) p + shift, each
 // coordinate computed in double (so rounded): the doubles both tools see.
-inline Mesh transformed(const Mesh& m, Vec3 axis, double angle, Vec3 shift) {
-    const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-    const double x = axis[0] / n, y = axis[1] / n, z = axis[2] / n;
-    const double c = std::cos(angle), s = std::sin(angle), d = 1 - c;
-    const double rot[3][3] = {{c + x * x * d, x * y * d - z * s, x * z * d + y * s},
-                              {y * x * d + z * s, c + y * y * d, y * z * d - x * s},
-                              {z * x * d - y * s, z * y * d + x * s, c + z * z * d}};
-    Mesh out = m;
-    for (std::size_t v = 0; v < m.vertex_count(); ++v) {
-        const double* p = &m.positions[3 * v];
-        for (int k = 0; k < 3; ++k)
-            out.positions[3 * v + k] = rot[k][0] * p[0] + rot[k][1] * p[1] + rot[k][2] * p[2] + shift[k];
-    }
-    return out;
-}
+using test::transformed;
 
 // m translated by shift (each coordinate p + shift rounded to double).
 inline Mesh translated(const Mesh& m, Vec3 shift) {

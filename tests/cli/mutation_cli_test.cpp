@@ -1,7 +1,8 @@
 // `polyvol volume` on a closed mesh with one defect of each kind the
 // mutation test (tests/corpus/mutation_test.cpp) applies: refused, exit 3,
 // "not a closed surface", and no volume printed — as an OBJ (loaded) and as
-// a binary STL (streamed, closedness by fingerprint).
+// a binary STL, loaded (up to 250,000 triangles) and streamed (--stream:
+// closedness by fingerprint).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -120,6 +121,11 @@ TEST(MutationCli, EveryDefectIsRefusedWithoutAVolume) {
             if (std::string(ext) == ".obj") write_obj(p, soup); else write_stl(p, soup);
             const auto table = cli_test::run_polyvol("volume '" + p.string() + "'");
             EXPECT_EQ(table.code, 3) << kind << ext << table.out << table.err;
+            if (std::string(ext) == ".stl") {  // the streamed route refuses it alike
+                const auto streamed = cli_test::run_polyvol("volume --stream '" + p.string() + "'");
+                EXPECT_EQ(streamed.code, 3) << kind << streamed.out << streamed.err;
+                EXPECT_NE(streamed.out.find("open surface: not measured"), std::string::npos) << kind << streamed.out;
+            }
             // A flip leaves the surface closed, wound inconsistently: the message says so and names --orient.
             const std::string words = kind == "flip" ? "closed, but 3 edges are misoriented" : "not a closed surface";
             EXPECT_NE(table.err.find(words), std::string::npos) << kind << ext << table.err;

@@ -66,23 +66,29 @@ inline bool moved_exactly(const Mesh& from, const Mesh& to, const std::array<dou
     return true;
 }
 
-// p -> R (p - c) + c + t, R the rotation by `angle` about `axis`, in double.
+// m with every vertex p replaced by R p + shift, R the rotation by `angle`
+// about `axis`, each coordinate computed in double (so rounded).
+inline Mesh transformed(const Mesh& m, std::array<double, 3> axis, double angle, const std::array<double, 3>& shift) {
+    const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    const double x = axis[0] / n, y = axis[1] / n, z = axis[2] / n;
+    const double c = std::cos(angle), s = std::sin(angle), d = 1 - c;
+    const double rot[3][3] = {{c + x * x * d, x * y * d - z * s, x * z * d + y * s},
+                              {y * x * d + z * s, c + y * y * d, y * z * d - x * s},
+                              {z * x * d - y * s, z * y * d + x * s, c + z * z * d}};
+    Mesh out = m;
+    for (std::size_t v = 0; v < m.vertex_count(); ++v) {
+        const double* p = &m.positions[3 * v];
+        for (int k = 0; k < 3; ++k)
+            out.positions[3 * v + k] = rot[k][0] * p[0] + rot[k][1] * p[1] + rot[k][2] * p[2] + shift[k];
+    }
+    return out;
+}
+
+// p -> R (p - c) + c + t about m's vertex centroid c (transformed, above).
 inline Mesh rotated_about_centre(const Mesh& m, std::array<double, 3> axis, double angle, const std::array<double, 3>& t) {
     std::array<double, 3> c{};
     for (std::size_t i = 0; i < m.positions.size(); ++i) c[i % 3] += m.positions[i] / double(m.vertex_count());
-    const double n = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-    const double x = axis[0] / n, y = axis[1] / n, z = axis[2] / n;
-    const double co = std::cos(angle), s = std::sin(angle), d = 1 - co;
-    const double r[3][3] = {{co + x * x * d, x * y * d - z * s, x * z * d + y * s},
-                            {y * x * d + z * s, co + y * y * d, y * z * d - x * s},
-                            {z * x * d - y * s, z * y * d + x * s, co + z * z * d}};
-    Mesh out = m;
-    for (std::size_t v = 0; v < m.vertex_count(); ++v) {
-        const double p[3] = {m.positions[3 * v] - c[0], m.positions[3 * v + 1] - c[1], m.positions[3 * v + 2] - c[2]};
-        for (int k = 0; k < 3; ++k)
-            out.positions[3 * v + k] = r[k][0] * p[0] + r[k][1] * p[1] + r[k][2] * p[2] + c[k] + t[k];
-    }
-    return out;
+    return transformed(moved(m, {-c[0], -c[1], -c[2]}), axis, angle, {c[0] + t[0], c[1] + t[1], c[2] + t[2]});
 }
 
 // (A, B) for a corpus part and a move (above).
