@@ -71,13 +71,6 @@ void orient_into(mpz_class& out, const IntPoint& s0, const IntPoint& s1, const I
     det3_into(out, d.u, d.v, d.w, d.t);
 }
 
-mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x) {
-    mpz_class out;
-    DetScratch d;
-    orient_into(out, s0, s1, s2, x, d);
-    return out;
-}
-
 void plane_crossing_into(ExactPoint& x, const IntPoint& p, const IntPoint& q, const mpz_class& dp, const mpz_class& dq) {
     if (dp == 0 || dq == 0) {
         x.num = dp == 0 ? p : q;

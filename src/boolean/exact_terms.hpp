@@ -49,10 +49,8 @@ inline bool in_predicate_range(double x) { return exact::in_safe_range(x) && std
 
 // a · (b × c)
 mpz_class det3(const IntPoint& a, const IntPoint& b, const IntPoint& c);
-// orient(s0, s1, s2, x) = det(s1 - s0, s2 - s0, x - s0)
-mpz_class orient(const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x);
 
-// The integers det3 and orient use, kept from call to call by one thread:
+// The integers det3_into and orient_into use, kept from call to call by one thread:
 // GMP then allocates only while they grow (most terms of a boolean reuse them).
 struct DetScratch {
     IntPoint u, v, w;
@@ -60,7 +58,7 @@ struct DetScratch {
 };
 // out = det3(a, b, c); out must not be t.
 void det3_into(mpz_class& out, const IntPoint& a, const IntPoint& b, const IntPoint& c, mpz_class& t);
-// out = orient(s0, s1, s2, x).
+// out = orient(s0, s1, s2, x) = det(s1 - s0, s2 - s0, x - s0).
 void orient_into(mpz_class& out, const IntPoint& s0, const IntPoint& s1, const IntPoint& s2, const IntPoint& x,
                  DetScratch& scratch);
 
