@@ -9,11 +9,13 @@
 //   polyvol implicit EXPR    volume of {F <= 0} in R^n from a PL surface
 //   polyvol overlap A B      volumes of A∩B, A∪B, A−B, B−A without building them
 //   polyvol cells MESH BODY  volume of each body in every cell of an OpenFOAM mesh
+//   polyvol devices          the OpenCL devices --device can name
 // One file per command under cli/commands/ (volume, measure and check share
 // commands/measure.cpp); this file only wires them to the grammar.
 //
 // Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid
-// for the request; with several files the highest of theirs, every file still
+// for the request, 4 out of memory or an internal error, 5 the device asked
+// for (grid, cells --device) cannot do the work; with several files the highest of theirs, every file still
 // reported. Results go to stdout, warnings and progress to stderr.
 #include <iostream>
 #include <new>
@@ -21,6 +23,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands/cells.hpp"
+#include "commands/devices.hpp"
 #include "commands/grid.hpp"
 #include "commands/implicit.hpp"
 #include "commands/measure.hpp"
@@ -37,7 +40,8 @@ int main(int argc, char** argv) {
     polyvol::cli::keep_freed_memory();
     CLI::App app{"polyvol: exact volume, area, centroid, inertia and topology of polyhedral meshes.\n"
                  "Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid for the request "
-                 "(check: not a closed 2-cycle)."};
+                 "(check: not a closed 2-cycle), 4 out of memory or an internal error, 5 the --device asked for "
+                 "cannot do the work."};
     app.set_version_flag("--version", "polyvol " POLYVOL_VERSION);
     app.require_subcommand(1);
     app.footer("polyvol help COMMAND: the options of one command.");
@@ -53,6 +57,8 @@ int main(int argc, char** argv) {
     auto* overlap = add_overlap_command(app, overlap_args);
     CellsArgs cells_args;
     auto* cells = add_cells_command(app, cells_args);
+    DevicesArgs devices_args;
+    auto* devices = add_devices_command(app, devices_args);
 
     if (const int code = answer_before_parse(app, argc, argv); code >= 0) return code;
     try {
@@ -70,6 +76,7 @@ int main(int argc, char** argv) {
         if (*implicit) return run_implicit_command(implicit_args);
         if (*overlap) return run_overlap_command(overlap_args);
         if (*cells) return run_cells_command(cells_args);
+        if (*devices) return run_devices_command(devices_args);
         return run_measure_commands(measure_commands);
     } catch (const std::bad_alloc&) {
         std::cerr << "polyvol: out of memory: the input or the request needs more memory than this machine "

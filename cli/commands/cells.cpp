@@ -42,6 +42,7 @@
 #include "output/format.hpp"
 #include "polyvol/cell_mesh_io.hpp"
 #include "polyvol/cells.hpp"
+#include "polyvol/device.hpp"
 #include "polyvol/grid_io.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/solid.hpp"
@@ -104,6 +105,13 @@ int check_arguments(const CellsArgs& a) {
     if (!a.surface_out.empty() && (lower_extension(a.surface_out) != ".npy" || a.bodies.empty()))
         return usage("--surface needs a .npy file and a body");
     if (!a.field.empty() && a.bodies.size() != 1) return usage("--field needs exactly one body");
+    try {
+        if (parse_device(a.device).kind == DeviceKind::opencl)
+            std::cerr << "polyvol cells: note: computed on the CPU: the cells' exact booleans use big integers, "
+                         "which the OpenCL kernels do not have\n";
+    } catch (const std::invalid_argument& e) {
+        return usage(std::string("--") + e.what());
+    }
     if (a.fractions && a.bodies.empty()) return usage("--fractions needs a body");
     for (const std::string* u : {&a.units, &a.mesh_units})
         if (!u->empty() && !length_unit(*u))
@@ -200,6 +208,10 @@ nlohmann::json summary(const CellsArgs& a, const LoadedCellMesh& mesh, const std
     if (joined.intersection)
         j["intersection"] = {{"inside_mesh", json_number(joined.intersection->total)},
                              {"accuracy", "bounded: within 2 ulp of each cell's volume (of the union's total)"}};
+    // --device: the cells' work is exact booleans (GMP), which stay on the CPU.
+    j["device"] = parse_device(a.device).kind == DeviceKind::opencl
+                      ? "cpu (cells are exact booleans with big integers: computed on the CPU)"
+                      : "cpu";
     j["seconds"] = seconds;
     return j;
 }
@@ -334,6 +346,8 @@ CLI::App* add_cells_command(CLI::App& app, CellsArgs& a) {
         ->required();
     cmd->add_option("bodies", a.bodies, "Closed meshes (any format polyvol reads), each the solid it means");
     cmd->add_flag("--json", a.json, "Print the summary as JSON");
+    cmd->add_option("--device", a.device,
+                    "auto, cpu, opencl or opencl:N: accepted as for grid; the cells' exact booleans run on the CPU");
     cmd->add_option("-o,--output", a.out,
                     "OUT.npy: per-cell volumes (or fractions), shape (cells,) or (bodies, cells); "
                     "OUT.vtu: the cells with their volumes, fractions and classes; OUT.grdecl: one keyword "

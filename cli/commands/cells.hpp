@@ -29,6 +29,7 @@ struct CellsArgs {
     bool grid_axes = false;  // --grid-axes: a corner-point grid's MAPAXES not applied
     bool fractions = false;
     bool json = false;
+    std::string device = "auto";  // --device: accepted; the cells run on the CPU
 };
 
 CLI::App* add_cells_command(CLI::App& app, CellsArgs& args);

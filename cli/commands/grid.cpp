@@ -160,6 +160,9 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& a) {
     cmd->add_option("--max-memory", a.max_memory,
                     "Refuse a grid whose arrays would need more than SIZE (e.g. 8G, 512M; default: three quarters "
                     "of physical memory)");
+    cmd->add_option("--device", a.device,
+                    "Where the cells are computed: auto (the CPU), cpu, opencl, opencl:N (polyvol devices lists "
+                    "them); the same bits on every device");
     cmd->add_option("--slice", a.slice, "The slice for --png: x=VALUE, y=VALUE or z=VALUE (default: middle z)");
     return cmd;
 }
@@ -177,6 +180,11 @@ int check_arguments(const GridArgs& a, const std::string& out_ext, const std::op
         return usage("--intersection needs a .npy file");
     if (!a.surface.empty() && lower_extension(a.surface) != ".npy") return usage("--surface needs a .npy file");
     if (!slice) return usage("--slice takes x=VALUE, y=VALUE or z=VALUE, not '" + a.slice + "'");
+    try {
+        (void)parse_device(a.device);
+    } catch (const std::invalid_argument& e) {
+        return usage(std::string("--") + e.what());
+    }
     if (!a.slice.empty() && a.png.empty()) return usage("--slice goes with --png");
     if (!a.bounds.empty())
         for (int k = 0; k < 3; ++k)
@@ -386,6 +394,7 @@ int compute(const GridArgs& a, const Bodies& bodies, const GridAxes& g, const st
     auto last_print = t_grid;
     bool printed = false;
     GridOptions options;
+    options.device = parse_device(a.device);
     options.progress = [&](double fraction) {
         const auto now = Clock::now();
         if (seconds_since(t_grid) < 1.0 || (fraction < 1 && std::chrono::duration<double>(now - last_print).count() < 0.25))
@@ -413,8 +422,14 @@ int compute(const GridArgs& a, const Bodies& bodies, const GridAxes& g, const st
         if (printed) std::cerr << "\n";
         std::cerr << "polyvol: " << e.what() << "\n";
         return Exit::invalid;
+    } catch (const DeviceError& e) {
+        if (printed) std::cerr << "\n";
+        std::cerr << "polyvol grid: " << e.what() << "\n";
+        return Exit::device_failed;
     }
     if (printed) std::cerr << "\n";
+    if (options.device.kind == DeviceKind::opencl && summary.device.starts_with("cpu"))
+        std::cerr << "polyvol grid: note: computed on the CPU, not OpenCL: " << summary.device << "\n";
     if (!union_problem.empty()) std::cerr << "polyvol: warning: " << union_problem << "; the bodies' cells are given\n";
     return Exit::ok;
 }

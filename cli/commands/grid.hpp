@@ -31,6 +31,7 @@ struct GridArgs {
     std::string png;
     std::string slice;
     std::string max_memory;  // --max-memory SIZE (default: three quarters of physical memory)
+    std::string device = "auto";  // --device auto|cpu|opencl[:N] (polyvol/device.hpp)
 };
 
 // Registers the subcommand on app; its options fill args.
@@ -38,7 +39,8 @@ CLI::App* add_grid_command(CLI::App& app, GridArgs& args);
 
 // Runs it; returns the exit code (0 ok, 1 usage — a grid larger than
 // --max-memory included —, 2 unreadable mesh, 3 open mesh, bodies whose
-// union is undefined, or nothing to grid).
+// union is undefined, or nothing to grid, 5 the --device asked for cannot do
+// the work).
 int run_grid_command(const GridArgs& args);
 
 }  // namespace polyvol::cli

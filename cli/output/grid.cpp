@@ -43,6 +43,7 @@ nlohmann::json grid_summary_json(const std::vector<std::string>& files, const st
     j["empty_cells"] = s.empty_cells;
     j["cut_cells"] = s.cut_cells;
     j["contact_cells"] = s.contact_cells;
+    j["device"] = s.device;
     j["seconds"] = seconds;
     return j;
 }
@@ -77,6 +78,7 @@ std::string grid_summary_text(const std::vector<std::string>& files, const std::
     }
     out << "cells: " << s.full_cells << " full, " << s.cut_cells << " cut, " << s.contact_cells << " contact, "
         << s.empty_cells << " empty\n";
+    if (s.device != "cpu") out << "computed on: " << s.device << "\n";
     return out.str();
 }
 

@@ -84,9 +84,11 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "polyvol/cell_class.hpp"
+#include "polyvol/device.hpp"
 #include "polyvol/mesh.hpp"
 
 namespace polyvol {
@@ -182,6 +184,12 @@ struct GridOptions {
     // Called now and then with the fraction of the work done (0..1], from
     // worker threads but never concurrently. Empty: not called.
     std::function<void(double)> progress{};
+    // Where the per-cell work runs (polyvol/device.hpp): the same bits on
+    // every device. `automatic` is the CPU. An OpenCL request on a machine
+    // without OpenCL runs the CPU path (GridSummary::device says so); a named
+    // device that cannot do the work throws DeviceError. The union of several
+    // bodies runs on the CPU for now.
+    DeviceRequest device{};
 };
 
 struct GridBodySummary {
@@ -205,6 +213,9 @@ struct GridSummary {
     std::size_t crossing_pairs = 0;  // triangle pairs of different bodies that cross
     // Cells by CellClass of the union (they add up to cells).
     std::size_t full_cells = 0, empty_cells = 0, cut_cells = 0, contact_cells = 0;
+    // Where the cells were computed: "cpu", or "opencl: <device name>"; a
+    // request the CPU path answered says why, e.g. "cpu (no OpenCL runtime ...)".
+    std::string device = "cpu";
 };
 
 // The volume of each body in every cell of the grid (and what else `out`

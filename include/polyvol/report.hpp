@@ -30,8 +30,10 @@ namespace polyvol {
 
 // The outcome of a file as the command line's exit codes state it (once):
 // 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid for the
-// request (an open surface asked for a volume, say).
-enum Exit : int { ok = 0, usage = 1, unreadable = 2, invalid = 3 };
+// request (an open surface asked for a volume, say); 5 (grid, cells) the
+// device asked for by --device cannot do the work (4 is the command line's
+// own: out of memory or an internal error).
+enum Exit : int { ok = 0, usage = 1, unreadable = 2, invalid = 3, device_failed = 5 };
 
 // What is wanted of a file and how it is to be taken. The quantities first
 // (they choose the route), then the solid policy, then the units.

@@ -38,6 +38,7 @@
 #include "grid/axis.hpp"
 #include "grid/clip.hpp"
 #include "grid/column_scan.hpp"
+#include "grid/device_grid.hpp"
 #include "grid/piece.hpp"
 #include "grid/tile_sums.hpp"
 #include "boolean/level_pieces.hpp"
@@ -480,6 +481,50 @@ void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
     }
 }
 
+// The per-column work on an OpenCL device when one is asked for and can do
+// it: fills the outputs, the summary's counts and the bodies' exact sums and
+// returns "opencl: NAME"; else returns why the CPU runs ("cpu (...)"), or
+// nothing for a CPU request. The union of several bodies stays on the CPU.
+std::optional<std::string> device_block_volumes(const DeviceRequest& request, std::span<const MeshView> bodies,
+                                                const GridAxes& g, const Layout& l, const std::vector<Triangles>& tris,
+                                                const std::vector<Bins>& bins, const GridOutput& out,
+                                                bool union_outputs, GridSummary& s,
+                                                std::vector<exact::ExactSum>& body_volume) {
+    if (request.kind != DeviceKind::opencl) return std::nullopt;
+    if (bodies.size() > 1 && union_outputs) return "cpu (the union of several bodies runs on the CPU)";
+    std::string note;
+    device::Device* d = device::resolve(request, note);
+    if (!d) return "cpu (" + note + ")";
+    std::vector<grid::DeviceBody> dev;
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+        dev.push_back({bodies[b].positions, tris[b].index, bins[b].offsets, bins[b].entries});
+    const grid::DeviceLayout dl{l.i0, l.j0, l.k0, l.nx, l.ny, l.bnz, l.tile, l.nty};
+    std::vector<grid::DeviceCounts> counts;
+    if (!grid::device_columns(*d, g, dl, dev, out, counts)) {
+        // The CPU path adds into the surfaces: clear what the device wrote.
+        for (const auto span : {out.wetted_area, out.surface_normal, out.union_wetted_area, out.union_surface_normal})
+            std::fill(span.begin(), span.end(), 0.0);
+        return "cpu (a clipped polygon exceeded the device kernel's capacity)";
+    }
+    const std::size_t cells = l.out_cells();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        s.bodies[b].pieces = counts[b].pieces;
+        s.bodies[b].empty_cells = counts[b].empty;
+        s.bodies[b].full_cells = counts[b].full;
+        s.bodies[b].cut_cells = counts[b].cut;
+        // Each body's exact sum of its cells, column by column (exact, so in any order).
+        const std::size_t columns = static_cast<std::size_t>(l.nx) * l.ny;
+        tbb::enumerable_thread_specific<exact::ExactSum> sums;
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, columns, 256), [&](const auto& r) {
+            exact::ExactSum& sum = sums.local();
+            for (std::size_t c = r.begin(); c != r.end(); ++c)
+                add_column(sum, &out.volumes[b * cells + c * l.bnz], l.bnz);
+        });
+        for (const exact::ExactSum& part : sums) body_volume[b].merge(part);
+    }
+    return "opencl: " + d->info.name;
+}
+
 }  // namespace
 
 GridSummary grid_volumes(std::span<const MeshView> bodies, const GridAxes& g, const GridOutput& out,
@@ -561,6 +606,31 @@ GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes&
         }
     }
 
+    GridSummary s;
+    s.bodies.resize(nb);
+    std::vector<exact::ExactSum> body_volume(nb);
+    if (std::optional<std::string> device = device_block_volumes(options.device, bodies, g, layout, tris, bins, out,
+                                                                 union_outputs, s, body_volume)) {
+        s.device = *device;
+    }
+    if (s.device.starts_with("opencl")) {
+        for (std::size_t b = 0; b < nb; ++b) {
+            s.bodies[b].volume = body_volume[b].round();
+            s.bodies[b].triangles = tris[b].count();
+        }
+        s.intersection_volume = std::numeric_limits<double>::quiet_NaN();
+        if (nb == 1) {
+            s.union_volume = s.bodies[0].volume;
+            s.full_cells = s.bodies[0].full_cells;
+            s.empty_cells = s.bodies[0].empty_cells;
+            s.cut_cells = s.bodies[0].cut_cells;
+        } else {
+            s.union_volume = std::numeric_limits<double>::quiet_NaN();  // not asked for
+        }
+        if (options.progress) options.progress(1.0);
+        return s;
+    }
+
     const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, union_outputs, surface,
                   levels ? &*levels : nullptr, fans};
     tbb::enumerable_thread_specific<Workspace> workspaces;
@@ -585,9 +655,6 @@ GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes&
         }
     });
 
-    GridSummary s;
-    s.bodies.resize(nb);
-    std::vector<exact::ExactSum> body_volume(nb);
     exact::ExactSum union_volume, intersection_volume;
     for (const Partial& p : partials) {
         for (std::size_t b = 0; b < nb; ++b) {

@@ -18,6 +18,14 @@ std::span<T> slice(std::span<T> all, std::size_t b, std::size_t cells, std::size
     return all.empty() ? all : all.subspan(b * cells * n, cells * n);
 }
 
+// Where the calls ran, each place named once ("opencl: X; cpu (why)").
+void add_device(std::string& all, const std::string& one, bool first) {
+    if (first)
+        all = one;
+    else if (("; " + all + "; ").find("; " + one + "; ") == std::string::npos)
+        all += "; " + one;
+}
+
 }  // namespace
 
 GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, const GridAxes& g, const GridBlock& block,
@@ -46,7 +54,9 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
             o.volumes = slice(out.volumes, b, cells);
             o.wetted_area = slice(out.wetted_area, b, cells);
             o.surface_normal = slice(out.surface_normal, b, cells, 3);
-            body = grid_block_volumes(parts[b], g, block, o, options).bodies[0];
+            const GridSummary one = grid_block_volumes(parts[b], g, block, o, options);
+            body = one.bodies[0];
+            add_device(s.device, one.device, b == 0);
         } else {
             scratch.assign(parts[b].size() * cells, 0.0);
             o.volumes = scratch;
@@ -59,6 +69,7 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
                 if (o.union_surface_normal.empty()) o.union_surface_normal = out.union_surface_normal;
             }
             const GridSummary u = grid_block_volumes(parts[b], g, block, o, options);
+            add_device(s.device, u.device, b == 0);
             body.volume = u.union_volume;
             for (const GridBodySummary& p : u.bodies) {
                 body.triangles += p.triangles;
@@ -92,6 +103,7 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
         o.volumes = scratch;
         o.wetted_area = o.surface_normal = {};
         const GridSummary u = grid_block_volumes(all, g, block, o, options);
+        add_device(s.device, u.device, false);
         s.union_volume = u.union_volume;
         s.full_cells = u.full_cells;
         s.empty_cells = u.empty_cells;

@@ -31,6 +31,7 @@ FOUNDATION = {"core", "exact"}
 INTERFACES = {
     "measure": {"measure/sums.hpp"},                           # the cone sums, for boolean
     "topology": {"topology/welded.hpp", "topology/parts.hpp"},  # welded polygons and shells, for boolean
+    "device": {"device/opencl.hpp"},                           # OpenCL's entry points and devices, for grid
     "boolean": {"boolean/level_pieces.hpp",                    # the union's boundary pieces, for grid
                 "boolean/prepared_body.hpp"},                  # one body against many cells, for cells
 }
@@ -44,7 +45,7 @@ PUBLIC_OWNER = {
     "topology.hpp": "topology",
     "simplicial.hpp": "simplicial",
     "boolean.hpp": "boolean",
-    "grid.hpp": "grid",
+    "grid.hpp": "grid", "device.hpp": "device",
     "solid.hpp": "solid",
     "report.hpp": "report",
     "implicit.hpp": "implicit",

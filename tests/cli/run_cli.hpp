@@ -20,13 +20,14 @@ struct CliRun {
     std::string out, err;
 };
 
-// Runs `polyvol ARGS` through the shell (so ARGS may quote and redirect).
-inline CliRun run_polyvol(const std::string& args) {
+// Runs `ENV polyvol ARGS` through the shell (so ARGS may quote and redirect;
+// ENV: variable assignments for the command, or empty).
+inline CliRun run_polyvol_env(const std::string& env, const std::string& args) {
     static std::atomic<int> counter{0};
     const std::filesystem::path err = std::filesystem::temp_directory_path() /
                                       ("polyvol_cli_test_" + std::to_string(::getpid()) + "_" +
                                        std::to_string(counter++) + ".err");
-    const std::string cmd = std::string("'") + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
+    const std::string cmd = env + (env.empty() ? "" : " ") + "'" + POLYVOL_CLI + "' " + args + " 2>'" + err.string() + "'";
     CliRun r;
     FILE* p = ::popen(cmd.c_str(), "r");
     if (!p) return r;
@@ -41,6 +42,9 @@ inline CliRun run_polyvol(const std::string& args) {
     std::filesystem::remove(err, ec);
     return r;
 }
+
+// Runs `polyvol ARGS` through the shell.
+inline CliRun run_polyvol(const std::string& args) { return run_polyvol_env("", args); }
 
 // Writes an OBJ of axis-aligned boxes {xlo, ylo, zlo, xhi, yhi, zhi}, quads
 // outward; `drop_last` leaves the last face out (an open surface).
