@@ -24,7 +24,7 @@ import warnings as _warnings
 import numpy as _np
 
 from . import _arrays
-from ._errors import ExpressionError, ImplicitError, NotASolidError, ReadError
+from ._errors import DeviceError, ExpressionError, ImplicitError, NotASolidError, ReadError
 from ._polyvol import __version__
 from . import _polyvol as _core
 
@@ -32,7 +32,7 @@ __all__ = [
     "Mesh", "load", "load_bytes", "measure_file", "orient", "mass_properties", "volume", "check", "solid", "overlap", "self_crossings",
     "grid", "Grid", "chain_volume", "polygon_area", "load_chain", "load_polygons", "implicit",
     "CellMesh", "load_cells", "cell_volumes", "cells", "Cells", "write_foam_field", "write_grdecl_keyword",
-    "ReadError", "ImplicitError", "ExpressionError", "NotASolidError", "__version__",
+    "devices", "ReadError", "ImplicitError", "ExpressionError", "NotASolidError", "DeviceError", "__version__",
 ]
 
 
@@ -506,6 +506,15 @@ def self_crossings(mesh, faces=None):
 # ---- grids ---------------------------------------------------------------------------
 
 from ._grid import Grid, grid  # noqa: E402  (uses the helpers above)
+
+
+def devices():
+    """The OpenCL devices grid(device="opencl:N") can name, as
+    `polyvol devices --json` lists them: {"opencl_runtime": bool, "note": why
+    there are none or "", "devices": [{"index", "name", "platform", "vendor",
+    "type", "version", "global_memory", "compute_units", "fp64", "usable",
+    "reason"}]}. Never raises: a machine without OpenCL has an empty list."""
+    return _core.devices()
 
 
 # ---- chains, polygons, implicit solids ------------------------------------------------------

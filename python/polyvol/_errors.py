@@ -52,3 +52,11 @@ class NotASolidError(ValueError):
         super().__init__(text)
         self.defect = defect
         self.message = message if message is not None else text
+
+
+class DeviceError(RuntimeError):
+    """The device asked for (device="opencl" or "opencl:N", or POLYVOL_DEVICE)
+    cannot do the work: absent, without IEEE double precision, a kernel that
+    does not build (the driver's log is in the message), out of device
+    memory. A machine without OpenCL is not an error: the CPU computes, and
+    the summary's "device" says so."""

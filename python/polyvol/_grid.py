@@ -189,7 +189,7 @@ def _check_memory(block, bodies, moments, surface, several, intersection, max_me
 
 def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=False, *, union=None,
          intersection=False, surface=False, block=None, edges=None, signed=False, orient=False, weld_tolerance=0.0,
-         max_memory=None, units=None, to=None):
+         max_memory=None, units=None, to=None, device=None):
     """The exact volume of each mesh in every cell of a grid, and with several
     meshes the union's (and on request the intersection's) volume per cell,
     exact in every cell (docs/grid.md).
@@ -215,7 +215,14 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
     Mesh read from 3MF or AMF states its own); cell_size, bounds and edges
     are in it, and so is every volume. A body in another unit is converted
     into it, each coordinate rounded once (a warning says so): its cells are
-    exact for the coordinates so converted. summary["unit"] names it."""
+    exact for the coordinates so converted. summary["unit"] names it.
+
+    device: where the cells are computed, "auto" (the CPU), "cpu", "opencl"
+    or "opencl:N" (polyvol.devices() lists them); default the POLYVOL_DEVICE
+    environment variable, else "auto". Every device gives the same bits;
+    summary["device"] says where the cells were computed ("cpu (no OpenCL
+    runtime ...)" when OpenCL was asked for and is absent). A device that
+    cannot do the work raises polyvol.DeviceError."""
     from . import _policy, _solid_verdict  # noqa: E402 (defined before this module is imported)
     bodies = _bodies(meshes)
     bodies, unit, _ = _in_common_unit(_declared_units(meshes), bodies, units, to)
@@ -240,17 +247,18 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
     _check_memory(block, len(bodies), moments, surface, several, intersection, max_memory)
     # the union (its crossings) by default with several bodies; union=True also gives one body's cell classes
     want_union = several if union is None else bool(union)
+    device = str(device if device is not None else os.environ.get("POLYVOL_DEVICE", "auto"))
     error = None
     try:
         r = _core.grid_volumes(parts, x, y, z, flat, bool(moments), want_union, bool(intersection) and several,
-                               bool(surface))
+                               bool(surface), device)
     except ValueError as e:
         if not (want_union and union is None and "the union is undefined" in str(e)):
             raise
         # asked by default only: give the bodies' cells, and say why there is no union
         error = str(e)
         warnings.warn(f"polyvol.grid: {error}; the union is not given", stacklevel=2)
-        r = _core.grid_volumes(parts, x, y, z, flat, bool(moments), False, False, bool(surface))
+        r = _core.grid_volumes(parts, x, y, z, flat, bool(moments), False, False, bool(surface), device)
     # a block is a grid of its own: its planes, with where it lies in the whole grid
     x, y, z = (e[lo:hi + 1] for e, (lo, hi) in zip((x, y, z), block))
     bshape = tuple(hi - lo for lo, hi in block)
@@ -268,6 +276,7 @@ def grid(meshes, dims=None, cells=None, cell_size=None, bounds=None, moments=Fal
         "crossing_pairs": r["crossing_pairs"],
         "full_cells": r["full_cells"], "empty_cells": r["empty_cells"], "cut_cells": r["cut_cells"],
         "contact_cells": r["contact_cells"],
+        "device": r["device"],
     }
     if summary["grid"]["uniform"]:
         summary["grid"]["spacing"] = [float(e[-1] - e[0]) / (len(e) - 1) for e in (x, y, z)]

@@ -7,6 +7,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "polyvol/device.hpp"
 #include "polyvol/grid.hpp"
 
 namespace polyvol::python {
@@ -39,6 +40,32 @@ std::tuple<py::array_t<double>, py::array_t<double>, py::array_t<double>> planes
 }  // namespace
 
 void bind_grid(py::module_& m) {
+    // The OpenCL devices (polyvol/device.hpp), each a dict as `polyvol devices --json` lists it.
+    m.def("devices", [] {
+        const DeviceList list = list_devices();
+        py::dict r;
+        r["opencl_runtime"] = list.runtime;
+        r["note"] = list.note;
+        py::list devices;
+        for (const DeviceInfo& d : list.devices) {
+            py::dict e;
+            e["index"] = d.index;
+            e["name"] = d.name;
+            e["platform"] = d.platform;
+            e["vendor"] = d.vendor;
+            e["type"] = d.type;
+            e["version"] = d.version;
+            e["global_memory"] = d.global_memory;
+            e["compute_units"] = d.compute_units;
+            e["fp64"] = d.fp64;
+            e["usable"] = d.usable;
+            e["reason"] = d.reason;
+            devices.append(e);
+        }
+        r["devices"] = devices;
+        return r;
+    });
+
     m.def(
         "grid_axes",
         [](const std::vector<BodyArrays>& bodies, uint32_t cells, double cell_size, std::array<uint32_t, 3> dims,
@@ -70,7 +97,8 @@ void bind_grid(py::module_& m) {
     m.def(
         "grid_volumes",
         [](const std::vector<std::vector<BodyArrays>>& bodies, const Doubles& x, const Doubles& y, const Doubles& z,
-           std::array<std::size_t, 6> block, bool moments, bool union_volume, bool intersection, bool surface) {
+           std::array<std::size_t, 6> block, bool moments, bool union_volume, bool intersection, bool surface,
+           const std::string& device) {
             const std::vector<std::vector<MeshView>> views = parts_of(bodies);
             const GridAxes g{vector_of(x), vector_of(y), vector_of(z)};
             const GridBlock b{{block[0], block[2], block[4]}, {block[1], block[3], block[5]}};
@@ -97,9 +125,11 @@ void bind_grid(py::module_& m) {
             out.union_wetted_area = uwet;
             out.union_surface_normal = unormal;
             GridSummary s;
+            GridOptions options;
+            options.device = parse_device(device);
             {
                 py::gil_scoped_release release;
-                s = grid_union_volumes(views, g, b, out);
+                s = grid_union_volumes(views, g, b, out, options);
             }
             const auto bx = static_cast<py::ssize_t>(b.hi[0] - b.lo[0]), by = static_cast<py::ssize_t>(b.hi[1] - b.lo[1]),
                        bz = static_cast<py::ssize_t>(b.hi[2] - b.lo[2]), n = static_cast<py::ssize_t>(nb);
@@ -136,10 +166,11 @@ void bind_grid(py::module_& m) {
             r["empty_cells"] = s.empty_cells;
             r["cut_cells"] = s.cut_cells;
             r["contact_cells"] = s.contact_cells;
+            r["device"] = s.device;
             return r;
         },
         py::arg("bodies"), py::arg("x"), py::arg("y"), py::arg("z"), py::arg("block"), py::arg("moments"),
-        py::arg("union"), py::arg("intersection"), py::arg("surface"));
+        py::arg("union"), py::arg("intersection"), py::arg("surface"), py::arg("device") = "auto");
 }
 
 }  // namespace polyvol::python

@@ -11,6 +11,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "polyvol/device.hpp"
 #include "polyvol/implicit.hpp"
 #include "polyvol/io.hpp"
 
@@ -87,6 +88,9 @@ void translate_exceptions() {
             const py::object cls = py::module_::import("polyvol._errors").attr("ExpressionError");
             const py::object exc = cls(e.what(), e.position());
             PyErr_SetObject(cls.ptr(), exc.ptr());
+        } catch (const DeviceError& e) {
+            const py::object cls = py::module_::import("polyvol._errors").attr("DeviceError");
+            PyErr_SetObject(cls.ptr(), cls(e.what()).ptr());
         }
     });
 }

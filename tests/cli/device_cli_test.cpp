@@ -120,7 +120,7 @@ TEST(GridDeviceCli, NoRuntimeOrNoPlatformRunsTheCpuWithANote) {
     ASSERT_EQ(cpu.code, 0) << cpu.err;
     for (const auto& [env, why] : {std::pair<std::string, std::string>{"POLYVOL_OPENCL_LIBRARY=/nonexistent/libOpenCL.so.1",
                                                                        "no OpenCL runtime"},
-                                   {"OCL_ICD_VENDORS='" + vendors + "'", "no OpenCL platform"}}) {
+                                   {"POLYVOL_OPENCL_LIBRARY= OCL_ICD_VENDORS='" + vendors + "'", "no OpenCL platform"}}) {
         const CliRun r = cli_test::run_polyvol_env(env, "grid " + kMesh + " --cells 12 --json --device opencl");
         ASSERT_EQ(r.code, 0) << env << ": " << r.err;
         const json j = json::parse(r.out);

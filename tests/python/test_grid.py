@@ -2,6 +2,7 @@
 overlapping bodies, blocks with the whole grid's bits, and the writers."""
 
 import json
+import os
 import subprocess
 
 import numpy as np
@@ -181,3 +182,48 @@ def test_fractions_are_clamped_and_a_grid_beyond_max_memory_says_so():
     assert polyvol.grid(inside_out, dims=(4, 4, 4), signed=True).fractions.min() < 0  # signed: not clamped
     with pytest.raises(MemoryError, match=r"64 cells need about .* GiB.*more than max_memory.*polyvol.dask.grid"):
         polyvol.grid((v, f), dims=(4, 4, 4), max_memory=100)
+
+
+def _usable_device():
+    return any(d["usable"] for d in polyvol.devices()["devices"])
+
+
+def _require_device():
+    if not _usable_device():
+        if os.environ.get("POLYVOL_TEST_ALLOW_NO_DEVICE") == "1":
+            pytest.skip("no usable OpenCL device")
+        pytest.fail("no usable OpenCL device (install pocl-opencl-icd): " + polyvol.devices()["note"])
+
+
+def test_devices_lists_pocl_as_the_cli_does():
+    _require_device()
+    listed = polyvol.devices()
+    assert listed["opencl_runtime"] is True
+    cli = json.loads(subprocess.run([CLI, "devices", "--json"], capture_output=True, check=True, text=True).stdout)
+    assert [d["name"] for d in listed["devices"]] == [d["name"] for d in cli["devices"]]
+    assert any(d["type"] == "cpu" and d["fp64"] and d["usable"] for d in listed["devices"])
+
+
+def test_opencl_gives_the_cpus_bits_by_keyword_and_by_environment(monkeypatch):
+    _require_device()
+    v, f = uv_sphere(20, 40)
+    cpu = polyvol.grid((v, f), cells=24, moments=True, surface=True, device="cpu")
+    gpu = polyvol.grid((v, f), cells=24, moments=True, surface=True, device="opencl")
+    assert cpu.summary["device"] == "cpu"
+    assert gpu.summary["device"].startswith("opencl: ")
+    for name in ("volumes", "first_moments", "wetted_area", "surface_normal"):
+        assert getattr(cpu, name).tobytes() == getattr(gpu, name).tobytes(), name
+    assert cpu.summary["body_volumes"] == gpu.summary["body_volumes"]
+    monkeypatch.setenv("POLYVOL_DEVICE", "opencl:0")
+    env = polyvol.grid((v, f), cells=24)
+    assert env.summary["device"].startswith("opencl: ")
+    assert env.volumes.tobytes() == cpu.volumes.tobytes()
+
+
+def test_a_device_that_cannot_be_had_raises_device_error():
+    _require_device()
+    v, f = uv_sphere(8, 16)
+    with pytest.raises(polyvol.DeviceError, match="no OpenCL device 99"):
+        polyvol.grid((v, f), cells=8, device="opencl:99")
+    with pytest.raises(ValueError, match="device must be auto, cpu, opencl"):
+        polyvol.grid((v, f), cells=8, device="gpu")
