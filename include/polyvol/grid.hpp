@@ -187,8 +187,8 @@ struct GridOptions {
     // Where the per-cell work runs (polyvol/device.hpp): the same bits on
     // every device. `automatic` is the CPU. An OpenCL request on a machine
     // without OpenCL runs the CPU path (GridSummary::device says so); a named
-    // device that cannot do the work throws DeviceError. The union of several
-    // bodies runs on the CPU for now.
+    // device that cannot do the work throws DeviceError. The union's cells
+    // (several bodies' union and intersection, cell classes) run on the CPU for now.
     DeviceRequest device{};
 };
 

@@ -481,17 +481,64 @@ void run_tile(const Job& job, std::size_t tile, Workspace& ws, Partial& part) {
     }
 }
 
+// Every tile on the CPU's threads (run_tile), then the threads' partial sums
+// and counts into the summary and the exact sums.
+void run_tiles(const Job& job, const GridOptions& options, GridSummary& s, std::vector<exact::ExactSum>& body_volume,
+               exact::ExactSum& union_volume, exact::ExactSum& intersection_volume) {
+    const std::size_t nb = job.bodies.size();
+    tbb::enumerable_thread_specific<Workspace> workspaces;
+    tbb::enumerable_thread_specific<Partial> partials([nb] { return Partial(nb); });
+    std::atomic<std::size_t> done{0};
+    std::mutex progress_mutex;
+    std::atomic<std::size_t> reported{0};
+    const std::size_t ntiles = job.l.tiles();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ntiles, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        Workspace& ws = workspaces.local();
+        Partial& part = partials.local();
+        for (std::size_t tile = r.begin(); tile != r.end(); ++tile) {
+            run_tile(job, tile, ws, part);
+            const std::size_t d = ++done;
+            if (options.progress && (d * 100 / ntiles > reported.load() * 100 / ntiles || d == ntiles)) {
+                std::lock_guard<std::mutex> lock(progress_mutex);
+                if (d > reported.load()) {
+                    reported.store(d);
+                    options.progress(static_cast<double>(d) / static_cast<double>(ntiles));
+                }
+            }
+        }
+    });
+    for (const Partial& p : partials) {
+        for (std::size_t b = 0; b < nb; ++b) {
+            body_volume[b].merge(p.body_volume[b]);
+            s.bodies[b].pieces += p.pieces[b];
+            s.bodies[b].full_cells += p.full[b];
+            s.bodies[b].empty_cells += p.empty[b];
+            s.bodies[b].cut_cells += p.cut[b];
+        }
+        union_volume.merge(p.union_volume);
+        intersection_volume.merge(p.intersection_volume);
+        s.full_cells += p.u_full;
+        s.empty_cells += p.u_empty;
+        s.cut_cells += p.u_cut;
+        s.contact_cells += p.u_contact;
+    }
+}
+
 // The per-column work on an OpenCL device when one is asked for and can do
 // it: fills the outputs, the summary's counts and the bodies' exact sums and
 // returns "opencl: NAME"; else returns why the CPU runs ("cpu (...)"), or
-// nothing for a CPU request. The union of several bodies stays on the CPU.
+// nothing for a CPU request. The union's cells stay on the CPU.
 std::optional<std::string> device_block_volumes(const DeviceRequest& request, std::span<const MeshView> bodies,
                                                 const GridAxes& g, const Layout& l, const std::vector<Triangles>& tris,
                                                 const std::vector<Bins>& bins, const GridOutput& out,
                                                 bool union_outputs, GridSummary& s,
                                                 std::vector<exact::ExactSum>& body_volume) {
     if (request.kind != DeviceKind::opencl) return std::nullopt;
-    if (bodies.size() > 1 && union_outputs) return "cpu (the union of several bodies runs on the CPU)";
+    // One body's union is its own cells (its surface on the device too); the
+    // union's cells and classes of several bodies, and the classes of one, are the CPU's.
+    if (union_outputs && (bodies.size() > 1 || !out.union_volumes.empty() || !out.intersection_volumes.empty() ||
+                          !out.cell_class.empty()))
+        return "cpu (the union's cells run on the CPU)";
     std::string note;
     device::Device* d = device::resolve(request, note);
     if (!d) return "cpu (" + note + ")";
@@ -613,63 +660,14 @@ GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes&
                                                                  union_outputs, s, body_volume)) {
         s.device = *device;
     }
-    if (s.device.starts_with("opencl")) {
-        for (std::size_t b = 0; b < nb; ++b) {
-            s.bodies[b].volume = body_volume[b].round();
-            s.bodies[b].triangles = tris[b].count();
-        }
-        s.intersection_volume = std::numeric_limits<double>::quiet_NaN();
-        if (nb == 1) {
-            s.union_volume = s.bodies[0].volume;
-            s.full_cells = s.bodies[0].full_cells;
-            s.empty_cells = s.bodies[0].empty_cells;
-            s.cut_cells = s.bodies[0].cut_cells;
-        } else {
-            s.union_volume = std::numeric_limits<double>::quiet_NaN();  // not asked for
-        }
-        if (options.progress) options.progress(1.0);
-        return s;
-    }
-
-    const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, union_outputs, surface,
-                  levels ? &*levels : nullptr, fans};
-    tbb::enumerable_thread_specific<Workspace> workspaces;
-    tbb::enumerable_thread_specific<Partial> partials([nb] { return Partial(nb); });
-    std::atomic<std::size_t> done{0};
-    std::mutex progress_mutex;
-    std::atomic<std::size_t> reported{0};
-    const std::size_t ntiles = layout.tiles();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ntiles, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-        Workspace& ws = workspaces.local();
-        Partial& part = partials.local();
-        for (std::size_t tile = r.begin(); tile != r.end(); ++tile) {
-            run_tile(job, tile, ws, part);
-            const std::size_t d = ++done;
-            if (options.progress && (d * 100 / ntiles > reported.load() * 100 / ntiles || d == ntiles)) {
-                std::lock_guard<std::mutex> lock(progress_mutex);
-                if (d > reported.load()) {
-                    reported.store(d);
-                    options.progress(static_cast<double>(d) / static_cast<double>(ntiles));
-                }
-            }
-        }
-    });
-
+    const bool on_device = s.device.starts_with("opencl");
     exact::ExactSum union_volume, intersection_volume;
-    for (const Partial& p : partials) {
-        for (std::size_t b = 0; b < nb; ++b) {
-            body_volume[b].merge(p.body_volume[b]);
-            s.bodies[b].pieces += p.pieces[b];
-            s.bodies[b].full_cells += p.full[b];
-            s.bodies[b].empty_cells += p.empty[b];
-            s.bodies[b].cut_cells += p.cut[b];
-        }
-        union_volume.merge(p.union_volume);
-        intersection_volume.merge(p.intersection_volume);
-        s.full_cells += p.u_full;
-        s.empty_cells += p.u_empty;
-        s.cut_cells += p.u_cut;
-        s.contact_cells += p.u_contact;
+    if (on_device) {
+        if (options.progress) options.progress(1.0);
+    } else {
+        run_tiles(Job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, union_outputs, surface,
+                      levels ? &*levels : nullptr, fans},
+                  options, s, body_volume, union_volume, intersection_volume);
     }
     for (std::size_t b = 0; b < nb; ++b) {
         s.bodies[b].volume = body_volume[b].round();
@@ -677,7 +675,7 @@ GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes&
     }
     s.intersection_volume = std::numeric_limits<double>::quiet_NaN();
     if (levels) s.crossing_pairs = levels->crossing_pairs;
-    if (job.want_union) {
+    if (union_outputs && !on_device) {
         s.union_volume = union_volume.round();
         if (!out.intersection_volumes.empty()) s.intersection_volume = intersection_volume.round();
     } else if (nb == 1) {

@@ -271,7 +271,7 @@ TEST(DeviceGrid, AKernelThatDoesNotBuildGivesTheCompilersLog) {
     device::fail_points().bad_kernel = false;
 }
 
-TEST(DeviceGrid, TheUnionOfSeveralBodiesRunsOnTheCpuAndSaysSo) {
+TEST(DeviceGrid, TheUnionsCellsRunOnTheCpuAndSaySo) {
     REQUIRE_DEVICE();
     const Mesh a = test::box({0, 0, 0}, {2, 2, 2}), b = test::box({1, 1, 1}, {3, 3, 3});
     const std::vector<const Mesh*> meshes{&a, &b};
@@ -279,8 +279,14 @@ TEST(DeviceGrid, TheUnionOfSeveralBodiesRunsOnTheCpuAndSaysSo) {
     const GridAxes g = make_grid(views, {.cells = 6});
     std::vector<double> vol(2 * g.cell_count()), uni(g.cell_count());
     const GridSummary s = grid_volumes(views, g, {.volumes = vol, .union_volumes = uni}, {.device = {DeviceKind::opencl, -1}});
-    EXPECT_EQ(s.device, "cpu (the union of several bodies runs on the CPU)");
+    EXPECT_EQ(s.device, "cpu (the union's cells run on the CPU)");
     EXPECT_EQ(s.union_volume, 15.0);
+    // One body's cell classes are the union's too: also the CPU's.
+    std::vector<CellClass> cls(g.cell_count());
+    std::vector<double> one(g.cell_count());
+    const MeshView first[1] = {views[0]};
+    EXPECT_EQ(grid_volumes(first, g, {.volumes = one, .cell_class = cls}, {.device = {DeviceKind::opencl, -1}}).device,
+              "cpu (the union's cells run on the CPU)");
 }
 
 TEST(DeviceGrid, AnIndexBeyondTheDevicesIsAnError) {
