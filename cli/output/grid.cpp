@@ -44,6 +44,10 @@ nlohmann::json grid_summary_json(const std::vector<std::string>& files, const st
     j["cut_cells"] = s.cut_cells;
     j["contact_cells"] = s.contact_cells;
     j["device"] = s.device;
+    if (s.device.starts_with("opencl"))
+        j["device_seconds"] = {{"kernels", s.device_kernel_seconds},
+                               {"transfers", s.device_transfer_seconds},
+                               {"build", s.device_build_seconds}};
     j["seconds"] = seconds;
     return j;
 }

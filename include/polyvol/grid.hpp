@@ -187,8 +187,9 @@ struct GridOptions {
     // Where the per-cell work runs (polyvol/device.hpp): the same bits on
     // every device. `automatic` is the CPU. An OpenCL request on a machine
     // without OpenCL runs the CPU path (GridSummary::device says so); a named
-    // device that cannot do the work throws DeviceError. The union's cells
-    // (several bodies' union and intersection, cell classes) run on the CPU for now.
+    // device that cannot do the work throws DeviceError. The union's pieces on
+    // the crossed triangles (exact booleans) are found on the CPU, and
+    // everything per cell on the device.
     DeviceRequest device{};
 };
 
@@ -216,6 +217,9 @@ struct GridSummary {
     // Where the cells were computed: "cpu", or "opencl: <device name>"; a
     // request the CPU path answered says why, e.g. "cpu (no OpenCL runtime ...)".
     std::string device = "cpu";
+    // On an OpenCL device, wall seconds: in its kernels, in copies to and from
+    // it, and building its kernels (once per device and process); else 0.
+    double device_kernel_seconds = 0, device_transfer_seconds = 0, device_build_seconds = 0;
 };
 
 // The volume of each body in every cell of the grid (and what else `out`

@@ -192,8 +192,11 @@ const char* error_name(cl_int code) {
 }
 
 void check(const Device& d, cl_int code, const char* what) {
-    if (code != CL_SUCCESS)
-        throw DeviceError(label(d.info) + ": " + what + ": " + error_name(code) + " (" + std::to_string(code) + ")");
+    if (code == CL_SUCCESS) return;
+    const std::string message =
+        label(d.info) + ": " + what + ": " + error_name(code) + " (" + std::to_string(code) + ")";
+    if (code == CL_MEM_OBJECT_ALLOCATION_FAILURE || code == CL_OUT_OF_RESOURCES) throw OutOfDeviceMemory(message);
+    throw DeviceError(message);
 }
 
 Device* resolve(const DeviceRequest& request, std::string& note) {
@@ -262,6 +265,8 @@ Kernel::Kernel(Device& d, cl_program p, const char* name) {
 Buffer make_buffer(Device& d, std::size_t bytes, const void* data) {
     cl_int err = CL_SUCCESS;
     Buffer b;
+    if (fail_points().max_buffer > 0 && bytes > fail_points().max_buffer)
+        check(d, CL_MEM_OBJECT_ALLOCATION_FAILURE, "allocating device memory");
     const cl_mem_flags flags = CL_MEM_READ_WRITE | (data ? CL_MEM_COPY_HOST_PTR : 0);
     b.mem = api()->CreateBuffer(d.context, flags, bytes == 0 ? 1 : bytes, bytes == 0 ? nullptr : const_cast<void*>(data),
                                 &err);

@@ -74,8 +74,15 @@ Device* resolve(const DeviceRequest& request, std::string& note);
 // build log. Call with d.mutex held.
 cl_program build(Device& d, const std::string& source);
 
-// Throws DeviceError "device N "name": what: CL_..." unless code is CL_SUCCESS.
+// Throws DeviceError "device N "name": what: CL_..." unless code is CL_SUCCESS;
+// OutOfDeviceMemory for CL_MEM_OBJECT_ALLOCATION_FAILURE and CL_OUT_OF_RESOURCES
+// (drivers allocate lazily: at enqueue or finish as well), which a caller can
+// answer with smaller batches.
 void check(const Device& d, cl_int code, const char* what);
+class OutOfDeviceMemory : public DeviceError {
+public:
+    using DeviceError::DeviceError;
+};
 
 // Owns a cl_mem or cl_kernel.
 struct Buffer {
@@ -110,6 +117,7 @@ struct FailPoints {
     bool no_fp64 = false;     // every device reports no cl_khr_fp64
     bool bad_kernel = false;  // the grid's source gets a line that does not compile
     int capacity = 0;         // > 0: the grid kernel's polygon capacity (forces its CPU fallback)
+    std::size_t max_buffer = 0;  // > 0: buffers larger than this fail as out of device memory
 };
 FailPoints& fail_points();
 

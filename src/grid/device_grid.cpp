@@ -8,6 +8,7 @@
 #include "grid/device_grid.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -67,6 +68,10 @@ struct Args {
         const cl_int x = v;
         device::check(d, a->SetKernelArg(k, next++, sizeof x, &x), "an argument");
     }
+    void u64(std::size_t v) {
+        const cl_ulong x = v;
+        device::check(d, a->SetKernelArg(k, next++, sizeof x, &x), "an argument");
+    }
 };
 
 template <class T>
@@ -74,109 +79,147 @@ device::Buffer upload(device::Device& d, std::span<const T> v) {
     return device::make_buffer(d, v.size_bytes(), v.empty() ? nullptr : v.data());
 }
 
-}  // namespace
+// Device bytes per column of a batch: the body's sums, the levels' sums,
+// each body's outputs and states.
+std::size_t bytes_per_column(const GridAxes& g, const DeviceLayout& l, std::size_t bodies, bool moments, int nlevels) {
+    const std::size_t layers = g.nz() - static_cast<std::size_t>(l.k0) + 1, bnz = static_cast<std::size_t>(l.bnz);
+    return layers * ((moments ? 14 : 4) * sizeof(double) + 1) +
+           static_cast<std::size_t>(nlevels) * layers * (4 * sizeof(double) + 1) +
+           bodies * bnz * ((moments ? 4 : 1) * sizeof(double) + 1);
+}
 
-bool device_columns(device::Device& d, const GridAxes& g, const DeviceLayout& l, std::span<const DeviceBody> bodies,
-                    const GridOutput& out, std::vector<DeviceCounts>& counts) {
-    static_assert(sizeof(std::size_t) == sizeof(cl_ulong), "bin offsets go to the device as ulong");
-    std::lock_guard<std::mutex> lock(d.mutex);
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Every batch of `rows` rows of columns: the bodies' kernels, then the union's.
+bool run_batches(device::Device& d, cl_program program, const GridAxes& g, const DeviceLayout& l,
+                 std::span<const DeviceBody> bodies, const DeviceLevels* levels, const GridOutput& out,
+                 DeviceResult& result, int rows) {
     const device::Api* a = device::api();
-    const cl_program program = device::build(d, kernel_source());
-    if (!d.canary_passed) check_canary(d, program);
-
+    result = DeviceResult{};
+    const std::size_t nb = bodies.size();
     const bool moments = !out.first_moments.empty();
-    const bool one = bodies.size() == 1;
+    const bool union_cells = levels != nullptr;
+    const bool union_surface = nb == 1 || union_cells;  // one body's surface is the union's
     const int what = (moments ? kWhatMoments : 0) | (!out.wetted_area.empty() ? kWhatArea : 0) |
                      (!out.surface_normal.empty() ? kWhatNormal : 0) |
-                     (one && !out.union_wetted_area.empty() ? kWhatUnionArea : 0) |
-                     (one && !out.union_surface_normal.empty() ? kWhatUnionNormal : 0);
+                     (union_surface && !out.union_wetted_area.empty() ? kWhatUnionArea : 0) |
+                     (union_surface && !out.union_surface_normal.empty() ? kWhatUnionNormal : 0);
+    const int nlevels = union_cells ? static_cast<int>(levels->count) : 0;
     const int gnz = static_cast<int>(g.nz());
     const std::size_t layers = static_cast<std::size_t>(gnz - l.k0 + 1);
-    const std::size_t per_column = layers * ((moments ? 14 : 4) * sizeof(double) + 1);
-    const std::size_t budget = std::min<std::size_t>(std::size_t{256} << 20, d.info.global_memory / 4);
-    const std::size_t row_bytes = per_column * static_cast<std::size_t>(l.ny);
-    const int rows = static_cast<int>(std::clamp<std::size_t>(budget / std::max<std::size_t>(row_bytes, 1), 1,
-                                                               static_cast<std::size_t>(l.nx)));
-    const std::size_t max_columns = static_cast<std::size_t>(rows) * l.ny;
     const std::size_t bnz = static_cast<std::size_t>(l.bnz);
+    const std::size_t max_columns = static_cast<std::size_t>(rows) * l.ny;
     const std::size_t cells = static_cast<std::size_t>(l.nx) * l.ny * bnz;
+    const std::size_t batch_cells = max_columns * bnz;
 
+    auto t = Clock::now();
     const device::Buffer xs = upload(d, std::span<const double>(g.x)), ys = upload(d, std::span<const double>(g.y)),
                          zs = upload(d, std::span<const double>(g.z));
+    std::vector<device::Buffer> pos, tri, offsets, entries, on_level;
+    for (const DeviceBody& body : bodies) {
+        pos.push_back(upload(d, body.positions));
+        tri.push_back(upload(d, body.triangles));
+        offsets.push_back(upload(d, body.offsets));
+        entries.push_back(upload(d, body.entries));
+        on_level.push_back(upload(d, body.level_bits));
+    }
     const device::Buffer sums = device::make_buffer(d, max_columns * layers * (moments ? 14 : 4) * sizeof(double));
     const device::Buffer flags = device::make_buffer(d, max_columns * layers);
-    const std::size_t out_bytes = max_columns * bnz * sizeof(double);
-    const device::Buffer vol = device::make_buffer(d, out_bytes);
-    const device::Buffer mom = device::make_buffer(d, moments ? 3 * out_bytes : 0);
-    const device::Buffer area = device::make_buffer(d, what & kWhatArea ? out_bytes : 0);
-    const device::Buffer normal = device::make_buffer(d, what & kWhatNormal ? 3 * out_bytes : 0);
-    const device::Buffer uarea = device::make_buffer(d, what & kWhatUnionArea ? out_bytes : 0);
-    const device::Buffer unormal = device::make_buffer(d, what & kWhatUnionNormal ? 3 * out_bytes : 0);
-    const device::Buffer column_counts = device::make_buffer(d, max_columns * 4 * sizeof(cl_uint));
+    const std::size_t level_cells = max_columns * layers;
+    const device::Buffer level_sums = device::make_buffer(d, nlevels * level_cells * 4 * sizeof(double));
+    const device::Buffer level_flags = device::make_buffer(d, nlevels * level_cells);
+    const device::Buffer vol = device::make_buffer(d, nb * batch_cells * sizeof(double));
+    const device::Buffer mom = device::make_buffer(d, moments ? 3 * nb * batch_cells * sizeof(double) : 0);
+    const device::Buffer states = device::make_buffer(d, nb * batch_cells);
+    const device::Buffer area = device::make_buffer(d, what & kWhatArea ? nb * batch_cells * sizeof(double) : 0);
+    const device::Buffer normal = device::make_buffer(d, what & kWhatNormal ? 3 * nb * batch_cells * sizeof(double) : 0);
+    const device::Buffer uarea = device::make_buffer(d, what & kWhatUnionArea ? batch_cells * sizeof(double) : 0);
+    const device::Buffer unormal = device::make_buffer(d, what & kWhatUnionNormal ? 3 * batch_cells * sizeof(double) : 0);
+    const device::Buffer column_counts = device::make_buffer(d, nb * max_columns * 4 * sizeof(cl_uint));
+    // the union's cells
+    const device::Buffer fan_pos = upload(d, std::span<const double>(union_cells ? levels->positions : std::vector<double>{}));
+    const device::Buffer fan_tri = upload(d, std::span<const uint32_t>(union_cells ? levels->triangles : std::vector<uint32_t>{}));
+    const device::Buffer fan_normal = upload(d, std::span<const double>(union_cells ? levels->normals : std::vector<double>{}));
+    const device::Buffer fan_offsets = upload(d, std::span<const std::size_t>(union_cells ? levels->offsets : std::vector<std::size_t>{}));
+    const device::Buffer fan_entries = upload(d, std::span<const uint32_t>(union_cells ? levels->entries : std::vector<uint32_t>{}));
+    const device::Buffer uvol = device::make_buffer(d, union_cells ? batch_cells * sizeof(double) : 0);
+    const bool intersection = union_cells && !out.intersection_volumes.empty();
+    const device::Buffer xvol = device::make_buffer(d, intersection ? batch_cells * sizeof(double) : 0);
+    const device::Buffer cls = device::make_buffer(d, union_cells ? batch_cells : 0);
+    const device::Buffer union_counts = device::make_buffer(d, union_cells ? max_columns * 4 * sizeof(cl_uint) : 0);
     const cl_int zero = 0;
     const device::Buffer error = device::make_buffer(d, sizeof zero, &zero);
-    std::vector<cl_uint> host_counts(max_columns * 4);
-    counts.assign(bodies.size(), DeviceCounts{});
+    std::vector<cl_uint> host_counts(nb * max_columns * 4);
+    std::vector<double> host_values(union_cells ? batch_cells : 0);
+    std::vector<uint8_t> host_classes(union_cells ? batch_cells : 0);
+    result.bodies.assign(nb, DeviceCounts{});
+    result.transfer_seconds += since(t);
+    const int cap = device::fail_points().capacity > 0 ? device::fail_points().capacity : 1 << 30;
 
-    auto read = [&](const device::Buffer& b, double* dst, std::size_t values) {
-        device::check(d, a->EnqueueReadBuffer(d.queue, b.mem, CL_TRUE, 0, values * sizeof(double), dst, 0, nullptr,
-                                              nullptr),
+    auto read = [&](const device::Buffer& b, std::size_t from, void* dst, std::size_t bytes) {
+        const auto t0 = Clock::now();
+        device::check(d, a->EnqueueReadBuffer(d.queue, b.mem, CL_TRUE, from, bytes, dst, 0, nullptr, nullptr),
                       "reading the results");
+        result.transfer_seconds += since(t0);
     };
     auto clear = [&](const device::Buffer& b, std::size_t bytes) {
-        const double z = 0;
+        if (bytes == 0) return;
+        const cl_uchar z = 0;
         device::check(d, a->EnqueueFillBuffer(d.queue, b.mem, &z, sizeof z, 0, bytes, 0, nullptr, nullptr),
                       "clearing a buffer");
     };
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-        const DeviceBody& body = bodies[b];
-        const device::Buffer pos = upload(d, body.positions), tri = upload(d, body.triangles),
-                             offsets = upload(d, body.offsets), entries = upload(d, body.entries);
-        for (int row0 = 0; row0 < l.nx; row0 += rows) {
-            const int nrows = std::min(rows, l.nx - row0);
-            const std::size_t columns = static_cast<std::size_t>(nrows) * l.ny;
-            if (what & kWhatArea) clear(area, columns * bnz * sizeof(double));
-            if (what & kWhatNormal) clear(normal, 3 * columns * bnz * sizeof(double));
-            if (what & kWhatUnionArea) clear(uarea, columns * bnz * sizeof(double));
-            if (what & kWhatUnionNormal) clear(unormal, 3 * columns * bnz * sizeof(double));
+    auto run = [&](const device::Kernel& k, std::size_t columns) {
+        // A column's polygons live in private memory: one work-item per
+        // group on a CPU device (pocl keeps a group's private arrays on one
+        // thread's stack), 64 on the others.
+        const std::size_t local = d.info.type == "cpu" ? 1 : 64;
+        const std::size_t global = (columns + local - 1) / local * local;
+        const auto t0 = Clock::now();
+        device::check(d, a->EnqueueNDRangeKernel(d.queue, k.k, 1, nullptr, &global, &local, 0, nullptr, nullptr),
+                      "running the grid kernel");
+        device::check(d, a->Finish(d.queue), "running the grid kernel");
+        result.kernel_seconds += since(t0);
+        cl_int failed = 0;
+        read(error, 0, &failed, sizeof failed);
+        return failed == 0;
+    };
+    auto column_args = [&](Args& args, int row0, std::size_t columns) {
+        args.mem(xs), args.mem(ys), args.mem(zs);
+        args.i32(static_cast<int>(g.nx())), args.i32(static_cast<int>(g.ny())), args.i32(gnz);
+        args.i32(l.i0), args.i32(l.j0), args.i32(l.k0), args.i32(l.ny), args.i32(l.bnz), args.i32(row0);
+        args.i32(static_cast<int>(columns)), args.i32(l.tile), args.i32(l.nty);
+    };
+    for (int row0 = 0; row0 < l.nx; row0 += rows) {
+        const int nrows = std::min(rows, l.nx - row0);
+        const std::size_t columns = static_cast<std::size_t>(nrows) * l.ny;
+        const std::size_t n = columns * bnz;
+        clear(area, nb * batch_cells * sizeof(double) * ((what & kWhatArea) != 0));
+        clear(normal, 3 * nb * batch_cells * sizeof(double) * ((what & kWhatNormal) != 0));
+        clear(uarea, batch_cells * sizeof(double) * ((what & kWhatUnionArea) != 0));
+        clear(unormal, 3 * batch_cells * sizeof(double) * ((what & kWhatUnionNormal) != 0));
+        clear(level_sums, nlevels * level_cells * 4 * sizeof(double));
+        clear(level_flags, nlevels * level_cells);
+        for (std::size_t b = 0; b < nb; ++b) {
             device::Kernel k(d, program, "polyvol_grid_body");
             Args args{a, d, k.k};
-            args.mem(xs), args.mem(ys), args.mem(zs);
-            args.i32(static_cast<int>(g.nx())), args.i32(static_cast<int>(g.ny())), args.i32(gnz);
-            args.i32(l.i0), args.i32(l.j0), args.i32(l.k0), args.i32(l.ny), args.i32(l.bnz), args.i32(row0);
-            args.i32(static_cast<int>(columns)), args.i32(l.tile), args.i32(l.nty);
-            args.mem(pos), args.mem(tri), args.mem(offsets), args.mem(entries);
-            args.mem(sums), args.mem(flags), args.i32(what), args.i32(device::fail_points().capacity > 0
-                                                                           ? device::fail_points().capacity
-                                                                           : 1 << 30);
-            args.mem(vol), args.mem(mom), args.mem(area), args.mem(normal), args.mem(uarea), args.mem(unormal);
-            args.mem(column_counts), args.mem(error);
-            // A column's polygons live in private memory: one work-item per
-            // group on a CPU device (pocl keeps a group's private arrays on one
-            // thread's stack), 64 on the others.
-            const std::size_t local = d.info.type == "cpu" ? 1 : 64;
-            const std::size_t global = (columns + local - 1) / local * local;
-            device::check(d, a->EnqueueNDRangeKernel(d.queue, k.k, 1, nullptr, &global, &local, 0, nullptr, nullptr),
-                          "running the grid kernel");
-            cl_int failed = 0;
-            device::check(d, a->EnqueueReadBuffer(d.queue, error.mem, CL_TRUE, 0, sizeof failed, &failed, 0, nullptr,
-                                                  nullptr),
-                          "reading the kernel's status");
-            if (failed) return false;
+            column_args(args, row0, columns);
+            args.mem(pos[b]), args.mem(tri[b]), args.mem(offsets[b]), args.mem(entries[b]);
+            args.mem(on_level[b]), args.i32(bodies[b].level_bits.empty() ? 0 : nlevels), args.mem(sums), args.mem(flags);
+            args.mem(level_sums), args.mem(level_flags), args.u64(level_cells), args.i32(what), args.i32(cap);
+            args.u64(b * max_columns), args.mem(vol), args.mem(mom), args.mem(states);
+            args.mem(area), args.mem(normal), args.mem(uarea), args.mem(unormal), args.mem(column_counts),
+                args.mem(error);
+            if (!run(k, columns)) return false;
             const std::size_t first = b * cells + static_cast<std::size_t>(row0) * l.ny * bnz;
-            const std::size_t n = columns * bnz;
-            read(vol, &out.volumes[first], n);
-            if (moments) read(mom, &out.first_moments[3 * first], 3 * n);
-            if (what & kWhatArea) read(area, &out.wetted_area[first], n);
-            if (what & kWhatNormal) read(normal, &out.surface_normal[3 * first], 3 * n);
-            const std::size_t ufirst = static_cast<std::size_t>(row0) * l.ny * bnz;
-            if (what & kWhatUnionArea) read(uarea, &out.union_wetted_area[ufirst], n);
-            if (what & kWhatUnionNormal) read(unormal, &out.union_surface_normal[3 * ufirst], 3 * n);
-            device::check(d, a->EnqueueReadBuffer(d.queue, column_counts.mem, CL_TRUE, 0,
-                                                  columns * 4 * sizeof(cl_uint), host_counts.data(), 0, nullptr,
-                                                  nullptr),
-                          "reading the counts");
-            DeviceCounts& c = counts[b];
+            read(vol, b * batch_cells * sizeof(double), &out.volumes[first], n * sizeof(double));
+            if (moments)
+                read(mom, 3 * b * batch_cells * sizeof(double), &out.first_moments[3 * first], 3 * n * sizeof(double));
+            if (what & kWhatArea) read(area, b * batch_cells * sizeof(double), &out.wetted_area[first], n * sizeof(double));
+            if (what & kWhatNormal)
+                read(normal, 3 * b * batch_cells * sizeof(double), &out.surface_normal[3 * first], 3 * n * sizeof(double));
+            read(column_counts, b * max_columns * 4 * sizeof(cl_uint), host_counts.data(), columns * 4 * sizeof(cl_uint));
+            DeviceCounts& c = result.bodies[b];
             for (std::size_t col = 0; col < columns; ++col) {
                 c.empty += host_counts[4 * col];
                 c.full += host_counts[4 * col + 1];
@@ -184,8 +227,74 @@ bool device_columns(device::Device& d, const GridAxes& g, const DeviceLayout& l,
                 c.pieces += host_counts[4 * col + 3];
             }
         }
+        const std::size_t ufirst = static_cast<std::size_t>(row0) * l.ny * bnz;
+        if (union_cells) {
+            device::Kernel k(d, program, "polyvol_grid_union");
+            Args args{a, d, k.k};
+            column_args(args, row0, columns);
+            args.i32(what), args.i32(cap), args.i32(static_cast<int>(nb)), args.i32(nlevels), args.i32(intersection);
+            args.mem(fan_pos), args.mem(fan_tri), args.mem(fan_normal), args.mem(fan_offsets), args.mem(fan_entries);
+            args.u64(static_cast<std::size_t>(l.nty) * ((l.nx + l.tile - 1) / l.tile));
+            args.mem(level_sums), args.mem(level_flags), args.u64(level_cells);
+            args.mem(vol), args.mem(states), args.u64(batch_cells);
+            args.mem(uvol), args.mem(xvol), args.mem(cls), args.mem(uarea), args.mem(unormal), args.mem(union_counts),
+                args.mem(error);
+            if (!run(k, columns)) return false;
+            // Each cell of the union (and the intersection) into its exact sum, and where asked for.
+            auto values = [&](const device::Buffer& b, std::span<double> dst, exact::ExactSum& sum) {
+                read(b, 0, host_values.data(), n * sizeof(double));
+                for (std::size_t c = 0; c < n; ++c)
+                    if (host_values[c] != 0) sum.add(host_values[c]);
+                if (!dst.empty()) std::copy_n(host_values.data(), n, dst.begin() + static_cast<std::ptrdiff_t>(ufirst));
+            };
+            values(uvol, out.union_volumes, result.union_volume);
+            if (intersection) values(xvol, out.intersection_volumes, result.intersection_volume);
+            if (!out.cell_class.empty()) read(cls, 0, &out.cell_class[ufirst], n);
+            read(union_counts, 0, host_counts.data(), columns * 4 * sizeof(cl_uint));
+            for (std::size_t col = 0; col < columns; ++col) {
+                result.full += host_counts[4 * col];
+                result.empty += host_counts[4 * col + 1];
+                result.cut += host_counts[4 * col + 2];
+                result.contact += host_counts[4 * col + 3];
+            }
+        }
+        if (what & kWhatUnionArea) read(uarea, 0, &out.union_wetted_area[ufirst], n * sizeof(double));
+        if (what & kWhatUnionNormal) read(unormal, 0, &out.union_surface_normal[3 * ufirst], 3 * n * sizeof(double));
     }
     return true;
+}
+
+}  // namespace
+
+bool device_columns(device::Device& d, const GridAxes& g, const DeviceLayout& l, std::span<const DeviceBody> bodies,
+                    const DeviceLevels* levels, const GridOutput& out, DeviceResult& result) {
+    static_assert(sizeof(std::size_t) == sizeof(cl_ulong), "bin offsets go to the device as ulong");
+    std::lock_guard<std::mutex> lock(d.mutex);
+    const auto t = Clock::now();
+    const cl_program program = device::build(d, kernel_source());
+    if (!d.canary_passed) check_canary(d, program);
+    const double build_seconds = since(t);
+    // Batches of at most 256 MiB or a quarter of the device's memory; halved
+    // while the device runs out of memory, down to one row of columns.
+    const std::size_t row_bytes =
+        bytes_per_column(g, l, bodies.size(), !out.first_moments.empty(), levels ? static_cast<int>(levels->count) : 0) *
+        static_cast<std::size_t>(l.ny);
+    const std::size_t budget = std::min<std::size_t>(std::size_t{256} << 20, d.info.global_memory / 4);
+    int rows = static_cast<int>(std::clamp<std::size_t>(budget / std::max<std::size_t>(row_bytes, 1), 1,
+                                                        static_cast<std::size_t>(l.nx)));
+    for (;;) {
+        try {
+            const bool done = run_batches(d, program, g, l, bodies, levels, out, result, rows);
+            result.build_seconds = build_seconds;
+            return done;
+        } catch (const device::OutOfDeviceMemory& e) {
+            if (rows == 1)
+                throw DeviceError(std::string(e.what()) + ": one row of " + std::to_string(l.ny) +
+                                  " columns needs about " + std::to_string(row_bytes >> 20) +
+                                  " MiB of device memory (fewer cells along z, or the CPU)");
+            rows = (rows + 1) / 2;
+        }
+    }
 }
 
 }  // namespace polyvol::grid

@@ -201,9 +201,9 @@ static double round_integer(double x) {
 #define PV_QY 10
 #define PV_QZ 12
 
-// piece.hpp piece_integrals, added to the cell's sums (tile_sums.hpp scatter).
-static void scatter_piece(const Polygon* poly, const double* corner, const double* far, int moments,
-                          __global double* cell, __global uchar* flag) {
+// piece.hpp piece_integrals: r = P, Q, Px, Py, Qx, Qy, Qz (the last five
+// with moments); returns whether the piece enters the cell's interior.
+static int piece_integrals(const Polygon* poly, const double* corner, const double* far, int moments, double* r) {
     const int n = poly->n;
     double xi[PV_CAP], eta[PV_CAP], zeta[PV_CAP];
     int on_lo[3] = {1, 1, 1}, on_hi[3] = {1, 1, 1};
@@ -216,7 +216,6 @@ static void scatter_piece(const Polygon* poly, const double* corner, const doubl
             on_hi[a] = on_hi[a] && poly->p[v][a] == far[a];
         }
     }
-    const int interior = !(on_lo[0] || on_lo[1] || on_lo[2] || on_hi[0] || on_hi[1] || on_hi[2]);
     double c_sum = 0, q_sum = 0, px_sum = 0, py_sum = 0, qx_sum = 0, qy_sum = 0, qz_sum = 0;
     for (int t = 1; t + 1 < n; ++t) {
         const double c = (xi[t] - xi[0]) * (eta[t + 1] - eta[0]) - (eta[t] - eta[0]) * (xi[t + 1] - xi[0]);
@@ -233,16 +232,23 @@ static void scatter_piece(const Polygon* poly, const double* corner, const doubl
             qz_sum += c * ((zeta[0] * zeta[0] + zeta[t] * zeta[t] + zeta[t + 1] * zeta[t + 1]) + sz * sz);
         }
     }
-    *flag |= (uchar)(1 | (interior ? 2 : 0));
-    dd_add(cell + PV_P, c_sum / 2);
-    dd_add(cell + PV_Q, q_sum / 6);
+    r[0] = c_sum / 2;
+    r[1] = q_sum / 6;
     if (moments) {
-        dd_add(cell + PV_PX, px_sum / 6);
-        dd_add(cell + PV_PY, py_sum / 6);
-        dd_add(cell + PV_QX, qx_sum / 24);
-        dd_add(cell + PV_QY, qy_sum / 24);
-        dd_add(cell + PV_QZ, qz_sum / 48);
+        r[2] = px_sum / 6;
+        r[3] = py_sum / 6;
+        r[4] = qx_sum / 24;
+        r[5] = qy_sum / 24;
+        r[6] = qz_sum / 48;
     }
+    return !(on_lo[0] || on_lo[1] || on_lo[2] || on_hi[0] || on_hi[1] || on_hi[2]);
+}
+
+// tile_sums.hpp TileSums::scatter: one piece's integrals into its cell's
+// double-doubles (nsum / 2 of them) and flags.
+static void add_to_cell(__global double* cell, __global uchar* flag, const double* r, int interior, int nsum) {
+    *flag |= (uchar)(1 | (interior ? 2 : 0));
+    for (int m = 0; m < nsum / 2; ++m) dd_add(cell + 2 * m, r[m]);
 }
 
 // piece.hpp piece_vector_area
@@ -267,40 +273,76 @@ static void vector_area(const Polygon* poly, const double* corner, double* out) 
 #define PV_UNION_AREA 8
 #define PV_UNION_NORMAL 16
 
-// The pieces of one triangle (pool[0]) in column (i, j), every layer from k0
-// up (clip.hpp clip_to_cells with the keep ranges [i, i] and [j, j]), each
-// summed into its cell and, when asked, its area added to the surfaces.
-// Returns 0 on overflow of the capacity.
 typedef struct {
     __global const double *xs, *ys, *zs;
-    int gnx, gny, gnz, k0, bnz, nsum, what, cap;
+    int gnx, gny, gnz, k0, bnz, what, cap;
 } Column;
 
-static void emit(const Column* g, const Polygon* piece, int i, int j, int k, __global double* s, __global uchar* fl,
-                 size_t out0, __global double* area, __global double* normal, __global double* union_area,
-                 __global double* union_normal) {
+// Where one triangle's pieces go: a body's sums (nsum doubles a cell, its
+// own flags) and the levels its whole triangle lies on (grid_volumes.cpp
+// scatter_tile), or a level's fan triangle (scatter_fans: `fan` set, the
+// union's surface signed by its normal). Layer-indexed pointers of the column.
+typedef struct {
+    __global double* sums;
+    __global uchar* flags;
+    int nsum;
+    __global double* level_sums;  // level l at + l * level_stride * 4
+    __global uchar* level_flags;  // level l at + l * level_stride
+    size_t level_stride;
+    int nlevels;
+    int level_bits;
+    int fan;
+    double normal[3];  // the fan triangle's unit normal
+    size_t out0;       // the column's first output cell of its body
+    size_t union0;     // the column's first cell of the union's outputs
+    __global double *area, *surface_normal, *union_area, *union_normal;
+} Sink;
+
+static void emit(const Column* g, Sink* o, const Polygon* piece, int i, int j, int k) {
     const int kt = min(k + 1, g->gnz);
     const double corner[3] = {g->xs[i], g->ys[j], g->zs[k]};
     const double far[3] = {g->xs[i + 1], g->ys[j + 1], g->zs[kt]};
     const int layer = k - g->k0;
-    scatter_piece(piece, corner, far, (g->what & PV_MOMENTS) != 0, s + (size_t)layer * g->nsum, fl + layer);
-    if ((g->what & (PV_AREA | PV_NORMAL | PV_UNION_AREA | PV_UNION_NORMAL)) && layer < g->bnz) {
+    const int moments = !o->fan && (g->what & PV_MOMENTS);
+    double r[7];
+    const int interior = piece_integrals(piece, corner, far, moments, r);
+    if (!o->fan) add_to_cell(o->sums + (size_t)layer * o->nsum, o->flags + layer, r, interior, o->nsum);
+    for (int l = 0; l < o->nlevels; ++l)
+        if (o->level_bits & (1 << l))
+            add_to_cell(o->level_sums + (l * o->level_stride + (size_t)layer) * 4,
+                        o->level_flags + l * o->level_stride + layer, r, interior, 4);
+    if (layer >= g->bnz) return;
+    const size_t cell = o->out0 + (size_t)layer, ucell = o->union0 + (size_t)layer;
+    if (o->fan) {
+        if (g->what & (PV_UNION_AREA | PV_UNION_NORMAL)) {
+            double a[3];
+            vector_area(piece, corner, a);
+            if (g->what & PV_UNION_AREA)
+                o->union_area[ucell] += a[0] * o->normal[0] + a[1] * o->normal[1] + a[2] * o->normal[2];
+            if (g->what & PV_UNION_NORMAL)
+                for (int c = 0; c < 3; ++c) o->union_normal[3 * ucell + c] += a[c];
+        }
+        return;
+    }
+    if (g->what & (PV_AREA | PV_NORMAL | PV_UNION_AREA | PV_UNION_NORMAL)) {
         double a[3];
         vector_area(piece, corner, a);
         const double ar = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-        const size_t cell = out0 + (size_t)layer;
-        if (g->what & PV_AREA) area[cell] += ar;
+        if (g->what & PV_AREA) o->area[cell] += ar;
         if (g->what & PV_NORMAL)
-            for (int c = 0; c < 3; ++c) normal[3 * cell + c] += a[c];
-        if (g->what & PV_UNION_AREA) union_area[cell] += ar;
-        if (g->what & PV_UNION_NORMAL)
-            for (int c = 0; c < 3; ++c) union_normal[3 * cell + c] += a[c];
+            for (int c = 0; c < 3; ++c) o->surface_normal[3 * cell + c] += a[c];
+        if (o->level_bits & 1) {
+            if (g->what & PV_UNION_AREA) o->union_area[ucell] += ar;
+            if (g->what & PV_UNION_NORMAL)
+                for (int c = 0; c < 3; ++c) o->union_normal[3 * ucell + c] += a[c];
+        }
     }
 }
 
-static int clip_triangle(const Column* g, Polygon* pool, int i, int j, __global double* s, __global uchar* fl,
-                         size_t out0, __global double* area, __global double* normal, __global double* union_area,
-                         __global double* union_normal, uint* pieces) {
+// The pieces of one triangle (pool[0]) in column (i, j), every layer from k0
+// up (clip.hpp clip_to_cells with the keep ranges [i, i] and [j, j]).
+// Returns 0 on overflow of the capacity.
+static int clip_triangle(const Column* g, Sink* o, Polygon* pool, int i, int j, uint* pieces) {
     const int px = part_in_slab(pool, 0, 0, g->xs, g->gnx, i, g->cap);
     if (px < 0) return px == -1;
     const int py = part_in_slab(pool, px, 1, g->ys, g->gny, j, g->cap);
@@ -316,7 +358,7 @@ static int clip_triangle(const Column* g, Polygon* pool, int i, int j, __global 
     for (int m = first + 1; m <= last; ++m) {
         if (!split(&pool[cur], 2, g->zs[m], &pool[lo], &pool[hi], g->cap)) return 0;
         if (m - 1 >= g->k0 && pool[lo].n > 0) {
-            emit(g, &pool[lo], i, j, m - 1, s, fl, out0, area, normal, union_area, union_normal);
+            emit(g, o, &pool[lo], i, j, m - 1);
             ++*pieces;
         }
         if (m - 1 >= g->gnz) return 1;
@@ -325,138 +367,260 @@ static int clip_triangle(const Column* g, Polygon* pool, int i, int j, __global 
         hi = done;
         if (pool[cur].n == 0) return 1;
     }
-    emit(g, &pool[cur], i, j, last, s, fl, out0, area, normal, union_area, union_normal);
+    emit(g, o, &pool[cur], i, j, last);
     ++*pieces;
     return 1;
 }
 
-// column_scan.cpp scan_column over the scanned layers 0 .. nz (nz = gnz - k0,
-// the top one above the grid), writing the block's layers 0 .. bnz - 1.
-static void scan(const Column* g, int i, int j, __global const double* s, __global const uchar* fl, size_t out0,
-                 __global double* volumes, __global double* moments, __global uint* counts) {
-    const int nz = g->gnz - g->k0, nsum = g->nsum, mom = (g->what & PV_MOMENTS) != 0;
-    __global const double* z = g->zs + g->k0;
-    const double x0 = g->xs[i], x1 = g->xs[i + 1], y0 = g->ys[j], y1 = g->ys[j + 1];
-    const double dx = x1 - x0, dy = y1 - y0;
-    const double area = dx * dy;
-    const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
-    double a_hi = 0, a_lo = 0, ax_hi = 0, ax_lo = 0, ay_hi = 0, ay_lo = 0;
-    if (fl[nz] & 1) {
-        __global const double* c = s + (size_t)nz * nsum;
-        a_hi = c[PV_P];
-        a_lo = c[PV_P + 1];
-        if (mom) {
-            ax_hi = c[PV_PX];
-            ax_lo = c[PV_PX + 1];
-            ay_hi = c[PV_PY];
-            ay_lo = c[PV_PY + 1];
-        }
-    }
-    uint empty = 0, full = 0, cut = 0;
-    for (int k = nz - 1; k >= 0; --k) {
-        __global const double* c = s + (size_t)k * nsum;
-        const uchar f = fl[k];
-        double v, m0 = 0, m1 = 0, m2 = 0;
-        uchar st;
-        if ((f & 1) && (f & 2)) {
-            const double z0 = z[k], h = z[k + 1] - z0;
-            v = (c[PV_Q] + h * a_hi) + (c[PV_Q + 1] + h * a_lo);
-            st = 2;
-            if (mom) {
-                const double mx = (c[PV_QX] + h * ax_hi) + (c[PV_QX + 1] + h * ax_lo);
-                const double my = (c[PV_QY] + h * ay_hi) + (c[PV_QY + 1] + h * ay_lo);
-                const double hh = 0.5 * h * h;
-                const double mz = (c[PV_QZ] + hh * a_hi) + (c[PV_QZ + 1] + hh * a_lo);
-                m0 = x0 * v + mx;
-                m1 = y0 * v + my;
-                m2 = z0 * v + mz;
-            }
-        } else {
-            // no piece enters: the winding number of the cross-section above
-            const double w = round_integer((a_hi + a_lo) / area);
-            st = w == 0 ? 0 : (w >= 1 ? 1 : 2);
-            if (w == 0) {
-                v = 0.0;
-            } else {
-                v = w * (area * (z[k + 1] - z[k]));
-                m0 = v * cx;
-                m1 = v * cy;
-                m2 = v * (0.5 * (z[k] + z[k + 1]));
-            }
-        }
-        if (k < g->bnz) {
-            volumes[out0 + k] = v;
-            if (mom) {
-                moments[3 * (out0 + k) + 0] = m0;
-                moments[3 * (out0 + k) + 1] = m1;
-                moments[3 * (out0 + k) + 2] = m2;
-            }
-            if (st == 0) ++empty; else if (st == 1) ++full; else ++cut;
-        }
-        if (f & 1) {
-            dd_add_dd(&a_hi, &a_lo, c + PV_P);
-            if (mom) {
-                dd_add_dd(&ax_hi, &ax_lo, c + PV_PX);
-                dd_add_dd(&ay_hi, &ay_lo, c + PV_PY);
-            }
-        }
-    }
-    counts[0] = empty;
-    counts[1] = full;
-    counts[2] = cut;
+static void load_triangle(Polygon* p, __global const double* pos, __global const uint* tri, uint t) {
+    p->n = 3;
+    for (int c = 0; c < 3; ++c)
+        for (int a = 0; a < 3; ++a) p->p[c][a] = pos[3 * (size_t)tri[3 * (size_t)t + c] + a];
+    for (int c = 0; c < 3; ++c) make_segment(&p->s[c], p->p[c], p->p[c == 2 ? 0 : c + 1]);
 }
+
+// column_scan.cpp scan_column, one cell at a time from the top down: the
+// cross-section above (A, and Ax, Ay with moments) as double-doubles.
+typedef struct {
+    double a_hi, a_lo, ax_hi, ax_lo, ay_hi, ay_lo;
+    double x0, y0, area, cx, cy;
+    __global const double* z;  // the scanned layers' planes
+    int nsum, moments;
+} Scan;
+
+static void scan_start(Scan* sc, const Column* g, int i, int j, __global const double* top, uchar top_flag, int nsum,
+                       int moments) {
+    sc->x0 = g->xs[i];
+    sc->y0 = g->ys[j];
+    const double x1 = g->xs[i + 1], y1 = g->ys[j + 1];
+    const double dx = x1 - sc->x0, dy = y1 - sc->y0;
+    sc->area = dx * dy;
+    sc->cx = 0.5 * (sc->x0 + x1);
+    sc->cy = 0.5 * (sc->y0 + y1);
+    sc->z = g->zs + g->k0;
+    sc->nsum = nsum;
+    sc->moments = moments;
+    sc->a_hi = sc->a_lo = sc->ax_hi = sc->ax_lo = sc->ay_hi = sc->ay_lo = 0;
+    if (top_flag & 1) {
+        sc->a_hi = top[PV_P];
+        sc->a_lo = top[PV_P + 1];
+        if (moments) {
+            sc->ax_hi = top[PV_PX];
+            sc->ax_lo = top[PV_PX + 1];
+            sc->ay_hi = top[PV_PY];
+            sc->ay_lo = top[PV_PY + 1];
+        }
+    }
+}
+
+// Cell k's volume (and first moments m[3], its state 0 empty, 1 full, 2 cut),
+// then its pieces' cross-section added to the one above the next cell.
+static double scan_cell(Scan* sc, int k, __global const double* c, uchar f, double* m, uchar* st) {
+    double v;
+    m[0] = m[1] = m[2] = 0;
+    if ((f & 1) && (f & 2)) {
+        const double z0 = sc->z[k], h = sc->z[k + 1] - z0;
+        v = (c[PV_Q] + h * sc->a_hi) + (c[PV_Q + 1] + h * sc->a_lo);
+        *st = 2;
+        if (sc->moments) {
+            const double mx = (c[PV_QX] + h * sc->ax_hi) + (c[PV_QX + 1] + h * sc->ax_lo);
+            const double my = (c[PV_QY] + h * sc->ay_hi) + (c[PV_QY + 1] + h * sc->ay_lo);
+            const double hh = 0.5 * h * h;
+            const double mz = (c[PV_QZ] + hh * sc->a_hi) + (c[PV_QZ + 1] + hh * sc->a_lo);
+            m[0] = sc->x0 * v + mx;
+            m[1] = sc->y0 * v + my;
+            m[2] = z0 * v + mz;
+        }
+    } else {
+        // no piece enters: the winding number of the cross-section above
+        const double w = round_integer((sc->a_hi + sc->a_lo) / sc->area);
+        *st = w == 0 ? 0 : (w >= 1 ? 1 : 2);
+        if (w == 0) {
+            v = 0.0;
+        } else {
+            v = w * (sc->area * (sc->z[k + 1] - sc->z[k]));
+            m[0] = v * sc->cx;
+            m[1] = v * sc->cy;
+            m[2] = v * (0.5 * (sc->z[k] + sc->z[k + 1]));
+        }
+    }
+    if (f & 1) {
+        dd_add_dd(&sc->a_hi, &sc->a_lo, c + PV_P);
+        if (sc->moments) {
+            dd_add_dd(&sc->ax_hi, &sc->ax_lo, c + PV_PX);
+            dd_add_dd(&sc->ay_hi, &sc->ay_lo, c + PV_PY);
+        }
+    }
+    return v;
+}
+
+#define PV_COLUMN_SETUP()                                  \
+    const int col = (int)get_global_id(0);                 \
+    if (col >= columns) return;                            \
+    const int i = i0 + row0 + col / ny, j = j0 + col % ny; \
+    Column g;                                              \
+    g.xs = xs;                                             \
+    g.ys = ys;                                             \
+    g.zs = zs;                                             \
+    g.gnx = gnx;                                           \
+    g.gny = gny;                                           \
+    g.gnz = gnz;                                           \
+    g.k0 = k0;                                             \
+    g.bnz = bnz;                                           \
+    g.what = what;                                         \
+    g.cap = min(cap, PV_CAP);                              \
+    const int layers = gnz - k0 + 1;                       \
+    const size_t tile_index = (size_t)((i - i0) / tile) * nty + (j - j0) / tile
 
 // One body's cells of one column per work-item: the column's triangles (its
 // tile's list, in triangle order) clipped to it, their pieces summed per
-// cell, then the scan (grid_volumes.cpp scatter_tile + run_tile). Column
-// `col` of the batch is (i, j) = (i0 + row0 + col / ny, j0 + col % ny).
-// Outputs are indexed from the batch's first column: cell (col, kb) at
-// col * bnz + kb. counts: empty, full, cut cells and pieces per column.
+// cell (and per level their whole triangle lies on), then the scan
+// (grid_volumes.cpp scatter_tile + run_tile). Column `col` of the batch is
+// (i, j) = (i0 + row0 + col / ny, j0 + col % ny); its outputs start at
+// body_base + col * bnz (the union's surface at col * bnz); counts: empty,
+// full, cut cells and pieces at 4 * (column_base + col).
 __kernel void polyvol_grid_body(
     __global const double* xs, __global const double* ys, __global const double* zs, int gnx, int gny, int gnz,
     int i0, int j0, int k0, int ny, int bnz, int row0, int columns, int tile, int nty,
     __global const double* pos, __global const uint* tri, __global const ulong* offsets, __global const uint* entries,
-    __global double* sums, __global uchar* flags, int what, int cap,
-    __global double* volumes, __global double* moments, __global double* area, __global double* normal,
-    __global double* union_area, __global double* union_normal, __global uint* counts, __global int* error) {
-    const int col = (int)get_global_id(0);
-    if (col >= columns) return;
-    const int i = i0 + row0 + col / ny, j = j0 + col % ny;
-    Column g;
-    g.xs = xs;
-    g.ys = ys;
-    g.zs = zs;
-    g.gnx = gnx;
-    g.gny = gny;
-    g.gnz = gnz;
-    g.k0 = k0;
-    g.bnz = bnz;
-    g.nsum = (what & PV_MOMENTS) ? 14 : 4;
-    g.what = what;
-    g.cap = min(cap, PV_CAP);
-    const int layers = gnz - k0 + 1;
-    __global double* s = sums + (size_t)col * layers * g.nsum;
-    __global uchar* fl = flags + (size_t)col * layers;
-    for (int k = 0; k < layers * g.nsum; ++k) s[k] = 0;
-    for (int k = 0; k < layers; ++k) fl[k] = 0;
-    const size_t out0 = (size_t)col * bnz;
-    const size_t tile_index = (size_t)((i - i0) / tile) * nty + (j - j0) / tile;
+    __global const uchar* on_level, int nlevels, __global double* sums, __global uchar* flags,
+    __global double* level_sums, __global uchar* level_flags, ulong level_stride, int what, int cap,
+    ulong column_base, __global double* volumes, __global double* moments, __global uchar* states,
+    __global double* area, __global double* normal, __global double* union_area, __global double* union_normal,
+    __global uint* counts, __global int* error) {
+    PV_COLUMN_SETUP();
+    Sink o;
+    o.nsum = (what & PV_MOMENTS) ? 14 : 4;
+    o.sums = sums + (size_t)col * layers * o.nsum;
+    o.flags = flags + (size_t)col * layers;
+    o.level_sums = level_sums + (size_t)col * layers * 4;
+    o.level_flags = level_flags + (size_t)col * layers;
+    o.level_stride = level_stride;
+    o.nlevels = nlevels;
+    o.fan = 0;
+    o.out0 = ((size_t)column_base + col) * bnz;
+    o.union0 = (size_t)col * bnz;
+    o.area = area;
+    o.surface_normal = normal;
+    o.union_area = union_area;
+    o.union_normal = union_normal;
+    for (int k = 0; k < layers * o.nsum; ++k) o.sums[k] = 0;
+    for (int k = 0; k < layers; ++k) o.flags[k] = 0;
     uint pieces = 0;
     Polygon pool[5];
     for (ulong e = offsets[tile_index]; e < offsets[tile_index + 1]; ++e) {
         const uint t = entries[e];
-        Polygon* p0 = &pool[0];
-        p0->n = 3;
-        for (int c = 0; c < 3; ++c)
-            for (int a = 0; a < 3; ++a) p0->p[c][a] = pos[3 * (size_t)tri[3 * (size_t)t + c] + a];
-        for (int c = 0; c < 3; ++c) make_segment(&p0->s[c], p0->p[c], p0->p[c == 2 ? 0 : c + 1]);
-        if (!clip_triangle(&g, pool, i, j, s, fl, out0, area, normal, union_area, union_normal, &pieces)) {
+        o.level_bits = nlevels > 0 ? on_level[t] : 1;  // one body: its surface is the union's
+        load_triangle(&pool[0], pos, tri, t);
+        if (!clip_triangle(&g, &o, pool, i, j, &pieces)) {
             *error = 1;  // a polygon beyond the capacity: the host redoes the grid on the CPU
             return;
         }
     }
-    scan(&g, i, j, s, fl, out0, volumes, moments, counts + 4 * (size_t)col);
-    counts[4 * (size_t)col + 3] = pieces;
+    Scan sc;
+    const int nz = layers - 1;
+    scan_start(&sc, &g, i, j, o.sums + (size_t)nz * o.nsum, o.flags[nz], o.nsum, (what & PV_MOMENTS) != 0);
+    uint empty = 0, full = 0, cut = 0;
+    for (int k = nz - 1; k >= 0; --k) {
+        double m[3];
+        uchar st;
+        const double v = scan_cell(&sc, k, o.sums + (size_t)k * o.nsum, o.flags[k], m, &st);
+        if (k >= bnz) continue;
+        const size_t c = o.out0 + (size_t)k;
+        volumes[c] = v;
+        states[c] = st;
+        if (what & PV_MOMENTS)
+            for (int a = 0; a < 3; ++a) moments[3 * c + a] = m[a];
+        if (st == 0) ++empty; else if (st == 1) ++full; else ++cut;
+    }
+    __global uint* n = counts + 4 * ((size_t)column_base + col);
+    n[0] = empty;
+    n[1] = full;
+    n[2] = cut;
+    n[3] = pieces;
+}
+
+// The union's (and the intersection's) cells of one column per work-item,
+// after every body's kernel (grid_volumes.cpp run_tile): each level's fan
+// triangles clipped into its sums, the levels scanned, and each cell taken
+// from the bodies' values where those decide it. Fans of level l: triangles
+// fan_entries[fan_offsets[l * (tiles + 1) + tile] ...]; bodies' volumes and
+// states at b * body_stride + col * bnz + k. counts: full, empty, cut,
+// contact cells at 4 * col.
+__kernel void polyvol_grid_union(
+    __global const double* xs, __global const double* ys, __global const double* zs, int gnx, int gny, int gnz,
+    int i0, int j0, int k0, int ny, int bnz, int row0, int columns, int tile, int nty, int what, int cap,
+    int nb, int nlevels, int intersection, __global const double* fan_pos, __global const uint* fan_tri,
+    __global const double* fan_normal, __global const ulong* fan_offsets, __global const uint* fan_entries,
+    ulong tiles, __global double* level_sums, __global uchar* level_flags, ulong level_stride,
+    __global const double* volumes, __global const uchar* states, ulong body_stride,
+    __global double* union_volumes, __global double* intersection_volumes, __global uchar* cell_class,
+    __global double* union_area, __global double* union_normal, __global uint* counts, __global int* error) {
+    PV_COLUMN_SETUP();
+    Sink o;
+    o.nsum = 4;
+    o.fan = 1;
+    o.level_sums = level_sums + (size_t)col * layers * 4;
+    o.level_flags = level_flags + (size_t)col * layers;
+    o.level_stride = level_stride;
+    o.nlevels = nlevels;
+    o.out0 = o.union0 = (size_t)col * bnz;
+    o.union_area = union_area;
+    o.union_normal = union_normal;
+    uint pieces = 0;
+    Polygon pool[5];
+    for (int l = 0; l < nlevels; ++l) {
+        o.level_bits = 1 << l;
+        g.what = l == 0 ? what : 0;  // only the union's surface
+        __global const ulong* off = fan_offsets + (size_t)l * (tiles + 1);
+        for (ulong e = off[tile_index]; e < off[tile_index + 1]; ++e) {
+            const uint t = fan_entries[e];
+            for (int c = 0; c < 3; ++c) o.normal[c] = fan_normal[3 * (size_t)t + c];
+            load_triangle(&pool[0], fan_pos, fan_tri, t);
+            if (!clip_triangle(&g, &o, pool, i, j, &pieces)) {
+                *error = 1;
+                return;
+            }
+        }
+    }
+    Scan lv[2];
+    const int nz = layers - 1;
+    for (int l = 0; l < nlevels; ++l)
+        scan_start(&lv[l], &g, i, j, o.level_sums + (l * level_stride + (size_t)nz) * 4,
+                   o.level_flags[l * level_stride + nz], 4, 0);
+    uint ufull = 0, uempty = 0, ucut = 0, ucontact = 0;
+    for (int k = nz - 1; k >= 0; --k) {
+        double level[2] = {0, 0}, m[3];
+        uchar st;
+        for (int l = 0; l < nlevels; ++l)
+            level[l] = scan_cell(&lv[l], k, o.level_sums + (l * level_stride + (size_t)k) * 4,
+                                 o.level_flags[l * level_stride + k], m, &st);
+        if (k >= bnz) continue;
+        // The bodies' own values decide the cell unless two or more surfaces enter it.
+        int full = 0, cut = 0, cut_body = 0;
+        const size_t c = o.out0 + (size_t)k;
+        for (int b = 0; b < nb; ++b) {
+            const uchar s = states[b * body_stride + c];
+            if (s == 1) ++full;
+            if (s == 2) {
+                ++cut;
+                cut_body = b;
+            }
+        }
+        const double cell_volume = (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]) * (zs[k0 + k + 1] - zs[k0 + k]);
+        const double one_cut = cut == 1 ? volumes[cut_body * body_stride + c] : 0;
+        union_volumes[c] = full > 0 ? cell_volume : cut <= 1 ? one_cut : level[0];
+        const uchar cls = full > 0 ? 1 : cut == 0 ? 0 : cut == 1 ? 2 : 3;  // CellClass
+        cell_class[c] = cls;
+        if (cls == 1) ++ufull; else if (cls == 0) ++uempty; else if (cls == 2) ++ucut; else ++ucontact;
+        if (intersection)  // level 1 is there whenever two surfaces can enter a cell
+            intersection_volumes[c] = full + cut < nb ? 0 : full == nb ? cell_volume : cut == 1 ? one_cut : level[1];
+    }
+    __global uint* n = counts + 4 * (size_t)col;
+    n[0] = ufull;
+    n[1] = uempty;
+    n[2] = ucut;
+    n[3] = ucontact;
 }
 
 // The device's arithmetic against the host's on cases where a contraction,

@@ -524,51 +524,76 @@ void run_tiles(const Job& job, const GridOptions& options, GridSummary& s, std::
     }
 }
 
-// The per-column work on an OpenCL device when one is asked for and can do
-// it: fills the outputs, the summary's counts and the bodies' exact sums and
-// returns "opencl: NAME"; else returns why the CPU runs ("cpu (...)"), or
-// nothing for a CPU request. The union's cells stay on the CPU.
-std::optional<std::string> device_block_volumes(const DeviceRequest& request, std::span<const MeshView> bodies,
-                                                const GridAxes& g, const Layout& l, const std::vector<Triangles>& tris,
-                                                const std::vector<Bins>& bins, const GridOutput& out,
-                                                bool union_outputs, GridSummary& s,
-                                                std::vector<exact::ExactSum>& body_volume) {
+// The union's pieces as the device takes them: every level's fan triangles
+// in one mesh, each level's tile lists one after the other.
+grid::DeviceLevels device_levels(const std::vector<FanMesh>& fans) {
+    grid::DeviceLevels d;
+    d.count = fans.size();
+    for (const FanMesh& f : fans) {
+        const auto vertex0 = static_cast<uint32_t>(d.positions.size() / 3);
+        const auto triangle0 = static_cast<uint32_t>(d.triangles.size() / 3);
+        d.positions.insert(d.positions.end(), f.positions.begin(), f.positions.end());
+        for (const uint32_t v : f.index) d.triangles.push_back(vertex0 + v);
+        for (const auto& n : f.normal) d.normals.insert(d.normals.end(), n.begin(), n.end());
+        const std::size_t entry0 = d.entries.size();
+        for (const std::size_t o : f.bins.offsets) d.offsets.push_back(entry0 + o);
+        for (const uint32_t t : f.bins.entries) d.entries.push_back(triangle0 + t);
+    }
+    return d;
+}
+
+// The per-column work on an OpenCL device when one is asked for: fills the
+// outputs, the summary's counts and the exact sums and returns "opencl:
+// NAME"; else returns why the CPU runs ("cpu (...)"), or nothing for a CPU
+// request.
+std::optional<std::string> device_block_volumes(const DeviceRequest& request, const Job& job, GridSummary& s,
+                                                std::vector<exact::ExactSum>& body_volume,
+                                                exact::ExactSum& union_volume, exact::ExactSum& intersection_volume) {
     if (request.kind != DeviceKind::opencl) return std::nullopt;
-    // One body's union is its own cells (its surface on the device too); the
-    // union's cells and classes of several bodies, and the classes of one, are the CPU's.
-    if (union_outputs && (bodies.size() > 1 || !out.union_volumes.empty() || !out.intersection_volumes.empty() ||
-                          !out.cell_class.empty()))
-        return "cpu (the union's cells run on the CPU)";
     std::string note;
     device::Device* d = device::resolve(request, note);
     if (!d) return "cpu (" + note + ")";
+    const std::size_t nb = job.bodies.size();
     std::vector<grid::DeviceBody> dev;
-    for (std::size_t b = 0; b < bodies.size(); ++b)
-        dev.push_back({bodies[b].positions, tris[b].index, bins[b].offsets, bins[b].entries});
-    const grid::DeviceLayout dl{l.i0, l.j0, l.k0, l.nx, l.ny, l.bnz, l.tile, l.nty};
-    std::vector<grid::DeviceCounts> counts;
-    if (!grid::device_columns(*d, g, dl, dev, out, counts)) {
+    for (std::size_t b = 0; b < nb; ++b)
+        dev.push_back({job.bodies[b].positions, job.tris[b].index, job.bins[b].offsets, job.bins[b].entries,
+                       job.levels ? std::span<const uint8_t>(job.levels->whole[b]) : std::span<const uint8_t>()});
+    const grid::DeviceLayout dl{job.l.i0, job.l.j0, job.l.k0, job.l.nx, job.l.ny, job.l.bnz, job.l.tile, job.l.nty};
+    std::optional<grid::DeviceLevels> levels;
+    if (job.want_union) levels = device_levels(job.fans);
+    grid::DeviceResult r;
+    if (!grid::device_columns(*d, job.g, dl, dev, levels ? &*levels : nullptr, job.out, r)) {
         // The CPU path adds into the surfaces: clear what the device wrote.
-        for (const auto span : {out.wetted_area, out.surface_normal, out.union_wetted_area, out.union_surface_normal})
+        for (const auto span : {job.out.wetted_area, job.out.surface_normal, job.out.union_wetted_area,
+                                job.out.union_surface_normal})
             std::fill(span.begin(), span.end(), 0.0);
         return "cpu (a clipped polygon exceeded the device kernel's capacity)";
     }
-    const std::size_t cells = l.out_cells();
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-        s.bodies[b].pieces = counts[b].pieces;
-        s.bodies[b].empty_cells = counts[b].empty;
-        s.bodies[b].full_cells = counts[b].full;
-        s.bodies[b].cut_cells = counts[b].cut;
+    const std::size_t cells = job.l.out_cells();
+    for (std::size_t b = 0; b < nb; ++b) {
+        s.bodies[b].pieces = r.bodies[b].pieces;
+        s.bodies[b].empty_cells = r.bodies[b].empty;
+        s.bodies[b].full_cells = r.bodies[b].full;
+        s.bodies[b].cut_cells = r.bodies[b].cut;
         // Each body's exact sum of its cells, column by column (exact, so in any order).
-        const std::size_t columns = static_cast<std::size_t>(l.nx) * l.ny;
+        const std::size_t columns = static_cast<std::size_t>(job.l.nx) * job.l.ny;
         tbb::enumerable_thread_specific<exact::ExactSum> sums;
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, columns, 256), [&](const auto& r) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, columns, 256), [&](const auto& range) {
             exact::ExactSum& sum = sums.local();
-            for (std::size_t c = r.begin(); c != r.end(); ++c)
-                add_column(sum, &out.volumes[b * cells + c * l.bnz], l.bnz);
+            for (std::size_t c = range.begin(); c != range.end(); ++c)
+                add_column(sum, &job.out.volumes[b * cells + c * job.l.bnz], job.l.bnz);
         });
         for (const exact::ExactSum& part : sums) body_volume[b].merge(part);
     }
+    s.full_cells = r.full;
+    s.empty_cells = r.empty;
+    s.cut_cells = r.cut;
+    s.contact_cells = r.contact;
+    s.device_kernel_seconds = r.kernel_seconds;
+    s.device_transfer_seconds = r.transfer_seconds;
+    s.device_build_seconds = r.build_seconds;
+    union_volume.merge(r.union_volume);
+    intersection_volume.merge(r.intersection_volume);
     return "opencl: " + d->info.name;
 }
 
@@ -656,18 +681,17 @@ GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes&
     GridSummary s;
     s.bodies.resize(nb);
     std::vector<exact::ExactSum> body_volume(nb);
-    if (std::optional<std::string> device = device_block_volumes(options.device, bodies, g, layout, tris, bins, out,
-                                                                 union_outputs, s, body_volume)) {
-        s.device = *device;
-    }
-    const bool on_device = s.device.starts_with("opencl");
+    const Job job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, union_outputs, surface,
+                  levels ? &*levels : nullptr, fans};
     exact::ExactSum union_volume, intersection_volume;
+    if (const auto device =
+            device_block_volumes(options.device, job, s, body_volume, union_volume, intersection_volume))
+        s.device = *device;
+    const bool on_device = s.device.starts_with("opencl");
     if (on_device) {
         if (options.progress) options.progress(1.0);
     } else {
-        run_tiles(Job{bodies, g, out, layout, ax, ay, az, tris, bins, moments, union_outputs, surface,
-                      levels ? &*levels : nullptr, fans},
-                  options, s, body_volume, union_volume, intersection_volume);
+        run_tiles(job, options, s, body_volume, union_volume, intersection_volume);
     }
     for (std::size_t b = 0; b < nb; ++b) {
         s.bodies[b].volume = body_volume[b].round();
@@ -675,7 +699,7 @@ GridSummary grid_block_volumes(std::span<const MeshView> bodies, const GridAxes&
     }
     s.intersection_volume = std::numeric_limits<double>::quiet_NaN();
     if (levels) s.crossing_pairs = levels->crossing_pairs;
-    if (union_outputs && !on_device) {
+    if (union_outputs) {
         s.union_volume = union_volume.round();
         if (!out.intersection_volumes.empty()) s.intersection_volume = intersection_volume.round();
     } else if (nb == 1) {

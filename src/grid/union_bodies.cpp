@@ -18,12 +18,16 @@ std::span<T> slice(std::span<T> all, std::size_t b, std::size_t cells, std::size
     return all.empty() ? all : all.subspan(b * cells * n, cells * n);
 }
 
-// Where the calls ran, each place named once ("opencl: X; cpu (why)").
-void add_device(std::string& all, const std::string& one, bool first) {
+// Where the calls ran, each place named once ("opencl: X; cpu (why)"), and
+// their device seconds added up.
+void add_device(GridSummary& all, const GridSummary& one, bool first) {
     if (first)
-        all = one;
-    else if (("; " + all + "; ").find("; " + one + "; ") == std::string::npos)
-        all += "; " + one;
+        all.device = one.device;
+    else if (("; " + all.device + "; ").find("; " + one.device + "; ") == std::string::npos)
+        all.device += "; " + one.device;
+    all.device_kernel_seconds += one.device_kernel_seconds;
+    all.device_transfer_seconds += one.device_transfer_seconds;
+    all.device_build_seconds += one.device_build_seconds;
 }
 
 }  // namespace
@@ -56,7 +60,7 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
             o.surface_normal = slice(out.surface_normal, b, cells, 3);
             const GridSummary one = grid_block_volumes(parts[b], g, block, o, options);
             body = one.bodies[0];
-            add_device(s.device, one.device, b == 0);
+            add_device(s, one, b == 0);
         } else {
             scratch.assign(parts[b].size() * cells, 0.0);
             o.volumes = scratch;
@@ -69,7 +73,7 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
                 if (o.union_surface_normal.empty()) o.union_surface_normal = out.union_surface_normal;
             }
             const GridSummary u = grid_block_volumes(parts[b], g, block, o, options);
-            add_device(s.device, u.device, b == 0);
+            add_device(s, u, b == 0);
             body.volume = u.union_volume;
             for (const GridBodySummary& p : u.bodies) {
                 body.triangles += p.triangles;
@@ -103,7 +107,7 @@ GridSummary grid_union_volumes(std::span<const std::vector<MeshView>> parts, con
         o.volumes = scratch;
         o.wetted_area = o.surface_normal = {};
         const GridSummary u = grid_block_volumes(all, g, block, o, options);
-        add_device(s.device, u.device, false);
+        add_device(s, u, false);
         s.union_volume = u.union_volume;
         s.full_cells = u.full_cells;
         s.empty_cells = u.empty_cells;

@@ -7,12 +7,14 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "common/manifest.hpp"
+#include "polyvol/device.hpp"
 #include "polyvol/grid.hpp"
 #include "polyvol/io.hpp"
 #include "polyvol/measure.hpp"
@@ -97,6 +99,47 @@ TEST(Threads, EightCallersGetTheBitsOfOne) {
         });
     for (std::thread& t : threads) t.join();
     EXPECT_EQ(mismatches.load(), 0);
+}
+
+// Eight callers of the grid on one OpenCL device at once (its queue is
+// shared, one caller at a time): each gets the CPU's bits. Not under
+// ThreadSanitizer (its filter is Threads.*): the driver is not instrumented.
+TEST(DeviceThreads, EightCallersOnOneDeviceGetTheCpusBits) {
+    bool usable = false;
+    for (const DeviceInfo& d : list_devices().devices) usable = usable || d.usable;
+    if (!usable) {
+        const char* allow = std::getenv("POLYVOL_TEST_ALLOW_NO_DEVICE");
+        if (allow && std::string(allow) == "1") GTEST_SKIP() << "no usable OpenCL device";
+        FAIL() << "no usable OpenCL device (install pocl-opencl-icd)";
+    }
+    const std::vector<std::string> files = {"meshes/libcgal-demo/sphere.ply", "meshes/libcgal-demo/mpi.off",
+                                            "meshes/minetest-data/boats_boat.obj", "meshes/prusa-slicer/aq_bed.stl"};
+    std::vector<LoadedMesh> meshes;
+    std::vector<GridAxes> grids;
+    std::vector<std::vector<double>> cpu;
+    for (const std::string& f : files) {
+        meshes.push_back(read_mesh_file(test::corpus_file(f)));
+        const MeshView bodies[1] = {meshes.back().mesh.view()};
+        grids.push_back(make_grid(bodies, {.cells = 20}));
+        cpu.emplace_back(grids.back().cell_count());
+        (void)grid_volumes(bodies, grids.back(), {.volumes = cpu.back()}, {.device = {DeviceKind::cpu, -1}});
+    }
+    std::atomic<int> mismatches{0}, off_device{0};
+    std::vector<std::thread> threads;
+    for (std::size_t i = 0; i < 8; ++i)
+        threads.emplace_back([&, i] {
+            for (int round = 0; round < 2; ++round) {
+                const std::size_t f = (i + round) % files.size();
+                const MeshView bodies[1] = {meshes[f].mesh.view()};
+                std::vector<double> v(grids[f].cell_count());
+                const GridSummary s = grid_volumes(bodies, grids[f], {.volumes = v}, {.device = {DeviceKind::opencl, -1}});
+                if (!s.device.starts_with("opencl: ")) ++off_device;
+                if (std::memcmp(v.data(), cpu[f].data(), v.size() * sizeof(double)) != 0) ++mismatches;
+            }
+        });
+    for (std::thread& t : threads) t.join();
+    EXPECT_EQ(mismatches.load(), 0);
+    EXPECT_EQ(off_device.load(), 0);
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 // The grid on an OpenCL device (pocl on the CI's CPU): every output and every
 // summary field bit for bit the CPU path's — corpus meshes on several grids,
 // spheres and tori with moments and surfaces, blocks, non-uniform planes,
-// several bodies — and the bad states: the kernel's capacity exceeded (the
-// CPU runs), no fp64, a kernel that does not build, the union (on the CPU).
+// several bodies with their union and intersection — and the bad states: the
+// kernel's capacity exceeded (the CPU runs), no fp64, a kernel that does not build.
 //
 // Without a usable OpenCL device these tests fail, since the README installs
 // pocl; POLYVOL_TEST_ALLOW_NO_DEVICE=1 makes them skip instead (sanitizer
@@ -46,12 +46,17 @@ bool device_present() {
 
 // Every output a grid run can fill, for the comparison.
 struct Outputs {
-    std::vector<double> volumes, moments, area, normal, union_area, union_normal;
+    std::vector<double> volumes, moments, area, normal, union_area, union_normal, union_volumes, intersection;
+    std::vector<CellClass> classes;
     GridSummary summary;
 };
 
-Outputs run(std::span<const MeshView> bodies, const GridAxes& g, const GridBlock& block, bool moments, bool surface,
-            DeviceKind kind) {
+struct Asked {
+    bool moments = false, surface = false, with_union = false;
+};
+
+Outputs run(std::span<const MeshView> bodies, const GridAxes& g, const GridBlock& block, Asked asked, DeviceKind kind) {
+    const bool moments = asked.moments, surface = asked.surface;
     Outputs o;
     const std::size_t cells = block.cell_count(), nb = bodies.size();
     o.volumes.assign(nb * cells, -7);
@@ -65,11 +70,21 @@ Outputs run(std::span<const MeshView> bodies, const GridAxes& g, const GridBlock
         o.normal.assign(3 * nb * cells, -7);
         out.wetted_area = o.area;
         out.surface_normal = o.normal;
-        if (nb == 1) {
+        if (nb == 1 || asked.with_union) {
             o.union_area.assign(cells, -7);
             o.union_normal.assign(3 * cells, -7);
             out.union_wetted_area = o.union_area;
             out.union_surface_normal = o.union_normal;
+        }
+    }
+    if (asked.with_union) {
+        o.union_volumes.assign(cells, -7);
+        o.classes.assign(cells, CellClass::contact);
+        out.union_volumes = o.union_volumes;
+        out.cell_class = o.classes;
+        if (nb > 1) {
+            o.intersection.assign(cells, -7);
+            out.intersection_volumes = o.intersection;
         }
     }
     o.summary = grid_block_volumes(bodies, g, block, out, {.device = {kind, -1}});
@@ -87,16 +102,18 @@ std::size_t first_difference(const std::vector<double>& a, const std::vector<dou
 }
 
 // The device's outputs and summary against the CPU's, bit for bit.
-void expect_same_as_cpu(std::span<const MeshView> bodies, const GridAxes& g, const GridBlock& block, bool moments,
-                        bool surface, const std::string& what) {
-    const Outputs cpu = run(bodies, g, block, moments, surface, DeviceKind::cpu);
-    const Outputs dev = run(bodies, g, block, moments, surface, DeviceKind::opencl);
+void expect_same_as_cpu(std::span<const MeshView> bodies, const GridAxes& g, const GridBlock& block, Asked asked,
+                        const std::string& what) {
+    const Outputs cpu = run(bodies, g, block, asked, DeviceKind::cpu);
+    const Outputs dev = run(bodies, g, block, asked, DeviceKind::opencl);
     EXPECT_EQ(cpu.summary.device, "cpu") << what;
     EXPECT_TRUE(dev.summary.device.starts_with("opencl: ")) << what << ": " << dev.summary.device;
     const std::pair<const char*, std::pair<const std::vector<double>*, const std::vector<double>*>> arrays[] = {
         {"volumes", {&cpu.volumes, &dev.volumes}},         {"moments", {&cpu.moments, &dev.moments}},
         {"wetted area", {&cpu.area, &dev.area}},           {"normal", {&cpu.normal, &dev.normal}},
-        {"union area", {&cpu.union_area, &dev.union_area}}, {"union normal", {&cpu.union_normal, &dev.union_normal}}};
+        {"union area", {&cpu.union_area, &dev.union_area}}, {"union normal", {&cpu.union_normal, &dev.union_normal}},
+        {"union volumes", {&cpu.union_volumes, &dev.union_volumes}},
+        {"intersection", {&cpu.intersection, &dev.intersection}}};
     for (const auto& [name, pair] : arrays) {
         const std::size_t at = first_difference(*pair.first, *pair.second);
         EXPECT_TRUE(same_bits(*pair.first, *pair.second))
@@ -104,6 +121,7 @@ void expect_same_as_cpu(std::span<const MeshView> bodies, const GridAxes& g, con
             << (at < pair.first->size() ? (*pair.first)[at] : 0.0) << " vs "
             << (at < pair.second->size() ? (*pair.second)[at] : 0.0);
     }
+    EXPECT_TRUE(cpu.classes == dev.classes) << what << ": cell classes differ";
     ASSERT_EQ(cpu.summary.bodies.size(), dev.summary.bodies.size());
     for (std::size_t b = 0; b < cpu.summary.bodies.size(); ++b) {
         const GridBodySummary &c = cpu.summary.bodies[b], &d = dev.summary.bodies[b];
@@ -117,6 +135,12 @@ void expect_same_as_cpu(std::span<const MeshView> bodies, const GridAxes& g, con
     EXPECT_EQ(cpu.summary.full_cells, dev.summary.full_cells) << what;
     EXPECT_EQ(cpu.summary.empty_cells, dev.summary.empty_cells) << what;
     EXPECT_EQ(cpu.summary.cut_cells, dev.summary.cut_cells) << what;
+    EXPECT_EQ(cpu.summary.contact_cells, dev.summary.contact_cells) << what;
+    EXPECT_EQ(cpu.summary.crossing_pairs, dev.summary.crossing_pairs) << what;
+    if (!std::isnan(cpu.summary.intersection_volume)) {
+        EXPECT_EQ(std::memcmp(&cpu.summary.intersection_volume, &dev.summary.intersection_volume, sizeof(double)), 0)
+            << what;
+    }
     if (!std::isnan(cpu.summary.union_volume)) {
         EXPECT_EQ(std::memcmp(&cpu.summary.union_volume, &dev.summary.union_volume, sizeof(double)), 0) << what;
     }
@@ -155,8 +179,8 @@ TEST(DeviceGrid, SphereAndTorusEveryOutputOnSeveralGrids) {
         const MeshView views[1] = {m.view()};
         for (const uint32_t n : {5u, 16u, 33u}) {
             const GridAxes g = make_grid(views, {.cells = n});
-            expect_same_as_cpu(views, g, whole(g), false, false, "cells " + std::to_string(n));
-            expect_same_as_cpu(views, g, whole(g), true, true, "moments and surfaces, cells " + std::to_string(n));
+            expect_same_as_cpu(views, g, whole(g), {}, "cells " + std::to_string(n));
+            expect_same_as_cpu(views, g, whole(g), {true, true}, "moments and surfaces, cells " + std::to_string(n));
         }
     }
 }
@@ -169,7 +193,7 @@ TEST(DeviceGrid, BlocksBelowTheTopAndAtAnOffset) {
     const GridBlock blocks[] = {{{0, 0, 0}, {g.nx(), g.ny(), g.nz() / 2}},
                                 {{3, 5, 2}, {g.nx() - 4, g.ny() - 1, g.nz() - 3}},
                                 {{7, 0, g.nz() / 2}, {8, g.ny(), g.nz()}}};
-    for (const GridBlock& b : blocks) expect_same_as_cpu(views, g, b, true, true, "block");
+    for (const GridBlock& b : blocks) expect_same_as_cpu(views, g, b, {true, true}, "block");
 }
 
 TEST(DeviceGrid, PlanesThroughVerticesAndUnevenPlanes) {
@@ -181,7 +205,7 @@ TEST(DeviceGrid, PlanesThroughVerticesAndUnevenPlanes) {
     on.x = {-1, 0, 0.5, 1, 2, 3};
     on.y = {-0.5, 0, 1, 1.5, 3, 3.5};
     on.z = {0, 0.25, 1, 2};
-    expect_same_as_cpu(bv, on, whole(on), true, true, "planes through the box's faces");
+    expect_same_as_cpu(bv, on, whole(on), {true, true}, "planes through the box's faces");
     const Mesh sphere = generate::uv_sphere(16, 32);
     const MeshView sv[1] = {sphere.view()};
     GridAxes uneven;
@@ -190,7 +214,7 @@ TEST(DeviceGrid, PlanesThroughVerticesAndUnevenPlanes) {
         uneven.y.push_back(0.9 * v + 0.01);
         uneven.z.push_back(v * std::abs(v) + 0.003);
     }
-    expect_same_as_cpu(sv, uneven, whole(uneven), true, true, "uneven planes");
+    expect_same_as_cpu(sv, uneven, whole(uneven), {true, true}, "uneven planes");
 }
 
 TEST(DeviceGrid, SeveralBodiesWithoutTheUnion) {
@@ -198,7 +222,7 @@ TEST(DeviceGrid, SeveralBodiesWithoutTheUnion) {
     const Mesh a = generate::uv_sphere(20, 40, 1.0), b = generate::uv_sphere(20, 40, 0.8, 0.5, 0.3, 0.1);
     const MeshView views[2] = {a.view(), b.view()};
     const GridAxes g = make_grid(views, {.cells = 20});
-    expect_same_as_cpu(views, g, whole(g), true, true, "two bodies");
+    expect_same_as_cpu(views, g, whole(g), {true, true}, "two bodies without the union");
 }
 
 TEST(DeviceGrid, CorpusMeshesOnThreeGrids) {
@@ -214,8 +238,8 @@ TEST(DeviceGrid, CorpusMeshesOnThreeGrids) {
         const MeshView views[1] = {loaded.mesh.view()};
         if (views[0].triangle_count() == 0 || views[0].triangle_count() > 200000) continue;
         for (const uint32_t n : {17u, 24u})
-            expect_same_as_cpu(views, make_grid(views, {.cells = n}), whole(make_grid(views, {.cells = n})), n == 24,
-                               n == 17, p + " at " + std::to_string(n));
+            expect_same_as_cpu(views, make_grid(views, {.cells = n}), whole(make_grid(views, {.cells = n})),
+                               {n == 24, n == 17, n == 17}, p + " at " + std::to_string(n));
         ++checked;
     }
     EXPECT_GE(checked, 50u);
@@ -226,15 +250,47 @@ TEST(DeviceGrid, APolygonBeyondTheCapacityRunsOnTheCpuWithTheSameBits) {
     const Mesh m = generate::uv_sphere(12, 24);
     const MeshView views[1] = {m.view()};
     const GridAxes g = make_grid(views, {.cells = 12});
-    const Outputs cpu = run(views, g, whole(g), true, true, DeviceKind::cpu);
+    const Outputs cpu = run(views, g, whole(g), {true, true}, DeviceKind::cpu);
     device::fail_points().capacity = 3;  // a triangle cut by one plane has 4 vertices
-    const Outputs dev = run(views, g, whole(g), true, true, DeviceKind::opencl);
+    const Outputs dev = run(views, g, whole(g), {true, true}, DeviceKind::opencl);
     device::fail_points().capacity = 0;
     EXPECT_EQ(dev.summary.device, "cpu (a clipped polygon exceeded the device kernel's capacity)");
     EXPECT_TRUE(same_bits(cpu.volumes, dev.volumes));
     EXPECT_TRUE(same_bits(cpu.moments, dev.moments));
     EXPECT_TRUE(same_bits(cpu.area, dev.area)) << "the device's partial surface sums are cleared";
     EXPECT_TRUE(same_bits(cpu.normal, dev.normal));
+}
+
+TEST(DeviceGrid, OutOfDeviceMemoryHalvesTheBatchesWithTheSameBits) {
+    REQUIRE_DEVICE();
+    const Mesh m = generate::uv_sphere(20, 40);
+    const MeshView views[1] = {m.view()};
+    const GridAxes g = make_grid(views, {.cells = 24});
+    const Outputs cpu = run(views, g, whole(g), {true, true}, DeviceKind::cpu);
+    device::fail_points().max_buffer = 100 << 10;  // the whole grid's sums need about 1.3 MiB
+    const Outputs dev = run(views, g, whole(g), {true, true}, DeviceKind::opencl);
+    device::fail_points().max_buffer = 0;
+    EXPECT_TRUE(dev.summary.device.starts_with("opencl: ")) << dev.summary.device;
+    EXPECT_TRUE(same_bits(cpu.volumes, dev.volumes));
+    EXPECT_TRUE(same_bits(cpu.moments, dev.moments));
+    EXPECT_TRUE(same_bits(cpu.area, dev.area));
+    EXPECT_EQ(cpu.summary.bodies[0].pieces, dev.summary.bodies[0].pieces);
+}
+
+TEST(DeviceGrid, OutOfDeviceMemoryBelowOneRowIsAClearError) {
+    REQUIRE_DEVICE();
+    const Mesh m = generate::uv_sphere(20, 40);
+    const MeshView views[1] = {m.view()};
+    const GridAxes g = make_grid(views, {.cells = 24});
+    device::fail_points().max_buffer = 20 << 10;  // the mesh fits, one row of sums does not
+    try {
+        (void)run(views, g, whole(g), {true, false}, DeviceKind::opencl);
+        ADD_FAILURE() << "no DeviceError";
+    } catch (const DeviceError& e) {
+        EXPECT_NE(std::string(e.what()).find("CL_MEM_OBJECT_ALLOCATION_FAILURE"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("one row of"), std::string::npos) << e.what();
+    }
+    device::fail_points().max_buffer = 0;
 }
 
 TEST(DeviceGrid, NoFp64IsRefusedByName) {
@@ -244,7 +300,7 @@ TEST(DeviceGrid, NoFp64IsRefusedByName) {
     const GridAxes g = make_grid(views, {.cells = 4});
     device::fail_points().no_fp64 = true;
     try {
-        (void)run(views, g, whole(g), false, false, DeviceKind::opencl);
+        (void)run(views, g, whole(g), {}, DeviceKind::opencl);
         ADD_FAILURE() << "no DeviceError";
     } catch (const DeviceError& e) {
         const std::string msg = e.what();
@@ -261,7 +317,7 @@ TEST(DeviceGrid, AKernelThatDoesNotBuildGivesTheCompilersLog) {
     const GridAxes g = make_grid(views, {.cells = 4});
     device::fail_points().bad_kernel = true;
     try {
-        (void)run(views, g, whole(g), false, false, DeviceKind::opencl);
+        (void)run(views, g, whole(g), {}, DeviceKind::opencl);
         ADD_FAILURE() << "no DeviceError";
     } catch (const DeviceError& e) {
         const std::string msg = e.what();
@@ -271,22 +327,28 @@ TEST(DeviceGrid, AKernelThatDoesNotBuildGivesTheCompilersLog) {
     device::fail_points().bad_kernel = false;
 }
 
-TEST(DeviceGrid, TheUnionsCellsRunOnTheCpuAndSaySo) {
+TEST(DeviceGrid, TheUnionAndIntersectionOfTwoBodies) {
     REQUIRE_DEVICE();
-    const Mesh a = test::box({0, 0, 0}, {2, 2, 2}), b = test::box({1, 1, 1}, {3, 3, 3});
-    const std::vector<const Mesh*> meshes{&a, &b};
-    std::vector<MeshView> views{a.view(), b.view()};
-    const GridAxes g = make_grid(views, {.cells = 6});
-    std::vector<double> vol(2 * g.cell_count()), uni(g.cell_count());
-    const GridSummary s = grid_volumes(views, g, {.volumes = vol, .union_volumes = uni}, {.device = {DeviceKind::opencl, -1}});
-    EXPECT_EQ(s.device, "cpu (the union's cells run on the CPU)");
-    EXPECT_EQ(s.union_volume, 15.0);
-    // One body's cell classes are the union's too: also the CPU's.
-    std::vector<CellClass> cls(g.cell_count());
-    std::vector<double> one(g.cell_count());
-    const MeshView first[1] = {views[0]};
-    EXPECT_EQ(grid_volumes(first, g, {.volumes = one, .cell_class = cls}, {.device = {DeviceKind::opencl, -1}}).device,
-              "cpu (the union's cells run on the CPU)");
+    // Overlapping, touching at a face and nested boxes, and two spheres; one body's classes.
+    const Mesh a = test::box({0.11, 0.13, 0.17}, {0.63, 0.71, 0.59}), b = test::box({0.37, 0.29, 0.41}, {0.93, 0.83, 0.87}),
+               c = test::box({0.63, 0.2, 0.2}, {0.9, 0.5, 0.5}), inner = test::box({0.2, 0.2, 0.2}, {0.4, 0.4, 0.4});
+    const Mesh s1 = generate::uv_sphere(20, 40), s2 = generate::uv_sphere(18, 36, 0.8, 0.5, 0.3, 0.2);
+    const GridAxes boxes = uniform_axes({0, 0, 0, 1, 1, 1}, {9, 10, 11});
+    const std::vector<std::pair<std::vector<const Mesh*>, std::string>> cases{
+        {{&a, &b}, "overlapping"}, {{&a, &c}, "touching at a face"}, {{&a, &inner}, "nested"},
+        {{&a, &a}, "identical"}, {{&a}, "one body's classes"}};
+    for (const auto& [meshes, what] : cases) {
+        std::vector<MeshView> views;
+        for (const Mesh* m : meshes) views.push_back(m->view());
+        expect_same_as_cpu(views, boxes, whole(boxes), {.surface = true, .with_union = true}, what);
+    }
+    const MeshView spheres[2] = {s1.view(), s2.view()};
+    for (const uint32_t n : {12u, 31u}) {
+        const GridAxes g = make_grid(spheres, {.cells = n});
+        expect_same_as_cpu(spheres, g, whole(g), {.surface = true, .with_union = true}, "spheres " + std::to_string(n));
+        expect_same_as_cpu(spheres, g, {{2, 1, 3}, {g.nx() - 1, g.ny(), g.nz() - 2}}, {.with_union = true},
+                           "a block of the spheres " + std::to_string(n));
+    }
 }
 
 TEST(DeviceGrid, AnIndexBeyondTheDevicesIsAnError) {

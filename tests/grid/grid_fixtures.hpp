@@ -2,11 +2,16 @@
 // (the solids are common/shapes.hpp's).
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <array>
+#include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "common/shapes.hpp"
+#include "polyvol/device.hpp"
 #include "polyvol/grid.hpp"
 #include "polyvol/mesh.hpp"
 
@@ -26,8 +31,8 @@ struct GridRun {
     GridSummary summary;
 };
 
-inline GridRun run_grid(const std::vector<const Mesh*>& meshes, const GridAxes& g, bool moments = false,
-                        bool with_union = false) {
+inline GridRun run_grid_on(const std::vector<const Mesh*>& meshes, const GridAxes& g, bool moments, bool with_union,
+                           const DeviceRequest& device) {
     std::vector<MeshView> views;
     for (const Mesh* m : meshes) views.push_back(m->view());
     GridRun r;
@@ -50,7 +55,37 @@ inline GridRun run_grid(const std::vector<const Mesh*>& meshes, const GridAxes& 
         out.union_surface_normal = r.union_normal;
         out.cell_class = r.cls;
     }
-    r.summary = grid_volumes(views, g, out);
+    r.summary = grid_volumes(views, g, out, {.device = device});
+    return r;
+}
+
+inline bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+// The grid on the CPU; with POLYVOL_TEST_DEVICE set (ctest's opencl.* copies
+// of these tests), also on that device, every output and summary field
+// expected to be the CPU's bits.
+inline GridRun run_grid(const std::vector<const Mesh*>& meshes, const GridAxes& g, bool moments = false,
+                        bool with_union = false) {
+    GridRun r = run_grid_on(meshes, g, moments, with_union, {DeviceKind::cpu, -1});
+    const char* device = std::getenv("POLYVOL_TEST_DEVICE");
+    if (device && *device) {
+        const GridRun d = run_grid_on(meshes, g, moments, with_union, parse_device(device));
+        EXPECT_TRUE(d.summary.device.starts_with("opencl: ")) << d.summary.device;
+        EXPECT_TRUE(same_bits(r.volumes, d.volumes) && same_bits(r.moments, d.moments) &&
+                    same_bits(r.union_volumes, d.union_volumes) && same_bits(r.intersection, d.intersection) &&
+                    same_bits(r.union_area, d.union_area) && same_bits(r.union_normal, d.union_normal) &&
+                    r.cls == d.cls)
+            << "the device's cells differ from the CPU's";
+        for (std::size_t b = 0; b < r.summary.bodies.size(); ++b) {
+            EXPECT_EQ(std::memcmp(&r.summary.bodies[b].volume, &d.summary.bodies[b].volume, sizeof(double)), 0);
+            EXPECT_EQ(r.summary.bodies[b].pieces, d.summary.bodies[b].pieces);
+            EXPECT_EQ(r.summary.bodies[b].cut_cells, d.summary.bodies[b].cut_cells);
+        }
+        EXPECT_EQ(std::memcmp(&r.summary.union_volume, &d.summary.union_volume, sizeof(double)), 0);
+        EXPECT_EQ(r.summary.contact_cells, d.summary.contact_cells);
+    }
     return r;
 }
 
