@@ -15,7 +15,7 @@
 //
 // Exit codes: 0 ok, 1 usage, 2 unreadable input, 3 input read but not valid
 // for the request, 4 out of memory or an internal error, 5 the device asked
-// for (grid, cells --device) cannot do the work; with several files the highest of theirs, every file still
+// for (grid --device) cannot do the work; with several files the highest of theirs, every file still
 // reported. Results go to stdout, warnings and progress to stderr.
 #include <iostream>
 #include <new>

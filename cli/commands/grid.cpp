@@ -428,7 +428,7 @@ int compute(const GridArgs& a, const Bodies& bodies, const GridAxes& g, const st
         return Exit::device_failed;
     }
     if (printed) std::cerr << "\n";
-    if (options.device.kind == DeviceKind::opencl && summary.device.starts_with("cpu"))
+    if (options.device.kind == DeviceKind::opencl && summary.device.find("cpu (") != std::string::npos)
         std::cerr << "polyvol grid: note: computed on the CPU, not OpenCL: " << summary.device << "\n";
     if (!union_problem.empty()) std::cerr << "polyvol: warning: " << union_problem << "; the bodies' cells are given\n";
     return Exit::ok;

@@ -53,9 +53,12 @@ struct DeviceList {
 // The OpenCL devices of this machine (each probed once per process).
 DeviceList list_devices();
 
-// A device asked for by name that cannot do the work (no fp64, a kernel that
-// does not build, out of device memory below one slab): the message names
-// the device and the cause, with the compiler's log for a build error.
+// An OpenCL request that cannot be met: the device named is absent or has
+// no fp64, no device is usable, its canary or its kernel build failed, an
+// OpenCL call failed, or it runs out of memory even for one row of columns.
+// The message names the device and the cause, with the compiler's log for a
+// build error. The outputs are then incomplete. (No OpenCL runtime or
+// driver at all is not an error: the CPU computes.)
 class DeviceError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;

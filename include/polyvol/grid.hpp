@@ -186,8 +186,8 @@ struct GridOptions {
     std::function<void(double)> progress{};
     // Where the per-cell work runs (polyvol/device.hpp): the same bits on
     // every device. `automatic` is the CPU. An OpenCL request on a machine
-    // without OpenCL runs the CPU path (GridSummary::device says so); a named
-    // device that cannot do the work throws DeviceError. The union's pieces on
+    // without OpenCL runs the CPU path (GridSummary::device says so); a
+    // request that cannot be met otherwise throws DeviceError (device.hpp). The union's pieces on
     // the crossed triangles (exact booleans) are found on the CPU, and
     // everything per cell on the device.
     DeviceRequest device{};

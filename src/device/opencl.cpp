@@ -50,7 +50,9 @@ Loaded load() {
                      bind(lib, "clEnqueueReadBuffer", a.EnqueueReadBuffer) &&
                      bind(lib, "clEnqueueFillBuffer", a.EnqueueFillBuffer) &&
                      bind(lib, "clEnqueueNDRangeKernel", a.EnqueueNDRangeKernel) && bind(lib, "clFinish", a.Finish) &&
-                     bind(lib, "clReleaseMemObject", a.ReleaseMemObject) && bind(lib, "clReleaseKernel", a.ReleaseKernel);
+                     bind(lib, "clReleaseMemObject", a.ReleaseMemObject) && bind(lib, "clReleaseKernel", a.ReleaseKernel) &&
+                     bind(lib, "clReleaseProgram", a.ReleaseProgram) && bind(lib, "clReleaseContext", a.ReleaseContext) &&
+                     bind(lib, "clGetKernelWorkGroupInfo", a.GetKernelWorkGroupInfo);
     if (!all) {
         l.why = "no OpenCL runtime (" + file + " lacks OpenCL 1.2 entry points)";
         return l;
@@ -226,10 +228,13 @@ Device* resolve(const DeviceRequest& request, std::string& note) {
     std::lock_guard<std::mutex> lock(d->mutex);
     if (!d->context) {
         cl_int err = CL_SUCCESS;
-        d->context = api()->CreateContext(nullptr, 1, &d->id, nullptr, nullptr, &err);
+        cl_context context = api()->CreateContext(nullptr, 1, &d->id, nullptr, nullptr, &err);
         check(*d, err, "creating a context");
-        d->queue = api()->CreateCommandQueue(d->context, d->id, 0, &err);
+        cl_command_queue queue = api()->CreateCommandQueue(context, d->id, 0, &err);
+        if (err != CL_SUCCESS) api()->ReleaseContext(context);
         check(*d, err, "creating a queue");
+        d->context = context;  // both made, or neither kept
+        d->queue = queue;
     }
     return d;
 }
@@ -250,6 +255,7 @@ cl_program build(Device& d, const std::string& source) {
         std::string log(n, '\0');
         if (n > 0) api()->GetProgramBuildInfo(p, d.id, CL_PROGRAM_BUILD_LOG, n, log.data(), nullptr);
         while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+        api()->ReleaseProgram(p);
         throw DeviceError(label(d.info) + ": the kernels do not build (" + error_name(err) + "):\n" + log);
     }
     d.programs.emplace(source, p);

@@ -46,6 +46,9 @@ struct Api {
     cl_int (*Finish)(cl_command_queue);
     cl_int (*ReleaseMemObject)(cl_mem);
     cl_int (*ReleaseKernel)(cl_kernel);
+    cl_int (*ReleaseProgram)(cl_program);
+    cl_int (*ReleaseContext)(cl_context);
+    cl_int (*GetKernelWorkGroupInfo)(cl_kernel, cl_device_id, cl_kernel_work_group_info, size_t, void*, size_t*);
 };
 
 // The loader's entry points, or null with `why` set (once per process).

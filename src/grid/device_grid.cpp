@@ -79,13 +79,21 @@ device::Buffer upload(device::Device& d, std::span<const T> v) {
     return device::make_buffer(d, v.size_bytes(), v.empty() ? nullptr : v.data());
 }
 
-// Device bytes per column of a batch: the body's sums, the levels' sums,
-// each body's outputs and states.
-std::size_t bytes_per_column(const GridAxes& g, const DeviceLayout& l, std::size_t bodies, bool moments, int nlevels) {
+// Device bytes per column of a batch: its sums (the body's, the levels'),
+// each body's outputs (volume, moments, surfaces, state, counts) and the
+// union's (union, intersection, class, surface, counts).
+std::size_t bytes_per_column(const GridAxes& g, const DeviceLayout& l, std::size_t bodies, const GridOutput& out,
+                             int nlevels, bool union_cells) {
     const std::size_t layers = g.nz() - static_cast<std::size_t>(l.k0) + 1, bnz = static_cast<std::size_t>(l.bnz);
+    const bool moments = !out.first_moments.empty();
+    const std::size_t body_doubles = 1 + (moments ? 3 : 0) + (out.wetted_area.empty() ? 0 : 1) +
+                                     (out.surface_normal.empty() ? 0 : 3);
+    const std::size_t union_doubles = (union_cells ? 2 : 0) + (out.union_wetted_area.empty() ? 0 : 1) +
+                                      (out.union_surface_normal.empty() ? 0 : 3);
     return layers * ((moments ? 14 : 4) * sizeof(double) + 1) +
            static_cast<std::size_t>(nlevels) * layers * (4 * sizeof(double) + 1) +
-           bodies * bnz * ((moments ? 4 : 1) * sizeof(double) + 1);
+           bodies * (bnz * (body_doubles * sizeof(double) + 1) + 4 * sizeof(cl_uint)) +
+           bnz * (union_doubles * sizeof(double) + 1) + 4 * sizeof(cl_uint);
 }
 
 using Clock = std::chrono::steady_clock;
@@ -173,7 +181,10 @@ bool run_batches(device::Device& d, cl_program program, const GridAxes& g, const
         // A column's polygons live in private memory: one work-item per
         // group on a CPU device (pocl keeps a group's private arrays on one
         // thread's stack), 64 on the others.
-        const std::size_t local = d.info.type == "cpu" ? 1 : 64;
+        std::size_t most = 64;
+        device::check(d, a->GetKernelWorkGroupInfo(k.k, d.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof most, &most, nullptr),
+                      "asking the kernel's work-group size");
+        const std::size_t local = d.info.type == "cpu" ? 1 : std::clamp<std::size_t>(most, 1, 64);
         const std::size_t global = (columns + local - 1) / local * local;
         const auto t0 = Clock::now();
         device::check(d, a->EnqueueNDRangeKernel(d.queue, k.k, 1, nullptr, &global, &local, 0, nullptr, nullptr),
@@ -277,7 +288,7 @@ bool device_columns(device::Device& d, const GridAxes& g, const DeviceLayout& l,
     // Batches of at most 256 MiB or a quarter of the device's memory; halved
     // while the device runs out of memory, down to one row of columns.
     const std::size_t row_bytes =
-        bytes_per_column(g, l, bodies.size(), !out.first_moments.empty(), levels ? static_cast<int>(levels->count) : 0) *
+        bytes_per_column(g, l, bodies.size(), out, levels ? static_cast<int>(levels->count) : 0, levels != nullptr) *
         static_cast<std::size_t>(l.ny);
     const std::size_t budget = std::min<std::size_t>(std::size_t{256} << 20, d.info.global_memory / 4);
     int rows = static_cast<int>(std::clamp<std::size_t>(budget / std::max<std::size_t>(row_bytes, 1), 1,
@@ -290,8 +301,9 @@ bool device_columns(device::Device& d, const GridAxes& g, const DeviceLayout& l,
         } catch (const device::OutOfDeviceMemory& e) {
             if (rows == 1)
                 throw DeviceError(std::string(e.what()) + ": one row of " + std::to_string(l.ny) +
-                                  " columns needs about " + std::to_string(row_bytes >> 20) +
-                                  " MiB of device memory (fewer cells along z, or the CPU)");
+                                  " columns needs about " + std::to_string((row_bytes + 1023) >> 10) +
+                                  " KiB of device memory beside the bodies (fewer cells along z, or the CPU); "
+                                  "the outputs are not complete");
             rows = (rows + 1) / 2;
         }
     }

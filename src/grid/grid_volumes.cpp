@@ -529,6 +529,9 @@ void run_tiles(const Job& job, const GridOptions& options, GridSummary& s, std::
 grid::DeviceLevels device_levels(const std::vector<FanMesh>& fans) {
     grid::DeviceLevels d;
     d.count = fans.size();
+    std::size_t triangles = 0;
+    for (const FanMesh& f : fans) triangles += f.normal.size();
+    if (triangles >= (std::size_t{1} << 32) / 3) throw std::invalid_argument("grid: too many crossing pieces");
     for (const FanMesh& f : fans) {
         const auto vertex0 = static_cast<uint32_t>(d.positions.size() / 3);
         const auto triangle0 = static_cast<uint32_t>(d.triangles.size() / 3);

@@ -48,7 +48,8 @@ void check_blocks(const std::vector<const Mesh*>& meshes, const GridAxes& g, std
     for (const Mesh* m : meshes) views.push_back(m->view());
     const std::size_t nb = views.size(), cells = g.cell_count();
     Outputs whole(nb, cells);
-    const GridSummary all = grid_volumes(views, g, whole.out);
+    const GridSummary all = grid_volumes(views, g, whole.out, test::test_options());
+    test::expect_test_device(all);
     std::size_t cut = 0, full = 0, contact = 0;
     for (std::size_t i0 = 0; i0 < g.nx(); i0 += size[0])
         for (std::size_t j0 = 0; j0 < g.ny(); j0 += size[1])
@@ -58,7 +59,8 @@ void check_blocks(const std::vector<const Mesh*>& meshes, const GridAxes& g, std
                                    std::min(g.nz(), k0 + size[2])}};
                 const std::size_t bx = b.hi[0] - b.lo[0], by = b.hi[1] - b.lo[1], bz = b.hi[2] - b.lo[2];
                 Outputs part(nb, b.cell_count());
-                const GridSummary s = grid_block_volumes(views, g, b, part.out);
+                const GridSummary s = grid_block_volumes(views, g, b, part.out, test::test_options());
+                test::expect_test_device(s);
                 for (std::size_t body = 0; body < nb; ++body) {
                     cut += s.bodies[body].cut_cells;
                     full += s.bodies[body].full_cells;

@@ -167,9 +167,11 @@ TEST(DeviceList, PoclIsListedAsACpuDeviceWithFp64) {
         EXPECT_FALSE(d.name.empty());
         EXPECT_GT(d.global_memory, 0u);
         EXPECT_GT(d.compute_units, 0u);
-        if (d.type == "cpu" && d.usable) cpu_device = d.fp64;
+        EXPECT_EQ(d.usable, d.fp64) << d.name << ": usable exactly when it has IEEE double";
+        EXPECT_EQ(d.reason.empty(), d.usable) << d.name;
+        cpu_device = cpu_device || (d.type == "cpu" && d.usable);
     }
-    EXPECT_TRUE(cpu_device) << "pocl's CPU device with cl_khr_fp64";
+    EXPECT_TRUE(cpu_device) << "pocl's CPU device, usable";
 }
 
 TEST(DeviceGrid, SphereAndTorusEveryOutputOnSeveralGrids) {
@@ -225,7 +227,7 @@ TEST(DeviceGrid, SeveralBodiesWithoutTheUnion) {
     expect_same_as_cpu(views, g, whole(g), {true, true}, "two bodies without the union");
 }
 
-TEST(DeviceGrid, CorpusMeshesOnThreeGrids) {
+TEST(DeviceGrid, CorpusMeshesOnTwoGrids) {
     REQUIRE_DEVICE();
     const auto paths = test::manifest_paths([](const nlohmann::json& e) {
         return !test::invalid_entry(e) && e.contains("volume") && e.contains("topology") &&
@@ -247,18 +249,28 @@ TEST(DeviceGrid, CorpusMeshesOnThreeGrids) {
 
 TEST(DeviceGrid, APolygonBeyondTheCapacityRunsOnTheCpuWithTheSameBits) {
     REQUIRE_DEVICE();
-    const Mesh m = generate::uv_sphere(12, 24);
+    // One body: a small tetrahedron inside one cell of the first row (its
+    // triangles are never split) and a box through later rows (split, so
+    // beyond a capacity of 3). Batches of one row: the first batch writes the
+    // tetrahedron's surface before the box's batch overflows.
+    Mesh m = test::box({3.5, 0.5, 0.5}, {6.5, 2.5, 2.5});
+    const auto base = static_cast<uint32_t>(m.positions.size() / 3);
+    for (const double v : {0.2, 0.2, 0.2, 0.8, 0.2, 0.2, 0.2, 0.8, 0.2, 0.2, 0.2, 0.8}) m.positions.push_back(v);
+    for (const uint32_t i : {0u, 2u, 1u, 0u, 1u, 3u, 0u, 3u, 2u, 1u, 2u, 3u}) m.indices.push_back(base + i);
     const MeshView views[1] = {m.view()};
-    const GridAxes g = make_grid(views, {.cells = 12});
+    const GridAxes g = uniform_axes({0, 0, 0, 8, 3, 3}, {8, 3, 3});
     const Outputs cpu = run(views, g, whole(g), {true, true}, DeviceKind::cpu);
+    EXPECT_GT(cpu.area[0 * 9 + 0], 0.0) << "the tetrahedron's cell has area";
     device::fail_points().capacity = 3;  // a triangle cut by one plane has 4 vertices
+    device::fail_points().max_buffer = 2 << 10;  // batches of one row
     const Outputs dev = run(views, g, whole(g), {true, true}, DeviceKind::opencl);
-    device::fail_points().capacity = 0;
+    device::fail_points() = {};
     EXPECT_EQ(dev.summary.device, "cpu (a clipped polygon exceeded the device kernel's capacity)");
     EXPECT_TRUE(same_bits(cpu.volumes, dev.volumes));
     EXPECT_TRUE(same_bits(cpu.moments, dev.moments));
     EXPECT_TRUE(same_bits(cpu.area, dev.area)) << "the device's partial surface sums are cleared";
     EXPECT_TRUE(same_bits(cpu.normal, dev.normal));
+    EXPECT_TRUE(same_bits(cpu.union_area, dev.union_area));
 }
 
 TEST(DeviceGrid, OutOfDeviceMemoryHalvesTheBatchesWithTheSameBits) {
@@ -274,7 +286,22 @@ TEST(DeviceGrid, OutOfDeviceMemoryHalvesTheBatchesWithTheSameBits) {
     EXPECT_TRUE(same_bits(cpu.volumes, dev.volumes));
     EXPECT_TRUE(same_bits(cpu.moments, dev.moments));
     EXPECT_TRUE(same_bits(cpu.area, dev.area));
+    EXPECT_TRUE(same_bits(cpu.normal, dev.normal));
+    EXPECT_TRUE(same_bits(cpu.union_area, dev.union_area));
+    EXPECT_TRUE(same_bits(cpu.union_normal, dev.union_normal));
     EXPECT_EQ(cpu.summary.bodies[0].pieces, dev.summary.bodies[0].pieces);
+}
+
+TEST(DeviceGrid, SeveralBatchesOfTwoBodiesWithTheirUnionMomentsAndSurfaces) {
+    REQUIRE_DEVICE();
+    const Mesh s1 = generate::uv_sphere(20, 40), s2 = generate::uv_sphere(18, 36, 0.8, 0.5, 0.3, 0.2);
+    const MeshView spheres[2] = {s1.view(), s2.view()};
+    const GridAxes g = make_grid(spheres, {.cells = 20});
+    device::fail_points().max_buffer = 200 << 10;  // several batches of rows
+    expect_same_as_cpu(spheres, g, whole(g), {true, true, true}, "batches, union, moments, surfaces");
+    expect_same_as_cpu(spheres, g, {{1, 2, 3}, {g.nx() - 2, g.ny() - 1, g.nz() - 4}}, {true, true, true},
+                       "batches of a block");
+    device::fail_points().max_buffer = 0;
 }
 
 TEST(DeviceGrid, OutOfDeviceMemoryBelowOneRowIsAClearError) {

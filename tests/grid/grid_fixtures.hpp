@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "common/shapes.hpp"
@@ -59,6 +60,33 @@ inline GridRun run_grid_on(const std::vector<const Mesh*>& meshes, const GridAxe
     return r;
 }
 
+// The device of the opencl.* copies of the grid tests (POLYVOL_TEST_DEVICE),
+// or null: unset, or no usable device where POLYVOL_TEST_ALLOW_NO_DEVICE=1
+// (sanitizer builds; elsewhere a missing device fails the test).
+inline const char* test_device() {
+    const char* device = std::getenv("POLYVOL_TEST_DEVICE");
+    if (!device || !*device) return nullptr;
+    bool usable = false;
+    for (const DeviceInfo& d : list_devices().devices) usable = usable || d.usable;
+    const char* allow = std::getenv("POLYVOL_TEST_ALLOW_NO_DEVICE");
+    if (!usable && allow && std::string(allow) == "1") return nullptr;
+    return device;
+}
+
+// The options of a test's direct grid calls: on the test device when there
+// is one (their own checks then hold on the device), else the CPU.
+inline GridOptions test_options() {
+    const char* device = test_device();
+    return {.device = device ? parse_device(device) : DeviceRequest{DeviceKind::cpu, -1}};
+}
+
+// With a test device, the summary of a direct call says the device computed.
+inline void expect_test_device(const GridSummary& s) {
+    if (test_device()) {
+        EXPECT_TRUE(s.device.starts_with("opencl: ")) << s.device;
+    }
+}
+
 inline bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
@@ -69,8 +97,7 @@ inline bool same_bits(const std::vector<double>& a, const std::vector<double>& b
 inline GridRun run_grid(const std::vector<const Mesh*>& meshes, const GridAxes& g, bool moments = false,
                         bool with_union = false) {
     GridRun r = run_grid_on(meshes, g, moments, with_union, {DeviceKind::cpu, -1});
-    const char* device = std::getenv("POLYVOL_TEST_DEVICE");
-    if (device && *device) {
+    if (const char* device = test_device()) {
         const GridRun d = run_grid_on(meshes, g, moments, with_union, parse_device(device));
         EXPECT_TRUE(d.summary.device.starts_with("opencl: ")) << d.summary.device;
         EXPECT_TRUE(same_bits(r.volumes, d.volumes) && same_bits(r.moments, d.moments) &&
@@ -78,13 +105,23 @@ inline GridRun run_grid(const std::vector<const Mesh*>& meshes, const GridAxes& 
                     same_bits(r.union_area, d.union_area) && same_bits(r.union_normal, d.union_normal) &&
                     r.cls == d.cls)
             << "the device's cells differ from the CPU's";
-        for (std::size_t b = 0; b < r.summary.bodies.size(); ++b) {
-            EXPECT_EQ(std::memcmp(&r.summary.bodies[b].volume, &d.summary.bodies[b].volume, sizeof(double)), 0);
-            EXPECT_EQ(r.summary.bodies[b].pieces, d.summary.bodies[b].pieces);
-            EXPECT_EQ(r.summary.bodies[b].cut_cells, d.summary.bodies[b].cut_cells);
+        const GridSummary &c = r.summary, &e = d.summary;
+        EXPECT_EQ(c.bodies.size(), e.bodies.size());
+        for (std::size_t b = 0; b < std::min(c.bodies.size(), e.bodies.size()); ++b) {
+            EXPECT_EQ(std::memcmp(&c.bodies[b].volume, &e.bodies[b].volume, sizeof(double)), 0);
+            EXPECT_EQ(c.bodies[b].triangles, e.bodies[b].triangles);
+            EXPECT_EQ(c.bodies[b].pieces, e.bodies[b].pieces);
+            EXPECT_EQ(c.bodies[b].full_cells, e.bodies[b].full_cells);
+            EXPECT_EQ(c.bodies[b].empty_cells, e.bodies[b].empty_cells);
+            EXPECT_EQ(c.bodies[b].cut_cells, e.bodies[b].cut_cells);
         }
-        EXPECT_EQ(std::memcmp(&r.summary.union_volume, &d.summary.union_volume, sizeof(double)), 0);
-        EXPECT_EQ(r.summary.contact_cells, d.summary.contact_cells);
+        EXPECT_EQ(std::memcmp(&c.union_volume, &e.union_volume, sizeof(double)), 0);
+        EXPECT_EQ(std::memcmp(&c.intersection_volume, &e.intersection_volume, sizeof(double)), 0);
+        EXPECT_EQ(c.crossing_pairs, e.crossing_pairs);
+        EXPECT_EQ(c.full_cells, e.full_cells);
+        EXPECT_EQ(c.empty_cells, e.empty_cells);
+        EXPECT_EQ(c.cut_cells, e.cut_cells);
+        EXPECT_EQ(c.contact_cells, e.contact_cells);
     }
     return r;
 }
