@@ -115,7 +115,7 @@ def _assemble(blocks, counts, axis):
 
 
 def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, cell_size=None, what="volumes",
-         union=None, intersection=False, moments=False, units=None, to=None):
+         union=None, intersection=False, moments=False, units=None, to=None, device=None):
     """The exact per-cell values of polyvol.grid as a dask.array whose blocks
     are computed independently, each from the mesh alone (polyvol.grid's
     block=: only the triangles that reach the block's columns are clipped, and
@@ -131,7 +131,9 @@ def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, ce
     clamped to [0, 1]), "union", "intersection", "cell_class" or
     "first_moments" (a trailing axis of 3). units, to: the grid's unit, as
     polyvol.grid takes them (bounds and cell_size in it; a body in another
-    unit converted into it). Store with ``.to_zarr(path)``."""
+    unit converted into it). device: where each block's cells are computed,
+    as polyvol.grid takes it (default: each worker's POLYVOL_DEVICE, else
+    the CPU); the same bits everywhere. Store with ``.to_zarr(path)``."""
     fields = ("volumes", "fractions", "union", "intersection", "cell_class", "first_moments")
     if what not in fields:
         raise ValueError(f"what must be one of {', '.join(fields)}, not {what!r}")
@@ -151,7 +153,7 @@ def grid(mesh, dims=None, bounds=None, chunks=(256, 256, 256), *, cells=None, ce
     # the union's crossings only where asked for: each block repeats them
     wants_union = what in ("union", "intersection", "cell_class") if union is None else bool(union)
     options = {"union": wants_union, "intersection": intersection or what == "intersection",
-               "moments": moments or what == "first_moments"}
+               "moments": moments or what == "first_moments", "device": device}
     lead = (len(meshes),) if len(meshes) > 1 and what in ("volumes", "fractions", "first_moments") else ()
     tail = (3,) if what == "first_moments" else ()
     dtype = np.uint8 if what == "cell_class" else np.float64

@@ -4,6 +4,7 @@ rows), and a grid cut into blocks equals the single-machine grid bit for
 bit, also written to zarr."""
 
 import math
+import os
 
 import numpy as np
 import pandas as pd
@@ -66,6 +67,19 @@ def test_grid_blocks_on_workers_equal_the_whole_grid(client, tmp_path):
     a.to_zarr(str(tmp_path / "g.zarr"))
     import zarr
     assert np.array_equal(zarr.open(str(tmp_path / "g.zarr"))[:], whole.volumes)
+
+
+def test_grid_blocks_on_an_opencl_device_equal_the_cpus(client):
+    if not any(d["usable"] for d in polyvol.devices()["devices"]):
+        if os.environ.get("POLYVOL_TEST_ALLOW_NO_DEVICE") == "1":
+            pytest.skip("no usable OpenCL device")
+        pytest.fail("no usable OpenCL device (install pocl-opencl-icd)")
+    s = uv_sphere(16, 32, 1.0, (0.02, -0.01, 0.03))
+    whole = polyvol.grid(s, dims=(21, 19, 17), device="cpu")
+    a = pvd.grid(s, dims=(21, 19, 17), chunks=(8, 10, 8), device="opencl").compute()
+    assert a.tobytes() == whole.volumes.tobytes()
+    with pytest.raises(polyvol.DeviceError, match="no OpenCL device 99"):  # the blocks take the device asked for
+        pvd.grid(s, dims=(21, 19, 17), chunks=(8, 10, 8), device="opencl:99").compute()
 
 
 def test_grid_from_a_path_and_of_several_bodies(client, tmp_path):
