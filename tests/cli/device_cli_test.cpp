@@ -6,7 +6,6 @@
 
 #include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -15,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/run_cli.hpp"
+#include "common/opencl_device.hpp"
 
 namespace {
 
@@ -40,23 +40,6 @@ std::string slurp(const fs::path& p) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-bool usable_device() {
-    const CliRun r = polyvol("devices --json");
-    if (r.code != 0) return false;
-    const json list = json::parse(r.out);
-    for (const json& d : list["devices"])
-        if (d["usable"].get<bool>()) return true;
-    return false;
-}
-
-#define REQUIRE_DEVICE()                                                                          \
-    do {                                                                                          \
-        if (!usable_device()) {                                                                   \
-            const char* allow = std::getenv("POLYVOL_TEST_ALLOW_NO_DEVICE");                      \
-            if (allow && std::string(allow) == "1") GTEST_SKIP() << "no usable OpenCL device";    \
-            FAIL() << "no usable OpenCL device (install pocl-opencl-icd)";                        \
-        }                                                                                         \
-    } while (0)
 
 const std::string kMesh = corpus("stl-models/gearwheel.ascii.stl");
 
@@ -69,7 +52,7 @@ struct ScratchCleanup {
 } scratch_cleanup;
 
 TEST(DevicesCli, ListsTheCpuAndEachOpenclDevice) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const CliRun text = polyvol("devices");
     EXPECT_EQ(text.code, 0);
     EXPECT_NE(text.out.find("cpu: oneTBB"), std::string::npos) << text.out;
@@ -94,7 +77,7 @@ TEST(DevicesCli, WithoutARuntimeTheListIsEmptyAndSaysWhy) {
 }
 
 TEST(GridDeviceCli, OpenclWritesTheCpusBytes) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     std::string files[2];
     for (const std::string device : {"cpu", "opencl"}) {
         const fs::path npy = scratch(device + ".npy"), surface = scratch(device + "_surface.npy"),
@@ -131,7 +114,7 @@ TEST(GridDeviceCli, NoRuntimeOrNoPlatformRunsTheCpuWithANote) {
 }
 
 TEST(GridDeviceCli, ADeviceThatCannotBeHadExits5AndABadNameExits1) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const CliRun beyond = polyvol("grid " + kMesh + " --cells 8 --device opencl:99");
     EXPECT_EQ(beyond.code, 5) << beyond.err;
     EXPECT_NE(beyond.err.find("no OpenCL device 99"), std::string::npos) << beyond.err;

@@ -7,13 +7,13 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "common/manifest.hpp"
+#include "common/opencl_device.hpp"
 #include "polyvol/device.hpp"
 #include "polyvol/grid.hpp"
 #include "polyvol/io.hpp"
@@ -105,13 +105,7 @@ TEST(Threads, EightCallersGetTheBitsOfOne) {
 // shared, one caller at a time): each gets the CPU's bits. Not under
 // ThreadSanitizer (its filter is Threads.*): the driver is not instrumented.
 TEST(DeviceThreads, EightCallersOnOneDeviceGetTheCpusBits) {
-    bool usable = false;
-    for (const DeviceInfo& d : list_devices().devices) usable = usable || d.usable;
-    if (!usable) {
-        const char* allow = std::getenv("POLYVOL_TEST_ALLOW_NO_DEVICE");
-        if (allow && std::string(allow) == "1") GTEST_SKIP() << "no usable OpenCL device";
-        FAIL() << "no usable OpenCL device (install pocl-opencl-icd)";
-    }
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const std::vector<std::string> files = {"meshes/libcgal-demo/sphere.ply", "meshes/libcgal-demo/mpi.off",
                                             "meshes/minetest-data/boats_boat.obj", "meshes/prusa-slicer/aq_bed.stl"};
     std::vector<LoadedMesh> meshes;

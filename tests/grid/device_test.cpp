@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -19,6 +18,7 @@
 
 #include "common/generate.hpp"
 #include "common/manifest.hpp"
+#include "common/opencl_device.hpp"
 #include "device/opencl.hpp"
 #include "grid_fixtures.hpp"
 #include "polyvol/device.hpp"
@@ -29,20 +29,6 @@ namespace {
 
 using namespace polyvol;
 
-bool device_present() {
-    for (const DeviceInfo& d : list_devices().devices)
-        if (d.usable) return true;
-    return false;
-}
-
-#define REQUIRE_DEVICE()                                                                           \
-    do {                                                                                           \
-        if (!device_present()) {                                                                   \
-            const char* allow = std::getenv("POLYVOL_TEST_ALLOW_NO_DEVICE");                       \
-            if (allow && std::string(allow) == "1") GTEST_SKIP() << "no usable OpenCL device";     \
-            FAIL() << "no usable OpenCL device (install pocl-opencl-icd): " << list_devices().note; \
-        }                                                                                          \
-    } while (0)
 
 // Every output a grid run can fill, for the comparison.
 struct Outputs {
@@ -159,7 +145,7 @@ TEST(DeviceParse, NamesAndErrors) {
 }
 
 TEST(DeviceList, PoclIsListedAsACpuDeviceWithFp64) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const DeviceList list = list_devices();
     EXPECT_TRUE(list.runtime);
     bool cpu_device = false;
@@ -175,7 +161,7 @@ TEST(DeviceList, PoclIsListedAsACpuDeviceWithFp64) {
 }
 
 TEST(DeviceGrid, SphereAndTorusEveryOutputOnSeveralGrids) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const Mesh meshes[2] = {generate::uv_sphere(24, 48, 1.0, 0.013, -0.021, 0.007), generate::torus(40, 24)};
     for (const Mesh& m : meshes) {
         const MeshView views[1] = {m.view()};
@@ -188,7 +174,7 @@ TEST(DeviceGrid, SphereAndTorusEveryOutputOnSeveralGrids) {
 }
 
 TEST(DeviceGrid, BlocksBelowTheTopAndAtAnOffset) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const Mesh m = generate::torus(48, 20);
     const MeshView views[1] = {m.view()};
     const GridAxes g = make_grid(views, {.cells = 24});
@@ -199,7 +185,7 @@ TEST(DeviceGrid, BlocksBelowTheTopAndAtAnOffset) {
 }
 
 TEST(DeviceGrid, PlanesThroughVerticesAndUnevenPlanes) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     // A box whose faces lie on grid planes, and uneven planes through a sphere.
     const Mesh box = test::box({0, 0, 0}, {2, 3, 1});
     const MeshView bv[1] = {box.view()};
@@ -220,7 +206,7 @@ TEST(DeviceGrid, PlanesThroughVerticesAndUnevenPlanes) {
 }
 
 TEST(DeviceGrid, SeveralBodiesWithoutTheUnion) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const Mesh a = generate::uv_sphere(20, 40, 1.0), b = generate::uv_sphere(20, 40, 0.8, 0.5, 0.3, 0.1);
     const MeshView views[2] = {a.view(), b.view()};
     const GridAxes g = make_grid(views, {.cells = 20});
@@ -228,7 +214,7 @@ TEST(DeviceGrid, SeveralBodiesWithoutTheUnion) {
 }
 
 TEST(DeviceGrid, CorpusMeshesOnTwoGrids) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const auto paths = test::manifest_paths([](const nlohmann::json& e) {
         return !test::invalid_entry(e) && e.contains("volume") && e.contains("topology") &&
                e["topology"].value("closed_2_cycle", false);
@@ -248,7 +234,7 @@ TEST(DeviceGrid, CorpusMeshesOnTwoGrids) {
 }
 
 TEST(DeviceGrid, APolygonBeyondTheCapacityRunsOnTheCpuWithTheSameBits) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     // One body: a small tetrahedron inside one cell of the first row (its
     // triangles are never split) and a box through later rows (split, so
     // beyond a capacity of 3). Batches of one row: the first batch writes the
@@ -274,7 +260,7 @@ TEST(DeviceGrid, APolygonBeyondTheCapacityRunsOnTheCpuWithTheSameBits) {
 }
 
 TEST(DeviceGrid, OutOfDeviceMemoryHalvesTheBatchesWithTheSameBits) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const Mesh m = generate::uv_sphere(20, 40);
     const MeshView views[1] = {m.view()};
     const GridAxes g = make_grid(views, {.cells = 24});
@@ -293,7 +279,7 @@ TEST(DeviceGrid, OutOfDeviceMemoryHalvesTheBatchesWithTheSameBits) {
 }
 
 TEST(DeviceGrid, SeveralBatchesOfTwoBodiesWithTheirUnionMomentsAndSurfaces) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const Mesh s1 = generate::uv_sphere(20, 40), s2 = generate::uv_sphere(18, 36, 0.8, 0.5, 0.3, 0.2);
     const MeshView spheres[2] = {s1.view(), s2.view()};
     const GridAxes g = make_grid(spheres, {.cells = 20});
@@ -305,7 +291,7 @@ TEST(DeviceGrid, SeveralBatchesOfTwoBodiesWithTheirUnionMomentsAndSurfaces) {
 }
 
 TEST(DeviceGrid, OutOfDeviceMemoryBelowOneRowIsAClearError) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const Mesh m = generate::uv_sphere(20, 40);
     const MeshView views[1] = {m.view()};
     const GridAxes g = make_grid(views, {.cells = 24});
@@ -321,7 +307,7 @@ TEST(DeviceGrid, OutOfDeviceMemoryBelowOneRowIsAClearError) {
 }
 
 TEST(DeviceGrid, NoFp64IsRefusedByName) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const Mesh m = test::box({0, 0, 0}, {1, 1, 1});
     const MeshView views[1] = {m.view()};
     const GridAxes g = make_grid(views, {.cells = 4});
@@ -338,7 +324,7 @@ TEST(DeviceGrid, NoFp64IsRefusedByName) {
 }
 
 TEST(DeviceGrid, AKernelThatDoesNotBuildGivesTheCompilersLog) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const Mesh m = test::box({0, 0, 0}, {1, 1, 1});
     const MeshView views[1] = {m.view()};
     const GridAxes g = make_grid(views, {.cells = 4});
@@ -355,7 +341,7 @@ TEST(DeviceGrid, AKernelThatDoesNotBuildGivesTheCompilersLog) {
 }
 
 TEST(DeviceGrid, TheUnionAndIntersectionOfTwoBodies) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     // Overlapping, touching at a face and nested boxes, and two spheres; one body's classes.
     const Mesh a = test::box({0.11, 0.13, 0.17}, {0.63, 0.71, 0.59}), b = test::box({0.37, 0.29, 0.41}, {0.93, 0.83, 0.87}),
                c = test::box({0.63, 0.2, 0.2}, {0.9, 0.5, 0.5}), inner = test::box({0.2, 0.2, 0.2}, {0.4, 0.4, 0.4});
@@ -379,7 +365,7 @@ TEST(DeviceGrid, TheUnionAndIntersectionOfTwoBodies) {
 }
 
 TEST(DeviceGrid, AnIndexBeyondTheDevicesIsAnError) {
-    REQUIRE_DEVICE();
+    POLYVOL_REQUIRE_OPENCL_DEVICE();
     const Mesh m = test::box({0, 0, 0}, {1, 1, 1});
     const MeshView views[1] = {m.view()};
     const GridAxes g = make_grid(views, {.cells = 4});

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/opencl_device.hpp"
 #include "common/shapes.hpp"
 #include "polyvol/device.hpp"
 #include "polyvol/grid.hpp"
@@ -66,10 +67,7 @@ inline GridRun run_grid_on(const std::vector<const Mesh*>& meshes, const GridAxe
 inline const char* test_device() {
     const char* device = std::getenv("POLYVOL_TEST_DEVICE");
     if (!device || !*device) return nullptr;
-    bool usable = false;
-    for (const DeviceInfo& d : list_devices().devices) usable = usable || d.usable;
-    const char* allow = std::getenv("POLYVOL_TEST_ALLOW_NO_DEVICE");
-    if (!usable && allow && std::string(allow) == "1") return nullptr;
+    if (no_device_allowed() && !usable_opencl_device()) return nullptr;
     return device;
 }
 

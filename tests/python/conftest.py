@@ -99,3 +99,14 @@ def write_polymesh(case, lo=-1.0, hi=1.0, n=2):
                                    f"        nFaces {len(boundary)};\n        startFace {len(faces) - len(boundary)};\n"
                                    "    }\n)\n")
     return pathlib.Path(case)
+
+
+def require_opencl_device():
+    """Skip (POLYVOL_TEST_ALLOW_NO_DEVICE=1: the sanitizer builds) or fail
+    (elsewhere: the README installs pocl) unless an OpenCL device is usable."""
+    import polyvol
+    listed = polyvol.devices()
+    if not any(d["usable"] for d in listed["devices"]):
+        if os.environ.get("POLYVOL_TEST_ALLOW_NO_DEVICE") == "1":
+            pytest.skip("no usable OpenCL device")
+        pytest.fail("no usable OpenCL device (install pocl-opencl-icd): " + listed["note"])

@@ -4,7 +4,6 @@ rows), and a grid cut into blocks equals the single-machine grid bit for
 bit, also written to zarr."""
 
 import math
-import os
 
 import numpy as np
 import pandas as pd
@@ -12,7 +11,7 @@ import pytest
 
 import polyvol
 import polyvol.dask as pvd
-from conftest import CORPUS, manifest, uv_sphere, box
+from conftest import CORPUS, box, manifest, require_opencl_device, uv_sphere
 
 distributed = pytest.importorskip("distributed")
 
@@ -70,10 +69,7 @@ def test_grid_blocks_on_workers_equal_the_whole_grid(client, tmp_path):
 
 
 def test_grid_blocks_on_an_opencl_device_equal_the_cpus(client):
-    if not any(d["usable"] for d in polyvol.devices()["devices"]):
-        if os.environ.get("POLYVOL_TEST_ALLOW_NO_DEVICE") == "1":
-            pytest.skip("no usable OpenCL device")
-        pytest.fail("no usable OpenCL device (install pocl-opencl-icd)")
+    require_opencl_device()
     s = uv_sphere(16, 32, 1.0, (0.02, -0.01, 0.03))
     whole = polyvol.grid(s, dims=(21, 19, 17), device="cpu")
     a = pvd.grid(s, dims=(21, 19, 17), chunks=(8, 10, 8), device="opencl").compute()

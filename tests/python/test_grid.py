@@ -2,14 +2,13 @@
 overlapping bodies, blocks with the whole grid's bits, and the writers."""
 
 import json
-import os
 import subprocess
 
 import numpy as np
 import pytest
 
 import polyvol
-from conftest import CLI, box, uv_sphere
+from conftest import CLI, box, require_opencl_device, uv_sphere
 
 
 def overlap_volume(lo, hi, edges):
@@ -184,19 +183,8 @@ def test_fractions_are_clamped_and_a_grid_beyond_max_memory_says_so():
         polyvol.grid((v, f), dims=(4, 4, 4), max_memory=100)
 
 
-def _usable_device():
-    return any(d["usable"] for d in polyvol.devices()["devices"])
-
-
-def _require_device():
-    if not _usable_device():
-        if os.environ.get("POLYVOL_TEST_ALLOW_NO_DEVICE") == "1":
-            pytest.skip("no usable OpenCL device")
-        pytest.fail("no usable OpenCL device (install pocl-opencl-icd): " + polyvol.devices()["note"])
-
-
 def test_devices_lists_pocl_as_the_cli_does():
-    _require_device()
+    require_opencl_device()
     listed = polyvol.devices()
     assert listed["opencl_runtime"] is True
     cli = json.loads(subprocess.run([CLI, "devices", "--json"], capture_output=True, check=True, text=True).stdout)
@@ -205,7 +193,7 @@ def test_devices_lists_pocl_as_the_cli_does():
 
 
 def test_opencl_gives_the_cpus_bits_by_keyword_and_by_environment(monkeypatch):
-    _require_device()
+    require_opencl_device()
     v, f = uv_sphere(20, 40)
     cpu = polyvol.grid((v, f), cells=24, moments=True, surface=True, device="cpu")
     gpu = polyvol.grid((v, f), cells=24, moments=True, surface=True, device="opencl")
@@ -221,7 +209,7 @@ def test_opencl_gives_the_cpus_bits_by_keyword_and_by_environment(monkeypatch):
 
 
 def test_a_device_that_cannot_be_had_raises_device_error():
-    _require_device()
+    require_opencl_device()
     v, f = uv_sphere(8, 16)
     with pytest.raises(polyvol.DeviceError, match="no OpenCL device 99"):
         polyvol.grid((v, f), cells=8, device="opencl:99")
