@@ -277,6 +277,7 @@ Buffer make_buffer(Device& d, std::size_t bytes, const void* data) {
     b.mem = api()->CreateBuffer(d.context, flags, bytes == 0 ? 1 : bytes, bytes == 0 ? nullptr : const_cast<void*>(data),
                                 &err);
     check(d, err, "allocating device memory");
+    b.bytes = bytes;
     return b;
 }
 

@@ -15,6 +15,7 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "polyvol/device.hpp"
@@ -87,15 +88,17 @@ public:
     using DeviceError::DeviceError;
 };
 
-// Owns a cl_mem or cl_kernel.
+// Owns a cl_mem (of `bytes` as asked for; 0 is allocated as 1) or a cl_kernel.
 struct Buffer {
     cl_mem mem = nullptr;
+    std::size_t bytes = 0;
     Buffer() = default;
     Buffer(const Buffer&) = delete;
     Buffer& operator=(const Buffer&) = delete;
-    Buffer(Buffer&& o) noexcept : mem(o.mem) { o.mem = nullptr; }
+    Buffer(Buffer&& o) noexcept : mem(o.mem), bytes(o.bytes) { o.mem = nullptr; }
     Buffer& operator=(Buffer&& o) noexcept {
         std::swap(mem, o.mem);
+        std::swap(bytes, o.bytes);
         return *this;
     }
     ~Buffer() {

@@ -171,10 +171,11 @@ bool run_batches(device::Device& d, cl_program program, const GridAxes& g, const
                       "reading the results");
         result.transfer_seconds += since(t0);
     };
-    auto clear = [&](const device::Buffer& b, std::size_t bytes) {
-        if (bytes == 0) return;
+    // Zero bytes: the sums and surfaces the kernels add into (unused buffers hold none).
+    auto clear = [&](const device::Buffer& b) {
+        if (b.bytes == 0) return;
         const cl_uchar z = 0;
-        device::check(d, a->EnqueueFillBuffer(d.queue, b.mem, &z, sizeof z, 0, bytes, 0, nullptr, nullptr),
+        device::check(d, a->EnqueueFillBuffer(d.queue, b.mem, &z, sizeof z, 0, b.bytes, 0, nullptr, nullptr),
                       "clearing a buffer");
     };
     auto run = [&](const device::Kernel& k, std::size_t columns) {
@@ -205,12 +206,7 @@ bool run_batches(device::Device& d, cl_program program, const GridAxes& g, const
         const int nrows = std::min(rows, l.nx - row0);
         const std::size_t columns = static_cast<std::size_t>(nrows) * l.ny;
         const std::size_t n = columns * bnz;
-        clear(area, nb * batch_cells * sizeof(double) * ((what & kWhatArea) != 0));
-        clear(normal, 3 * nb * batch_cells * sizeof(double) * ((what & kWhatNormal) != 0));
-        clear(uarea, batch_cells * sizeof(double) * ((what & kWhatUnionArea) != 0));
-        clear(unormal, 3 * batch_cells * sizeof(double) * ((what & kWhatUnionNormal) != 0));
-        clear(level_sums, nlevels * level_cells * 4 * sizeof(double));
-        clear(level_flags, nlevels * level_cells);
+        for (const device::Buffer* b : {&area, &normal, &uarea, &unormal, &level_sums, &level_flags}) clear(*b);
         for (std::size_t b = 0; b < nb; ++b) {
             device::Kernel k(d, program, "polyvol_grid_body");
             Args args{a, d, k.k};
