@@ -1,6 +1,6 @@
 """One answer from every door: the same file gives the same solid through
 `polyvol volume`, `measure`, `check`, `overlap` (as A and as B), `grid` (one
-body, and with --union), `cells` (an OpenFOAM mesh around it) and Python's mass_properties, volume, overlap, grid,
+body, and with --union; on the CPU and an OpenCL device), `cells` (an OpenFOAM mesh around it) and Python's mass_properties, volume, overlap, grid,
 check and measure_file — or every door refuses it for the same reason
 (polyvol/solid.hpp, the one policy). A new entry point is added here, to
 DOORS."""
@@ -105,7 +105,9 @@ CASES = {
     "two cubes (3MF)": (lambda d: write_3mf(d / "two.3mf", TWO), 15.0, True, ()),
     "two cubes (binary STL)": (lambda d: write_binary_stl(d / "two.stl", TWO), 15.0, True, ()),
     "inside-out cube": (lambda d: write_obj(d / "inside_out.obj", ONE, flip={("all", 0)}), 8.0, False, ()),
-    "self-crossing shell": (lambda d: SELF, SELF_VOLUME, True, ("grid", "grid --union", "py grid")),
+    "self-crossing shell": (lambda d: SELF, SELF_VOLUME, True,
+                            ("grid", "grid --union", "grid --device opencl", "grid --union --device opencl",
+                             "py grid", "py grid device=opencl")),
     "flipped face": (lambda d: write_obj(d / "flipped.obj", ONE, flip={(0, 1)}), "misoriented", False, ()),
     "open cube": (lambda d: write_obj(d / "open.obj", ONE, drop={(0, 1)}), "open", False, ()),
     "1e-7 gap": (lambda d: write_obj(d / "gap.obj", ONE, move=(0, 7, 1e-7)), "open", False, ()),
@@ -167,12 +169,18 @@ DOORS = {
     "grid": lambda f, box, d: cli_volume(["grid", f, "--cells", 8, "--json"], lambda j: j["body_volumes"][0]),
     "grid --union": lambda f, box, d: cli_volume(["grid", f, "--cells", 8, "--json", "--union", d / "u.npy"],
                                                  lambda j: j["union_volume"]),
+    "grid --device opencl": lambda f, box, d: cli_volume(["grid", f, "--cells", 8, "--json", "--device", "opencl"],
+                                                         lambda j: j["body_volumes"][0]),
+    "grid --union --device opencl": lambda f, box, d: cli_volume(
+        ["grid", f, "--cells", 8, "--json", "--union", d / "u.npy", "--device", "opencl"], lambda j: j["union_volume"]),
     "cells": lambda f, box, d: cli_volume(["cells", box.parent / "case", f, "--mesh-units", "mm", "--json"],
                                           lambda j: j["bodies"][0]["inside_mesh"]),
     "py mass_properties": lambda f, box, d: py(lambda: polyvol.mass_properties(polyvol.load(f)).volume),
     "py volume": lambda f, box, d: py(lambda: polyvol.volume(polyvol.load(f))),
     "py overlap": lambda f, box, d: py(lambda: polyvol.overlap(polyvol.load(f), polyvol.load(box)).intersection),
     "py grid": lambda f, box, d: py(lambda: polyvol.grid(polyvol.load(f), cells=8).summary["body_volumes"][0]),
+    "py grid device=opencl": lambda f, box, d: py(
+        lambda: polyvol.grid(polyvol.load(f), cells=8, device="opencl").summary["body_volumes"][0]),
     "py measure_file": lambda f, box, d: (
         (lambda r: ("refused", r["error"]) if r["exit_code"] == 3 else (r["volume"], ""))(polyvol.measure_file(f))),
 }
