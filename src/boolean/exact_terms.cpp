@@ -7,6 +7,7 @@
 
 #include "exact/rational.hpp"
 #include "measure/sums.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol::boolean {
 
@@ -14,7 +15,7 @@ static_assert(sizeof(mp_limb_t) == sizeof(uint64_t), "GMP limbs of 64 bits");
 
 int lowest_bit_exponent(double x) {
     // x = m 2^e with the IEEE fields: e = max(field, 1) - 1075, m with its implicit bit.
-    const auto bits = std::bit_cast<uint64_t>(x);
+    const auto bits = core::bit_cast<uint64_t>(x);
     const int field = static_cast<int>((bits >> 52) & 0x7FF);
     uint64_t m = bits & ((uint64_t{1} << 52) - 1);
     if (field != 0) m |= uint64_t{1} << 52;

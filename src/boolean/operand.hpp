@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "polyvol/mesh.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol::boolean {
 
@@ -90,15 +91,15 @@ inline float box_below(double x) {
     const float f = static_cast<float>(x);
     if (!(static_cast<double>(f) > x)) return f;
     if (f == 0) return -std::numeric_limits<float>::denorm_min();
-    const uint32_t bits = std::bit_cast<uint32_t>(f);
-    return std::bit_cast<float>(f > 0 ? bits - 1 : bits + 1);
+    const uint32_t bits = core::bit_cast<uint32_t>(f);
+    return core::bit_cast<float>(f > 0 ? bits - 1 : bits + 1);
 }
 inline float box_above(double x) {
     const float f = static_cast<float>(x);
     if (!(static_cast<double>(f) < x)) return f;
     if (f == 0) return std::numeric_limits<float>::denorm_min();
-    const uint32_t bits = std::bit_cast<uint32_t>(f);
-    return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
+    const uint32_t bits = core::bit_cast<uint32_t>(f);
+    return core::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
 }
 
 // Fills degenerate, box, bounds and scale from mesh and tri, in one parallel pass.

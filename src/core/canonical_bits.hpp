@@ -6,10 +6,11 @@
 
 #include <bit>
 #include <cstdint>
+#include "core/bit_cast.hpp"
 
 namespace polyvol::core {
 
 // x's bit pattern with -0.0 mapped to +0.0.
-inline uint64_t canonical_bits(double x) { return std::bit_cast<uint64_t>(x == 0.0 ? 0.0 : x); }
+inline uint64_t canonical_bits(double x) { return core::bit_cast<uint64_t>(x == 0.0 ? 0.0 : x); }
 
 }  // namespace polyvol::core

@@ -1,5 +1,6 @@
 // src/core/units.cpp — polyvol/units.hpp.
 #include "polyvol/units.hpp"
+#include "core/charconv.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -46,9 +47,7 @@ bool typed_exactly(const std::string& text, double value) {
         while (!t.empty() && t.back() == '0') t.pop_back();
         if (!t.empty() && t.back() == '.') t.pop_back();
     }
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, value);
-    return t == std::string(buf, r.ptr);
+    return t == core::shortest_text(value);
 }
 
 LengthFactor length_factor(const LengthUnit& from, const LengthUnit& to, double scale, bool scale_typed_exactly) {
@@ -71,7 +70,7 @@ std::optional<Density> parse_density(const std::string& text) {
     double v = 0;
     const char* first = text.data() + (!text.empty() && text[0] == '+');
     const char* last = text.data() + text.size();
-    const auto [end, ec] = std::from_chars(first, last, v);
+    const auto [end, ec] = core::parse_double(first, last, v);
     if (ec != std::errc() || !std::isfinite(v) || !(v > 0)) return std::nullopt;
     std::string_view rest(end, static_cast<std::size_t>(last - end));
     while (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
@@ -183,8 +182,7 @@ CommonUnit common_unit(std::span<const std::string> declared, std::string_view u
         }
         if (unit[i] == c.unit) continue;
         c.factors[i] = length_factor(*length_unit(unit[i]), *length_unit(c.unit));
-        char buf[32];
-        const std::string factor(buf, std::to_chars(buf, buf + sizeof buf, c.factors[i].factor).ptr);
+        const std::string factor = core::shortest_text(c.factors[i].factor);
         c.notes[i] += std::string(c.notes[i].empty() ? "" : "; ") + "its coordinates converted from " + unit[i] +
                       " to " + c.unit + " (× " + factor +
                       ", each rounded once)";

@@ -1,6 +1,7 @@
 // exact/exact_sum.cpp — carry propagation and correctly rounded conversion
 // of the superaccumulator (see exact_sum.hpp for the representation).
 #include "exact/exact_sum.hpp"
+#include "core/bit_cast.hpp"
 
 #include <bit>
 #include <cmath>
@@ -124,7 +125,7 @@ std::optional<double> decided_round_div(const ExactSum& sum, double bound, uint3
     lo.add(-bound);
     hi.add(bound);
     const double a = lo.round_div(divisor), b = hi.round_div(divisor);
-    if (std::bit_cast<uint64_t>(a) != std::bit_cast<uint64_t>(b)) return std::nullopt;
+    if (core::bit_cast<uint64_t>(a) != core::bit_cast<uint64_t>(b)) return std::nullopt;
     return a;
 }
 

@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include "core/bit_cast.hpp"
 
 namespace polyvol::exact {
 
@@ -44,7 +45,7 @@ public:
 
     // Adds x exactly.
     void add(double x) {
-        const uint64_t bits = std::bit_cast<uint64_t>(x);
+        const uint64_t bits = core::bit_cast<uint64_t>(x);
         const uint32_t ex = static_cast<uint32_t>(bits >> 52) & 0x7FFu;
         if (ex == 0x7FFu) [[unlikely]] {
             add_special(x);

@@ -351,6 +351,14 @@ LoadedMesh read_mesh_memory(std::span<const std::byte> data, const std::string& 
 
 namespace io {
 
+uint64_t decompression_limit(std::size_t compressed_bytes) {
+    constexpr uint64_t floor = uint64_t{16} << 20;
+    constexpr uint64_t ceiling = uint64_t{4} << 30;
+    const uint64_t n = compressed_bytes;
+    const uint64_t scaled = n > ceiling / 64 ? ceiling : 64 * n;
+    return std::min(ceiling, std::max(scaled, floor));
+}
+
 bool is_gzip(Bytes head) { return starts_with(head, "\x1f\x8b"); }
 bool is_zip(Bytes head) { return starts_with(head, "PK\x03\x04"); }
 bool is_ply(Bytes head) {

@@ -31,14 +31,6 @@ struct Inflater {
 
 }  // namespace
 
-uint64_t decompression_limit(std::size_t compressed_bytes) {
-    constexpr uint64_t floor = uint64_t{16} << 20;
-    constexpr uint64_t ceiling = uint64_t{4} << 30;
-    const uint64_t n = compressed_bytes;
-    const uint64_t scaled = n > ceiling / 64 ? ceiling : 64 * n;
-    return std::min(ceiling, std::max(scaled, floor));
-}
-
 std::vector<std::byte> gunzip(Bytes data, const std::string& name, uint64_t max_bytes) {
     Inflater inf;
     if (!inf.ok) throw ReadError::whole_file(name, "cannot initialise zlib");

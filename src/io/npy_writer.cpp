@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "polyvol/grid_io.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol {
 
@@ -45,7 +46,7 @@ void write_npy(const std::string& path, std::span<const double> data, std::span<
     } else {
         std::vector<unsigned char> block(8);
         for (std::size_t i = 0; ok && i < data.size(); ++i) {
-            const uint64_t bits = std::bit_cast<uint64_t>(data[i]);
+            const uint64_t bits = core::bit_cast<uint64_t>(data[i]);
             for (int b = 0; b < 8; ++b) block[b] = static_cast<unsigned char>(bits >> (8 * b));
             ok = std::fwrite(block.data(), 1, 8, f.get()) == 8;
         }

@@ -10,6 +10,7 @@
 
 #include "core/prefault.hpp"
 #include "polyvol/io.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol {
 
@@ -39,7 +40,7 @@ std::vector<float> read_binary_stl_triangles(const std::string& path) {
         if (bad == 0) return;
         for (std::size_t t = 0; t < n; ++t)
             for (int k = 0; k < 9; ++k)
-                if ((std::bit_cast<uint32_t>(dst[9 * t + k]) & 0x7F800000u) == 0x7F800000u) {
+                if ((core::bit_cast<uint32_t>(dst[9 * t + k]) & 0x7F800000u) == 0x7F800000u) {
                     uint64_t cur = first_bad.load(std::memory_order_relaxed);
                     const uint64_t at = 9 * (first + t) + static_cast<uint64_t>(k);
                     while (at < cur && !first_bad.compare_exchange_weak(cur, at, std::memory_order_relaxed)) {

@@ -21,6 +21,7 @@
 #include <span>
 
 #include "measure/cone_kernels.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol::measure::cone {
 namespace {
@@ -124,7 +125,7 @@ double filtered_bound(int k, Precision precision, double magnitude) {
 Range coordinate_range(const MeshView& mesh) {
     const Extremes e = position_extremes(mesh.positions);
     // NaN and infinity: patterns above the largest finite one.
-    if (e.hi > std::bit_cast<uint64_t>(std::numeric_limits<double>::max())) return Range::nonfinite;
+    if (e.hi > core::bit_cast<uint64_t>(std::numeric_limits<double>::max())) return Range::nonfinite;
     return e.safe() ? Range::safe : Range::unsafe;
 }
 

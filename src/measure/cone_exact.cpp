@@ -18,6 +18,7 @@
 #include <limits>
 
 #include "measure/cone_kernels.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol::measure::cone {
 namespace {
@@ -51,7 +52,7 @@ POLYVOL_INLINE void split_i128(i128 v, uint64_t* mag, bool& negative) {
 // Coordinate x = k 2^e with an integer k: the exponent of x's lowest set bit
 // and of its highest (x != 0, finite).
 POLYVOL_INLINE void bit_range(double x, int& lowest, int& highest) {
-    const uint64_t bits = std::bit_cast<uint64_t>(x);
+    const uint64_t bits = core::bit_cast<uint64_t>(x);
     const int ex = static_cast<int>((bits >> 52) & 0x7FF);
     const uint64_t frac = bits & ((uint64_t{1} << 52) - 1);
     const uint64_t mant = ex != 0 ? (frac | (uint64_t{1} << 52)) : frac;
@@ -89,7 +90,7 @@ bool integer_triangle(const double* a, const double* b, const double* c, uint32_
     }
     int64_t A[3], B[3], C[3];
     for (int k = 0; k < 3; ++k) {  // exact: |x 2^-e| < 2^60; 2^-e is a normal double in the safe range
-        const double scale = std::bit_cast<double>(static_cast<uint64_t>(1023 - e[k]) << 52);
+        const double scale = core::bit_cast<double>(static_cast<uint64_t>(1023 - e[k]) << 52);
         A[k] = static_cast<int64_t>(a[k] * scale);
         B[k] = static_cast<int64_t>(b[k] * scale);
         C[k] = static_cast<int64_t>(c[k] * scale);

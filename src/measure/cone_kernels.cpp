@@ -68,7 +68,7 @@ HWY_INLINE void extremes_in(const double* x, std::size_t n, Extremes& e) {
     merge_lanes(hi0, lo0, e);
     merge_lanes(hi1, lo1, e);
     for (; i < n; ++i) {
-        const uint64_t a = std::bit_cast<uint64_t>(x[i]) & kAbsMask;
+        const uint64_t a = core::bit_cast<uint64_t>(x[i]) & kAbsMask;
         e.merge(Extremes{a, a - 1});
     }
 }
@@ -481,6 +481,7 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 #include "core/hwy_dispatch.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol::measure::cone {
 

@@ -14,6 +14,7 @@
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "measure/cone.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol::measure::cone {
 
@@ -27,7 +28,7 @@ using Block = TriangleBlock;
 constexpr uint64_t kAbsMask = ~(uint64_t{1} << 63);
 constexpr uint64_t kSafeHi = 0x4BD0000000000000ull;  // 2^190
 constexpr uint64_t kSafeLo = 0x35F0000000000000ull;  // 2^-160
-static_assert(std::bit_cast<double>(kSafeHi) == exact::kSafeMax && std::bit_cast<double>(kSafeLo) == exact::kSafeMin);
+static_assert(core::bit_cast<double>(kSafeHi) == exact::kSafeMax && core::bit_cast<double>(kSafeLo) == exact::kSafeMin);
 
 struct Extremes {
     uint64_t hi = 0, lo = ~uint64_t{0};
@@ -36,7 +37,7 @@ struct Extremes {
         lo = std::min(lo, o.lo);
     }
     bool safe() const { return hi <= kSafeHi && lo >= kSafeLo - 1; }
-    double largest() const { return std::bit_cast<double>(hi); }
+    double largest() const { return core::bit_cast<double>(hi); }
 };
 
 // What a volume pass checks of the coordinates' range (VolumeAccumulator::range):

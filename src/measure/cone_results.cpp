@@ -1,6 +1,7 @@
 // measure/cone_results.cpp — measure/cone_results.hpp: the results as
 // rational intervals from the sums' intervals.
 #include "measure/cone_results.hpp"
+#include "core/bit_cast.hpp"
 
 #include <cmath>
 #include <limits>
@@ -99,7 +100,7 @@ std::optional<double> decided(const Result& r) {
     if (!r.iv.bounded) return std::nullopt;
     const double lo = r.iv.lo.to_double();
     const double hi = r.iv.hi.to_double();
-    if (std::bit_cast<uint64_t>(lo) != std::bit_cast<uint64_t>(hi)) return std::nullopt;
+    if (core::bit_cast<uint64_t>(lo) != core::bit_cast<uint64_t>(hi)) return std::nullopt;
     return lo;
 }
 

@@ -36,6 +36,7 @@
 #include "measure/cone_results.hpp"
 #include "measure/soup_pass1.hpp"
 #include "measure/soup_testing.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol {
 namespace {
@@ -147,7 +148,7 @@ struct SoupAccumulator::State {
             }
         double volume_magnitude = 0, moments_magnitude = 0;
         for (int b = 0; b * kB < n; ++b) {
-            const double M = static_cast<double>(std::bit_cast<float>(g.mx[b]));
+            const double M = static_cast<double>(core::bit_cast<float>(g.mx[b]));
             const double nb = static_cast<double>(std::min(kB, n - b * kB));
             volume_magnitude += 6 * (M * M * M) * nb;
             if (moments == measure::soup::kNoMoments) continue;

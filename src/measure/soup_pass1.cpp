@@ -330,7 +330,7 @@ HWY_INLINE uint32_t load_block_portable(const std::byte* base, std::size_t strid
             bits = bits == 0x80000000u ? 0u : bits;
             w[i][k] = bits;
             mx = std::max(mx, bits & 0x7FFFFFFFu);
-            co.c[k][i] = static_cast<double>(std::bit_cast<float>(bits));
+            co.c[k][i] = static_cast<double>(core::bit_cast<float>(bits));
         }
     }
     for (int k = 0; k < 9; ++k)
@@ -799,6 +799,7 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 #include "core/hwy_dispatch.hpp"
+#include "core/bit_cast.hpp"
 
 namespace polyvol::measure::soup {
 

@@ -1,5 +1,6 @@
 // simplicial/topology.cpp — welding, face matching, components (see topology.hpp).
 #include "simplicial/topology.hpp"
+#include "core/bit_cast.hpp"
 
 #include <algorithm>
 #include <array>
@@ -121,7 +122,7 @@ std::vector<uint32_t> weld(const ChainView& c) {
     std::vector<uint64_t> hash(m);
     for (std::size_t v = 0; v < m; ++v) {
         uint64_t h = 0x243F6A8885A308D3ull;
-        for (int i = 0; i < n; ++i) h = mix64(h ^ std::bit_cast<uint64_t>(c.coordinates[n * v + i] + 0.0));
+        for (int i = 0; i < n; ++i) h = mix64(h ^ core::bit_cast<uint64_t>(c.coordinates[n * v + i] + 0.0));
         hash[v] = h;
     }
     std::vector<uint32_t> order(m);

@@ -11,18 +11,13 @@
 #include "core/union_find.hpp"
 #include "polyvol/measure.hpp"
 #include "polyvol/solid.hpp"
+#include "core/charconv.hpp"
 
 namespace polyvol {
 namespace {
 
-std::string shortest(double v) {
-    char buf[64];
-    const auto res = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, res.ptr);
-}
-
 std::string point_text(std::span<const double, 3> p) {
-    return "(" + shortest(p[0]) + ", " + shortest(p[1]) + ", " + shortest(p[2]) + ")";
+    return "(" + core::shortest_text(p[0]) + ", " + core::shortest_text(p[1]) + ", " + core::shortest_text(p[2]) + ")";
 }
 
 std::string plural(std::size_t n, const char* one, const char* many) {
@@ -150,8 +145,8 @@ std::string unbalanced_message(const TopologyReport& t, double closes_at_toleran
         m += ", e.g. " + point_text(std::span(e).first<3>()) + " - " + point_text(std::span(e).last<3>());
     }
     if (closes_at_tolerance > 0)
-        m += "; merging the points within " + shortest(closes_at_tolerance) +
-             " of one another (1e-9 of its size) closes it: --weld-tolerance " + shortest(closes_at_tolerance);
+        m += "; merging the points within " + core::shortest_text(closes_at_tolerance) +
+             " of one another (1e-9 of its size) closes it: --weld-tolerance " + core::shortest_text(closes_at_tolerance);
     m += "; its volume would depend on the origin (--allow-open gives it anyway)";
     return m;
 }
@@ -344,7 +339,7 @@ std::vector<std::string> repairs_needed(const MeshSolid& s) {
                       ", faces wound inconsistently (fix: --orient)");
     else if (!s.closed)
         out.push_back("not closed: " + plural(t->unbalanced_edges, "unbalanced edge", "unbalanced edges") +
-                      (s.closes_at_tolerance > 0 ? " (fix: --weld-tolerance " + shortest(s.closes_at_tolerance) + ")"
+                      (s.closes_at_tolerance > 0 ? " (fix: --weld-tolerance " + core::shortest_text(s.closes_at_tolerance) + ")"
                                                  : " (fix: close its holes in a mesh editor)"));
     else if (t && t->inside_out_shells > 0)
         out.push_back(plural(t->inside_out_shells, "inside-out shell", "inside-out shells") + " (fix: --orient)");
