@@ -6,7 +6,8 @@
 // relative error ε against the factor meant (0.001 for mm to m is not a
 // double), so each relative error grows by at most (k + 1) u + k ε, and the
 // density-scaled ones (mass, moments, inertia) by the density's ε_ρ too.
-// A power-of-two L with ε = ε_ρ = 0 scales exactly: every guarantee stays.
+// A power-of-two L with ε = 0 scales exactly: every guarantee of a length's
+// quantity stays, and of a density-scaled one when ε_ρ = 0 too.
 #include <cmath>
 #include <limits>
 
@@ -24,8 +25,11 @@ void scale_mass_properties(MassProperties& m, double length_factor, double lengt
     const double L = length_factor;
     const double u = 0x1p-53;
     // Exact for a power of two within 2^±64 (no quantity of degree 5 leaves
-    // the normal range for a mesh of sane size; the results are checked below).
-    bool exact = is_power_of_two(L) && std::fabs(std::log2(L)) <= 64 && length_error == 0 && density_error == 0;
+    // the normal range for a mesh of sane size; the results are checked below):
+    // the lengths' quantities (volume, area, edge length, centroid) whatever
+    // the density, the density-scaled ones (moments, inertia) with an exact density.
+    const bool lengths_exact = is_power_of_two(L) && std::fabs(std::log2(L)) <= 64 && length_error == 0;
+    const bool exact = lengths_exact && density_error == 0;
     const auto power = [&](int k) {
         double f = 1;
         for (int i = 0; i < k; ++i) f *= L;
@@ -33,14 +37,16 @@ void scale_mass_properties(MassProperties& m, double length_factor, double lengt
     };
     // The added relative error of a quantity of degree k (density-scaled or not).
     const auto added = [&](int k, bool density) {
-        return exact ? 0.0 : (k + 1) * u + k * length_error + (density ? density_error : 0.0);
+        if (density ? exact : lengths_exact) return 0.0;
+        return (k + 1) * u + k * length_error + (density ? density_error : 0.0);
     };
     const double L1 = L, L2 = power(2), L3 = power(3), L4 = power(4), L5 = power(5);
 
     // Volume: an absolute bound (the volume's own, scaled, plus the scaling's).
-    const double volume_rounding = m.volume_correctly_rounded ? (exact ? 0.0 : u * std::fabs(m.volume)) : m.volume_error_bound;
+    const double volume_rounding =
+        m.volume_correctly_rounded ? (lengths_exact ? 0.0 : u * std::fabs(m.volume)) : m.volume_error_bound;
     m.volume *= L3;
-    if (!exact) {
+    if (!lengths_exact) {
         m.volume_error_bound = (volume_rounding * L3 + std::fabs(m.volume) * added(3, false)) * kRoundUp;
         m.volume_correctly_rounded = false;
     } else if (!m.volume_correctly_rounded) {

@@ -37,6 +37,24 @@ TEST(ScaleMassProperties, PowerOfTwoIsExact) {
     EXPECT_EQ(p.centroid[2], before.centroid[2] / 4);
 }
 
+// A density converted once (1.24 g/cm³ in g/mm³) widens the density-scaled
+// figures' bounds only: the volume, area and centroid of an exact length
+// factor keep their guarantee.
+TEST(ScaleMassProperties, AnInexactDensityLeavesTheLengthsExact) {
+    const Mesh m = box(0.3, 0.7, 1.1);
+    MassProperties p = polyvol::mass_properties(m.view());
+    const MassProperties before = p;
+    polyvol::scale_mass_properties(p, 1.0, 0.0, 0x1p-52);
+    EXPECT_TRUE(p.volume_correctly_rounded);
+    EXPECT_EQ(p.volume, before.volume);
+    EXPECT_LE(p.area_relative_error, before.area_relative_error * (1 + 0x1p-19));  // no (k + 1) u added
+    EXPECT_FALSE(p.moments_correctly_rounded);
+    EXPECT_GE(p.moments_relative_error, 0x1p-52);
+    polyvol::scale_mass_properties(p, 0.5, 0.0, 0x1p-52);
+    EXPECT_TRUE(p.volume_correctly_rounded);
+    EXPECT_EQ(p.volume, before.volume / 8);
+}
+
 TEST(ScaleMassProperties, BoundsHoldForAnInexactFactor) {
     // mm to m: the factor meant is 1/1000 exactly, the double 0.001 is within u of it
     const double a = 0.3, b = 0.7, c = 1.1;
