@@ -124,7 +124,7 @@ ToleranceWeld weld_within(Mesh& mesh, double tolerance) {
                           (p[3 * v + 2] - p[3 * to + 2]) * (p[3 * v + 2] - p[3 * to + 2]);
         result.largest_move = std::max(result.largest_move, std::sqrt(d2));
         if (p[3 * v] != p[3 * to] || p[3 * v + 1] != p[3 * to + 1] || p[3 * v + 2] != p[3 * to + 2]) ++result.moved;
-        std::copy_n(mesh.positions.begin() + 3 * std::ptrdiff_t{to}, 3, mesh.positions.begin() + 3 * std::ptrdiff_t{v});
+        std::copy_n(mesh.positions.begin() + 3 * static_cast<std::ptrdiff_t>(to), 3, mesh.positions.begin() + 3 * static_cast<std::ptrdiff_t>(v));
     }
     weld_in_place(mesh);
     return result;

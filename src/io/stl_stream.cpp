@@ -156,7 +156,7 @@ bool for_each_mapped_window(int fd, uint64_t file_bytes, uint64_t n, uint64_t pe
     // units; a page-sized unit holds at least 1600 bytes of each but its
     // first and last users: at most 4 with 4 KiB pages, 42 with 64 KiB).
     auto users = [&](uint64_t u) {
-        const uint64_t lo = u * unit, hi = std::min(size, lo + unit) - 1;
+        const uint64_t lo = u * unit, hi = std::min<uint64_t>(size, lo + unit) - 1;
         return static_cast<uint8_t>(slab_at(hi) - slab_at(lo) + 1);
     };
     auto drop = [&](uint64_t u0, uint64_t u1) {  // units [u0, u1), within the mapping's pages

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <limits>
 
+#include "core/portable_math.hpp"
 #include "polyvol/measure.hpp"
 
 namespace polyvol {
-
 PrincipalInertia principal_inertia(const std::array<double, 6>& t, double relative_error) {
     Eigen::Matrix3d a;
     a << t[0], t[3], t[5],  //
@@ -60,7 +60,7 @@ PrincipalInertia principal_inertia(const std::array<double, 6>& t, double relati
             if (j != k) gap = std::min(gap, std::fabs(p.moments[k] - p.moments[j]));
         gap -= 2 * p.moment_error;  // between the exact moments
         const double s = gap > 0 ? p.moment_error / gap : inf;
-        p.axis_angle[k] = s < 1 ? std::asin(s) * (1 + 0x1p-40) : inf;
+        p.axis_angle[k] = s < 1 ? core::asin_upper_bound(s) : inf;
     }
     return p;
 }

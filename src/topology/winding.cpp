@@ -1,4 +1,5 @@
 #include "topology/winding.hpp"
+#include "core/portable_math.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -25,7 +26,7 @@ double solid_angle(const double* p, const double* a, const double* b, const doub
     // den < 0) gets +2π, half a winding, whatever the sign of the rounded
     // zero. A point on another closed shell's face thus counts as inside it
     // (the corpus reference does the same).
-    return 2 * std::atan2(det + 0.0, den);
+    return 2 * core::portable_atan2(det + 0.0, den);  // the same bits in every build (core/portable_math.hpp)
 }
 
 namespace {
@@ -176,6 +177,9 @@ private:
         node.begin = begin;
         node.end = end;
         if (end - begin <= leaf_size) {
+            // A leaf's triangles in index order: the tree, and so every sum
+            // over it, is then the same whichever standard library split it.
+            std::sort(order.begin() + begin, order.begin() + end);
             node.cluster = items.cluster(std::span(order).subspan(begin, end - begin), box);
             node.all_balanced = items.all_balanced(std::span(order).subspan(begin, end - begin));
             node.open_triangles = items.open_triangles(std::span(order).subspan(begin, end - begin));
@@ -185,8 +189,9 @@ private:
                 if (centres.hi[k] - centres.lo[k] > centres.hi[axis] - centres.lo[axis]) axis = k;
             const uint32_t mid = begin + (end - begin) / 2;
             std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                             [&](uint32_t x, uint32_t y) {
-                                 return items.centre(x, axis) < items.centre(y, axis);
+                             [&](uint32_t x, uint32_t y) {  // ties by index: a strict total order
+                                 const double cx = items.centre(x, axis), cy = items.centre(y, axis);
+                                 return cx < cy || (cx == cy && x < y);
                              });
             node.left = build_node(items, begin, mid, leaf_size);
             node.right = build_node(items, mid, end, leaf_size);
