@@ -87,6 +87,28 @@ struct FileOptions {
     bool metres_when_known = false;     // SI whenever the unit is known (URDF, SDF)
 };
 
+// A request as a person words it, the same on every door (the command
+// line's flags, Python's arguments, the web page's fields and the npm
+// package's options): file_options reads it once for all of them.
+struct RequestWords {
+    std::string method = "cone";      // cone, prism, pyramid or vtnb
+    std::string accuracy = "exact";   // exact (also correctly-rounded) or fast (also bounded)
+    std::string density = "1";        // a number (mass per output unit³), or with kg/m3 or g/cm3
+    std::string mass_unit = "kg";     // kg, g or lb (a density with a unit only)
+    std::string units, to;            // the coordinates' unit; the figures' unit (length_unit names)
+    std::string scale = "1";          // every coordinate times this first (> 0)
+    bool allow_open = false, solid = false, orient = false, keep_signed = false;
+    double weld_tolerance = 0;        // >= 0
+};
+
+// FileOptions for `volume` and `measure` (need_mass) or `check`, or the
+// sentence that says which word is not understood (exit code 1).
+struct ReadRequest {
+    std::optional<FileOptions> options;
+    std::string error;
+};
+ReadRequest file_options(const RequestWords& words, bool need_mass);
+
 // A binary STL is streamed (FileOptions::table_only) only above this many
 // triangles: up to it the file is loaded and checked in full, as every other
 // file is (shells overlapping one another resolved, a shell crossing itself

@@ -13,18 +13,6 @@ namespace polyvol::io {
 
 namespace {
 
-std::string normalized(std::string_view s) {
-    std::string out;
-    out.reserve(s.size());
-    for (char c : s) {
-        if (c == '\\') c = '/';
-        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-        out += c;
-    }
-    const auto first = out.find_first_not_of('/');
-    return first == std::string::npos ? std::string() : out.substr(first);
-}
-
 std::string bytes_text(uint64_t bytes) {
     return std::to_string(bytes) + " bytes";
 }
@@ -372,10 +360,10 @@ std::vector<std::string> ZipArchive::file_names() const {
 std::optional<std::string> ZipArchive::find(std::string_view entry) const {
     std::string exact(entry);
     if (impl_->by_name.count(exact) != 0) return exact;
-    const std::string want = normalized(entry);
+    const std::string want = zip_entry_key(entry);
     if (want.empty()) return std::nullopt;
     for (const std::string& n : file_names())
-        if (normalized(n) == want) return n;
+        if (zip_entry_key(n) == want) return n;
     return std::nullopt;
 }
 

@@ -29,6 +29,21 @@ struct Zip64Sizes {
     uint64_t size = 0, compressed = 0, offset = 0;
 };
 
+// The name an entry is matched by when not exactly (OPC part names are
+// case-insensitive): '\\' as '/', ASCII letters in lower case, leading '/'
+// dropped.
+inline std::string zip_entry_key(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    for (char c : s) {
+        if (c == '\\') c = '/';
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+        out += c;
+    }
+    const auto first = out.find_first_not_of('/');
+    return first == std::string::npos ? std::string() : out.substr(first);
+}
+
 class ZipArchive {
 public:
     // Opens the archive in data (which must outlive this object). Throws

@@ -26,8 +26,9 @@ void scale_mass_properties(MassProperties& m, double length_factor, double lengt
     const double u = 0x1p-53;
     // Exact for a power of two within 2^±64 (no quantity of degree 5 leaves
     // the normal range for a mesh of sane size; the results are checked below):
-    // the lengths' quantities (volume, area, edge length, centroid) whatever
-    // the density, the density-scaled ones (moments, inertia) with an exact density.
+    // the lengths' quantities (volume, area, edge length) whatever
+    // the density, the others (moments, inertia and the centroid, one bound) with
+    // an exact density too.
     const bool lengths_exact = is_power_of_two(L) && std::fabs(std::log2(L)) <= 64 && length_error == 0;
     const bool exact = lengths_exact && density_error == 0;
     const auto power = [&](int k) {

@@ -1,0 +1,75 @@
+// The package's calls over an instantiated module (web/src/polyvol_wasm.cpp):
+// files go into the module's in-memory file system, one directory per call,
+// named as given (so the results name them as `polyvol` run in their
+// directory does); the answer is the command line's JSON, parsed.
+
+const COMMANDS = new Set(['volume', 'measure', 'check']);
+
+// The module's options: camelCase or the command line's snake_case words.
+function words(options = {}) {
+  const out = {};
+  const key = (k) => k.replace(/[A-Z]/g, (c) => '_' + c.toLowerCase());
+  for (const [k, v] of Object.entries(options)) if (v !== undefined && v !== null) out[key(k)] = v;
+  return out;
+}
+
+function bytesOf(data) {
+  if (data instanceof Uint8Array) return data;
+  if (data instanceof ArrayBuffer) return new Uint8Array(data);
+  if (ArrayBuffer.isView(data)) return new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
+  if (typeof data === 'string') return new TextEncoder().encode(data);
+  throw new TypeError('a file is an ArrayBuffer, a typed array or a string');
+}
+
+// The last part of a name, so that a file always lands in the call's directory.
+function baseName(name) {
+  const base = String(name).split(/[\\/]/).pop();
+  if (!base || base === '.' || base === '..') throw new TypeError(`not a file name: '${name}'`);
+  return base;
+}
+
+export function bind(Module) {
+  const { FS } = Module;
+  let calls = 0;
+
+  // One request: {exitCode, stdout (the command line's --json text), messages}.
+  function run(command, files, options = {}) {
+    if (!COMMANDS.has(command)) throw new TypeError(`unknown command '${command}' (volume, measure or check)`);
+    const dir = `/call${++calls}`;
+    FS.mkdir(dir);
+    const names = [];
+    try {
+      for (const f of files) {
+        const name = baseName(f.name);
+        FS.writeFile(`${dir}/${name}`, bytesOf(f.data));
+        if (!f.companion) names.push(name);
+      }
+      FS.chdir(dir);
+      const request = JSON.stringify({ command, files: names, options: words(options) });
+      const size = Module.lengthBytesUTF8(request) + 1;
+      const ptr = Module._malloc(size);
+      let answer;
+      try {
+        Module.stringToUTF8(request, ptr, size);
+        const out = Module._polyvol_run(ptr);
+        answer = JSON.parse(Module.UTF8ToString(out));
+        Module._polyvol_free(out);
+      } finally {
+        Module._free(ptr);
+      }
+      return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages };
+    } finally {
+      FS.chdir('/');
+      for (const name of FS.readdir(dir)) if (name !== '.' && name !== '..') FS.unlink(`${dir}/${name}`);
+      FS.rmdir(dir);
+    }
+  }
+
+  // The command line's JSON for one file (with its companions, e.g. a .gltf's
+  // .bin): an array with one object per mesh, keys as `polyvol CMD --json`.
+  const one = (command) => (data, name, options = {}, companions = []) => {
+    const r = run(command, [{ data, name }, ...companions.map((c) => ({ ...c, companion: true }))], options);
+    return { results: r.stdout ? JSON.parse(r.stdout) : [], exitCode: r.exitCode, messages: r.messages, json: r.stdout };
+  };
+  return { run, volume: one('volume'), measure: one('measure'), check: one('check') };
+}

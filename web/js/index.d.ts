@@ -1,0 +1,60 @@
+// polyvol: the command line's figures for a mesh file, computed in WebAssembly.
+
+/** A request's options: the command line's flags, camelCase or snake_case. */
+export interface Options {
+  /** cone (default), prism, pyramid or vtnb. */
+  method?: 'cone' | 'prism' | 'pyramid' | 'vtnb';
+  /** exact (correctly rounded, the default) or fast (with an error bound). */
+  accuracy?: 'exact' | 'correctly-rounded' | 'fast' | 'bounded';
+  /** A number (mass per output unit³) or with a unit: "1.24g/cm3", "2700kg/m3". */
+  density?: string | number;
+  /** The mass unit for a density with a unit: kg (default), g or lb. */
+  massUnit?: 'kg' | 'g' | 'lb';
+  /** The coordinates' unit when the file does not state one (3MF and AMF do). */
+  units?: 'mm' | 'cm' | 'm' | 'in' | 'ft' | 'micron' | 'um';
+  /** The figures' unit (default: the coordinates', or metres with a density with a unit). */
+  to?: 'mm' | 'cm' | 'm' | 'in' | 'ft' | 'micron' | 'um';
+  /** Every coordinate times this first. */
+  scale?: string | number;
+  /** Measure surfaces with unbalanced edges anyway. */
+  allowOpen?: boolean;
+  /** Look for a surface crossing itself at any size. */
+  solid?: boolean;
+  /** Wind the faces consistently and outward first. */
+  orient?: boolean;
+  /** Keep an inside-out surface's signed figures. */
+  keepSigned?: boolean;
+  /** Merge points closer than this first. */
+  weldTolerance?: number;
+}
+
+/** One file's figures: the object `polyvol measure --json` prints (see docs/cli.md), one per mesh. */
+export type Report = Record<string, unknown> & { file: string; exit_code: number; error?: string; warning?: string };
+
+export interface Answer {
+  /** One object per mesh of the file, keys as the command line's JSON. */
+  results: Report[];
+  /** The command line's exit code: 0 ok, 1 usage, 2 unreadable, 3 not valid for the request. */
+  exitCode: number;
+  /** What the command line prints on stderr (errors and warnings). */
+  messages: string[];
+  /** The command line's JSON, byte for byte. */
+  json: string;
+}
+
+export type FileData = ArrayBuffer | ArrayBufferView | string;
+export interface Companion { name: string; data: FileData }
+
+export interface Polyvol {
+  volume(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
+  measure(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
+  check(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
+  run(command: 'volume' | 'measure' | 'check', files: { name: string; data: FileData; companion?: boolean }[], options?: Options):
+    { exitCode: number; stdout: string; messages: string[] };
+}
+
+/** A module of its own (each holds its memory). */
+export function createPolyvol(): Promise<Polyvol>;
+export function volume(data: FileData, name: string, options?: Options, companions?: Companion[]): Promise<Answer>;
+export function measure(data: FileData, name: string, options?: Options, companions?: Companion[]): Promise<Answer>;
+export function check(data: FileData, name: string, options?: Options, companions?: Companion[]): Promise<Answer>;

@@ -1,0 +1,142 @@
+// The page: files in, the command line's figures out, each with its guarantee
+// and its unit. The work runs in worker.js; this thread only shows it.
+const $ = (id) => document.getElementById(id);
+const worker = new Worker('worker.js', { type: 'module' });
+const pending = new Map();
+let nextId = 0;
+
+worker.onmessage = ({ data }) => {
+  const p = pending.get(data.id);
+  pending.delete(data.id);
+  if (data.error !== undefined) p.reject(new Error(data.error));
+  else p.resolve(data.answer);
+};
+
+// One request to the worker: the answer of web/src/polyvol_wasm.cpp.
+function ask(command, files, options) {
+  const id = ++nextId;
+  return new Promise((resolve, reject) => {
+    pending.set(id, { resolve, reject });
+    worker.postMessage({ id, command, files, options }, files.map((f) => f.data));
+  });
+}
+
+function options() {
+  const material = $('material').value;
+  const units = $('units').value;
+  return { density: material === 'custom' ? $('density').value : material, units, to: units, massUnit: $('mass-unit').value };
+}
+
+// A figure to the digits its guarantee supports (all of them when it is
+// correctly rounded or exact), as the command line's table shows it; the
+// copied JSON has every digit.
+function shown(x, relativeError = 0) {
+  if (x === null || x === undefined) return '—';
+  if (!(relativeError > 0) || x === 0) return String(x);
+  const digits = Math.min(17, Math.max(1, Math.floor(-Math.log10(relativeError))));
+  return String(Number(x.toPrecision(digits)));
+}
+const number = (x) => shown(x);
+const vector = (v, e = 0) => (v ? `(${v.map((x) => shown(x, e)).join(', ')})` : '—');
+const relative = (e) => (e === 0 ? 'exact' : `relative error ≤ ${e.toPrecision(2)}`);
+const bound = (e) => (e === null || e === undefined ? '—' : e.toPrecision(2));
+
+function el(tag, attrs = {}, ...children) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  for (const c of children) e.append(c);
+  return e;
+}
+
+// The topology in words: what makes the file a solid, or why it is not one.
+function verdict(r) {
+  const problems = [];
+  if (r.boundary_edges) problems.push(`${r.boundary_edges} boundary edges (${r.holes ?? '?'} holes): the surface is open`);
+  if (r.nonmanifold_edges) problems.push(`${r.nonmanifold_edges} edges shared by more than two faces`);
+  if (r.misoriented_edges) problems.push(`${r.misoriented_edges} edges where neighbouring faces are wound inconsistently`);
+  if (r.unbalanced_edges && !r.boundary_edges) problems.push(`${r.unbalanced_edges} unbalanced edges`);
+  if (r.overlapping_shells) problems.push(`${r.overlapping_shells} shells overlap one another: the volume is the solid's (counted once)`);
+  if (r.self_crossing_pairs) problems.push(`the surface crosses itself (${r.self_crossing_pairs} pairs of triangles)`);
+  if (!problems.length) return `Closed and consistently oriented: a solid (${r.components} shell${r.components === 1 ? '' : 's'}).`;
+  return problems.join('; ') + '.';
+}
+
+function rows(r) {
+  const u = r.unit ?? 'units of the file';
+  const m = r.mass_unit ?? '(density × volume)';
+  const out = [];
+  if (r.volume !== undefined) {
+    const exact = r.accuracy === 'correctly-rounded';
+    const g = exact ? 'correctly rounded' : `± ${bound(r.volume_error_bound)}`;
+    out.push(['Volume', `${shown(r.volume, exact ? 0 : r.volume_error_bound / Math.abs(r.volume))} ${u}³`, g, 'volume']);
+  }
+  const momentsError = r.moments_accuracy === 'correctly-rounded' ? 0 : r.moments_relative_error;
+  if (r.mass !== undefined) out.push(['Mass', `${shown(r.mass, 1e-15)} ${m}`, 'density × volume', 'mass']);
+  if (r.area !== undefined) out.push(['Surface area', `${shown(r.area, r.area_relative_error)} ${u}²`, relative(r.area_relative_error), 'area']);
+  if (r.centroid) out.push(['Centroid', `${vector(r.centroid, momentsError)} ${u}`, momentsError ? relative(momentsError) + ' (of the largest coordinate)' : 'correctly rounded', 'centroid']);
+  if (r.bounds) out.push(['Bounding box', `${vector(r.bounds.slice(0, 3))} to ${vector(r.bounds.slice(3))} ${u}`, 'exact', 'bounds']);
+  if (r.size) out.push(['Size', `${r.size.map(number).join(' × ')} ${u}`, 'differences rounded once', 'size']);
+  if (r.principal_moments) {
+    const largest = Math.max(...r.principal_moments.map(Math.abs));
+    const e = largest > 0 ? r.principal_moment_error / largest : 0;
+    out.push(['Principal moments', `${r.principal_moments.map((x) => shown(x, e)).join(', ')} ${m}·${u}²`, `each within ${bound(r.principal_moment_error)}`, 'principal_moments']);
+  }
+  if (r.edge_length !== undefined) out.push(['Edge length', `${shown(r.edge_length, r.edge_length_relative_error)} ${u}`, relative(r.edge_length_relative_error), 'edge_length']);
+  return out;
+}
+
+function render(file, answer) {
+  const card = el('article', { class: 'result', 'data-file': file, 'data-exit-code': String(answer.exitCode) });
+  card.dataset.json = answer.stdout;
+  card.append(el('h2', {}, file));
+  const results = answer.stdout ? JSON.parse(answer.stdout) : [];
+  for (const r of results) {
+    if (results.length > 1) card.append(el('h3', {}, r.file));
+    card.append(el('p', { class: r.exit_code ? 'verdict bad' : 'verdict' }, r.error ? r.error : verdict(r)));
+    const table = el('table', {});
+    for (const [name, value, guarantee, key] of rows(r))
+      table.append(el('tr', { 'data-key': key }, el('th', {}, name), el('td', {}, value), el('td', { class: 'guarantee' }, guarantee)));
+    if (table.childElementCount) card.append(table);
+    for (const n of r.notes ?? []) card.append(el('p', { class: 'note' }, n));
+  }
+  // The command line's stderr, less what the cards above already say.
+  const said = new Set(results.map((r) => r.error).filter(Boolean));
+  for (const msg of answer.messages) {
+    const text = msg.replace(/^polyvol: /, '');
+    if (!said.has(text)) card.append(el('p', { class: 'message' }, text));
+  }
+  const copy = el('button', { type: 'button', class: 'copy-json' }, 'Copy JSON');
+  copy.onclick = () => navigator.clipboard.writeText(answer.stdout);
+  card.append(el('p', { class: 'actions' }, copy));
+  return card;
+}
+
+async function measureFiles(list) {
+  const files = [...list];
+  if (!files.length) return;
+  const bar = $('progress');
+  bar.hidden = false;
+  bar.max = files.length;
+  for (let i = 0; i < files.length; ++i) {
+    const f = files[i];
+    bar.value = i;
+    $('status').textContent = `Measuring ${f.name} (${i + 1} of ${files.length})…`;
+    try {
+      const data = await f.arrayBuffer();
+      const answer = await ask('measure', [{ name: f.name, data }], options());
+      $('results').prepend(render(f.name, answer));
+    } catch (e) {
+      $('results').prepend(el('article', { class: 'result failed', 'data-file': f.name }, el('h2', {}, f.name), el('p', { class: 'message' }, String(e.message))));
+    }
+  }
+  bar.hidden = true;
+  $('status').textContent = `Done: ${files.length} file${files.length === 1 ? '' : 's'}.`;
+  document.body.dataset.done = String(Number(document.body.dataset.done ?? 0) + 1);
+}
+
+$('files').addEventListener('change', (e) => measureFiles(e.target.files));
+const drop = $('drop');
+drop.addEventListener('dragover', (e) => { e.preventDefault(); drop.classList.add('over'); });
+drop.addEventListener('dragleave', () => drop.classList.remove('over'));
+drop.addEventListener('drop', (e) => { e.preventDefault(); drop.classList.remove('over'); measureFiles(e.dataTransfer.files); });
+$('material').addEventListener('change', () => { $('custom-density').hidden = $('material').value !== 'custom'; });

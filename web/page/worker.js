@@ -1,0 +1,16 @@
+// The page's worker: the WebAssembly core runs here, so that a large file
+// never freezes the page. Messages: {id, command, files: [{name, data}],
+// options} in; {id, answer} or {id, error} out.
+import { createPolyvol } from './polyvol/browser.mjs';
+import * as fflate from './vendor/fflate.mjs';
+
+const ready = createPolyvol({ fflate });
+
+self.onmessage = async ({ data: { id, command, files, options } }) => {
+  try {
+    const polyvol = await ready;
+    self.postMessage({ id, answer: polyvol.run(command, files, options) });
+  } catch (e) {
+    self.postMessage({ id, error: String(e && e.message ? e.message : e) });
+  }
+};

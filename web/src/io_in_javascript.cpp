@@ -1,0 +1,189 @@
+// web/src/io_in_javascript.cpp — the WebAssembly build's stand-ins for the
+// readers that need zlib, minizip, bzip2 or pugixml (src/io/gzip.cpp,
+// zip.cpp, archive.cpp, threemf.cpp, amf.cpp), which Debian builds for no
+// wasm target. gzip streams and zip archives are unpacked in JavaScript by
+// fflate (npm), handed to the module as Module.fflate (web/js/core.mjs), under
+// the native build's decompression limits; bzip2, tar, 3MF and AMF are refused
+// with a ReadError that says so.
+#include <emscripten.h>
+
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/readers.hpp"
+#include "io/zip.hpp"
+
+namespace polyvol::io {
+namespace {
+
+[[noreturn]] void not_in_this_build(const std::string& name, const std::string& what) {
+    throw ReadError::whole_file(name, what + ": not read by polyvol's WebAssembly build");
+}
+
+// One call into JavaScript: `what` (0: gunzip, 1: the zip's entry names as a
+// JSON array, 2: one zip entry) of data[0, size), at most `limit` bytes out.
+// The result is malloc'ed (its size in *out_size), or null with a malloc'ed
+// message in *error.
+EM_JS(void*, polyvol_js_unpack,
+      (int what, const void* data, size_t size, const char* entry, double limit, size_t* out_size, char** error), {
+    const fail = (text) => {
+        const n = lengthBytesUTF8(text) + 1;
+        const p = _malloc(n);
+        stringToUTF8(text, p, n);
+        HEAPU32[error >> 2] = p;
+        return 0;
+    };
+    let out;
+    try {
+        const fflate = Module['fflate'];
+        if (!fflate) return fail('gzip and zip need fflate (web/js/core.mjs passes it to the module)');
+        const bytes = HEAPU8.subarray(data, data + size);
+        if (what === 0) {
+            const parts = [];
+            let total = 0;
+            const g = new fflate.Gunzip((chunk) => {
+                total += chunk.length;
+                if (total > limit) throw new Error('limit');
+                parts.push(chunk);
+            });
+            try {
+                g.push(bytes, true);
+            } catch (e) {
+                if (e.message === 'limit') return fail('limit');
+                return fail('corrupt gzip data (' + e.message + ')');
+            }
+            out = new Uint8Array(total);
+            let at = 0;
+            for (const p of parts) { out.set(p, at); at += p.length; }
+        } else if (what === 1) {
+            const names = [];
+            fflate.unzipSync(bytes, { filter: (f) => { names.push(f.name); return false; } });
+            out = new TextEncoder().encode(JSON.stringify(names));
+        } else {
+            const want = UTF8ToString(entry);
+            let claimed = -1;
+            const files = fflate.unzipSync(bytes, { filter: (f) => {
+                if (f.name !== want) return false;
+                claimed = f.originalSize;
+                return f.originalSize <= limit;
+            } });
+            if (claimed > limit) return fail('claims ' + claimed + ' bytes uncompressed, more than the limit');
+            if (!(want in files)) return fail('is missing');
+            out = files[want];
+        }
+    } catch (e) {
+        return fail(String(e && e.message ? e.message : e));
+    }
+    const p = _malloc(Math.max(out.length, 1));
+    HEAPU8.set(out, p);
+    HEAPU32[out_size >> 2] = out.length;
+    return p;
+});
+
+struct Unpacked {
+    std::vector<std::byte> bytes;
+    std::string error;  // empty: bytes are the result
+};
+
+Unpacked unpack(int what, Bytes data, const std::string& entry, uint64_t limit) {
+    std::size_t size = 0;
+    char* error = nullptr;
+    void* p = polyvol_js_unpack(what, data.data(), data.size(), entry.c_str(), static_cast<double>(limit), &size, &error);
+    Unpacked u;
+    if (p == nullptr) {
+        u.error = error ? error : "unknown error";
+        std::free(error);
+        return u;
+    }
+    const auto* b = static_cast<const std::byte*>(p);
+    u.bytes.assign(b, b + size);
+    std::free(p);
+    return u;
+}
+
+std::string bytes_text(uint64_t bytes) { return std::to_string(bytes) + " bytes"; }
+
+}  // namespace
+
+std::vector<std::byte> gunzip(Bytes data, const std::string& name, uint64_t max_bytes) {
+    Unpacked u = unpack(0, data, "", max_bytes);
+    if (u.error == "limit")
+        throw ReadError::whole_file(name, "gzip data expands beyond " + bytes_text(max_bytes) +
+                                              " (the decompression limit: 64 x the input, at least 16 MiB, at most "
+                                              "4 GiB); refusing to continue");
+    if (!u.error.empty()) throw ReadError::whole_file(name, u.error);
+    return std::move(u.bytes);
+}
+
+bool is_bzip2(Bytes head) {
+    return head.size() >= 4 && head[0] == std::byte{'B'} && head[1] == std::byte{'Z'} && head[2] == std::byte{'h'} &&
+           head[3] >= std::byte{'1'} && head[3] <= std::byte{'9'};
+}
+bool is_tar(Bytes) { return false; }
+std::vector<std::byte> bunzip2(Bytes, const std::string& name, uint64_t) { not_in_this_build(name, "bzip2-compressed"); }
+std::vector<std::string> tar_members(Bytes, const std::string&) { return {}; }
+std::vector<std::byte> tar_member(Bytes, const std::string& name, const std::string&, uint64_t) {
+    not_in_this_build(name, "a tar archive");
+}
+
+LoadedMesh read_3mf_zip(Bytes, const std::string& name) { not_in_this_build(name, "3MF"); }
+LoadedMesh read_3mf_xml(Bytes, const std::string& name) { not_in_this_build(name, "3MF"); }
+LoadedMesh read_amf_xml(Bytes, const std::string& name) { not_in_this_build(name, "AMF"); }
+LoadedMesh read_amf_zip(Bytes, const std::string& name) { not_in_this_build(name, "AMF"); }
+
+// The archive's entry names, listed by fflate; entries read on demand.
+struct ZipArchive::Impl {
+    Bytes data;
+    std::vector<std::string> names;  // archive order, directories too
+};
+
+uint64_t ZipArchive::default_limit(std::size_t archive_bytes) { return decompression_limit(archive_bytes); }
+
+ZipArchive::ZipArchive(Bytes data, std::string name, uint64_t max_total_bytes)
+    : impl_(std::make_unique<Impl>()),
+      name_(std::move(name)),
+      limit_(max_total_bytes ? max_total_bytes : default_limit(data.size())) {
+    impl_->data = data;
+    if (data.empty()) return;
+    const Unpacked u = unpack(1, data, "", limit_);
+    if (!u.error.empty()) throw ReadError::whole_file(name_, "not a readable zip archive: " + u.error);
+    const auto list = nlohmann::json::parse(std::string(reinterpret_cast<const char*>(u.bytes.data()), u.bytes.size()));
+    for (const auto& n : list) impl_->names.push_back(n.get<std::string>());
+}
+
+ZipArchive::~ZipArchive() = default;
+
+std::vector<std::string> ZipArchive::file_names() const {
+    std::vector<std::string> names;
+    for (const std::string& n : impl_->names)
+        if (!n.empty() && n.back() != '/') names.push_back(n);
+    return names;
+}
+
+std::optional<std::string> ZipArchive::find(std::string_view entry) const {
+    for (const std::string& n : impl_->names)
+        if (n == entry) return n;
+    const std::string want = zip_entry_key(entry);
+    if (want.empty()) return std::nullopt;
+    for (const std::string& n : file_names())
+        if (zip_entry_key(n) == want) return n;
+    return std::nullopt;
+}
+
+std::vector<std::byte> ZipArchive::read(const std::string& entry) {
+    const uint64_t budget = limit_ - std::min(used_, limit_);
+    Unpacked u = unpack(2, impl_->data, entry, budget);
+    if (!u.error.empty()) throw ReadError::whole_file(name_, "zip entry '" + entry + "' " + u.error);
+    used_ += u.bytes.size();
+    return std::move(u.bytes);
+}
+
+std::vector<std::byte> ZipArchive::read_zip64_entry(const std::string& entry, const Zip64Sizes&, uint64_t, uint64_t) {
+    return read(entry);
+}
+
+}  // namespace polyvol::io

@@ -1,0 +1,116 @@
+// web/src/polyvol_wasm.cpp — the WebAssembly module's entry point: one call
+// per request, JSON in and JSON out, for the page's worker and the npm
+// package (web/js/polyvol.mjs). The figures and their keys are the library's
+// (measure_file, report_json): `polyvol volume|measure|check --json` prints
+// the same objects.
+//
+//   request: {"command": "volume" | "measure" | "check",
+//             "files": ["a.stl", ...],           (paths in the module's file system)
+//             "options": {RequestWords' fields}} (polyvol/report.hpp)
+//   answer:  {"exit_code": 0|1|2|3|4,
+//             "stdout": the command's --json output, byte for byte (its text),
+//             "messages": ["polyvol: ...", ...]} (what the command line prints on stderr)
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <new>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "polyvol/report.hpp"
+
+namespace {
+
+using nlohmann::json;
+using polyvol::Exit;
+
+// RequestWords from the request's "options" (absent keys keep their defaults).
+polyvol::RequestWords words_of(const json& o) {
+    polyvol::RequestWords w;
+    auto text = [&](const char* key, std::string& out) {
+        if (o.contains(key)) out = o[key].is_string() ? o[key].get<std::string>() : o[key].dump();
+    };
+    auto flag = [&](const char* key, bool& out) {
+        if (o.contains(key)) out = o[key].get<bool>();
+    };
+    text("method", w.method);
+    text("accuracy", w.accuracy);
+    text("density", w.density);
+    text("mass_unit", w.mass_unit);
+    text("units", w.units);
+    text("to", w.to);
+    text("scale", w.scale);
+    flag("allow_open", w.allow_open);
+    flag("solid", w.solid);
+    flag("orient", w.orient);
+    flag("keep_signed", w.keep_signed);
+    if (o.contains("weld_tolerance")) w.weld_tolerance = o["weld_tolerance"].get<double>();
+    return w;
+}
+
+// `polyvol volume|measure|check --json FILES`: what the command line asks of
+// measure_file for its JSON (cli/commands/measure.cpp), each file's report.
+json measure_files(const std::string& command, const json& request, json& messages, int& code) {
+    const bool check = command == "check";
+    const polyvol::ReadRequest read = polyvol::file_options(words_of(request.value("options", json::object())), !check);
+    if (!read.options) {
+        messages.push_back("polyvol: " + read.error);
+        code = Exit::usage;
+        return nullptr;
+    }
+    polyvol::FileOptions options = *read.options;
+    options.mesh_counts = true;
+    options.edge_counts = true;
+    // A zip archive of plain meshes is its members, "ARCHIVE:MEMBER", as on the command line.
+    const auto inputs = polyvol::file_inputs(request.at("files").get<std::vector<std::string>>());
+    json out = json::array();
+    for (const auto& [file, member] : inputs) {
+        const polyvol::FileReport r = polyvol::measure_file(file, options, member);
+        code = std::max(code, r.exit_code);
+        if (!r.error.empty()) messages.push_back("polyvol: " + r.error);
+        if (!r.warning.empty()) messages.push_back("polyvol: warning: " + r.warning);
+        out.push_back(polyvol::report_json(r, options));
+    }
+    return out;
+}
+
+json run(const std::string& text) {
+    json messages = json::array();
+    int code = Exit::ok;
+    json result;
+    try {
+        const json request = json::parse(text);
+        const std::string command = request.at("command").get<std::string>();
+        if (command == "volume" || command == "measure" || command == "check") {
+            result = measure_files(command, request, messages, code);
+        } else {
+            messages.push_back("polyvol: unknown command '" + command + "' (volume, measure or check)");
+            code = Exit::usage;
+        }
+    } catch (const std::bad_alloc&) {
+        messages.push_back("polyvol: out of memory");
+        code = 4;
+    } catch (const std::exception& e) {
+        messages.push_back(std::string("polyvol: ") + e.what());
+        code = 4;
+    }
+    return json{{"exit_code", code}, {"stdout", result.is_null() ? "" : result.dump(2) + "\n"}, {"messages", messages}};
+}
+
+}  // namespace
+
+extern "C" {
+
+// The answer to a request as JSON text (UTF-8), to be freed with polyvol_free.
+char* polyvol_run(const char* request) {
+    const std::string answer = run(request).dump(2);
+    char* out = static_cast<char*>(std::malloc(answer.size() + 1));
+    if (out) std::memcpy(out, answer.c_str(), answer.size() + 1);
+    return out;
+}
+
+void polyvol_free(char* p) { std::free(p); }
+
+}  // extern "C"

@@ -1,0 +1,150 @@
+// The page in a real browser (Debian's chromium, headless, driven by
+// puppeteer-core): files chosen on its file input are measured in its worker,
+// and the card it shows holds the command line's JSON byte for byte, with the
+// same words for a file that is not a solid; a broken file gives a clear
+// message and the page goes on working; nothing is requested from any other
+// origin. Screenshots go to build-wasm/screens for a person to look at.
+import assert from 'node:assert/strict';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { createServer } from 'node:http';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+
+import { zipSync } from 'fflate';
+import puppeteer from 'puppeteer-core';
+
+import { corpusDir, packageDir, runCli } from './environment.mjs';
+
+const pageDir = path.join(path.dirname(packageDir), 'page');
+const screens = path.join(path.dirname(packageDir), 'screens');
+const chromium = process.env.POLYVOL_CHROMIUM ?? '/usr/bin/chromium';
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm' };
+// The page's options as the command line's flags.
+const flags = ['--density', '1.24g/cm3', '--units', 'mm', '--to', 'mm', '--mass-unit', 'g'];
+
+let server, origin, browser, page;
+const foreign = [];
+const pageErrors = [];
+
+before(async () => {
+  mkdirSync(screens, { recursive: true });
+  server = createServer((req, res) => {
+    const p = path.join(pageDir, decodeURIComponent(new URL(req.url, 'http://x').pathname));
+    try {
+      const body = readFileSync(p.endsWith('/') ? path.join(p, 'index.html') : p);
+      res.writeHead(200, { 'content-type': types[path.extname(p) || '.html'] ?? 'application/octet-stream' });
+      res.end(body);
+    } catch {
+      res.writeHead(404).end();
+    }
+  });
+  await new Promise((r) => server.listen(0, '127.0.0.1', r));
+  origin = `http://127.0.0.1:${server.address().port}`;
+  browser = await puppeteer.launch({ executablePath: chromium, args: ['--headless=new', '--no-sandbox', '--disable-gpu'] });
+  page = await browser.newPage();
+  page.on('request', (r) => {
+    if (!r.url().startsWith(origin) && !r.url().startsWith('data:') && !r.url().startsWith('blob:')) foreign.push(r.url());
+  });
+  page.on('pageerror', (e) => pageErrors.push(String(e)));
+  await page.goto(`${origin}/index.html`, { waitUntil: 'load' });
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+// Chooses files on the page's input and waits until it has shown them.
+async function choose(...files) {
+  for (const f of files) assert.ok(existsSync(f), `${f} exists`);
+  const before = await page.evaluate(() => Number(document.body.dataset.done ?? 0));
+  const input = await page.$('#files');
+  await input.uploadFile(...files);
+  await page.waitForFunction((n) => Number(document.body.dataset.done ?? 0) > n, { timeout: 120000 }, before);
+}
+
+async function card(name) {
+  return page.$eval(`article[data-file="${name}"]`, (a) => ({ json: a.dataset.json, exitCode: Number(a.dataset.exitCode), text: a.innerText }));
+}
+
+function corpus(rel) {
+  return path.join(corpusDir, 'meshes', rel);
+}
+
+for (const rel of ['stl-models/unitCube.ascii.stl', 'stl-models/bunny.bin.stl', 'geomview/dodec.off', 'libcgal-demo/sphere.ply']) {
+  test(`a corpus file shows the command line's JSON: ${rel}`, async () => {
+    const file = corpus(rel);
+    const name = path.basename(file);
+    await choose(file);
+    const shown = await card(name);
+    const native = runCli(['measure', '--json', ...flags, name], path.dirname(file));
+    assert.equal(shown.json, native.stdout);
+    assert.equal(shown.exitCode, native.code);
+    for (const m of native.messages) assert.ok(shown.text.includes(m.replace(/^polyvol: /, '')), `the page says: ${m}`);
+    await page.screenshot({ path: path.join(screens, `${name}.png`), fullPage: true });
+  });
+}
+
+test('an open mesh: the page says why there is no volume', async () => {
+  const file = corpus('stl-models/bunny.bin.stl');
+  const shown = await card(path.basename(file));
+  assert.equal(shown.exitCode, 3);
+  assert.match(shown.text, /not a closed surface/);
+  assert.doesNotMatch(shown.text, /^Volume/m);
+});
+
+test('two overlapping cubes in one file: the solid, counted once', async () => {
+  const dir = mkdtempSync(path.join(tmpdir(), 'polyvol-web-'));
+  const cube = (o) => {
+    const v = [];
+    for (const z of [0, 2]) for (const y of [0, 2]) for (const x of [0, 2]) v.push(`v ${x + o} ${y + o} ${z + o}`);
+    return v;
+  };
+  const faces = [[1, 3, 4, 2], [5, 6, 8, 7], [1, 2, 6, 5], [3, 7, 8, 4], [1, 5, 7, 3], [2, 4, 8, 6]];
+  const f = (k) => faces.map((q) => 'f ' + q.map((i) => i + 8 * k).join(' '));
+  const file = path.join(dir, 'two-cubes.obj');
+  writeFileSync(file, [...cube(0), ...cube(1), ...f(0), ...f(1)].join('\n') + '\n');
+  await choose(file);
+  const shown = await card('two-cubes.obj');
+  const native = runCli(['measure', '--json', ...flags, 'two-cubes.obj'], dir);
+  assert.equal(shown.json, native.stdout);
+  assert.equal(JSON.parse(shown.json)[0].volume, 15);
+  assert.match(shown.text, /overlap/);
+  await page.screenshot({ path: path.join(screens, 'two-cubes.png'), fullPage: true });
+});
+
+test("a zip of several meshes: one figure set per member, the command line's JSON", async () => {
+  const dir = mkdtempSync(path.join(tmpdir(), 'polyvol-web-'));
+  const members = ['stl-models/unitCube.ascii.stl', 'geomview/dodec.off', 'libcgal-demo/sphere.ply'];
+  const file = path.join(dir, 'parts.zip');
+  writeFileSync(file, zipSync(Object.fromEntries(members.map((m) => [path.basename(m), readFileSync(corpus(m))]))));
+  await choose(file);
+  const shown = await card('parts.zip');
+  const native = runCli(['measure', '--json', ...flags, 'parts.zip'], dir);
+  assert.equal(shown.json, native.stdout);
+  assert.equal(JSON.parse(shown.json).length, 3);
+  for (const m of members) assert.ok(shown.text.includes(`parts.zip:${path.basename(m)}`));
+  await page.screenshot({ path: path.join(screens, 'parts.zip.png'), fullPage: true });
+});
+
+test('a broken file: a clear message, and the page still works', async () => {
+  const dir = mkdtempSync(path.join(tmpdir(), 'polyvol-web-'));
+  const file = path.join(dir, 'broken.stl');
+  writeFileSync(file, 'solid broken\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 nonsense\n');
+  await choose(file);
+  const shown = await card('broken.stl');
+  const native = runCli(['measure', '--json', ...flags, 'broken.stl'], dir);
+  assert.equal(shown.exitCode, native.code);
+  assert.equal(shown.json, native.stdout);
+  for (const m of native.messages) assert.ok(shown.text.includes(m.replace(/^polyvol: /, '')), `the page says: ${m}`);
+  await page.screenshot({ path: path.join(screens, 'broken.png'), fullPage: true });
+  const cube = corpus('stl-models/unitCube.ascii.stl');
+  await choose(cube);
+  assert.equal((await card('unitCube.ascii.stl')).exitCode, 0);
+});
+
+test('the page asked nothing of any other origin and threw nothing', () => {
+  assert.deepEqual(foreign, []);
+  assert.deepEqual(pageErrors, []);
+});
