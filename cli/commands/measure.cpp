@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iostream>
-#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -73,31 +73,31 @@ void add_measure_options(CLI::App* cmd, MeasureCommandOptions& c) {
     add_solid_flags(cmd, c.solid_flags);
 }
 
-Request make_request(const MeasureCommandOptions& c, bool need_mass) {
-    Request r;
-    static const std::map<std::string, Method> methods{
-        {"cone", Method::cone}, {"prism", Method::prism}, {"pyramid", Method::pyramid}, {"vtnb", Method::vtnb}};
-    r.measure.method = methods.at(c.method);
-    r.measure.accuracy = c.accuracy == "fast" || c.accuracy == "bounded" ? Accuracy::fast : Accuracy::correctly_rounded;
-    // A density with a unit is converted to kg per output unit³ (metres by default).
-    const Density d = *parse_density(c.density);
-    r.measure.density = d.value;
-    if (d.si) {
-        r.density_kg_m3 = d.kg_per_m3;
-        const DensityIn in = density_in(d, *length_unit(c.to.empty() ? "m" : c.to), c.mass_unit);
-        r.measure.density = in.value;
-        r.density_relative_error = in.relative_error;
-        r.mass_unit = c.mass_unit;
+// The flags in the library's words (polyvol/report.hpp: file_options reads
+// them, as for Python and the web page), then how the tables print.
+// CLI11's validators have checked each flag; what file_options refuses is
+// said in its words (exit 1).
+std::optional<Request> make_request(const MeasureCommandOptions& c, bool need_mass) {
+    RequestWords w;
+    w.method = c.method;
+    w.accuracy = c.accuracy;
+    w.density = c.density;
+    w.mass_unit = c.mass_unit;
+    w.units = c.units;
+    w.to = c.to;
+    w.scale = c.scale;
+    w.allow_open = c.allow_open;
+    w.solid = c.solid;
+    w.orient = c.solid_flags.orient;
+    w.keep_signed = c.solid_flags.keep_signed;
+    w.weld_tolerance = c.solid_flags.weld_tolerance;
+    const ReadRequest read = file_options(w, need_mass);
+    if (!read.options) {
+        std::cerr << "polyvol: " << read.error << "\n";
+        return std::nullopt;
     }
-    r.units = c.units;
-    r.to = c.to;
-    r.scale = std::stod(c.scale);  // checked by positive_number()
-    r.scale_typed_exactly = typed_exactly(c.scale, r.scale);
-    r.allow_open = c.allow_open;
-    r.need_mass = need_mass;
-    r.orient = c.solid_flags.orient;
-    r.keep_signed = c.solid_flags.keep_signed;
-    r.weld_tolerance = c.solid_flags.weld_tolerance;
+    Request r;
+    static_cast<FileOptions&>(r) = *read.options;
     r.digits = c.digits;
     r.verbose = c.verbose;
     r.density_given = c.density_option && c.density_option->count() > 0;
@@ -107,12 +107,9 @@ Request make_request(const MeasureCommandOptions& c, bool need_mass) {
 enum class Command { volume, measure, check };
 
 int run(Command command, const MeasureCommandOptions& c) {
-    Request request = make_request(c, command != Command::check);
-    if (c.mass_unit != "kg" && request.density_kg_m3 == 0) {
-        std::cerr << "polyvol: --mass-unit " << c.mass_unit
-                  << " needs --density with a unit (e.g. 1.24g/cm3): a plain number is already mass per volume\n";
-        return Exit::usage;
-    }
+    const std::optional<Request> read = make_request(c, command != Command::check);
+    if (!read) return Exit::usage;
+    Request request = *read;
     if (c.format != "table" && c.mass_unit != "kg") {
         std::cerr << "polyvol: --format " << c.format << " writes SI (kg, m): --mass-unit " << c.mass_unit
                   << " does not apply\n";

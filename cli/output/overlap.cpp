@@ -10,35 +10,6 @@
 
 namespace polyvol::cli {
 
-nlohmann::json overlap_json(const std::string& a, const std::string& b, const BooleanVolumes& r,
-                            const std::string& unit, double seconds) {
-    const double bound = r.volume_error_bound;
-    return {{"a", a},
-            {"b", b},
-            {"unit", unit.empty() ? nlohmann::json(nullptr) : nlohmann::json(unit)},
-            {"volume_a", json_number(r.volume_a)},
-            {"volume_b", json_number(r.volume_b)},
-            {"intersection", json_number(r.intersection)},
-            {"union", json_number(r.union_volume)},
-            {"a_minus_b", json_number(r.a_minus_b)},
-            {"b_minus_a", json_number(r.b_minus_a)},
-            {"accuracy", bound > 0 ? "error-bound" : "correctly-rounded"},
-            {"volume_error_bound", bound},
-            {"area_a", json_number(r.area_a)},
-            {"area_b", json_number(r.area_b)},
-            {"area_intersection", json_number(r.area_intersection)},
-            {"area_union", json_number(r.area_union)},
-            {"area_a_minus_b", json_number(r.area_a_minus_b)},
-            {"area_b_minus_a", json_number(r.area_b_minus_a)},
-            {"area_error_bound", json_number(r.area_error_bound)},
-            {"triangles_a", r.triangles_a},
-            {"triangles_b", r.triangles_b},
-            {"candidate_pairs", r.candidate_pairs},
-            {"crossing_pairs", r.crossing_pairs},
-            {"rational_terms", r.rational_terms},
-            {"seconds", seconds}};
-}
-
 std::string overlap_table(const std::string& a, const std::string& b, const BooleanVolumes& r, const std::string& unit,
                           double seconds) {
     const double bound = r.volume_error_bound;

@@ -109,6 +109,33 @@ struct ReadRequest {
 };
 ReadRequest file_options(const RequestWords& words, bool need_mass);
 
+// `overlap`'s words: each operand's solid policy and the units (the others
+// of RequestWords do not apply).
+struct OverlapWords {
+    std::string units, to;  // the coordinates' unit (where a file states none); the figures'
+    bool orient = false, keep_signed = false;
+    double weld_tolerance = 0;
+};
+
+// The library measures two files' overlap: each read, both put in one unit
+// (B converted into A's where they differ), each made the solid it means
+// (polyvol/solid.hpp, as for `volume`), then the volumes of A ∩ B, A ∪ B,
+// A − B and B − A (polyvol/boolean.hpp). Never throws. `messages` are what
+// the command line prints on stderr, in order, without its "polyvol: "
+// (warnings begin "warning: "); exit_code 2 an operand unreadable, 3 not a
+// solid or units that cannot be put together.
+struct OverlapReport {
+    int exit_code = Exit::ok;
+    std::vector<std::string> messages;
+    std::optional<BooleanVolumes> volumes;  // when computed
+    std::string unit;                       // the figures' unit ("" when not known)
+    double seconds = 0;                     // the solids and the booleans (not the reading)
+};
+OverlapReport overlap_files(const std::string& a, const std::string& b, const OverlapWords& words);
+
+// `polyvol overlap --json`'s object (its keys, once).
+nlohmann::json overlap_json(const std::string& a, const std::string& b, const OverlapReport& report);
+
 // A binary STL is streamed (FileOptions::table_only) only above this many
 // triangles: up to it the file is loaded and checked in full, as every other
 // file is (shells overlapping one another resolved, a shell crossing itself

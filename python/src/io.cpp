@@ -1,5 +1,6 @@
 // python/src/io.cpp — meshes read from files (polyvol/io.hpp) as zero-copy
 // numpy views, and the grid writers (polyvol/grid_io.hpp).
+#include <charconv>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -46,19 +47,6 @@ py::object to_python(const nlohmann::json& j) {
         }
         default: return py::none();
     }
-}
-
-// measure_file's density (parse_density_arg) in FileOptions: with a unit,
-// converted to mass_unit per `to`³ (metres by default) as `--density` is.
-void set_density(FileOptions& o, const py::object& density, const std::string& mass_unit) {
-    const Density d = parse_density_arg(density, mass_unit);
-    o.measure.density = d.value;
-    if (!d.si) return;
-    const DensityIn in = density_in(d, *length_unit(o.to.empty() ? "m" : o.to), mass_unit);
-    o.measure.density = in.value;
-    o.density_kg_m3 = d.kg_per_m3;
-    o.density_relative_error = in.relative_error;
-    o.mass_unit = mass_unit;
 }
 
 LoadedMesh mesh_from_arrays(const Doubles& positions, const Indices& indices, const std::optional<Indices>& offsets) {
@@ -159,20 +147,29 @@ void bind_io(py::module_& m) {
         [](const std::string& path, const std::string& method, const std::string& accuracy, const py::object& density,
            const std::string& mass_unit, bool allow_open, bool solid, bool orient, bool keep_signed,
            double weld_tolerance, const std::string& units, const std::string& to, double scale) {
-            FileOptions options;
-            options.weld_tolerance = weld_tolerance;
-            if ((!units.empty() && !length_unit(units)) || (!to.empty() && !length_unit(to)))
-                throw py::value_error(std::string("units are ") + kLengthUnitNames);
-            options.units = units;
-            options.to = to;
-            options.scale = scale;
-            options.orient = orient;
-            options.keep_signed = keep_signed;
-            options.measure.method = parse_method(method);
-            options.measure.accuracy = parse_accuracy(accuracy);
-            options.allow_open = allow_open;
-            options.self_check_always = solid;
-            set_density(options, density, mass_unit);
+            // The arguments in the library's words, read by file_options as
+            // the command line's flags are (a number as its shortest text,
+            // which reads back as the same double).
+            const auto text = [](double x) {
+                char buf[64];
+                return std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+            };
+            RequestWords w;
+            w.method = method;
+            w.accuracy = accuracy;
+            w.density = py::isinstance<py::str>(density) ? density.cast<std::string>() : text(density.cast<double>());
+            w.mass_unit = mass_unit;
+            w.units = units;
+            w.to = to;
+            w.scale = text(scale);
+            w.allow_open = allow_open;
+            w.solid = solid;
+            w.orient = orient;
+            w.keep_signed = keep_signed;
+            w.weld_tolerance = weld_tolerance;
+            const ReadRequest read = file_options(w, /*need_mass=*/true);
+            if (!read.options) throw py::value_error(read.error);
+            const FileOptions& options = *read.options;
             nlohmann::json report;
             {
                 py::gil_scoped_release release;

@@ -3,7 +3,7 @@
 // named as given (so the results name them as `polyvol` run in their
 // directory does); the answer is the command line's JSON, parsed.
 
-const COMMANDS = new Set(['volume', 'measure', 'check']);
+const COMMANDS = new Set(['volume', 'measure', 'check', 'overlap']);
 
 // The module's options: camelCase or the command line's snake_case words.
 function words(options = {}) {
@@ -34,13 +34,18 @@ export function bind(Module) {
 
   // One request: {exitCode, stdout (the command line's --json text), messages}.
   function run(command, files, options = {}) {
-    if (!COMMANDS.has(command)) throw new TypeError(`unknown command '${command}' (volume, measure or check)`);
+    if (!COMMANDS.has(command)) throw new TypeError(`unknown command '${command}' (volume, measure, check or overlap)`);
     const dir = `/call${++calls}`;
     FS.mkdir(dir);
     const names = [];
     try {
       for (const f of files) {
-        const name = baseName(f.name);
+        let name = baseName(f.name);
+        // A second file of the same name (overlap of two versions of a part) in a directory of its own.
+        if (FS.analyzePath(`${dir}/${name}`).exists) {
+          FS.mkdir(`${dir}/${names.length}`);
+          name = `${names.length}/${name}`;
+        }
         FS.writeFile(`${dir}/${name}`, bytesOf(f.data));
         if (!f.companion) names.push(name);
       }
@@ -60,8 +65,16 @@ export function bind(Module) {
       return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages };
     } finally {
       FS.chdir('/');
-      for (const name of FS.readdir(dir)) if (name !== '.' && name !== '..') FS.unlink(`${dir}/${name}`);
-      FS.rmdir(dir);
+      const remove = (d) => {
+        for (const name of FS.readdir(d)) {
+          if (name === '.' || name === '..') continue;
+          const p = `${d}/${name}`;
+          if (FS.isDir(FS.stat(p).mode)) remove(p);
+          else FS.unlink(p);
+        }
+        FS.rmdir(d);
+      };
+      remove(dir);
     }
   }
 
@@ -71,5 +84,10 @@ export function bind(Module) {
     const r = run(command, [{ data, name }, ...companions.map((c) => ({ ...c, companion: true }))], options);
     return { results: r.stdout ? JSON.parse(r.stdout) : [], exitCode: r.exitCode, messages: r.messages, json: r.stdout };
   };
-  return { run, volume: one('volume'), measure: one('measure'), check: one('check') };
+  // `polyvol overlap --json A B`: A ∩ B, A ∪ B, A − B and B − A, one object.
+  const overlap = (dataA, nameA, dataB, nameB, options = {}) => {
+    const r = run('overlap', [{ data: dataA, name: nameA }, { data: dataB, name: nameB }], options);
+    return { result: r.stdout ? JSON.parse(r.stdout) : null, exitCode: r.exitCode, messages: r.messages, json: r.stdout };
+  };
+  return { run, volume: one('volume'), measure: one('measure'), check: one('check'), overlap };
 }

@@ -42,6 +42,17 @@ export interface Answer {
   json: string;
 }
 
+/** A ∩ B, A ∪ B, A − B and B − A: the object `polyvol overlap --json` prints. */
+export interface OverlapAnswer {
+  result: Record<string, unknown> | null;
+  exitCode: number;
+  messages: string[];
+  json: string;
+}
+
+/** overlap's options: the solid policy and the units. */
+export type OverlapOptions = Pick<Options, 'units' | 'to' | 'orient' | 'keepSigned' | 'weldTolerance'>;
+
 export type FileData = ArrayBuffer | ArrayBufferView | string;
 export interface Companion { name: string; data: FileData }
 
@@ -49,7 +60,8 @@ export interface Polyvol {
   volume(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
   measure(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
   check(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
-  run(command: 'volume' | 'measure' | 'check', files: { name: string; data: FileData; companion?: boolean }[], options?: Options):
+  overlap(dataA: FileData, nameA: string, dataB: FileData, nameB: string, options?: OverlapOptions): OverlapAnswer;
+  run(command: 'volume' | 'measure' | 'check' | 'overlap', files: { name: string; data: FileData; companion?: boolean }[], options?: Options):
     { exitCode: number; stdout: string; messages: string[] };
 }
 
@@ -58,3 +70,4 @@ export function createPolyvol(): Promise<Polyvol>;
 export function volume(data: FileData, name: string, options?: Options, companions?: Companion[]): Promise<Answer>;
 export function measure(data: FileData, name: string, options?: Options, companions?: Companion[]): Promise<Answer>;
 export function check(data: FileData, name: string, options?: Options, companions?: Companion[]): Promise<Answer>;
+export function overlap(dataA: FileData, nameA: string, dataB: FileData, nameB: string, options?: OverlapOptions): Promise<OverlapAnswer>;

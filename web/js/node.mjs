@@ -22,4 +22,5 @@ const instance = () => (shared ??= createPolyvol());
 export const volume = async (...a) => (await instance()).volume(...a);
 export const measure = async (...a) => (await instance()).measure(...a);
 export const check = async (...a) => (await instance()).check(...a);
+export const overlap = async (...a) => (await instance()).overlap(...a);
 export const run = async (...a) => (await instance()).run(...a);

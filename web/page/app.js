@@ -111,6 +111,67 @@ function render(file, answer) {
   return card;
 }
 
+// The files measured so far, for the overlap (a File can be read again).
+const measured = [];
+
+function remember(file) {
+  measured.push(file);
+  for (const id of ['overlap-a', 'overlap-b']) {
+    const select = $(id);
+    select.append(el('option', { value: String(measured.length - 1) }, file.name));
+    if (id === 'overlap-b' && measured.length === 2) select.value = '1';
+  }
+  $('overlap').hidden = measured.length < 2;
+}
+
+const OVERLAP_ROWS = [
+  ['A', 'volume_a', 'area_a'], ['B', 'volume_b', 'area_b'], ['A ∩ B', 'intersection', 'area_intersection'],
+  ['A ∪ B', 'union', 'area_union'], ['A − B', 'a_minus_b', 'area_a_minus_b'], ['B − A', 'b_minus_a', 'area_b_minus_a'],
+];
+
+function renderOverlap(a, b, answer) {
+  const card = el('article', { class: 'result overlap', 'data-overlap': `${a} ${b}`, 'data-exit-code': String(answer.exitCode) });
+  card.dataset.json = answer.stdout;
+  card.append(el('h2', {}, `Overlap: A = ${a}, B = ${b}`));
+  if (answer.stdout) {
+    const r = JSON.parse(answer.stdout);
+    const u = r.unit ?? 'units of the files';
+    const exact = r.accuracy === 'correctly-rounded';
+    const table = el('table', {}, el('tr', {}, el('th', {}, ''), el('th', {}, `Volume (${u}³)`), el('th', {}, `Boundary area (${u}²)`)));
+    for (const [name, volume, area] of OVERLAP_ROWS) {
+      const v = exact ? shown(r[volume]) : `${shown(r[volume], r.volume_error_bound / Math.abs(r[volume] || 1))} ± ${bound(r.volume_error_bound)}`;
+      const ar = r[area] === null ? '—' : `${shown(r[area], r.area_error_bound / Math.abs(r[area] || 1))} ± ${bound(r.area_error_bound)}`;
+      table.append(el('tr', { 'data-key': volume }, el('th', {}, name), el('td', {}, v), el('td', {}, ar)));
+    }
+    card.append(table);
+    card.append(el('p', { class: 'note' }, exact ? 'Volumes correctly rounded (the exact volumes of the meshes as read, rounded once).'
+      : 'Volumes within the ± shown (a change of unit, or coordinates computed by the reader).'));
+  }
+  for (const msg of answer.messages) card.append(el('p', { class: 'message' }, msg.replace(/^polyvol: /, '')));
+  const copy = el('button', { type: 'button', class: 'copy-json' }, 'Copy JSON');
+  copy.onclick = () => navigator.clipboard.writeText(answer.stdout);
+  card.append(el('p', { class: 'actions' }, copy));
+  return card;
+}
+
+$('overlap-go').addEventListener('click', async () => {
+  const [fa, fb] = [measured[Number($('overlap-a').value)], measured[Number($('overlap-b').value)]];
+  $('status').textContent = `Computing the overlap of ${fa.name} and ${fb.name}…`;
+  $('progress').hidden = false;
+  $('progress').removeAttribute('value');
+  try {
+    const files = [{ name: fa.name, data: await fa.arrayBuffer() }, { name: fb.name, data: await fb.arrayBuffer() }];
+    const { units } = options();
+    const answer = await ask('overlap', files, { units, to: units });
+    $('results').prepend(renderOverlap(fa.name, fb.name, answer));
+    $('status').textContent = 'Done: the overlap.';
+  } catch (e) {
+    $('status').textContent = String(e.message);
+  }
+  $('progress').hidden = true;
+  document.body.dataset.done = String(Number(document.body.dataset.done ?? 0) + 1);
+});
+
 async function measureFiles(list) {
   const files = [...list];
   if (!files.length) return;
@@ -125,6 +186,7 @@ async function measureFiles(list) {
       const data = await f.arrayBuffer();
       const answer = await ask('measure', [{ name: f.name, data }], options());
       $('results').prepend(render(f.name, answer));
+      remember(f);
     } catch (e) {
       $('results').prepend(el('article', { class: 'result failed', 'data-file': f.name }, el('h2', {}, f.name), el('p', { class: 'message' }, String(e.message))));
     }

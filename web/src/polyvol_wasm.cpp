@@ -4,9 +4,9 @@
 // (measure_file, report_json): `polyvol volume|measure|check --json` prints
 // the same objects.
 //
-//   request: {"command": "volume" | "measure" | "check",
-//             "files": ["a.stl", ...],           (paths in the module's file system)
-//             "options": {RequestWords' fields}} (polyvol/report.hpp)
+//   request: {"command": "volume" | "measure" | "check" | "overlap",
+//             "files": ["a.stl", ...],           (paths in the module's file system; overlap: A and B)
+//             "options": {RequestWords' fields}} (polyvol/report.hpp; overlap: OverlapWords')
 //   answer:  {"exit_code": 0|1|2|3|4,
 //             "stdout": the command's --json output, byte for byte (its text),
 //             "messages": ["polyvol: ...", ...]} (what the command line prints on stderr)
@@ -76,6 +76,27 @@ json measure_files(const std::string& command, const json& request, json& messag
     return out;
 }
 
+// `polyvol overlap --json A B` (cli/commands/overlap.cpp prints the same report).
+json overlap(const json& request, json& messages, int& code) {
+    const auto files = request.at("files").get<std::vector<std::string>>();
+    if (files.size() != 2) {
+        messages.push_back("polyvol: overlap takes two files, A and B");
+        code = Exit::usage;
+        return nullptr;
+    }
+    const json o = request.value("options", json::object());
+    polyvol::OverlapWords w;
+    w.units = o.value("units", "");
+    w.to = o.value("to", "");
+    w.orient = o.value("orient", false);
+    w.keep_signed = o.value("keep_signed", false);
+    w.weld_tolerance = o.value("weld_tolerance", 0.0);
+    const polyvol::OverlapReport r = polyvol::overlap_files(files[0], files[1], w);
+    for (const std::string& m : r.messages) messages.push_back("polyvol: " + m);
+    code = r.exit_code;
+    return r.volumes ? polyvol::overlap_json(files[0], files[1], r) : json(nullptr);
+}
+
 json run(const std::string& text) {
     json messages = json::array();
     int code = Exit::ok;
@@ -85,8 +106,10 @@ json run(const std::string& text) {
         const std::string command = request.at("command").get<std::string>();
         if (command == "volume" || command == "measure" || command == "check") {
             result = measure_files(command, request, messages, code);
+        } else if (command == "overlap") {
+            result = overlap(request, messages, code);
         } else {
-            messages.push_back("polyvol: unknown command '" + command + "' (volume, measure or check)");
+            messages.push_back("polyvol: unknown command '" + command + "' (volume, measure, check or overlap)");
             code = Exit::usage;
         }
     } catch (const std::bad_alloc&) {

@@ -128,6 +128,38 @@ test("a zip of several meshes: one figure set per member, the command line's JSO
   await page.screenshot({ path: path.join(screens, 'parts.zip.png'), fullPage: true });
 });
 
+test('two files: their overlap on request, the command line\'s JSON (less its time)', async () => {
+  const dir = mkdtempSync(path.join(tmpdir(), 'polyvol-web-'));
+  const cube = (o) => {
+    const v = [];
+    for (const z of [0, 2]) for (const y of [0, 2]) for (const x of [0, 2]) v.push(`v ${x + o} ${y + o} ${z + o}`);
+    const f = [[1, 3, 4, 2], [5, 6, 8, 7], [1, 2, 6, 5], [3, 7, 8, 4], [1, 5, 7, 3], [2, 4, 8, 6]];
+    return [...v, ...f.map((q) => 'f ' + q.join(' '))].join('\n') + '\n';
+  };
+  writeFileSync(path.join(dir, 'cube-a.obj'), cube(0));
+  writeFileSync(path.join(dir, 'cube-b.obj'), cube(1));
+  await choose(path.join(dir, 'cube-a.obj'), path.join(dir, 'cube-b.obj'));
+  const before = await page.evaluate(() => Number(document.body.dataset.done ?? 0));
+  await page.evaluate(() => {
+    const pick = (id, name) => {
+      const s = document.getElementById(id);
+      s.value = [...s.options].reverse().find((o) => o.textContent === name).value;
+    };
+    pick('overlap-a', 'cube-a.obj');
+    pick('overlap-b', 'cube-b.obj');
+  });
+  await page.click('#overlap-go');
+  await page.waitForFunction((n) => Number(document.body.dataset.done ?? 0) > n, { timeout: 120000 }, before);
+  const shown = await page.$eval('article[data-overlap="cube-a.obj cube-b.obj"]', (a) => ({ json: a.dataset.json, text: a.innerText }));
+  const native = runCli(['overlap', '--json', '--units', 'mm', '--to', 'mm', 'cube-a.obj', 'cube-b.obj'], dir);
+  const untimed = (t) => t.replace(/\n\s*"seconds": [^\n]*\n/, '\n').replace(/,\n}/, '\n}');
+  assert.equal(untimed(shown.json), untimed(native.stdout));
+  const r = JSON.parse(shown.json);
+  assert.deepEqual([r.intersection, r.union, r.a_minus_b], [1, 15, 7]);
+  assert.match(shown.text, /A ∩ B\s+1\b/);
+  await page.screenshot({ path: path.join(screens, 'overlap.png'), fullPage: true });
+});
+
 test('a broken file: a clear message, and the page still works', async () => {
   const dir = mkdtempSync(path.join(tmpdir(), 'polyvol-web-'));
   const file = path.join(dir, 'broken.stl');

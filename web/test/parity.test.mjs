@@ -88,3 +88,41 @@ test("a file that is not what its name says: the command line's error, exit code
   assert.equal(wasm.exitCode, native.code);
   assert.equal(wasm.exitCode, 2);
 });
+
+// `overlap --json` less its "seconds" (the time taken).
+const untimed = (text) => text.replace(/\n\s*"seconds": [^\n]*\n/, '\n').replace(/,\n}/, '\n}');
+
+test('overlap: closed corpus meshes in pairs, and a mesh with itself, as the command line', () => {
+  const closed = manifest.filter((e) => e.topology?.closed && e.counts.triangles < 20000 && direct.includes(e));
+  assert.ok(closed.length > 40, `${closed.length} closed meshes`);
+  const pairs = closed.slice(0, 20).map((e, i) => [e, closed[(i + 1) % closed.length]]);
+  pairs.push([closed[0], closed[0]], [closed[5], closed[5]]);
+  for (const [ea, eb] of pairs) {
+    const files = { [`a-${path.basename(ea.path)}`]: readFileSync(corpusPath(ea)), [`b-${path.basename(eb.path)}`]: readFileSync(corpusPath(eb)) };
+    const { native, wasm } = both(['overlap', '--json'], 'overlap', {}, files);
+    assert.equal(untimed(wasm.stdout), untimed(native.stdout), `${ea.path} with ${eb.path}`);
+    assert.equal(wasm.exitCode, native.code);
+    assert.deepEqual(wasm.messages, native.messages);
+  }
+});
+
+test('overlap: two overlapping cubes in mm, figures in cm; an open operand refused with the command line\'s words', () => {
+  const cube = (o) => {
+    const v = [];
+    for (const z of [0, 2]) for (const y of [0, 2]) for (const x of [0, 2]) v.push(`v ${x + o} ${y + o} ${z + o}`);
+    const f = [[1, 3, 4, 2], [5, 6, 8, 7], [1, 2, 6, 5], [3, 7, 8, 4], [1, 5, 7, 3], [2, 4, 8, 6]];
+    return [...v, ...f.map((q) => 'f ' + q.join(' '))].join('\n') + '\n';
+  };
+  const files = { 'a.obj': cube(0), 'b.obj': cube(1) };
+  const { native, wasm } = both(['overlap', '--json', '--units', 'mm', '--to', 'cm'], 'overlap', { units: 'mm', to: 'cm' }, files);
+  assert.equal(untimed(wasm.stdout), untimed(native.stdout));
+  const r = JSON.parse(wasm.stdout);
+  assert.equal(r.unit, 'cm');
+  assert.ok(Math.abs(r.intersection - 0.001) <= r.volume_error_bound);
+  const open = { 'a.obj': cube(0), 'b.obj': cube(1).split('\n').slice(0, -2).join('\n') + '\n' };
+  const refused = both(['overlap', '--json'], 'overlap', {}, open);
+  assert.equal(refused.wasm.exitCode, 3);
+  assert.equal(refused.wasm.exitCode, refused.native.code);
+  assert.deepEqual(refused.wasm.messages, refused.native.messages);
+  assert.equal(refused.wasm.stdout, '');
+});
