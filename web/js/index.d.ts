@@ -26,6 +26,8 @@ export interface Options {
   keepSigned?: boolean;
   /** Merge points closer than this first. */
   weldTolerance?: number;
+  /** volume only: the table's figures, a binary STL streamed whatever its size (its shells not checked for overlap). */
+  stream?: boolean;
 }
 
 /** One file's figures: the object `polyvol measure --json` prints (see docs/cli.md), one per mesh. */

@@ -61,8 +61,18 @@ json measure_files(const std::string& command, const json& request, json& messag
         return nullptr;
     }
     polyvol::FileOptions options = *read.options;
-    options.mesh_counts = true;
     options.edge_counts = true;
+    // volume's "stream" (--stream): the table's figures, a binary STL streamed
+    // in constant memory whatever its size, its shells not checked for overlap.
+    const json o = request.value("options", json::object());
+    const bool stream = command == "volume" && o.value("stream", false);
+    options.table_only = stream;
+    options.stream_any_size = stream;
+    options.mesh_counts = !stream;
+    if (stream) {
+        options.measure.second_moments = false;
+        options.measure.edge_length = false;
+    }
     // A zip archive of plain meshes is its members, "ARCHIVE:MEMBER", as on the command line.
     const auto inputs = polyvol::file_inputs(request.at("files").get<std::vector<std::string>>());
     json out = json::array();

@@ -22,6 +22,7 @@ const requests = [
   { command: 'volume', args: ['volume', '--json'], options: {} },
   { command: 'measure', args: ['measure', '--json'], options: {} },
   { command: 'check', args: ['check', '--json'], options: {} },
+  { command: 'volume', args: ['volume', '--stream', '--json'], options: { stream: true } },
   {
     command: 'measure',
     args: ['measure', '--json', '--solid', '--density', '1.24g/cm3', '--units', 'mm', '--mass-unit', 'g'],
