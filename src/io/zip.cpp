@@ -358,13 +358,8 @@ std::vector<std::string> ZipArchive::file_names() const {
 }
 
 std::optional<std::string> ZipArchive::find(std::string_view entry) const {
-    std::string exact(entry);
-    if (impl_->by_name.count(exact) != 0) return exact;
-    const std::string want = zip_entry_key(entry);
-    if (want.empty()) return std::nullopt;
-    for (const std::string& n : file_names())
-        if (zip_entry_key(n) == want) return n;
-    return std::nullopt;
+    const bool held = impl_->by_name.count(std::string(entry)) != 0;
+    return match_entry(entry, held, held ? std::vector<std::string>{} : file_names());
 }
 
 std::vector<std::byte> ZipArchive::read(const std::string& entry) {

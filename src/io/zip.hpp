@@ -44,6 +44,19 @@ inline std::string zip_entry_key(std::string_view s) {
     return first == std::string::npos ? std::string() : out.substr(first);
 }
 
+// The stored name an entry asked for is found under: `entry` itself when the
+// archive holds it (held_exactly), else the file entry whose zip_entry_key
+// is entry's.
+inline std::optional<std::string> match_entry(std::string_view entry, bool held_exactly,
+                                              const std::vector<std::string>& file_names) {
+    if (held_exactly) return std::string(entry);
+    const std::string want = zip_entry_key(entry);
+    if (want.empty()) return std::nullopt;
+    for (const std::string& n : file_names)
+        if (zip_entry_key(n) == want) return n;
+    return std::nullopt;
+}
+
 class ZipArchive {
 public:
     // Opens the archive in data (which must outlive this object). Throws

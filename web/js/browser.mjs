@@ -1,6 +1,6 @@
 // polyvol for browsers and workers: the module loaded beside this file.
 import createPolyvolModule from './polyvol.web.mjs';
-import { bind } from './core.mjs';
+import { bind, sharedCalls } from './core.mjs';
 
 // fflate (npm) unpacks gzip and zip for the module: imported by name (a
 // bundler resolves it), or given, e.g. by a page without a bundler.
@@ -10,11 +10,4 @@ export async function createPolyvol({ wasmUrl = new URL('./polyvol.wasm', import
   return bind(module);
 }
 
-let shared;
-const instance = () => (shared ??= createPolyvol());
-
-export const volume = async (...a) => (await instance()).volume(...a);
-export const measure = async (...a) => (await instance()).measure(...a);
-export const check = async (...a) => (await instance()).check(...a);
-export const overlap = async (...a) => (await instance()).overlap(...a);
-export const run = async (...a) => (await instance()).run(...a);
+export const { volume, measure, check, overlap, run } = sharedCalls(createPolyvol);

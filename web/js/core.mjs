@@ -91,3 +91,12 @@ export function bind(Module) {
   };
   return { run, volume: one('volume'), measure: one('measure'), check: one('check'), overlap };
 }
+
+// The calls on one module made on first use (the package's top-level
+// functions), given how this platform makes a module.
+export function sharedCalls(createPolyvol) {
+  let shared;
+  const instance = () => (shared ??= createPolyvol());
+  const call = (name) => async (...a) => (await instance())[name](...a);
+  return { volume: call('volume'), measure: call('measure'), check: call('check'), overlap: call('overlap'), run: call('run') };
+}

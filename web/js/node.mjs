@@ -4,7 +4,7 @@ import { createRequire } from 'node:module';
 
 import * as fflate from 'fflate';
 
-import { bind } from './core.mjs';
+import { bind, sharedCalls } from './core.mjs';
 
 const require = createRequire(import.meta.url);
 
@@ -16,11 +16,4 @@ export async function createPolyvol() {
   return bind(await factory({ wasmBinary, fflate, print: () => {}, printErr: () => {} }));
 }
 
-let shared;
-const instance = () => (shared ??= createPolyvol());
-
-export const volume = async (...a) => (await instance()).volume(...a);
-export const measure = async (...a) => (await instance()).measure(...a);
-export const check = async (...a) => (await instance()).check(...a);
-export const overlap = async (...a) => (await instance()).overlap(...a);
-export const run = async (...a) => (await instance()).run(...a);
+export const { volume, measure, check, overlap, run } = sharedCalls(createPolyvol);

@@ -7,6 +7,7 @@
 // with a ReadError that says so.
 #include <emscripten.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -165,13 +166,8 @@ std::vector<std::string> ZipArchive::file_names() const {
 }
 
 std::optional<std::string> ZipArchive::find(std::string_view entry) const {
-    for (const std::string& n : impl_->names)
-        if (n == entry) return n;
-    const std::string want = zip_entry_key(entry);
-    if (want.empty()) return std::nullopt;
-    for (const std::string& n : file_names())
-        if (zip_entry_key(n) == want) return n;
-    return std::nullopt;
+    const bool held = std::find(impl_->names.begin(), impl_->names.end(), entry) != impl_->names.end();
+    return match_entry(entry, held, held ? std::vector<std::string>{} : file_names());
 }
 
 std::vector<std::byte> ZipArchive::read(const std::string& entry) {

@@ -127,3 +127,21 @@ test('overlap: two overlapping cubes in mm, figures in cm; an open operand refus
   assert.deepEqual(refused.wasm.messages, refused.native.messages);
   assert.equal(refused.wasm.stdout, '');
 });
+
+test('the top-level calls (import { measure, check, volume, overlap } from the package) answer as the command line', async () => {
+  const pkg = await loadPackage();
+  const file = corpusPath(manifest.find((e) => e.path.endsWith('unitCube.ascii.stl')));
+  const data = readFileSync(file);
+  for (const command of ['volume', 'measure', 'check']) {
+    const r = await pkg[command](data, 'unitCube.ascii.stl');
+    const native = runCli([command, '--json', 'unitCube.ascii.stl'], path.dirname(file));
+    assert.equal(r.json, native.stdout);
+    assert.equal(r.results[0].file, 'unitCube.ascii.stl');
+  }
+  const o = await pkg.overlap(data, 'a.stl', data, 'b.stl');
+  assert.equal(o.exitCode, 0);
+  assert.equal(o.result.intersection, 1);
+  const bad = await pkg.measure(new Uint8Array([1, 2, 3]), 'x.stl');
+  assert.equal(bad.exitCode, 2);
+  assert.match(bad.results[0].error, /x\.stl/);
+});
