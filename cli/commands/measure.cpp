@@ -154,7 +154,7 @@ int run(Command command, const MeasureCommandOptions& c) {
         if (!r.warning.empty()) std::cerr << "polyvol: warning: " << r.warning << "\n";
     }
     if (c.csv && command != Command::check) {
-        std::cout << csv_table(results, command == Command::measure);
+        std::cout << csv_table(results, command == Command::measure, request.density_relative_error);
         return code;
     }
     if (c.json) {

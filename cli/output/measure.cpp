@@ -17,13 +17,16 @@
 namespace polyvol::cli {
 namespace {
 
-// mass = density × volume: the density as typed is within 2^-53 of its
-// double, and the product is rounded once more, so the mass of the decimal
-// density is within 2^-52 of the printed one (plus the volume's error).
+// mass = density × volume: the density used is within density_error
+// (relative; at least 2^-53, the decimal typed as a double; more when it was
+// converted to the figures' units) of the density typed, and the product is
+// rounded once more, so the mass of the decimal density is within
+// (2^-53 + density_error) |mass| of the printed one, plus the volume's error.
 // It is shown as the shortest decimal within that bound of the printed
 // double (7.85 × 12 is 94.2, not 94.19999999999999).
-std::string mass_text(double mass, double volume_error_times_density, int digits) {
-    const double error = volume_error_times_density + std::fabs(mass) * 0x1p-52;
+std::string mass_text(double mass, double volume_error_times_density, double density_error, int digits) {
+    const double error =
+        volume_error_times_density + std::fabs(mass) * (0x1p-53 + std::max(0x1p-53, density_error)) * (1 + 0x1p-40);
     const std::string s = shortest_within(mass, error);
     return digits > 0 ? number_text(std::strtod(s.c_str(), nullptr), error, digits) : s;
 }
@@ -180,7 +183,7 @@ std::string volume_table(const std::vector<FileResult>& results, const Request& 
         const double volume_error = m.volume_correctly_rounded ? 0 : m.volume_error_bound;
         const std::string vol = m.volume_correctly_rounded ? number_text(m.volume, 0, digits)
                                                            : plus_minus(m.volume, m.volume_error_bound, digits);
-        if (mass) out << pad(mass_text(m.mass, request.measure.density * volume_error, digits), 24) << "  ";
+        if (mass) out << pad(mass_text(m.mass, request.measure.density * volume_error, request.density_relative_error, digits), 24) << "  ";
         if (overlap)
             overlap_notes += "  " + r.file + ": " + overlap_sentence(r) + (all ? "; its centroid and area are the solid's" : "") + "\n";
         if (!all) {
@@ -264,7 +267,7 @@ std::string measure_report(const FileResult& r, const Request& request) {
     }
     if (r.policy.overlap_checked) out << "  overlap         shells checked against one another\n";
     out << "  self-crossing   " << self_crossing_line(r) << "\n";
-    out << "  mass            " << mass_text(m.mass, request.measure.density * volume_error, digits)
+    out << "  mass            " << mass_text(m.mass, request.measure.density * volume_error, request.density_relative_error, digits)
         << mass_unit_suffix(r, 3) << "\n";
     out << "  surface area    " << number_text(m.area, m.area * m.area_relative_error, digits) << unit_suffix(r, 2)
         << "   [relative error <= " << bound_text(m.area_relative_error) << "]\n";
@@ -377,7 +380,7 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
     return out.str();
 }
 
-std::string csv_table(const std::vector<FileResult>& results, bool inertia) {
+std::string csv_table(const std::vector<FileResult>& results, bool inertia, double density_error) {
     // RFC 4180: a field with a comma, quote or line break is quoted, quotes doubled.
     const auto field = [](const std::string& f) {
         if (f.find_first_of(",\"\r\n") == std::string::npos) return f;
@@ -416,7 +419,7 @@ std::string csv_table(const std::vector<FileResult>& results, bool inertia) {
             const double centroid_error = moments_error_bound(m, m.centroid);
             const double density = m.volume != 0 ? std::fabs(m.mass / m.volume) : 0.0;  // as the table's mass
             out << r.triangles << "," << within(m.volume, volume_error) << "," << num(volume_error) << ","
-                << mass_text(m.mass, density * volume_error, 0) << "," << within(m.area, m.area * m.area_relative_error)
+                << mass_text(m.mass, density * volume_error, density_error, 0) << "," << within(m.area, m.area * m.area_relative_error)
                 << "," << num(m.area_relative_error);
             for (double c : m.centroid) out << "," << within(c, centroid_error);
             out << "," << num(centroid_error);

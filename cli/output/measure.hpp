@@ -26,7 +26,8 @@ std::string check_report(const FileResult& r);
 // --csv: one row per file (RFC 4180, a header row first), every number in
 // full (shortest round trip), empty where a file has none; `inertia` adds
 // the tensor about the centroid, its bound and the edge length (measure).
-std::string csv_table(const std::vector<FileResult>& results, bool inertia);
+// density_error: the density's relative error (Request::density_relative_error), for the mass's digits.
+std::string csv_table(const std::vector<FileResult>& results, bool inertia, double density_error);
 
 // A sentence stating the guarantee of the printed volume.
 std::string volume_guarantee(const MassProperties& m);

@@ -79,6 +79,7 @@ struct FileOptions {
     // (density_kg_m3 > 0, measure.density then in mass_unit per `to`³, from
     // density_in) gives the mass in `mass_unit` (kg, g or lb).
     std::string units, to;
+    bool units_where_unstated = false;  // `units` only for a file that states no unit (else it overrides, with a note)
     double scale = 1;
     bool scale_typed_exactly = true;  // the scale's text is its double's own decimal
     double density_kg_m3 = 0;
@@ -96,6 +97,7 @@ struct RequestWords {
     std::string density = "1";        // a number (mass per output unit³), or with kg/m3 or g/cm3
     std::string mass_unit = "kg";     // kg, g or lb (a density with a unit only)
     std::string units, to;            // the coordinates' unit; the figures' unit (length_unit names)
+    bool units_where_unstated = false;  // units only where the file states none (3MF, AMF, glTF state theirs)
     std::string scale = "1";          // every coordinate times this first (> 0)
     bool allow_open = false, solid = false, orient = false, keep_signed = false;
     double weld_tolerance = 0;        // >= 0
@@ -112,7 +114,8 @@ ReadRequest file_options(const RequestWords& words, bool need_mass);
 // `overlap`'s words: each operand's solid policy and the units (the others
 // of RequestWords do not apply).
 struct OverlapWords {
-    std::string units, to;  // the coordinates' unit (where a file states none); the figures'
+    std::string units, to;  // the coordinates' unit; the figures'
+    bool units_where_unstated = false;  // units only for an operand that states none
     bool orient = false, keep_signed = false;
     double weld_tolerance = 0;
 };
@@ -120,7 +123,7 @@ struct OverlapWords {
 // The library measures two files' overlap: each read, both put in one unit
 // (B converted into A's where they differ), each made the solid it means
 // (polyvol/solid.hpp, as for `volume`), then the volumes of A ∩ B, A ∪ B,
-// A − B and B − A (polyvol/boolean.hpp). Never throws. `messages` are what
+// A − B and B − A (polyvol/boolean.hpp). Throws only std::bad_alloc. `messages` are what
 // the command line prints on stderr, in order, without its "polyvol: "
 // (warnings begin "warning: "); exit_code 2 an operand unreadable, 3 not a
 // solid or units that cannot be put together.

@@ -16,9 +16,13 @@
 namespace polyvol::core {
 namespace {
 
-// x's shortest round-trip digits from printf: the first precision p whose
-// correctly rounded p-digit decimal reads back as x is the shortest length,
-// and that decimal is the nearest of its length (std::to_chars's choice).
+// x's shortest round-trip digits from printf. For each length p, the
+// correctly rounded p-digit decimal is the nearest of its length; where the
+// interval of decimals that read back as x is lopsided (x a power of two: its
+// lower half is half as wide), the nearest may miss it while the next one up
+// reads back, so both neighbours are tried too. The first length with a
+// decimal that reads back is the shortest; of those, the nearest is taken
+// (std::to_chars's choice).
 struct Digits {
     char digits[20];
     int count;     // significant digits
@@ -26,20 +30,56 @@ struct Digits {
     bool negative;
 };
 
+// d (count digits, exponent) as text strtod reads: "d.ddde+E".
+std::string scientific_text(const Digits& d) {
+    std::string t = d.negative ? "-" : "";
+    t += d.digits[0];
+    t += '.';
+    t.append(d.digits + 1, static_cast<std::size_t>(d.count - 1));
+    return t + "e" + std::to_string(d.exponent);
+}
+
+// d moved by `step` (+1 or -1) in its last digit; false when that changes its length.
+bool neighbour(Digits& d, int step) {
+    int i = d.count - 1;
+    if (step > 0) {
+        while (i >= 0 && d.digits[i] == '9') d.digits[i--] = '0';
+        if (i < 0) return false;
+        ++d.digits[i];
+    } else {
+        while (i >= 0 && d.digits[i] == '0') d.digits[i--] = '9';
+        if (i < 0 || (i == 0 && d.digits[0] == '1')) return false;
+        --d.digits[i];
+    }
+    return true;
+}
+
 Digits shortest_digits(double x) {
     Digits d{};
     d.negative = std::signbit(x);
     char buf[40];
     for (int p = 1; p <= 17; ++p) {
         std::snprintf(buf, sizeof buf, "%.*e", p - 1, x);
-        if (std::strtod(buf, nullptr) == x || p == 17) {
-            const char* s = buf + (buf[0] == '-');
-            int n = 0;
-            for (; *s != 'e'; ++s)
-                if (*s != '.') d.digits[n++] = *s;
-            while (n > 1 && d.digits[n - 1] == '0') --n;
-            d.count = n;
-            d.exponent = std::atoi(s + 1);
+        const char* s = buf + (buf[0] == '-');
+        int n = 0;
+        for (; *s != 'e'; ++s)
+            if (*s != '.') d.digits[n++] = *s;
+        d.count = n;
+        d.exponent = std::atoi(s + 1);
+        bool found = std::strtod(buf, nullptr) == x || p == 17;
+        if (!found) {
+            Digits best{};
+            long double gap = 0;
+            for (const int step : {-1, 1}) {
+                Digits c = d;
+                if (!neighbour(c, step) || std::strtod(scientific_text(c).c_str(), nullptr) != x) continue;
+                const long double g = std::fabs(std::strtold(scientific_text(c).c_str(), nullptr) - x);
+                if (!found || g < gap) best = c, gap = g, found = true;
+            }
+            if (found) d = best;
+        }
+        if (found) {
+            while (d.count > 1 && d.digits[d.count - 1] == '0') --d.count;
             return d;
         }
     }

@@ -100,7 +100,8 @@ std::optional<FileReport> stream_binary_stl(const std::string& path, const FileO
 // sets r's length_unit, mass_unit, length_factor; returns why they cannot be
 // given ("" when they can).
 std::string plan_units(FileReport& r, const FileOptions& q, double& length_error) {
-    const UnitsPlan p = plan_units(r.loaded->unit, UnitsRequest{.units = q.units,
+    const bool stated = !r.loaded->unit.empty();
+    const UnitsPlan p = plan_units(r.loaded->unit, UnitsRequest{.units = q.units_where_unstated && stated ? "" : q.units,
                                                                .to = q.to,
                                                                .scale = q.scale,
                                                                .scale_typed_exactly = q.scale_typed_exactly,

@@ -53,7 +53,10 @@ OverlapReport overlap_files(const std::string& a_file, const std::string& b_file
     }
     // A and B in one unit: B converted where it states another; the figures
     // are then scaled to `to`, as volume's are.
-    const PairUnits units = pair_units(operand[0]->unit, operand[1]->unit, w.units, w.to);
+    // units_where_unstated: `units` is the unit of an operand that states none.
+    const auto declared = [&](int i) { return operand[i]->unit.empty() ? w.units : operand[i]->unit; };
+    const PairUnits units = w.units_where_unstated ? pair_units(declared(0), declared(1), "", w.to)
+                                                   : pair_units(operand[0]->unit, operand[1]->unit, w.units, w.to);
     const std::string names[2] = {a_file + " (A)", b_file + " (B)"};
     if (!units.error.empty()) {
         if (units.error_operand >= 0)

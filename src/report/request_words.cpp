@@ -54,6 +54,7 @@ ReadRequest file_options(const RequestWords& w, bool need_mass) {
         o.mass_unit = w.mass_unit;
     }
     o.units = w.units;
+    o.units_where_unstated = w.units_where_unstated;
     o.to = w.to;
     o.scale = *scale;
     o.scale_typed_exactly = typed_exactly(w.scale, o.scale);

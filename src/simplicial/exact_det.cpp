@@ -49,8 +49,9 @@ exact::Rational exact_det(int n, const double* const* cols) {
             if (x == 0) continue;
             int e = 0;
             const double f = std::frexp(x, &e);
-            const auto mant = static_cast<long>(std::ldexp(f, 53));  // exact, |mant| < 2^53
-            mpz_set_si(m[r * n + c].v, mant);
+            // |f| 2^53 < 2^53 is an integer: set exactly from the double (a
+            // long has 32 bits on wasm32).
+            mpz_set_d(m[r * n + c].v, std::ldexp(f, 53));
             mpz_mul_2exp(m[r * n + c].v, m[r * n + c].v, static_cast<mp_bitcnt_t>(e - 53 - emin));
         }
     Z prev, t;

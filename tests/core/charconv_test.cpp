@@ -1,6 +1,6 @@
 // core/charconv: the printf-based shortest text (the WebAssembly build's, where
 // libc++ 13 has no floating-point std::to_chars) against std::to_chars, on
-// edge values and 300,000 random doubles; parse_double against std::from_chars.
+// edge values, every power of two and 300,000 random doubles; parse_double against std::from_chars.
 #include "core/charconv.hpp"
 
 #include <gtest/gtest.h>
@@ -21,6 +21,7 @@ std::vector<double> samples() {
     std::vector<double> v = {0.0, -0.0, 1.0, -1.0, 0.1, 100.0, 1e15, 1e16, 1e21, 1e22, 1e23, 123456789012345680000.0,
                              9007199254740993.0, 0.0001, 0.00001, 1.5e-5, 5e-324, 2.2250738585072014e-308,
                              std::numeric_limits<double>::max(), 1.0 / 3, 2.0 / 3, 1e-7, 123.456, 1e300, 4.35, 0.3};
+    for (int e = -1074; e <= 1023; ++e) v.push_back(std::ldexp(1.0, e));  // lopsided intervals
     std::mt19937_64 rng(20261129);
     for (int i = 0; i < 300000; ++i) {
         double x;

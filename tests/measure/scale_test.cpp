@@ -38,7 +38,7 @@ TEST(ScaleMassProperties, PowerOfTwoIsExact) {
 }
 
 // A density converted once (1.24 g/cm³ in g/mm³) widens the density-scaled
-// figures' bounds only: the volume, area and centroid of an exact length
+// figures' bounds only: the volume, area and edge length of an exact length
 // factor keep their guarantee.
 TEST(ScaleMassProperties, AnInexactDensityLeavesTheLengthsExact) {
     const Mesh m = box(0.3, 0.7, 1.1);

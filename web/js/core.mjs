@@ -43,8 +43,10 @@ export function bind(Module) {
         let name = baseName(f.name);
         // A second file of the same name (overlap of two versions of a part) in a directory of its own.
         if (FS.analyzePath(`${dir}/${name}`).exists) {
-          FS.mkdir(`${dir}/${names.length}`);
-          name = `${names.length}/${name}`;
+          let k = 2;
+          while (FS.analyzePath(`${dir}/copy${k}`).exists) ++k;
+          FS.mkdir(`${dir}/copy${k}`);
+          name = `copy${k}/${name}`;
         }
         FS.writeFile(`${dir}/${name}`, bytesOf(f.data));
         if (!f.companion) names.push(name);
@@ -53,10 +55,12 @@ export function bind(Module) {
       const request = JSON.stringify({ command, files: names, options: words(options) });
       const size = Module.lengthBytesUTF8(request) + 1;
       const ptr = Module._malloc(size);
+      if (!ptr) throw new RangeError('polyvol: out of memory for the request');
       let answer;
       try {
         Module.stringToUTF8(request, ptr, size);
         const out = Module._polyvol_run(ptr);
+        if (!out) throw new RangeError('polyvol: out of memory for the answer');
         answer = JSON.parse(Module.UTF8ToString(out));
         Module._polyvol_free(out);
       } finally {

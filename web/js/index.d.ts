@@ -10,8 +10,10 @@ export interface Options {
   density?: string | number;
   /** The mass unit for a density with a unit: kg (default), g or lb. */
   massUnit?: 'kg' | 'g' | 'lb';
-  /** The coordinates' unit when the file does not state one (3MF and AMF do). */
+  /** The coordinates' unit (3MF, AMF and glTF state theirs: units overrides it, with a note, unless unitsWhereUnstated). */
   units?: 'mm' | 'cm' | 'm' | 'in' | 'ft' | 'micron' | 'um';
+  /** units only for a file that states none. */
+  unitsWhereUnstated?: boolean;
   /** The figures' unit (default: the coordinates', or metres with a density with a unit). */
   to?: 'mm' | 'cm' | 'm' | 'in' | 'ft' | 'micron' | 'um';
   /** Every coordinate times this first. */
@@ -36,7 +38,7 @@ export type Report = Record<string, unknown> & { file: string; exit_code: number
 export interface Answer {
   /** One object per mesh of the file, keys as the command line's JSON. */
   results: Report[];
-  /** The command line's exit code: 0 ok, 1 usage, 2 unreadable, 3 not valid for the request. */
+  /** The command line's exit code: 0 ok, 1 usage, 2 unreadable, 3 not valid for the request, 4 out of memory or an internal error. */
   exitCode: number;
   /** What the command line prints on stderr (errors and warnings). */
   messages: string[];
@@ -53,7 +55,7 @@ export interface OverlapAnswer {
 }
 
 /** overlap's options: the solid policy and the units. */
-export type OverlapOptions = Pick<Options, 'units' | 'to' | 'orient' | 'keepSigned' | 'weldTolerance'>;
+export type OverlapOptions = Pick<Options, 'units' | 'unitsWhereUnstated' | 'to' | 'orient' | 'keepSigned' | 'weldTolerance'>;
 
 export type FileData = ArrayBuffer | ArrayBufferView | string;
 export interface Companion { name: string; data: FileData }

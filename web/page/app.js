@@ -24,12 +24,17 @@ function ask(command, files, options) {
 function options() {
   const material = $('material').value;
   const units = $('units').value;
-  return { density: material === 'custom' ? $('density').value : material, units, to: units, massUnit: $('mass-unit').value };
+  // units: only for files that state none (3MF, AMF and glTF state theirs);
+  // every figure is shown in it.
+  return {
+    density: material === 'custom' ? $('density').value : material, units, to: units, unitsWhereUnstated: true,
+    massUnit: $('mass-unit').value,
+  };
 }
 
-// A figure to the digits its guarantee supports (all of them when it is
-// correctly rounded or exact), as the command line's table shows it; the
-// copied JSON has every digit.
+// A figure to the digits its relative error supports (all of them when it
+// is correctly rounded or exact), rounded to nearest; the copied JSON has
+// every digit.
 function shown(x, relativeError = 0) {
   if (x === null || x === undefined) return '—';
   if (!(relativeError > 0) || x === 0) return String(x);
@@ -71,7 +76,7 @@ function rows(r) {
     out.push(['Volume', `${shown(r.volume, exact ? 0 : r.volume_error_bound / Math.abs(r.volume))} ${u}³`, g, 'volume']);
   }
   const momentsError = r.moments_accuracy === 'correctly-rounded' ? 0 : r.moments_relative_error;
-  if (r.mass !== undefined) out.push(['Mass', `${shown(r.mass, 1e-15)} ${m}`, 'density × volume', 'mass']);
+  if (r.mass !== undefined) out.push(['Mass', `${shown(r.mass, momentsError || 2 ** -52)} ${m}`, 'density × volume', 'mass']);
   if (r.area !== undefined) out.push(['Surface area', `${shown(r.area, r.area_relative_error)} ${u}²`, relative(r.area_relative_error), 'area']);
   if (r.centroid) out.push(['Centroid', `${vector(r.centroid, momentsError)} ${u}`, momentsError ? relative(momentsError) + ' (of the largest coordinate)' : 'correctly rounded', 'centroid']);
   if (r.bounds) out.push(['Bounding box', `${vector(r.bounds.slice(0, 3))} to ${vector(r.bounds.slice(3))} ${u}`, 'exact', 'bounds']);
@@ -162,7 +167,7 @@ $('overlap-go').addEventListener('click', async () => {
   try {
     const files = [{ name: fa.name, data: await fa.arrayBuffer() }, { name: fb.name, data: await fb.arrayBuffer() }];
     const { units } = options();
-    const answer = await ask('overlap', files, { units, to: units });
+    const answer = await ask('overlap', files, { units, to: units, unitsWhereUnstated: true });
     $('results').prepend(renderOverlap(fa.name, fb.name, answer));
     $('status').textContent = 'Done: the overlap.';
   } catch (e) {

@@ -2,7 +2,8 @@
 // readers that need zlib, minizip, bzip2 or pugixml (src/io/gzip.cpp,
 // zip.cpp, archive.cpp, threemf.cpp, amf.cpp), which Debian builds for no
 // wasm target. gzip streams and zip archives are unpacked in JavaScript by
-// fflate (npm), handed to the module as Module.fflate (web/js/core.mjs), under
+// fflate (npm), handed to the module as Module.fflate (web/js/node.mjs,
+// browser.mjs), under
 // the native build's decompression limits; bzip2, tar, 3MF and AMF are refused
 // with a ReadError that says so.
 #include <emscripten.h>
@@ -34,8 +35,8 @@ EM_JS(void*, polyvol_js_unpack,
     const fail = (text) => {
         const n = lengthBytesUTF8(text) + 1;
         const p = _malloc(n);
-        stringToUTF8(text, p, n);
-        HEAPU32[error >> 2] = p;
+        if (p) stringToUTF8(text, p, n);
+        HEAPU32[error >> 2] = p;  // 0 when even the message found no memory: "out of memory"
         return 0;
     };
     let out;
@@ -52,7 +53,12 @@ EM_JS(void*, polyvol_js_unpack,
                 parts.push(chunk);
             });
             try {
-                g.push(bytes, true);
+                // In slices: fflate inflates what it is given at once, so the
+                // limit is checked every 64 KiB of input, not after a bomb has
+                // gone off.
+                const slice = 1 << 16;
+                for (let at = 0; at < bytes.length || at === 0; at += slice)
+                    g.push(bytes.subarray(at, Math.min(bytes.length, at + slice)), at + slice >= bytes.length);
             } catch (e) {
                 if (e.message === 'limit') return fail('limit');
                 return fail('corrupt gzip data (' + e.message + ')');
@@ -80,6 +86,7 @@ EM_JS(void*, polyvol_js_unpack,
         return fail(String(e && e.message ? e.message : e));
     }
     const p = _malloc(Math.max(out.length, 1));
+    if (!p) return fail('out of memory for ' + out.length + ' bytes');
     HEAPU8.set(out, p);
     HEAPU32[out_size >> 2] = out.length;
     return p;
@@ -96,7 +103,7 @@ Unpacked unpack(int what, Bytes data, const std::string& entry, uint64_t limit) 
     void* p = polyvol_js_unpack(what, data.data(), data.size(), entry.c_str(), static_cast<double>(limit), &size, &error);
     Unpacked u;
     if (p == nullptr) {
-        u.error = error ? error : "unknown error";
+        u.error = error ? error : "out of memory";
         std::free(error);
         return u;
     }

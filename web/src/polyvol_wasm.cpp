@@ -1,6 +1,6 @@
 // web/src/polyvol_wasm.cpp — the WebAssembly module's entry point: one call
 // per request, JSON in and JSON out, for the page's worker and the npm
-// package (web/js/polyvol.mjs). The figures and their keys are the library's
+// package (web/js/core.mjs). The figures and their keys are the library's
 // (measure_file, report_json): `polyvol volume|measure|check --json` prints
 // the same objects.
 //
@@ -46,6 +46,7 @@ polyvol::RequestWords words_of(const json& o) {
     flag("solid", w.solid);
     flag("orient", w.orient);
     flag("keep_signed", w.keep_signed);
+    flag("units_where_unstated", w.units_where_unstated);
     if (o.contains("weld_tolerance")) w.weld_tolerance = o["weld_tolerance"].get<double>();
     return w;
 }
@@ -100,6 +101,7 @@ json overlap(const json& request, json& messages, int& code) {
     w.to = o.value("to", "");
     w.orient = o.value("orient", false);
     w.keep_signed = o.value("keep_signed", false);
+    w.units_where_unstated = o.value("units_where_unstated", false);
     w.weld_tolerance = o.value("weld_tolerance", 0.0);
     const polyvol::OverlapReport r = polyvol::overlap_files(files[0], files[1], w);
     for (const std::string& m : r.messages) messages.push_back("polyvol: " + m);

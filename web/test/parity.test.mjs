@@ -9,7 +9,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { test } from 'node:test';
 
-import { zipSync } from 'fflate';
+import { gzipSync, zipSync } from 'fflate';
 
 import { corpusDir as corpusRoot, corpusPath, loadPackage, manifest, runCli } from './environment.mjs';
 
@@ -82,6 +82,14 @@ test('a zip whose entry would expand past the decompression limit is refused, un
   assert.equal(native.code, 2);
   assert.equal(wasm.exitCode, 2);
   assert.match(wasm.messages.join('\n'), /limit/);
+});
+
+test('a gzip bomb is stopped at the decompression limit, not after it went off', () => {
+  const bomb = gzipSync(new Uint8Array(64 << 20), { level: 9 });  // 64 MiB of zeros in about 64 KB: limit 16 MiB
+  const { native, wasm } = both(['measure', '--json'], 'measure', {}, { 'bomb.stl.gz': bomb });
+  assert.equal(native.code, 2);
+  assert.equal(wasm.exitCode, 2);
+  assert.match(wasm.messages.join('\n'), /decompression limit/);
 });
 
 test("a file that is not what its name says: the command line's error, exit code 2", () => {
