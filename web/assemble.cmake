@@ -19,5 +19,8 @@ if(NOT EXISTS ${WEB}/node_modules/fflate/esm/browser.js)
 endif()
 file(MAKE_DIRECTORY ${page}/vendor)
 configure_file(${WEB}/node_modules/fflate/esm/browser.js ${page}/vendor/fflate.mjs COPYONLY)
+# parse-xml 4 (the last for Node 20) ships its browser build as CommonJS: given a module object and exported.
+file(READ ${WEB}/node_modules/@rgrove/parse-xml/dist/browser.js parse_xml)
+file(WRITE ${page}/vendor/parse-xml.mjs "const module = { exports: {} };\n${parse_xml}\nconst exported = module.exports.parseXml;\nexport { exported as parseXml };\n")
 configure_file(${WEB}/node_modules/three/build/three.module.js ${page}/vendor/three.module.js COPYONLY)
 file(CREATE_LINK ${WEB}/node_modules ${npm}/node_modules SYMBOLIC)

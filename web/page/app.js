@@ -11,10 +11,22 @@ worker.onmessage = ({ data }) => {
   if (data.error !== undefined) p.reject(new Error(data.error));
   else p.resolve(data.answer);
 };
+// A worker that cannot start (a missing or broken script) fails every request
+// in words, and the error is thrown where a test or a console sees it.
+let broken = null;
+worker.onerror = (e) => {
+  const why = `The measuring worker failed: ${e.message || 'its script did not load'}`;
+  broken = why;
+  for (const p of pending.values()) p.reject(new Error(why));
+  pending.clear();
+  $('status').textContent = why;
+  setTimeout(() => { throw new Error(why); });
+};
 
 // One request to the worker: the answer of web/src/polyvol_wasm.cpp.
 function ask(command, files, options) {
   const id = ++nextId;
+  if (broken) return Promise.reject(new Error(broken));
   return new Promise((resolve, reject) => {
     pending.set(id, { resolve, reject });
     worker.postMessage({ id, command, files, options }, files.map((f) => f.data));

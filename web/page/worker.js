@@ -3,8 +3,9 @@
 // options} in; {id, answer} or {id, error} out.
 import { createPolyvol } from './polyvol/browser.mjs';
 import * as fflate from './vendor/fflate.mjs';
+import { parseXml } from './vendor/parse-xml.mjs';
 
-const ready = createPolyvol({ fflate });
+const ready = createPolyvol({ fflate, parseXml });
 
 self.onmessage = async ({ data: { id, command, files, options } }) => {
   try {

@@ -1,11 +1,10 @@
 // web/src/io_in_javascript.cpp — the WebAssembly build's stand-ins for the
-// readers that need zlib, minizip, bzip2 or pugixml (src/io/gzip.cpp,
-// zip.cpp, archive.cpp, threemf.cpp, amf.cpp), which Debian builds for no
-// wasm target. gzip streams and zip archives are unpacked in JavaScript by
-// fflate (npm), handed to the module as Module.fflate (web/js/node.mjs,
-// browser.mjs), under
-// the native build's decompression limits; bzip2, tar, 3MF and AMF are refused
-// with a ReadError that says so.
+// readers that need zlib, minizip or bzip2 (src/io/gzip.cpp, zip.cpp,
+// archive.cpp), which Debian builds for no wasm target. gzip streams and zip
+// archives are unpacked in JavaScript by fflate (npm), handed to the module as
+// Module.fflate (web/js/node.mjs, browser.mjs), under the native build's
+// decompression limits; bzip2 and tar are refused with a ReadError that says
+// so. (pugixml's stand-in, for 3MF and AMF: xml_in_javascript.cpp.)
 #include <emscripten.h>
 
 #include <algorithm>
@@ -138,10 +137,6 @@ std::vector<std::byte> tar_member(Bytes, const std::string& name, const std::str
     not_in_this_build(name, "a tar archive");
 }
 
-LoadedMesh read_3mf_zip(Bytes, const std::string& name) { not_in_this_build(name, "3MF"); }
-LoadedMesh read_3mf_xml(Bytes, const std::string& name) { not_in_this_build(name, "3MF"); }
-LoadedMesh read_amf_xml(Bytes, const std::string& name) { not_in_this_build(name, "AMF"); }
-LoadedMesh read_amf_zip(Bytes, const std::string& name) { not_in_this_build(name, "AMF"); }
 
 // The archive's entry names, listed by fflate; entries read on demand.
 struct ZipArchive::Impl {

@@ -14,7 +14,7 @@ import { after, before, test } from 'node:test';
 import { zipSync } from 'fflate';
 import puppeteer from 'puppeteer-core';
 
-import { corpusDir, packageDir, runCli } from './environment.mjs';
+import { corpusDir, packageDir, root, runCli } from './environment.mjs';
 
 const pageDir = path.join(path.dirname(packageDir), 'page');
 const screens = path.join(path.dirname(packageDir), 'screens');
@@ -85,6 +85,43 @@ for (const rel of ['stl-models/unitCube.ascii.stl', 'stl-models/bunny.bin.stl', 
     await page.screenshot({ path: path.join(screens, `${name}.png`), fullPage: true });
   });
 }
+
+test("the bundled examples and a 3MF in inches: the command line's JSON, in millimetres", async () => {
+  const dir = mkdtempSync(path.join(tmpdir(), 'polyvol-web-'));
+  // A cube of one inch's side: 3D/3dmodel.model in a zip, as 3MF writers make it.
+  const v = [];
+  for (const z of [0, 1]) for (const y of [0, 1]) for (const x of [0, 1]) v.push(`<vertex x="${x}" y="${y}" z="${z}"/>`);
+  const t = [[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4], [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]]
+    .map(([a, b, c]) => `<triangle v1="${a}" v2="${b}" v3="${c}"/>`);
+  const model = '<?xml version="1.0" encoding="UTF-8"?>\n<model unit="inch" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">\n' +
+    `<resources><object id="1" type="model"><mesh><vertices>${v.join('\n')}</vertices>\n<triangles>${t.join('\n')}</triangles></mesh></object></resources>\n` +
+    '<build><item objectid="1"/></build>\n</model>\n';
+  const rels = '<?xml version="1.0" encoding="UTF-8"?>\n<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">' +
+    '<Relationship Target="/3D/3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>';
+  const text = (x) => new TextEncoder().encode(x);
+  writeFileSync(path.join(dir, 'inch-cube.3mf'), zipSync({ '_rels/.rels': text(rels), '3D/3dmodel.model': text(model) }));
+  const bundled = path.join(root, 'examples');
+  await choose(path.join(dir, 'inch-cube.3mf'), path.join(bundled, 'two_parts.3mf'), path.join(bundled, 'l_bracket.obj'));
+  // The page's units are for files that state none: the command line's --units is left out for a 3MF.
+  const stated = flags.filter((f, i) => f !== '--units' && flags[i - 1] !== '--units');
+  const cases = [
+    [path.join(dir, 'inch-cube.3mf'), stated],
+    [path.join(bundled, 'two_parts.3mf'), stated],
+    [path.join(bundled, 'l_bracket.obj'), flags],
+  ];
+  for (const [file, f] of cases) {
+    const name = path.basename(file);
+    const shown = await card(name);
+    const native = runCli(['measure', '--json', ...f, name], path.dirname(file));
+    assert.equal(shown.json, native.stdout, name);
+    assert.equal(shown.exitCode, native.code, name);
+  }
+  const inch = JSON.parse((await card('inch-cube.3mf')).json)[0];
+  assert.equal(inch.unit, 'mm');
+  assert.equal(inch.volume, 16387.064);  // 25.4³ mm³, correctly rounded
+  assert.match((await card('inch-cube.3mf')).text, /16387\.064 mm³/);
+  await page.screenshot({ path: path.join(screens, 'examples-and-inch-cube.png'), fullPage: true });
+});
 
 test('an open mesh: the page says why there is no volume', async () => {
   const file = corpus('stl-models/bunny.bin.stl');

@@ -5,7 +5,8 @@ import { existsSync, readFileSync } from 'node:fs';
 import path from 'node:path';
 
 const here = path.dirname(new URL(import.meta.url).pathname);
-const root = path.resolve(here, '..', '..');
+// The repository (its examples/ and build directories).
+export const root = path.resolve(here, '..', '..');
 
 export const cli = process.env.POLYVOL_CLI ?? path.join(root, 'build', 'polyvol');
 export const packageDir = process.env.POLYVOL_WEB_PACKAGE ?? path.join(root, 'build-wasm', 'npm');

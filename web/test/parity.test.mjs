@@ -30,12 +30,13 @@ const requests = [
   },
 ];
 
-// The formats the WebAssembly build reads (gzip through fflate); 3MF and AMF
-// are not read there yet (docs/web.md).
-const direct = manifest.filter((e) => ['stl', 'obj', 'off', 'ply'].includes(e.format));
+// Every corpus file (gzip and zip through fflate, 3MF's and AMF's XML through parse-xml).
+const direct = manifest;
 
 test('the corpus has files of every format the core reads', () => {
-  assert.ok(direct.length > 100, `${direct.length} files`);
+  const formats = new Set(direct.map((e) => e.format));
+  for (const f of ['stl', 'obj', 'off', 'ply', '3mf', 'amf']) assert.ok(formats.has(f), f);
+  assert.ok(direct.length > 130, `${direct.length} files`);
 });
 
 for (const entry of direct) {
@@ -96,6 +97,57 @@ test("a file that is not what its name says: the command line's error, exit code
   const { native, wasm } = both(['measure', '--json'], 'measure', {}, { 'part.zip': new TextEncoder().encode('not a zip') });
   assert.equal(wasm.exitCode, native.code);
   assert.equal(wasm.exitCode, 2);
+});
+
+// A tetrahedron as AMF, in inches, with `z` as the last vertex's z and `before`
+// ahead of the root element.
+function amf(z, before = '') {
+  const v = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, z]];
+  const vertex = ([a, b, c]) => `<vertex><coordinates><x>${a}</x><y>${b}</y><z>${c}</z></coordinates></vertex>`;
+  const tri = ([a, b, c]) => `<triangle><v1>${a}</v1><v2>${b}</v2><v3>${c}</v3></triangle>`;
+  return `<?xml version="1.0" encoding="UTF-8"?>\n${before}<amf unit="inch">\n<object id="0"><mesh>\n<vertices>\n` +
+    v.map(vertex).join('\n') + '\n</vertices>\n<volume>\n' + [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]].map(tri).join('\n') +
+    '\n</volume>\n</mesh></object>\n</amf>\n';
+}
+const utf16le = (text) => {
+  const out = new Uint8Array(2 + 2 * text.length);
+  out[0] = 0xff; out[1] = 0xfe;
+  for (let i = 0; i < text.length; ++i) { out[2 + 2 * i] = text.charCodeAt(i) & 0xff; out[3 + 2 * i] = text.charCodeAt(i) >> 8; }
+  return out;
+};
+
+test("3MF's and AMF's XML read as the command line reads it: encodings, line ends, CDATA, entities; a bad value's line", () => {
+  const utf8 = (t) => new TextEncoder().encode(t);
+  const files = {
+    'plain.amf': utf8(amf('1')),
+    'crlf.amf': utf8(amf('1').replace(/\n/g, '\r\n')),
+    'bom.amf': new Uint8Array([0xef, 0xbb, 0xbf, ...utf8(amf('1'))]),
+    'utf16.amf': utf16le(amf('1').replace('UTF-8', 'UTF-16')),
+    'cdata.amf': utf8(amf('<![CDATA[ 2 ]]>')),
+    'entity.amf': utf8(amf('&#51;')),
+    'bad-number.amf': utf8(amf('abc', '<!-- ünïcödé 日本 𝄞 -->\n<!-- two lines -->\n')),
+    'bad-number-crlf.amf': utf8(amf('1e999', '<!-- é -->\n').replace(/\n/g, '\r\n')),
+    'bad-number-utf16.amf': utf16le(amf('x').replace('UTF-8', 'UTF-16')),
+  };
+  const { native, wasm } = both(['measure', '--json', '--units', 'mm'], 'measure', { units: 'mm' }, files);
+  assert.equal(wasm.stdout, native.stdout);
+  assert.equal(wasm.exitCode, native.code);
+  assert.deepEqual(wasm.messages, native.messages);
+  const r = Object.fromEntries(JSON.parse(wasm.stdout).map((e) => [e.file, e]));
+  assert.equal(r['cdata.amf'].volume, 2 / 6);
+  assert.equal(r['entity.amf'].volume, 3 / 6);
+  assert.equal(r['utf16.amf'].volume, 1 / 6);
+  assert.match(r['bad-number.amf'].error, /^bad-number\.amf:10: bad number 'abc' in <z>/);
+});
+
+test('malformed XML: exit code 2 and the byte where the parser stopped, in its own words', () => {
+  const text = amf('1').replace('</vertices>', '');
+  const { native, wasm } = both(['measure', '--json'], 'measure', {}, { 'broken.amf': new TextEncoder().encode(text) });
+  assert.equal(native.code, 2);
+  assert.equal(wasm.exitCode, 2);
+  const at = (m) => Number(/byte (\d+): XML parse error/.exec(m)[1]);
+  const [n, w] = [at(native.messages.join('\n')), at(wasm.messages.join('\n'))];
+  assert.ok(Math.abs(n - w) < 20, `byte ${w} here, ${n} on the command line`);
 });
 
 // `overlap --json` less its "seconds" (the time taken).
