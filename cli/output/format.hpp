@@ -1,6 +1,5 @@
-// cli/output/format.hpp — how every command prints numbers: for people
-// the digits a number's guarantee supports, for programs (JSON, CSV) every
-// digit; and the exit codes, stated once.
+// cli/output/format.hpp — how every command prints numbers (the library's
+// polyvol/number_text.hpp) and the exit codes (polyvol/report.hpp).
 #pragma once
 
 #include <span>
@@ -8,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "polyvol/number_text.hpp"
 #include "polyvol/report.hpp"
 
 namespace polyvol::cli {
@@ -16,22 +16,12 @@ namespace polyvol::cli {
 using polyvol::Exit;
 using polyvol::json_number;
 
-// Shortest decimal that reads back as the same double, positional in [1e-4,
-// 1e15) ("nan", "inf" spelled out).
-std::string shortest(double v);
-// v as the tables show it: the digits its guarantee supports, down to the
-// leading digit of abs_error (abs_error 0: correctly rounded, every digit of
-// the shortest round trip), at most `digits` significant ones when digits > 0;
-// never "-0".
-std::string number_text(double v, double abs_error, int digits);
-// The shortest decimal within abs_error of v (v's own shortest when 0).
-std::string shortest_within(double v, double abs_error);
-// "V ±E": v as number_text shows it, and E >= e plus the display's rounding,
-// rounded up to two digits, so that the printed interval holds the exact value.
-std::string plus_minus(double v, double e, int digits);
-// e rounded up to two significant digits.
-std::string bound_text(double e);
-// "(x, y, z, ...)", each coordinate its shortest decimal.
-std::string point_text(std::span<const double> c);
+// How numbers are written: polyvol/number_text.hpp (the library's, for every door).
+using polyvol::bound_text;
+using polyvol::number_text;
+using polyvol::plus_minus;
+using polyvol::point_text;
+using polyvol::shortest;
+using polyvol::shortest_within;
 
 }  // namespace polyvol::cli

@@ -23,11 +23,7 @@ std::string inertial_element(const FileResult& r, const Request& request, bool s
 std::string volume_table(const std::vector<FileResult>& results, const Request& request);
 std::string measure_report(const FileResult& r, const Request& request);
 std::string check_report(const FileResult& r);
-// --csv: one row per file (RFC 4180, a header row first), every number in
-// full (shortest round trip), empty where a file has none; `inertia` adds
-// the tensor about the centroid, its bound and the edge length (measure).
-// density_error: the density's relative error (Request::density_relative_error), for the mass's digits.
-std::string csv_table(const std::vector<FileResult>& results, bool inertia, double density_error);
+// --csv: polyvol::csv_table (polyvol/report.hpp).
 
 // A sentence stating the guarantee of the printed volume.
 std::string volume_guarantee(const MassProperties& m);

@@ -202,4 +202,16 @@ nlohmann::json json_number(double v);
 // bound times the length factor, rounded once more when it is not 1).
 std::array<double, 6> report_bounds(const FileReport& report);
 
+// The length and mass units every measured report shares ("" for a unit
+// they do not share, or that none knows), for the headers of tables.
+std::pair<std::string, std::string> common_units(const std::vector<FileReport>& reports);
+
+// The CSV of `polyvol volume --csv` (measure --csv with `inertia`): one row
+// per file (RFC 4180, CRLF, a header row first), every number in full or to
+// the digits its bound supports, empty where a file has none; `inertia` adds
+// the tensor about the centroid, its bound, the edge length and the bounding
+// box. density_error: the density's relative error (RequestWords' density
+// read by file_options), for the mass's digits.
+std::string csv_table(const std::vector<FileReport>& reports, bool inertia, double density_error);
+
 }  // namespace polyvol

@@ -66,7 +66,7 @@ export function bind(Module) {
       } finally {
         Module._free(ptr);
       }
-      return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages };
+      return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages, csv: answer.csv };
     } finally {
       FS.chdir('/');
       const remove = (d) => {
@@ -86,7 +86,7 @@ export function bind(Module) {
   // .bin): an array with one object per mesh, keys as `polyvol CMD --json`.
   const one = (command) => (data, name, options = {}, companions = []) => {
     const r = run(command, [{ data, name }, ...companions.map((c) => ({ ...c, companion: true }))], options);
-    return { results: r.stdout ? JSON.parse(r.stdout) : [], exitCode: r.exitCode, messages: r.messages, json: r.stdout };
+    return { results: r.stdout ? JSON.parse(r.stdout) : [], exitCode: r.exitCode, messages: r.messages, json: r.stdout, csv: r.csv };
   };
   // `polyvol overlap --json A B`: A ∩ B, A ∪ B, A − B and B − A, one object.
   const overlap = (dataA, nameA, dataB, nameB, options = {}) => {

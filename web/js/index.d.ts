@@ -44,6 +44,8 @@ export interface Answer {
   messages: string[];
   /** The command line's JSON, byte for byte. */
   json: string;
+  /** measure only: what `polyvol measure --csv` prints for the same request (RFC 4180, CRLF, a header row). */
+  csv?: string;
 }
 
 /** A ∩ B, A ∪ B, A − B and B − A: the object `polyvol overlap --json` prints. */
@@ -66,7 +68,7 @@ export interface Polyvol {
   check(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
   overlap(dataA: FileData, nameA: string, dataB: FileData, nameB: string, options?: OverlapOptions): OverlapAnswer;
   run(command: 'volume' | 'measure' | 'check' | 'overlap', files: { name: string; data: FileData; companion?: boolean }[], options?: Options):
-    { exitCode: number; stdout: string; messages: string[] };
+    { exitCode: number; stdout: string; messages: string[]; csv?: string };
 }
 
 /** A module of its own (each holds its memory). */

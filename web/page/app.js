@@ -105,6 +105,7 @@ function rows(r) {
 function render(file, answer) {
   const card = el('article', { class: 'result', 'data-file': file, 'data-exit-code': String(answer.exitCode) });
   card.dataset.json = answer.stdout;
+  if (answer.csv) card.dataset.csv = answer.csv;
   card.append(el('h2', {}, file));
   const results = answer.stdout ? JSON.parse(answer.stdout) : [];
   for (const r of results) {
@@ -124,7 +125,14 @@ function render(file, answer) {
   }
   const copy = el('button', { type: 'button', class: 'copy-json' }, 'Copy JSON');
   copy.onclick = () => navigator.clipboard.writeText(answer.stdout);
-  card.append(el('p', { class: 'actions' }, copy));
+  const actions = el('p', { class: 'actions' }, copy);
+  if (answer.csv) {
+    // The rows of `polyvol measure --csv`, for a spreadsheet.
+    const csv = el('button', { type: 'button', class: 'copy-csv' }, 'Copy CSV');
+    csv.onclick = () => navigator.clipboard.writeText(answer.csv);
+    actions.append(' ', csv);
+  }
+  card.append(actions);
   return card;
 }
 

@@ -9,7 +9,8 @@
 //             "options": {RequestWords' fields}} (polyvol/report.hpp; overlap: OverlapWords')
 //   answer:  {"exit_code": 0|1|2|3|4,
 //             "stdout": the command's --json output, byte for byte (its text),
-//             "messages": ["polyvol: ...", ...]} (what the command line prints on stderr)
+//             "messages": ["polyvol: ...", ...], (what the command line prints on stderr)
+//             "csv": what `measure --csv` prints (measure only)}
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -53,7 +54,7 @@ polyvol::RequestWords words_of(const json& o) {
 
 // `polyvol volume|measure|check --json FILES`: what the command line asks of
 // measure_file for its JSON (cli/commands/measure.cpp), each file's report.
-json measure_files(const std::string& command, const json& request, json& messages, int& code) {
+json measure_files(const std::string& command, const json& request, json& messages, int& code, std::string& csv) {
     const bool check = command == "check";
     const polyvol::ReadRequest read = polyvol::file_options(words_of(request.value("options", json::object())), !check);
     if (!read.options) {
@@ -77,13 +78,18 @@ json measure_files(const std::string& command, const json& request, json& messag
     // A zip archive of plain meshes is its members, "ARCHIVE:MEMBER", as on the command line.
     const auto inputs = polyvol::file_inputs(request.at("files").get<std::vector<std::string>>());
     json out = json::array();
+    std::vector<polyvol::FileReport> reports;
     for (const auto& [file, member] : inputs) {
-        const polyvol::FileReport r = polyvol::measure_file(file, options, member);
+        reports.push_back(polyvol::measure_file(file, options, member));
+        const polyvol::FileReport& r = reports.back();
         code = std::max(code, r.exit_code);
         if (!r.error.empty()) messages.push_back("polyvol: " + r.error);
         if (!r.warning.empty()) messages.push_back("polyvol: warning: " + r.warning);
         out.push_back(polyvol::report_json(r, options));
     }
+    // measure --csv asks the same of measure_file as --json (but the mesh's
+    // counts, which the CSV has not).
+    if (command == "measure") csv = polyvol::csv_table(reports, true, options.density_relative_error);
     return out;
 }
 
@@ -95,14 +101,15 @@ json overlap(const json& request, json& messages, int& code) {
         code = Exit::usage;
         return nullptr;
     }
-    const json o = request.value("options", json::object());
+    // The options read once, as for the other commands; overlap takes its words of them.
+    const polyvol::RequestWords words = words_of(request.value("options", json::object()));
     polyvol::OverlapWords w;
-    w.units = o.value("units", "");
-    w.to = o.value("to", "");
-    w.orient = o.value("orient", false);
-    w.keep_signed = o.value("keep_signed", false);
-    w.units_where_unstated = o.value("units_where_unstated", false);
-    w.weld_tolerance = o.value("weld_tolerance", 0.0);
+    w.units = words.units;
+    w.to = words.to;
+    w.orient = words.orient;
+    w.keep_signed = words.keep_signed;
+    w.units_where_unstated = words.units_where_unstated;
+    w.weld_tolerance = words.weld_tolerance;
     const polyvol::OverlapReport r = polyvol::overlap_files(files[0], files[1], w);
     for (const std::string& m : r.messages) messages.push_back("polyvol: " + m);
     code = r.exit_code;
@@ -113,11 +120,12 @@ json run(const std::string& text) {
     json messages = json::array();
     int code = Exit::ok;
     json result;
+    std::string csv;
     try {
         const json request = json::parse(text);
         const std::string command = request.at("command").get<std::string>();
         if (command == "volume" || command == "measure" || command == "check") {
-            result = measure_files(command, request, messages, code);
+            result = measure_files(command, request, messages, code, csv);
         } else if (command == "overlap") {
             result = overlap(request, messages, code);
         } else {
@@ -131,7 +139,9 @@ json run(const std::string& text) {
         messages.push_back(std::string("polyvol: ") + e.what());
         code = 4;
     }
-    return json{{"exit_code", code}, {"stdout", result.is_null() ? "" : result.dump(2) + "\n"}, {"messages", messages}};
+    json answer{{"exit_code", code}, {"stdout", result.is_null() ? "" : result.dump(2) + "\n"}, {"messages", messages}};
+    if (!csv.empty()) answer["csv"] = csv;
+    return answer;
 }
 
 }  // namespace

@@ -65,7 +65,7 @@ async function choose(...files) {
 }
 
 async function card(name) {
-  return page.$eval(`article[data-file="${name}"]`, (a) => ({ json: a.dataset.json, exitCode: Number(a.dataset.exitCode), text: a.innerText }));
+  return page.$eval(`article[data-file="${name}"]`, (a) => ({ json: a.dataset.json, csv: a.dataset.csv, exitCode: Number(a.dataset.exitCode), text: a.innerText }));
 }
 
 function corpus(rel) {
@@ -81,6 +81,7 @@ for (const rel of ['stl-models/unitCube.ascii.stl', 'stl-models/bunny.bin.stl', 
     const native = runCli(['measure', '--json', ...flags, name], path.dirname(file));
     assert.equal(shown.json, native.stdout);
     assert.equal(shown.exitCode, native.code);
+    assert.equal(shown.csv, runCli(['measure', '--csv', ...flags, name], path.dirname(file)).stdout);
     for (const m of native.messages) assert.ok(shown.text.includes(m.replace(/^polyvol: /, '')), `the page says: ${m}`);
     await page.screenshot({ path: path.join(screens, `${name}.png`), fullPage: true });
   });

@@ -50,6 +50,10 @@ for (const entry of direct) {
       assert.equal(wasm.stdout, native.stdout, `${r.args.join(' ')}: stdout`);
       assert.equal(wasm.exitCode, native.code, `${r.args.join(' ')}: exit code`);
       assert.deepEqual(wasm.messages, native.messages, `${r.args.join(' ')}: messages`);
+      if (r.command === 'measure') {
+        const csv = runCli([...r.args.filter((a) => a !== '--json'), '--csv', name], path.dirname(file));
+        assert.equal(wasm.csv, csv.stdout, `${r.args.join(' ')} --csv`);
+      }
     }
   });
 }

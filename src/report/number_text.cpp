@@ -1,14 +1,26 @@
-// cli/output/format.cpp — cli/output/format.hpp.
-#include "output/format.hpp"
+// src/report/number_text.cpp — polyvol/number_text.hpp.
+#include "polyvol/number_text.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
-namespace polyvol::cli {
+#include "core/charconv.hpp"
+
+namespace polyvol {
+namespace {
+
+// The double a decimal this file wrote reads back as (correctly rounded, as
+// strtod, on every standard library).
+double read_back(const char* text) {
+    double v = 0;
+    core::parse_double(text, text + std::strlen(text), v);
+    return v;
+}
+
+}  // namespace
 
 std::string shortest(double v) {
     if (std::isnan(v)) return "nan";
@@ -17,8 +29,8 @@ std::string shortest(double v) {
     // The shortest digits that read back as v; positional in [1e-4, 1e15)
     // (1000000, not 1e+06), as significant_text writes rounded values.
     const double a = std::fabs(v);
-    const auto format = a >= 1e-4 && a < 1e15 ? std::chars_format::fixed : std::chars_format::general;
-    auto res = std::to_chars(buf, buf + sizeof buf, v, format);
+    const auto format = a >= 1e-4 && a < 1e15 ? core::Notation::fixed : core::Notation::general;
+    auto res = core::shortest_chars(buf, buf + sizeof buf, v, format);
     return std::string(buf, res.ptr);
 }
 
@@ -28,14 +40,16 @@ std::string bound_text(double e) {
     char buf[32];
     for (double r = std::ceil(e / step) * step;; r += step) {
         std::snprintf(buf, sizeof buf, "%.2g", r);
-        if (std::strtod(buf, nullptr) >= e) return buf;
+        if (read_back(buf) >= e) return buf;
     }
 }
 
 std::string plus_minus(double v, double e, int digits) {
     const std::string shown = number_text(v, e, digits);
-    return shown + " ±" + bound_text(e + std::fabs(std::strtod(shown.c_str(), nullptr) - v));
+    return shown + " ±" + bound_text(e + std::fabs(read_back(shown.c_str()) - v));
 }
+
+namespace {
 
 // v rounded to `significant` digits (as %.*g rounds it), written positionally
 // when the rounded value lies in [1e-4, 1e15) — 400, not 4e+02 — and with
@@ -43,7 +57,7 @@ std::string plus_minus(double v, double e, int digits) {
 std::string significant_text(double v, int significant) {
     char buf[400];
     std::snprintf(buf, sizeof buf, "%.*e", significant - 1, v);
-    const double rounded = std::strtod(buf, nullptr);  // the value %.*g shows
+    const double rounded = read_back(buf);  // the value %.*g shows
     if (!(std::fabs(rounded) >= 1e-4 && std::fabs(rounded) < 1e15)) {
         std::snprintf(buf, sizeof buf, "%.*g", significant, v);
         return buf;
@@ -60,13 +74,15 @@ std::string significant_text(double v, int significant) {
     return s;
 }
 
+}  // namespace
+
 std::string shortest_within(double v, double abs_error) {
     v += 0.0;
     if (!std::isfinite(v) || v == 0 || !(abs_error > 0) || !std::isfinite(abs_error)) return shortest(v);
     if (std::fabs(v) <= abs_error) return "0";  // the shortest decimal within the bound: noise, not a figure
     for (int d = 1; d < 17; ++d) {
         const std::string s = significant_text(v, d);
-        if (std::fabs(std::strtod(s.c_str(), nullptr) - v) <= abs_error) return s;
+        if (std::fabs(read_back(s.c_str()) - v) <= abs_error) return s;
     }
     return shortest(v);
 }
@@ -84,10 +100,24 @@ std::string number_text(double v, double abs_error, int digits) {
     return s;
 }
 
+// mass = density × volume: the density used is within density_error
+// (relative; at least 2^-53, the decimal typed as a double; more when it was
+// converted to the figures' units) of the density typed, and the product is
+// rounded once more, so the mass of the decimal density is within
+// (2^-53 + density_error) |mass| of the printed one, plus the volume's error.
+// It is shown as the shortest decimal within that bound of the printed
+// double (7.85 × 12 is 94.2, not 94.19999999999999).
+std::string mass_text(double mass, double volume_error_times_density, double density_error, int digits) {
+    const double error =
+        volume_error_times_density + std::fabs(mass) * (0x1p-53 + std::max(0x1p-53, density_error)) * (1 + 0x1p-40);
+    const std::string s = shortest_within(mass, error);
+    return digits > 0 ? number_text(std::strtod(s.c_str(), nullptr), error, digits) : s;
+}
+
 std::string point_text(std::span<const double> c) {
     std::string s = "(";
     for (std::size_t i = 0; i < c.size(); ++i) s += (i ? ", " : "") + shortest(c[i]);
     return s + ")";
 }
 
-}  // namespace polyvol::cli
+}  // namespace polyvol
