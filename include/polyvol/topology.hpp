@@ -84,6 +84,16 @@ struct Shell {
     ShellRole role = ShellRole::open;
 };
 
+// What is wrong with an edge (bits; one edge may have several): the kinds above.
+enum EdgeProblem : uint8_t { edge_boundary = 1, edge_nonmanifold = 2, edge_misoriented = 4, edge_unbalanced = 8 };
+
+// An edge with a problem, as its two end positions (welded; the smaller
+// dense id first) and its EdgeProblem bits: what a viewer draws.
+struct ProblemEdge {
+    std::array<double, 6> ends{};  // x0 y0 z0 x1 y1 z1
+    uint8_t problems = 0;
+};
+
 struct TopologyReport {
     // counts of what was read
     std::size_t faces = 0;                    // as written, including those with < 3 vertices
@@ -114,6 +124,10 @@ struct TopologyReport {
     // one unbalanced edge, as its two end positions (from, to), if any: from
     // is the end it leaves more often (so it runs the way the surface uses it)
     std::optional<std::array<double, 6>> unbalanced_example;
+    // TopologyOptions::problem_edges: the first that many edges with a
+    // problem (boundary, non-manifold, misoriented or unbalanced), in the
+    // edge table's order (by smaller end, in order of first use).
+    std::vector<ProblemEdge> problem_edges;
     // shells, largest |volume| first (equal ones in the order of their first face)
     std::vector<Shell> shells;
     // TopologyOptions::face_shells: per face (file order), the index in
@@ -132,6 +146,8 @@ struct TopologyOptions {
     bool shells = true;
     // With shells: TopologyReport::face_shell, each face's shell.
     bool face_shells = false;
+    // Up to this many edges with a problem listed (TopologyReport::problem_edges).
+    std::size_t problem_edges = 0;
 };
 
 TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& options = {});

@@ -30,16 +30,30 @@ void count_faces(const MeshView& mesh, TopologyReport& r) {
 
 // Holes: the boundary edges joined through their shared (welded) ends.
 std::size_t count_boundary_loops(const WeldedMesh& m, const EdgeTable& edges) {
-    if (edges.boundary_ends.empty()) return 0;
+    if (std::none_of(edges.flagged.begin(), edges.flagged.end(),
+                     [](const EdgeTable::Flagged& e) { return e.flags & topology::kBoundary; }))
+        return 0;
     core::UnionFind ends(m.referenced());
     std::vector<char> on_boundary(m.referenced(), 0);
-    for (const auto& [a, b] : edges.boundary_ends) {
+    for (const auto& [a, b, flags] : edges.flagged) {
+        if (!(flags & topology::kBoundary)) continue;
         ends.unite(a, b);
         on_boundary[a] = on_boundary[b] = 1;
     }
     std::size_t loops = 0;
     for (uint32_t v = 0; v < on_boundary.size(); ++v) loops += on_boundary[v] && ends.find(v) == v;
     return loops;
+}
+
+// The first `limit` flagged edges, as positions.
+void list_problem_edges(const WeldedMesh& m, const EdgeTable& edges, std::size_t limit, TopologyReport& r) {
+    const std::size_t n = std::min(limit, edges.flagged.size());
+    r.problem_edges.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto& [a, b, flags] = edges.flagged[i];
+        const double *p = m.position(a), *q = m.position(b);
+        r.problem_edges.push_back({{p[0], p[1], p[2], q[0], q[1], q[2]}, flags});
+    }
 }
 
 void count_edges(const WeldedMesh& m, const EdgeTable& edges, TopologyReport& r) {
@@ -123,6 +137,7 @@ TopologyReport analyze_topology(const MeshView& mesh, const TopologyOptions& opt
     core::UnionFind polygon_sets(options.shells ? m.polygons : 0);
     const EdgeTable edges = topology::build_edge_table(m, options.shells ? &polygon_sets : nullptr);
     count_edges(m, edges, r);
+    list_problem_edges(m, edges, options.problem_edges, r);
     r.euler_characteristic = static_cast<int64_t>(r.vertices_referenced) -
                              static_cast<int64_t>(r.edges) + static_cast<int64_t>(m.polygons);
     if (!options.shells) return r;

@@ -79,10 +79,7 @@ EdgeTable build_edge_table(const WeldedMesh& m, core::UnionFind* polygon_sets) {
             }
             const std::size_t n = forward + backward;
             uint8_t f = 0;
-            if (n == 1) {
-                f |= kBoundary;
-                t.boundary_ends.push_back({a, run->other});
-            }
+            if (n == 1) f |= kBoundary;
             if (n > 2) f |= kNonmanifold;
             if (n == 2 && forward != 1) f |= kMisoriented;
             if (forward != backward) {
@@ -91,6 +88,7 @@ EdgeTable build_edge_table(const WeldedMesh& m, core::UnionFind* polygon_sets) {
                     t.unbalanced_example = forward > backward ? std::array{a, run->other}
                                                               : std::array{run->other, a};
             }
+            if (f) t.flagged.push_back({a, run->other, f});
             t.polygon.push_back(run->polygon_dir >> 1);
             t.flags.push_back(f);
             run = run_end;

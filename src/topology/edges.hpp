@@ -15,15 +15,17 @@
 #include <vector>
 
 #include "core/union_find.hpp"
+#include "polyvol/topology.hpp"
 #include "topology/welded.hpp"
 
 namespace polyvol::topology {
 
+// The public EdgeProblem bits (polyvol/topology.hpp).
 enum EdgeFlag : uint8_t {
-    kBoundary = 1,     // used once
-    kNonmanifold = 2,  // used more than twice
-    kMisoriented = 4,  // used twice in the same direction
-    kUnbalanced = 8,   // uses a->b != uses b->a
+    kBoundary = edge_boundary,        // used once
+    kNonmanifold = edge_nonmanifold,  // used more than twice
+    kMisoriented = edge_misoriented,  // used twice in the same direction
+    kUnbalanced = edge_unbalanced,    // uses a->b != uses b->a
 };
 
 struct EdgeTable {
@@ -33,8 +35,13 @@ struct EdgeTable {
     // The first unbalanced edge in (min, max) id order, from the end it
     // leaves more often to the other (dense ids).
     std::optional<std::array<uint32_t, 2>> unbalanced_example;
-    // The two ends (dense ids) of every boundary edge, in table order.
-    std::vector<std::array<uint32_t, 2>> boundary_ends;
+    // Every edge with a flag (boundary, non-manifold, misoriented,
+    // unbalanced): its two ends (dense ids, smaller first) and flags, in table order.
+    struct Flagged {
+        uint32_t a, b;
+        uint8_t flags;
+    };
+    std::vector<Flagged> flagged;
 
     std::size_t size() const { return flags.size(); }
 };

@@ -3,7 +3,9 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <stdexcept>
+#include <utility>
 
 #include "common/topology_compare.hpp"
 #include "fixtures.hpp"
@@ -150,6 +152,44 @@ TEST(Topology, MissingFaceLeavesThreeBoundaryEdges) {
         {1, 0, 0, 0, 0, 1},   // 1 -> 3
     }};
     EXPECT_TRUE(e == reversed_sides[0] || e == reversed_sides[1] || e == reversed_sides[2]);
+}
+
+// The problem edges as unordered segments {min end, max end} with their bits.
+std::set<std::pair<std::array<double, 6>, int>> problem_segments(const TopologyReport& r) {
+    std::set<std::pair<std::array<double, 6>, int>> out;
+    for (const ProblemEdge& e : r.problem_edges) {
+        std::array<double, 3> p{e.ends[0], e.ends[1], e.ends[2]}, q{e.ends[3], e.ends[4], e.ends[5]};
+        if (q < p) std::swap(p, q);
+        out.insert({{p[0], p[1], p[2], q[0], q[1], q[2]}, e.problems});
+    }
+    return out;
+}
+
+TEST(Topology, ProblemEdgesAreListedWithTheirEndsAndKinds) {
+    Mesh open = tetrahedron();
+    open.indices.resize(9);  // drop triangle (1, 2, 3): its sides are the boundary
+    EXPECT_TRUE(analyze_topology(open.view()).problem_edges.empty());  // listed only when asked
+    const int boundary = edge_boundary | edge_unbalanced;
+    EXPECT_EQ(problem_segments(analyze_topology(open.view(), {.problem_edges = 100})),
+              (std::set<std::pair<std::array<double, 6>, int>>{{{0, 0, 1, 0, 1, 0}, boundary},
+                                                                {{0, 0, 1, 1, 0, 0}, boundary},
+                                                                {{0, 1, 0, 1, 0, 0}, boundary}}));
+    EXPECT_EQ(analyze_topology(open.view(), {.problem_edges = 2}).problem_edges.size(), 2u);
+
+    Mesh flipped = tetrahedron();
+    std::swap(flipped.indices[10], flipped.indices[11]);  // (1, 2, 3) -> (1, 3, 2)
+    const int misoriented = edge_misoriented | edge_unbalanced;
+    EXPECT_EQ(problem_segments(analyze_topology(flipped.view(), {.problem_edges = 100})),
+              (std::set<std::pair<std::array<double, 6>, int>>{{{0, 0, 1, 0, 1, 0}, misoriented},
+                                                                {{0, 0, 1, 1, 0, 0}, misoriented},
+                                                                {{0, 1, 0, 1, 0, 0}, misoriented}}));
+
+    Mesh two;
+    add_box(two, {0, 0, 0}, {1, 1, 1}, {.quads = true});
+    add_box(two, {1, 1, 0}, {2, 2, 1}, {.quads = true});  // shares the edge x = y = 1
+    EXPECT_EQ(problem_segments(analyze_topology(two.view(), {.problem_edges = 100})),
+              (std::set<std::pair<std::array<double, 6>, int>>{{{1, 1, 0, 1, 1, 1}, edge_nonmanifold}}));
+    EXPECT_TRUE(analyze_topology(unit_cube().view(), {.problem_edges = 100}).problem_edges.empty());
 }
 
 TEST(Topology, OpenShellVolumeIsAboutTheOrigin) {
