@@ -16,4 +16,4 @@ export async function createPolyvol({ wasmUrl = new URL('./polyvol.wasm', import
   return bind(module);
 }
 
-export const { volume, measure, check, overlap, run } = sharedCalls(createPolyvol);
+export const { volume, measure, check, overlap, mesh, run } = sharedCalls(createPolyvol);

@@ -32,9 +32,9 @@ export function bind(Module) {
   const { FS } = Module;
   let calls = 0;
 
-  // One request: {exitCode, stdout (the command line's --json text), messages}.
-  function run(command, files, options = {}) {
-    if (!COMMANDS.has(command)) throw new TypeError(`unknown command '${command}' (volume, measure, check or overlap)`);
+  // Calls fn(names) with the files written into a directory of their own,
+  // the current one meanwhile; names are those of the files not marked companion.
+  function inDirectory(files, fn) {
     const dir = `/call${++calls}`;
     FS.mkdir(dir);
     const names = [];
@@ -52,21 +52,7 @@ export function bind(Module) {
         if (!f.companion) names.push(name);
       }
       FS.chdir(dir);
-      const request = JSON.stringify({ command, files: names, options: words(options) });
-      const size = Module.lengthBytesUTF8(request) + 1;
-      const ptr = Module._malloc(size);
-      if (!ptr) throw new RangeError('polyvol: out of memory for the request');
-      let answer;
-      try {
-        Module.stringToUTF8(request, ptr, size);
-        const out = Module._polyvol_run(ptr);
-        if (!out) throw new RangeError('polyvol: out of memory for the answer');
-        answer = JSON.parse(Module.UTF8ToString(out));
-        Module._polyvol_free(out);
-      } finally {
-        Module._free(ptr);
-      }
-      return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages, csv: answer.csv };
+      return fn(names);
     } finally {
       FS.chdir('/');
       const remove = (d) => {
@@ -82,6 +68,66 @@ export function bind(Module) {
     }
   }
 
+  // Calls the module's entry `fn` with the request's text; the answer pointer
+  // is handed to `read` and freed.
+  function call(fn, request, read, ...extra) {
+    const size = Module.lengthBytesUTF8(request) + 1;
+    const ptr = Module._malloc(size);
+    if (!ptr) throw new RangeError('polyvol: out of memory for the request');
+    try {
+      Module.stringToUTF8(request, ptr, size);
+      const out = fn(ptr, ...extra);
+      if (!out) throw new RangeError('polyvol: out of memory for the answer');
+      try {
+        return read(out);
+      } finally {
+        Module._polyvol_free(out);
+      }
+    } finally {
+      Module._free(ptr);
+    }
+  }
+
+  // One request: {exitCode, stdout (the command line's --json text), messages, csv (measure)}.
+  function run(command, files, options = {}) {
+    if (!COMMANDS.has(command)) throw new TypeError(`unknown command '${command}' (volume, measure, check or overlap)`);
+    return inDirectory(files, (names) => {
+      const request = JSON.stringify({ command, files: names, options: words(options) });
+      const answer = call(Module._polyvol_run, request, (out) => JSON.parse(Module.UTF8ToString(out)));
+      return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages, csv: answer.csv };
+    });
+  }
+
+  // A file's triangles and its problem edges, for a 3D view (web/src/polyvol_wasm.cpp, mesh_block).
+  function mesh(data, name, { member = '', edgeLimit = 200000, companions = [] } = {}) {
+    return inDirectory([{ data, name }, ...companions.map((c) => ({ ...c, companion: true }))], ([file]) => {
+      const request = JSON.stringify({ file, member, edge_limit: edgeLimit });
+      const sizePtr = Module._malloc(4);
+      if (!sizePtr) throw new RangeError('polyvol: out of memory for the request');
+      try {
+        return call(Module._polyvol_mesh, request, (out) => {
+          const block = Module.HEAPU8.slice(out, out + Module.HEAPU32[sizePtr >> 2]).buffer;
+          const n = new DataView(block).getUint32(0, true);
+          const h = JSON.parse(new TextDecoder().decode(new Uint8Array(block, 4, n)));
+          const a = h.arrays;
+          return {
+            exitCode: h.exit_code,
+            error: h.error,
+            shells: h.shells,
+            edges: { boundary: h.boundary_edges, nonmanifold: h.nonmanifold_edges, misoriented: h.misoriented_edges, unbalanced: h.unbalanced_edges },
+            positions: new Float32Array(block, a.positions, 3 * h.vertices),
+            triangles: new Uint32Array(block, a.triangles, 3 * h.triangles),
+            triangleShell: new Uint32Array(block, a.triangle_shell, h.triangles),
+            problemEdges: new Float32Array(block, a.problem_edges, 6 * h.problem_edges),
+            problems: new Uint8Array(block, a.problems, h.problem_edges),
+          };
+        }, sizePtr);
+      } finally {
+        Module._free(sizePtr);
+      }
+    });
+  }
+
   // The command line's JSON for one file (with its companions, e.g. a .gltf's
   // .bin): an array with one object per mesh, keys as `polyvol CMD --json`.
   const one = (command) => (data, name, options = {}, companions = []) => {
@@ -93,7 +139,7 @@ export function bind(Module) {
     const r = run('overlap', [{ data: dataA, name: nameA }, { data: dataB, name: nameB }], options);
     return { result: r.stdout ? JSON.parse(r.stdout) : null, exitCode: r.exitCode, messages: r.messages, json: r.stdout };
   };
-  return { run, volume: one('volume'), measure: one('measure'), check: one('check'), overlap };
+  return { run, mesh, volume: one('volume'), measure: one('measure'), check: one('check'), overlap };
 }
 
 // The calls on one module made on first use (the package's top-level
@@ -102,5 +148,5 @@ export function sharedCalls(createPolyvol) {
   let shared;
   const instance = () => (shared ??= createPolyvol());
   const call = (name) => async (...a) => (await instance())[name](...a);
-  return { volume: call('volume'), measure: call('measure'), check: call('check'), overlap: call('overlap'), run: call('run') };
+  return { volume: call('volume'), measure: call('measure'), check: call('check'), overlap: call('overlap'), mesh: call('mesh'), run: call('run') };
 }

@@ -62,11 +62,32 @@ export type OverlapOptions = Pick<Options, 'units' | 'unitsWhereUnstated' | 'to'
 export type FileData = ArrayBuffer | ArrayBufferView | string;
 export interface Companion { name: string; data: FileData }
 
+/** A file's triangles and what `check` finds wrong with its edges, for a 3D view (float32 coordinates as read). */
+export interface MeshView {
+  exitCode: number;
+  error?: string;
+  /** The shells (edge-connected parts), largest volume first: role solid, cavity, inside-out, nested (inside another), open or undecided; crosses: it crosses another shell. */
+  shells: { role: string; faces: number; volume: number | null; crosses: boolean }[];
+  /** How many edges of each kind (an edge may be of several). */
+  edges: { boundary: number; nonmanifold: number; misoriented: number; unbalanced: number };
+  positions: Float32Array;
+  /** The faces' fan triangles, three vertex indices each. */
+  triangles: Uint32Array;
+  /** Each triangle's shell (index in shells). */
+  triangleShell: Uint32Array;
+  /** The first edgeLimit edges with a problem: two end points (six floats) each. */
+  problemEdges: Float32Array;
+  /** Each listed edge's problems: bits 1 boundary, 2 non-manifold, 4 misoriented, 8 unbalanced. */
+  problems: Uint8Array;
+}
+
 export interface Polyvol {
   volume(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
   measure(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
   check(data: FileData, name: string, options?: Options, companions?: Companion[]): Answer;
   overlap(dataA: FileData, nameA: string, dataB: FileData, nameB: string, options?: OverlapOptions): OverlapAnswer;
+  /** member: an archive's member; edgeLimit: at most that many problem edges listed (200000). */
+  mesh(data: FileData, name: string, options?: { member?: string; edgeLimit?: number; companions?: Companion[] }): MeshView;
   run(command: 'volume' | 'measure' | 'check' | 'overlap', files: { name: string; data: FileData; companion?: boolean }[], options?: Options):
     { exitCode: number; stdout: string; messages: string[]; csv?: string };
 }
@@ -77,3 +98,4 @@ export function volume(data: FileData, name: string, options?: Options, companio
 export function measure(data: FileData, name: string, options?: Options, companions?: Companion[]): Promise<Answer>;
 export function check(data: FileData, name: string, options?: Options, companions?: Companion[]): Promise<Answer>;
 export function overlap(dataA: FileData, nameA: string, dataB: FileData, nameB: string, options?: OverlapOptions): Promise<OverlapAnswer>;
+export function mesh(data: FileData, name: string, options?: { member?: string; edgeLimit?: number; companions?: Companion[] }): Promise<MeshView>;

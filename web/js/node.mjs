@@ -20,4 +20,4 @@ export async function createPolyvol() {
   return bind(module);
 }
 
-export const { volume, measure, check, overlap, run } = sharedCalls(createPolyvol);
+export const { volume, measure, check, overlap, mesh, run } = sharedCalls(createPolyvol);

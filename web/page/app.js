@@ -1,3 +1,5 @@
+import { showMesh } from './view.js';
+
 // The page: files in, the command line's figures out, each with its guarantee
 // and its unit. The work runs in worker.js; this thread only shows it.
 const $ = (id) => document.getElementById(id);
@@ -102,7 +104,7 @@ function rows(r) {
   return out;
 }
 
-function render(file, answer) {
+function render(file, answer, source) {
   const card = el('article', { class: 'result', 'data-file': file, 'data-exit-code': String(answer.exitCode) });
   card.dataset.json = answer.stdout;
   if (answer.csv) card.dataset.csv = answer.csv;
@@ -126,6 +128,13 @@ function render(file, answer) {
   const copy = el('button', { type: 'button', class: 'copy-json' }, 'Copy JSON');
   copy.onclick = () => navigator.clipboard.writeText(answer.stdout);
   const actions = el('p', { class: 'actions' }, copy);
+  for (const r of results) {
+    if (!r.triangles) continue;  // unread: nothing to draw
+    const member = r.file.startsWith(`${file}:`) ? r.file.slice(file.length + 1) : '';
+    const show = el('button', { type: 'button', class: 'view-3d' }, results.length > 1 ? `View ${member || r.file} in 3D` : 'View in 3D');
+    show.onclick = () => view(source, member, r.file);
+    actions.append(' ', show);
+  }
   if (answer.csv) {
     // The rows of `polyvol measure --csv`, for a spreadsheet.
     const csv = el('button', { type: 'button', class: 'copy-csv' }, 'Copy CSV');
@@ -134,6 +143,27 @@ function render(file, answer) {
   }
   card.append(actions);
   return card;
+}
+
+// The 3D view of a measured file (of one member of an archive).
+async function view(f, member, title) {
+  const section = $('view');
+  section.hidden = false;
+  $('view-title').textContent = `3D view: ${title}`;
+  $('view-words').textContent = 'Reading the mesh…';
+  delete section.dataset.ready;
+  try {
+    const m = await ask('mesh', [{ name: f.name, data: await f.arrayBuffer() }], { member });
+    if (m.exitCode) throw new Error(m.error);
+    section.dataset.triangles = String(m.triangles.length / 3);
+    section.dataset.problemEdges = String(m.problemEdges.length / 6);
+    section.dataset.shells = m.shells.map((s) => s.role).join(' ');
+    $('view-words').textContent = showMesh($('view-canvas'), m);
+  } catch (e) {
+    $('view-words').textContent = `No 3D view: ${e.message}`;
+  }
+  section.dataset.ready = '1';
+  section.scrollIntoView({ block: 'nearest' });
 }
 
 // The files measured so far, for the overlap (a File can be read again).
@@ -210,7 +240,7 @@ async function measureFiles(list) {
     try {
       const data = await f.arrayBuffer();
       const answer = await ask('measure', [{ name: f.name, data }], options());
-      $('results').prepend(render(f.name, answer));
+      $('results').prepend(render(f.name, answer, f));
       remember(f);
     } catch (e) {
       $('results').prepend(el('article', { class: 'result failed', 'data-file': f.name }, el('h2', {}, f.name), el('p', { class: 'message' }, String(e.message))));

@@ -1,6 +1,7 @@
 // The page's worker: the WebAssembly core runs here, so that a large file
 // never freezes the page. Messages: {id, command, files: [{name, data}],
-// options} in; {id, answer} or {id, error} out.
+// options} in (command 'mesh': the package's mesh() of the first file);
+// {id, answer} or {id, error} out.
 import { createPolyvol } from './polyvol/browser.mjs';
 import * as fflate from './vendor/fflate.mjs';
 import { parseXml } from './vendor/parse-xml.mjs';
@@ -10,7 +11,13 @@ const ready = createPolyvol({ fflate, parseXml });
 self.onmessage = async ({ data: { id, command, files, options } }) => {
   try {
     const polyvol = await ready;
-    self.postMessage({ id, answer: polyvol.run(command, files, options) });
+    if (command === 'mesh') {
+      // The 3D view's arrays (one buffer), handed over rather than copied.
+      const m = polyvol.mesh(files[0].data, files[0].name, options);
+      self.postMessage({ id, answer: m }, [m.positions.buffer]);
+    } else {
+      self.postMessage({ id, answer: polyvol.run(command, files, options) });
+    }
   } catch (e) {
     self.postMessage({ id, error: String(e && e.message ? e.message : e) });
   }

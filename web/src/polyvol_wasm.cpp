@@ -11,6 +11,10 @@
 //             "stdout": the command's --json output, byte for byte (its text),
 //             "messages": ["polyvol: ...", ...], (what the command line prints on stderr)
 //             "csv": what `measure --csv` prints (measure only)}
+//
+// polyvol_mesh: a file's triangles and what `check` finds wrong, for a 3D view:
+//   request: {"file": "a.stl", "member": "" (an archive's), "edge_limit": N}
+//   answer:  a block (see mesh_block) of the header's JSON and typed arrays
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -20,7 +24,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "polyvol/boolean.hpp"
+#include "polyvol/io.hpp"
 #include "polyvol/report.hpp"
+#include "polyvol/topology.hpp"
 
 namespace {
 
@@ -144,6 +151,99 @@ json run(const std::string& text) {
     return answer;
 }
 
+// A file's mesh for a 3D view, as one malloc'ed block: uint32 n, n bytes of
+// JSON (exit_code, error, and counts and byte offsets of the arrays), then,
+// each 8-byte aligned, float32 positions[3 v], uint32 triangles[3 t] (the
+// faces' fans), uint32 triangle_shell[t] (index in "shells", largest volume
+// first; "crosses": it crosses another shell), float32 problem_edges[6 e]
+// (end points), uint8 problems[e] (EdgeProblem bits). The mesh is the
+// file's as read (no welding tolerance, no orienting); the edges are
+// analyze_topology's, the first edge_limit.
+std::vector<char> mesh_block(const json& request) {
+    json header{{"exit_code", 0}};
+    polyvol::LoadedMesh loaded;
+    polyvol::TopologyReport topo;
+    std::vector<uint32_t> triangles, triangle_shell;
+    try {
+        const std::string file = request.at("file").get<std::string>();
+        const std::string member = request.value("member", "");
+        loaded = member.empty() ? polyvol::read_mesh_file(file) : polyvol::read_archive_member(file, member);
+        polyvol::TopologyOptions options;
+        options.face_shells = true;
+        options.problem_edges = request.value("edge_limit", std::size_t{200000});
+        const polyvol::MeshView view = loaded.mesh.view();
+        topo = polyvol::analyze_topology(view, options);
+        triangles.reserve(3 * view.triangle_count());
+        triangle_shell.reserve(view.triangle_count());
+        for (std::size_t f = 0; f < view.face_count(); ++f) {
+            const auto c = view.face(f);
+            for (std::size_t k = 2; k < c.size(); ++k) {
+                triangles.insert(triangles.end(), {c[0], c[k - 1], c[k]});
+                triangle_shell.push_back(topo.face_shell[f]);
+            }
+        }
+    } catch (const polyvol::ReadError& e) {
+        header = {{"exit_code", Exit::unreadable}, {"error", e.what()}};
+    } catch (const std::bad_alloc&) {
+        header = {{"exit_code", 4}, {"error", "out of memory"}};
+    } catch (const std::exception& e) {
+        header = {{"exit_code", 4}, {"error", e.what()}};
+    }
+    // Shells that cross another (solid_volume's face_crosses), where there are several closed ones.
+    std::vector<uint8_t> crosses(topo.shells.size(), 0);
+    if (topo.closed_2_cycle && topo.shells.size() > 1) {
+        try {
+            const polyvol::SolidVolume solid = polyvol::solid_volume(loaded.mesh.view());
+            for (std::size_t f = 0; f < solid.face_crosses.size(); ++f)
+                if (solid.face_crosses[f] && topo.face_shell[f] != polyvol::TopologyReport::kNoShell) crosses[topo.face_shell[f]] = 1;
+        } catch (const std::exception&) {
+            // the view goes without: nothing is claimed
+        }
+    }
+    json shells = json::array();
+    for (std::size_t i = 0; i < topo.shells.size(); ++i) {
+        const polyvol::Shell& sh = topo.shells[i];
+        shells.push_back({{"role", polyvol::shell_role_name(sh.role)}, {"faces", sh.faces},
+                          {"volume", polyvol::json_number(sh.signed_volume)}, {"crosses", crosses[i] != 0}});
+    }
+    const std::size_t v = loaded.mesh.vertex_count(), t = triangle_shell.size(), e = topo.problem_edges.size();
+    header["vertices"] = v;
+    header["triangles"] = t;
+    header["shells"] = shells;
+    header["problem_edges"] = e;
+    header["boundary_edges"] = topo.boundary_edges;
+    header["nonmanifold_edges"] = topo.nonmanifold_edges;
+    header["misoriented_edges"] = topo.misoriented_edges;
+    header["unbalanced_edges"] = topo.unbalanced_edges;
+    // The arrays after the header, whose "arrays" (five offsets) fit in 200 more bytes.
+    const auto align = [](std::size_t n) { return (n + 7) & ~std::size_t{7}; };
+    std::size_t at = align(4 + header.dump().size() + 200);
+    const auto place = [&](std::size_t bytes) {
+        const std::size_t here = at;
+        at = align(at + bytes);
+        return here;
+    };
+    const json arrays{{"positions", place(12 * v)}, {"triangles", place(12 * t)}, {"triangle_shell", place(4 * t)},
+                      {"problem_edges", place(24 * e)}, {"problems", place(e)}};
+    header["arrays"] = arrays;
+    const std::string text = header.dump();
+    std::vector<char> block(at, 0);
+    const auto n = static_cast<uint32_t>(text.size());
+    std::memcpy(block.data(), &n, 4);
+    std::memcpy(block.data() + 4, text.data(), text.size());
+    auto* positions = reinterpret_cast<float*>(block.data() + arrays["positions"].get<std::size_t>());
+    for (std::size_t i = 0; i < 3 * v; ++i) positions[i] = static_cast<float>(loaded.mesh.positions[i]);
+    std::memcpy(block.data() + arrays["triangles"].get<std::size_t>(), triangles.data(), 4 * triangles.size());
+    std::memcpy(block.data() + arrays["triangle_shell"].get<std::size_t>(), triangle_shell.data(), 4 * t);
+    auto* ends = reinterpret_cast<float*>(block.data() + arrays["problem_edges"].get<std::size_t>());
+    auto* kinds = reinterpret_cast<uint8_t*>(block.data() + arrays["problems"].get<std::size_t>());
+    for (std::size_t i = 0; i < e; ++i) {
+        for (int k = 0; k < 6; ++k) ends[6 * i + k] = static_cast<float>(topo.problem_edges[i].ends[k]);
+        kinds[i] = topo.problem_edges[i].problems;
+    }
+    return block;
+}
+
 }  // namespace
 
 extern "C" {
@@ -153,6 +253,21 @@ char* polyvol_run(const char* request) {
     const std::string answer = run(request).dump(2);
     char* out = static_cast<char*>(std::malloc(answer.size() + 1));
     if (out) std::memcpy(out, answer.c_str(), answer.size() + 1);
+    return out;
+}
+
+// mesh_block for a request (JSON text), to be freed with polyvol_free; its
+// size in *size. Null when even the block found no memory.
+char* polyvol_mesh(const char* request, uint32_t* size) {
+    std::vector<char> block;
+    try {
+        block = mesh_block(json::parse(request));
+    } catch (const std::exception&) {
+        return nullptr;
+    }
+    char* out = static_cast<char*>(std::malloc(block.size()));
+    if (out) std::memcpy(out, block.data(), block.size());
+    *size = static_cast<uint32_t>(block.size());
     return out;
 }
 

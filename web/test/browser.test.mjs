@@ -132,6 +132,37 @@ test('an open mesh: the page says why there is no volume', async () => {
   assert.doesNotMatch(shown.text, /^Volume/m);
 });
 
+// Clicks a card's "View in 3D" and waits for the view.
+async function view3d(name) {
+  await page.evaluate(() => { delete document.getElementById('view').dataset.ready; });
+  await page.$eval(`article[data-file="${name}"] button.view-3d`, (b) => b.click());
+  await page.waitForFunction(() => document.getElementById('view').dataset.ready, { timeout: 120000 });
+  return page.$eval('#view', (v) => ({ ...v.dataset, words: document.getElementById('view-words').textContent }));
+}
+
+test("the 3D view: an open mesh's boundary edges drawn over it, as many as check counts", async () => {
+  const file = corpus('stl-models/bunny.bin.stl');
+  const shown = await view3d(path.basename(file));
+  const checked = JSON.parse(runCli(['check', '--json', path.basename(file)], path.dirname(file)).stdout)[0];
+  assert.equal(Number(shown.triangles), checked.triangles);
+  assert.equal(Number(shown.problemEdges), checked.boundary_edges);
+  assert.match(shown.words, new RegExp(`${checked.boundary_edges} boundary edges \\(red\\)`));
+  assert.doesNotMatch(shown.words, /No 3D view/);
+  // Something was drawn: the canvas is not all one colour.
+  const colours = await page.$eval('#view-canvas', (c) => {
+    const probe = document.createElement('canvas');
+    [probe.width, probe.height] = [c.width, c.height];
+    const g = probe.getContext('2d');
+    g.drawImage(c, 0, 0);
+    const d = g.getImageData(0, 0, c.width, c.height).data;
+    const seen = new Set();
+    for (let i = 0; i < d.length; i += 4 * 97) seen.add(`${d[i]},${d[i + 1]},${d[i + 2]}`);
+    return seen.size;
+  });
+  assert.ok(colours > 10, `${colours} colours on the canvas`);
+  await page.screenshot({ path: path.join(screens, 'view-bunny.png'), fullPage: true });
+});
+
 test('two overlapping cubes in one file: the solid, counted once', async () => {
   const dir = mkdtempSync(path.join(tmpdir(), 'polyvol-web-'));
   const cube = (o) => {
@@ -149,6 +180,10 @@ test('two overlapping cubes in one file: the solid, counted once', async () => {
   assert.equal(shown.json, native.stdout);
   assert.equal(JSON.parse(shown.json)[0].volume, 15);
   assert.match(shown.text, /overlap/);
+  const seen = await view3d('two-cubes.obj');
+  assert.equal(seen.shells, 'solid solid');
+  assert.equal(Number(seen.problemEdges), 0);
+  assert.match(seen.words, /2 shells: 2 solid; 2 crossing another shell/);
   await page.screenshot({ path: path.join(screens, 'two-cubes.png'), fullPage: true });
 });
 
