@@ -357,7 +357,7 @@ std::string check_report(const FileResult& r) {
     const auto& t = *r.policy.topology;
     const auto& l = *r.loaded;
     out << r.file << "  (" << format_name(l.format) << ", " << l.encoding << (l.gzip ? ", gzip" : "") << ")\n";
-    for (const auto& n : l.notes) out << "  note: " << n << "\n";
+    for (const auto& n : l.notes) out << "  note: " << note_words(n) << " (" << n << ")\n";
     if (r.policy.welded) out << "  welded          " << weld_sentence(*r.policy.welded, r.weld_tolerance) << "\n";
     if (l.format == Format::stl && l.facet_normals_against_winding)
         out << "  facet normals   " << l.facet_normals_against_winding << " of " << t.triangles

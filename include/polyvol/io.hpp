@@ -104,6 +104,11 @@ struct LoadedMesh {
 // "" for anything else.
 std::string unit_short_name(std::string_view declared);
 
+// What a reader's note (LoadedMesh::notes: "stl-multiple-solids(2)") means,
+// in words for people ("2 solids in one file, measured together"); an
+// unknown note as it is.
+std::string note_words(std::string_view note);
+
 // Reads a file; "-" reads standard input. Throws ReadError (a zip archive
 // of several meshes, not a 3MF or AMF package, included: see below).
 LoadedMesh read_mesh_file(const std::string& path);

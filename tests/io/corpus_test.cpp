@@ -116,6 +116,15 @@ TEST_P(Corpus, MatchesManifest) {
         EXPECT_NE(std::find(r.notes.begin(), r.notes.end(), s), r.notes.end()) << "missing note " << s;
     }
     EXPECT_EQ(r.gzip, std::find(quirks.begin(), quirks.end(), "gzip-compressed") != quirks.end());
+    // Every note has words for people (an unknown one comes back as it is).
+    for (const std::string& n : r.notes) EXPECT_NE(polyvol::note_words(n), n) << "no words for note " << n;
+}
+
+TEST(NoteWords, ArgumentsGoIntoTheWords) {
+    EXPECT_EQ(polyvol::note_words("stl-multiple-solids(2)"), "2 solids in one file, measured together");
+    EXPECT_EQ(polyvol::note_words("3mf-unit(inch)"), "the file's unit is inch");
+    EXPECT_EQ(polyvol::note_words("off-header-COFF"), "an OFF variant header (COFF), read as OFF");
+    EXPECT_EQ(polyvol::note_words("something-new(3)"), "something-new(3)");
 }
 
 INSTANTIATE_TEST_SUITE_P(Manifest, Corpus, testing::ValuesIn(polyvol::test::manifest_paths(ours)),

@@ -94,7 +94,7 @@ export function bind(Module) {
     return inDirectory(files, (names) => {
       const request = JSON.stringify({ command, files: names, options: words(options) });
       const answer = call(Module._polyvol_run, request, (out) => JSON.parse(Module.UTF8ToString(out)));
-      return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages, csv: answer.csv };
+      return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages, csv: answer.csv, noteWords: answer.note_words };
     });
   }
 
@@ -132,7 +132,7 @@ export function bind(Module) {
   // .bin): an array with one object per mesh, keys as `polyvol CMD --json`.
   const one = (command) => (data, name, options = {}, companions = []) => {
     const r = run(command, [{ data, name }, ...companions.map((c) => ({ ...c, companion: true }))], options);
-    return { results: r.stdout ? JSON.parse(r.stdout) : [], exitCode: r.exitCode, messages: r.messages, json: r.stdout, csv: r.csv };
+    return { results: r.stdout ? JSON.parse(r.stdout) : [], exitCode: r.exitCode, messages: r.messages, json: r.stdout, csv: r.csv, noteWords: r.noteWords };
   };
   // `polyvol overlap --json A B`: A ∩ B, A ∪ B, A − B and B − A, one object.
   const overlap = (dataA, nameA, dataB, nameB, options = {}) => {

@@ -46,6 +46,8 @@ export interface Answer {
   json: string;
   /** measure only: what `polyvol measure --csv` prints for the same request (RFC 4180, CRLF, a header row). */
   csv?: string;
+  /** Each reader's note in the results ("stl-multiple-solids(2)") in words ("2 solids in one file, measured together"). */
+  noteWords?: Record<string, string>;
 }
 
 /** A ∩ B, A ∪ B, A − B and B − A: the object `polyvol overlap --json` prints. */
@@ -89,7 +91,7 @@ export interface Polyvol {
   /** member: an archive's member; edgeLimit: at most that many problem edges listed (200000). */
   mesh(data: FileData, name: string, options?: { member?: string; edgeLimit?: number; companions?: Companion[] }): MeshView;
   run(command: 'volume' | 'measure' | 'check' | 'overlap', files: { name: string; data: FileData; companion?: boolean }[], options?: Options):
-    { exitCode: number; stdout: string; messages: string[]; csv?: string };
+    { exitCode: number; stdout: string; messages: string[]; csv?: string; noteWords?: Record<string, string> };
 }
 
 /** A module of its own (each holds its memory). */

@@ -117,7 +117,7 @@ function render(file, answer, source) {
     for (const [name, value, guarantee, key] of rows(r))
       table.append(el('tr', { 'data-key': key }, el('th', {}, name), el('td', {}, value), el('td', { class: 'guarantee' }, guarantee)));
     if (table.childElementCount) card.append(table);
-    for (const n of r.notes ?? []) card.append(el('p', { class: 'note' }, n));
+    for (const n of r.notes ?? []) card.append(el('p', { class: 'note', title: n }, `Note: ${answer.noteWords?.[n] ?? n}.`));
   }
   // The command line's stderr, less what the cards above already say.
   const said = new Set(results.map((r) => r.error).filter(Boolean));

@@ -10,7 +10,8 @@
 //   answer:  {"exit_code": 0|1|2|3|4,
 //             "stdout": the command's --json output, byte for byte (its text),
 //             "messages": ["polyvol: ...", ...], (what the command line prints on stderr)
-//             "csv": what `measure --csv` prints (measure only)}
+//             "csv": what `measure --csv` prints (measure only),
+//             "note_words": {each reader's note in the results: its words (note_words)}}
 //
 // polyvol_mesh: a file's triangles and what `check` finds wrong, for a 3D view:
 //   request: {"file": "a.stl", "member": "" (an archive's), "edge_limit": N}
@@ -61,7 +62,8 @@ polyvol::RequestWords words_of(const json& o) {
 
 // `polyvol volume|measure|check --json FILES`: what the command line asks of
 // measure_file for its JSON (cli/commands/measure.cpp), each file's report.
-json measure_files(const std::string& command, const json& request, json& messages, int& code, std::string& csv) {
+json measure_files(const std::string& command, const json& request, json& messages, int& code, std::string& csv,
+                   json& note_words) {
     const bool check = command == "check";
     const polyvol::ReadRequest read = polyvol::file_options(words_of(request.value("options", json::object())), !check);
     if (!read.options) {
@@ -93,6 +95,8 @@ json measure_files(const std::string& command, const json& request, json& messag
         if (!r.error.empty()) messages.push_back("polyvol: " + r.error);
         if (!r.warning.empty()) messages.push_back("polyvol: warning: " + r.warning);
         out.push_back(polyvol::report_json(r, options));
+        if (r.loaded)
+            for (const std::string& n : r.loaded->notes) note_words[n] = polyvol::note_words(n);
     }
     // measure --csv asks the same of measure_file as --json (but the mesh's
     // counts, which the CSV has not).
@@ -128,11 +132,12 @@ json run(const std::string& text) {
     int code = Exit::ok;
     json result;
     std::string csv;
+    json note_words = json::object();
     try {
         const json request = json::parse(text);
         const std::string command = request.at("command").get<std::string>();
         if (command == "volume" || command == "measure" || command == "check") {
-            result = measure_files(command, request, messages, code, csv);
+            result = measure_files(command, request, messages, code, csv, note_words);
         } else if (command == "overlap") {
             result = overlap(request, messages, code);
         } else {
@@ -148,6 +153,7 @@ json run(const std::string& text) {
     }
     json answer{{"exit_code", code}, {"stdout", result.is_null() ? "" : result.dump(2) + "\n"}, {"messages", messages}};
     if (!csv.empty()) answer["csv"] = csv;
+    if (!note_words.empty()) answer["note_words"] = note_words;
     return answer;
 }
 

@@ -121,6 +121,7 @@ test("the bundled examples and a 3MF in inches: the command line's JSON, in mill
   assert.equal(inch.unit, 'mm');
   assert.equal(inch.volume, 16387.064);  // 25.4³ mm³, correctly rounded
   assert.match((await card('inch-cube.3mf')).text, /16387\.064 mm³/);
+  assert.match((await card('inch-cube.3mf')).text, /Note: the file's unit is inch\./);
   await page.screenshot({ path: path.join(screens, 'examples-and-inch-cube.png'), fullPage: true });
 });
 
