@@ -359,6 +359,20 @@ HWY_INLINE hn::Vec<D8> aes_rounds(hn::Vec<D8> x, const hn::Vec<D8> (&k)[4]) {
 #endif
 
 HWY_INLINE void aes_hash(const uint32_t* xyz, const Keys& key, uint32_t h[kFpLanes]) {
+#if defined(__EMSCRIPTEN__)
+    // WebAssembly has no AES instruction (a software AES is 72% of the soup's
+    // time there): two keyed multiply-xor chains over the 96 bits instead, as
+    // core/fingerprint.cpp hashes a loaded mesh's points (docs/numerics.md,
+    // "The closedness fingerprint"); the same keys, as two chains of four.
+    const uint64_t xy = xyz[0] | uint64_t{xyz[1]} << 32;
+    for (int c = 0; c < 2; ++c) {
+        const uint64_t* k = &key.aes[2 * c][0];  // aes[2c][0..1], aes[2c + 1][0..1]
+        const uint64_t t = core::fingerprint::mum(core::fingerprint::mum(xy ^ k[0], xyz[2] ^ k[1]) ^ k[2], k[3]);
+        h[2 * c] = static_cast<uint32_t>(t & kP);
+        h[2 * c + 1] = static_cast<uint32_t>((t >> 32) & kP);
+    }
+    return;
+#endif
     alignas(16) uint32_t s[4] = {xyz[0], xyz[1], xyz[2], 0};
     auto* bytes = reinterpret_cast<uint8_t*>(s);
 #if HWY_TARGET == HWY_SCALAR
