@@ -235,7 +235,10 @@ async function measureFiles(list) {
   bar.max = files.length;
   for (let i = 0; i < files.length; ++i) {
     const f = files[i];
-    bar.value = i;
+    // Files done of all; one file's own progress is not reported by the
+    // module, so a single file shows a moving (indeterminate) bar.
+    if (files.length > 1) bar.value = i;
+    else bar.removeAttribute('value');
     $('status').textContent = `Measuring ${f.name} (${i + 1} of ${files.length})…`;
     try {
       const data = await f.arrayBuffer();
