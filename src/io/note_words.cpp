@@ -40,7 +40,7 @@ std::string note_words(std::string_view note) {
         {"obj-vertex-w-not-1", "vertex weights (w) other than 1 ignored"},
         {"off-face-colors", "face colours ignored"},
         {"off-missing-header", "no OFF header line"},
-        {"off-trailing-data", "% values after the last face ignored"},
+        {"off-trailing-data", "% after the last face ignored"},
         {"off-vertex-extra-values", "% extra values per vertex ignored (colours, normals)"},
         {"ply-double-coordinates", "double-precision coordinates"},
         {"ply-no-faces", "no faces"},
@@ -67,6 +67,8 @@ std::string note_words(std::string_view note) {
         if (const auto at = out.find('%'); at != std::string::npos) out.replace(at, 1, argument);
         return out;
     }
+    if (name.starts_with("obj-face-with-"))
+        return "faces of " + std::string(name.substr(14, name.find('-', 14) - 14)) + " vertices, which bound nothing (ignored)";
     if (name.starts_with("stl-loop-with-"))
         return "facets of " + std::string(name.substr(14, name.find('-', 14) - 14)) + " vertices, read as polygons";
     if (name.starts_with("off-header-")) return "an OFF variant header (" + std::string(name.substr(11)) + "), read as OFF";

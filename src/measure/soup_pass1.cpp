@@ -360,10 +360,11 @@ HWY_INLINE hn::Vec<D8> aes_rounds(hn::Vec<D8> x, const hn::Vec<D8> (&k)[4]) {
 
 HWY_INLINE void aes_hash(const uint32_t* xyz, const Keys& key, uint32_t h[kFpLanes]) {
 #if defined(__EMSCRIPTEN__)
-    // WebAssembly has no AES instruction (a software AES is 72% of the soup's
-    // time there): two keyed multiply-xor chains over the 96 bits instead, as
-    // core/fingerprint.cpp hashes a loaded mesh's points (docs/numerics.md,
-    // "The closedness fingerprint"); the same keys, as two chains of four.
+    // WebAssembly has no AES instruction (a software AES was 72% of the
+    // soup's time there): two keyed multiply-xor chains over the 96 bits
+    // instead, each mum(mum(xy ^ k0, z ^ k1) ^ k2, k3) with xy = x | y << 32
+    // (mum as in core/fingerprint.cpp; docs/numerics.md, "The closedness
+    // fingerprint"); the AES keys' eight words as two chains of four.
     const uint64_t xy = xyz[0] | uint64_t{xyz[1]} << 32;
     for (int c = 0; c < 2; ++c) {
         const uint64_t* k = &key.aes[2 * c][0];  // aes[2c][0..1], aes[2c + 1][0..1]

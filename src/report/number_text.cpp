@@ -111,7 +111,7 @@ std::string mass_text(double mass, double volume_error_times_density, double den
     const double error =
         volume_error_times_density + std::fabs(mass) * (0x1p-53 + std::max(0x1p-53, density_error)) * (1 + 0x1p-40);
     const std::string s = shortest_within(mass, error);
-    return digits > 0 ? number_text(std::strtod(s.c_str(), nullptr), error, digits) : s;
+    return digits > 0 ? number_text(read_back(s.c_str()), error, digits) : s;
 }
 
 std::string point_text(std::span<const double> c) {

@@ -47,7 +47,7 @@ PUBLIC_OWNER = {
     "boolean.hpp": "boolean",
     "grid.hpp": "grid", "device.hpp": "device",
     "solid.hpp": "solid",
-    "report.hpp": "report",
+    "report.hpp": "report", "number_text.hpp": "report",
     "implicit.hpp": "implicit",
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)

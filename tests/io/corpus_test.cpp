@@ -124,6 +124,8 @@ TEST(NoteWords, ArgumentsGoIntoTheWords) {
     EXPECT_EQ(polyvol::note_words("stl-multiple-solids(2)"), "2 solids in one file, measured together");
     EXPECT_EQ(polyvol::note_words("3mf-unit(inch)"), "the file's unit is inch");
     EXPECT_EQ(polyvol::note_words("off-header-COFF"), "an OFF variant header (COFF), read as OFF");
+    EXPECT_EQ(polyvol::note_words("off-trailing-data(3 lines)"), "3 lines after the last face ignored");
+    EXPECT_EQ(polyvol::note_words("obj-face-with-2-vertices"), "faces of 2 vertices, which bound nothing (ignored)");
     EXPECT_EQ(polyvol::note_words("something-new(3)"), "something-new(3)");
 }
 

@@ -72,11 +72,11 @@ export function bind(Module) {
   // is handed to `read` and freed.
   function call(fn, request, read, ...extra) {
     const size = Module.lengthBytesUTF8(request) + 1;
-    const ptr = Module._malloc(size);
+    const ptr = Module._malloc(size) >>> 0;
     if (!ptr) throw new RangeError('polyvol: out of memory for the request');
     try {
       Module.stringToUTF8(request, ptr, size);
-      const out = fn(ptr, ...extra);
+      const out = fn(ptr, ...extra) >>> 0;  // a pointer past 2 GiB arrives negative
       if (!out) throw new RangeError('polyvol: out of memory for the answer');
       try {
         return read(out);
@@ -102,11 +102,11 @@ export function bind(Module) {
   function mesh(data, name, { member = '', edgeLimit = 200000, companions = [] } = {}) {
     return inDirectory([{ data, name }, ...companions.map((c) => ({ ...c, companion: true }))], ([file]) => {
       const request = JSON.stringify({ file, member, edge_limit: edgeLimit });
-      const sizePtr = Module._malloc(4);
+      const sizePtr = Module._malloc(4) >>> 0;
       if (!sizePtr) throw new RangeError('polyvol: out of memory for the request');
       try {
         return call(Module._polyvol_mesh, request, (out) => {
-          const block = Module.HEAPU8.slice(out, out + Module.HEAPU32[sizePtr >> 2]).buffer;
+          const block = Module.HEAPU8.slice(out, out + Module.HEAPU32[sizePtr >>> 2]).buffer;
           const n = new DataView(block).getUint32(0, true);
           const h = JSON.parse(new TextDecoder().decode(new Uint8Array(block, 4, n)));
           const a = h.arrays;

@@ -22,20 +22,27 @@ class Ints {
   view() { return this.a.subarray(0, this.n); }
 }
 
+// Latin-1 bytes as text, byte for code point (TextDecoder's 'latin1' is
+// windows-1252, which reads 0x80-0x9F as other characters).
+function latin1(b) {
+  const parts = [];
+  for (let i = 0; i < b.length; i += 8192) parts.push(String.fromCharCode.apply(null, b.subarray(i, i + 8192)));
+  return parts.join('');
+}
+
 // The text of the bytes, as pugixml's encoding_auto reads them: a byte-order
-// mark or a UTF-16 '<?' names the encoding; a declaration that says
+// mark or a UTF-16 '<' names the encoding; a declaration that says
 // ISO-8859-1 or latin1 gives Latin-1; otherwise UTF-8.
 function decode(b) {
   if (b[0] === 0xef && b[1] === 0xbb && b[2] === 0xbf) return { encoding: UTF8, skip: 3, text: new TextDecoder('utf-8').decode(b) };
-  if ((b[0] === 0xff && b[1] === 0xfe && (b[2] !== 0 || b[3] !== 0)) || (b[0] === 0x3c && b[1] === 0 && b[2] === 0x3f && b[3] === 0))
+  if ((b[0] === 0xff && b[1] === 0xfe && (b[2] !== 0 || b[3] !== 0)) || (b[0] === 0x3c && b[1] === 0 && (b[2] !== 0 || b[3] !== 0)))
     return { encoding: UTF16_LE, skip: 0, text: new TextDecoder('utf-16le').decode(b) };
-  if ((b[0] === 0xfe && b[1] === 0xff) || (b[0] === 0 && b[1] === 0x3c && b[2] === 0 && b[3] === 0x3f))
+  if ((b[0] === 0xfe && b[1] === 0xff) || (b[0] === 0 && b[1] === 0x3c && b[2] === 0))
     return { encoding: UTF16_BE, skip: 0, text: new TextDecoder('utf-16be').decode(b) };
   if ((b[0] === 0 && b[1] === 0) || (b[2] === 0 && b[3] === 0 && b[0] !== 0))
     throw new Error('UTF-32 is not read by polyvol\'s WebAssembly build');
-  const head = new TextDecoder('latin1').decode(b.subarray(0, 200));
-  if (/^<\?xml[^>]*encoding\s*=\s*["'](iso-8859-1|latin1)["']/i.test(head))
-    return { encoding: LATIN1, skip: 0, text: new TextDecoder('latin1').decode(b) };
+  if (/^<\?xml[^>]*encoding\s*=\s*["'](iso-8859-1|latin1)["']/i.test(latin1(b.subarray(0, 200))))
+    return { encoding: LATIN1, skip: 0, text: latin1(b) };
   return { encoding: UTF8, skip: 0, text: new TextDecoder('utf-8').decode(b) };
 }
 
@@ -62,7 +69,9 @@ export function xmlTables(parseXml, bytes) {
   const { text, encoding, skip } = decoded;
   let doc;
   try {
-    doc = parseXml(text, { includeOffsets: true, preserveCdata: true, ignoreUndefinedEntities: true });
+    // Comments kept (and skipped below) so that text on either side of one
+    // stays two nodes, as pugixml has it (parse-xml would join them).
+    doc = parseXml(text, { includeOffsets: true, preserveCdata: true, preserveComments: true, ignoreUndefinedEntities: true });
   } catch (e) {
     // parse-xml counts its error position in code points.
     let units = 0;
@@ -86,7 +95,7 @@ export function xmlTables(parseXml, bytes) {
     nodes.reserve(FIELDS);
     const i = nodes.n / FIELDS;
     const a = nodes.a;
-    let offset = start;
+    let offset = start + skip;  // pugixml counts a byte-order mark
     if (!ascii && encoding === UTF8 && start >= unit) { byte += utf8Length(text, unit, start); unit = start; offset = byte; }
     else if (!ascii && encoding === UTF8) offset = skip + utf8Length(text, 0, start);
     a[nodes.n + TYPE] = type; a[nodes.n + NAME] = n; a[nodes.n + VALUE] = v;

@@ -48,13 +48,16 @@ export function showMesh(canvas, m) {
   scene.add(new THREE.Mesh(geometry, materials));
 
   const edges = m.problemEdges.length / 6;
+  const disposable = [];
   if (edges) {
     const lines = new THREE.BufferGeometry();
     lines.setAttribute('position', new THREE.BufferAttribute(m.problemEdges, 3));
     const colours = new Float32Array(6 * edges);
     for (let e = 0; e < edges; ++e) colours.set([...edgeColour(m.problems[e]), ...edgeColour(m.problems[e])], 6 * e);
     lines.setAttribute('color', new THREE.BufferAttribute(colours, 3));
-    const segments = new THREE.LineSegments(lines, new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false }));
+    const lineMaterial = new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false });
+    disposable.push(lines, lineMaterial);
+    const segments = new THREE.LineSegments(lines, lineMaterial);
     segments.renderOrder = 1;
     scene.add(segments);
   }
@@ -89,8 +92,9 @@ export function showMesh(canvas, m) {
   };
   canvas.onwheel = (e) => { e.preventDefault(); distance *= Math.exp(e.deltaY * 0.001); draw(); };
   draw();
+  // The previous view's buffers and materials, freed on the GPU.
   for (const old of canvas.__polyvolDispose ?? []) old.dispose();
-  canvas.__polyvolDispose = [geometry, ...materials];
+  canvas.__polyvolDispose = [geometry, ...materials, ...disposable];
 
   // What is drawn, in words.
   const roles = {};

@@ -31,11 +31,13 @@ namespace {
 // message in *error.
 EM_JS(void*, polyvol_js_unpack,
       (int what, const void* data, size_t size, const char* entry, double limit, size_t* out_size, char** error), {
+    // Pointers past 2 GiB arrive negative: read them unsigned.
+    data >>>= 0; size >>>= 0; entry >>>= 0; out_size >>>= 0; error >>>= 0;
     const fail = (text) => {
         const n = lengthBytesUTF8(text) + 1;
-        const p = _malloc(n);
+        const p = _malloc(n) >>> 0;
         if (p) stringToUTF8(text, p, n);
-        HEAPU32[error >> 2] = p;  // 0 when even the message found no memory: "out of memory"
+        HEAPU32[error >>> 2] = p;  // 0 when even the message found no memory: "out of memory"
         return 0;
     };
     let out;
@@ -84,10 +86,10 @@ EM_JS(void*, polyvol_js_unpack,
     } catch (e) {
         return fail(String(e && e.message ? e.message : e));
     }
-    const p = _malloc(Math.max(out.length, 1));
+    const p = _malloc(Math.max(out.length, 1)) >>> 0;
     if (!p) return fail('out of memory for ' + out.length + ' bytes');
     HEAPU8.set(out, p);
-    HEAPU32[out_size >> 2] = out.length;
+    HEAPU32[out_size >>> 2] = out.length;
     return p;
 });
 

@@ -21,6 +21,7 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -89,14 +90,14 @@ json measure_files(const std::string& command, const json& request, json& messag
     json out = json::array();
     std::vector<polyvol::FileReport> reports;
     for (const auto& [file, member] : inputs) {
-        reports.push_back(polyvol::measure_file(file, options, member));
-        const polyvol::FileReport& r = reports.back();
+        polyvol::FileReport r = polyvol::measure_file(file, options, member);
         code = std::max(code, r.exit_code);
         if (!r.error.empty()) messages.push_back("polyvol: " + r.error);
         if (!r.warning.empty()) messages.push_back("polyvol: warning: " + r.warning);
         out.push_back(polyvol::report_json(r, options));
         if (r.loaded)
             for (const std::string& n : r.loaded->notes) note_words[n] = polyvol::note_words(n);
+        if (command == "measure") reports.push_back(std::move(r));  // for the CSV
     }
     // measure --csv asks the same of measure_file as --json (but the mesh's
     // counts, which the CSV has not).
@@ -165,12 +166,17 @@ json run(const std::string& text) {
 // (end points), uint8 problems[e] (EdgeProblem bits). The mesh is the
 // file's as read (no welding tolerance, no orienting); the edges are
 // analyze_topology's, the first edge_limit.
-std::vector<char> mesh_block(const json& request) {
+struct Block {
+    char* data = nullptr;  // malloc'ed
+    std::size_t size = 0;
+};
+Block mesh_block(const char* request_text) {
     json header{{"exit_code", 0}};
     polyvol::LoadedMesh loaded;
     polyvol::TopologyReport topo;
     std::vector<uint32_t> triangles, triangle_shell;
     try {
+        const json request = json::parse(request_text);
         const std::string file = request.at("file").get<std::string>();
         const std::string member = request.value("member", "");
         loaded = member.empty() ? polyvol::read_mesh_file(file) : polyvol::read_archive_member(file, member);
@@ -223,7 +229,9 @@ std::vector<char> mesh_block(const json& request) {
     header["unbalanced_edges"] = topo.unbalanced_edges;
     // The arrays after the header, whose "arrays" (five offsets) fit in 200 more bytes.
     const auto align = [](std::size_t n) { return (n + 7) & ~std::size_t{7}; };
-    std::size_t at = align(4 + header.dump().size() + 200);
+    // (An error's text may hold bytes that are not UTF-8: replaced.)
+    const auto text_of = [&] { return header.dump(-1, ' ', false, json::error_handler_t::replace); };
+    std::size_t at = align(4 + text_of().size() + 200);
     const auto place = [&](std::size_t bytes) {
         const std::size_t here = at;
         at = align(at + bytes);
@@ -232,22 +240,24 @@ std::vector<char> mesh_block(const json& request) {
     const json arrays{{"positions", place(12 * v)}, {"triangles", place(12 * t)}, {"triangle_shell", place(4 * t)},
                       {"problem_edges", place(24 * e)}, {"problems", place(e)}};
     header["arrays"] = arrays;
-    const std::string text = header.dump();
-    std::vector<char> block(at, 0);
+    const std::string text = text_of();
+    Block out{static_cast<char*>(std::calloc(at, 1)), at};
+    if (out.data == nullptr) return {};
+    char* const block = out.data;
     const auto n = static_cast<uint32_t>(text.size());
-    std::memcpy(block.data(), &n, 4);
-    std::memcpy(block.data() + 4, text.data(), text.size());
-    auto* positions = reinterpret_cast<float*>(block.data() + arrays["positions"].get<std::size_t>());
+    std::memcpy(block, &n, 4);
+    std::memcpy(block + 4, text.data(), text.size());
+    auto* positions = reinterpret_cast<float*>(block + arrays["positions"].get<std::size_t>());
     for (std::size_t i = 0; i < 3 * v; ++i) positions[i] = static_cast<float>(loaded.mesh.positions[i]);
-    std::memcpy(block.data() + arrays["triangles"].get<std::size_t>(), triangles.data(), 4 * triangles.size());
-    std::memcpy(block.data() + arrays["triangle_shell"].get<std::size_t>(), triangle_shell.data(), 4 * t);
-    auto* ends = reinterpret_cast<float*>(block.data() + arrays["problem_edges"].get<std::size_t>());
-    auto* kinds = reinterpret_cast<uint8_t*>(block.data() + arrays["problems"].get<std::size_t>());
+    std::memcpy(block + arrays["triangles"].get<std::size_t>(), triangles.data(), 4 * triangles.size());
+    std::memcpy(block + arrays["triangle_shell"].get<std::size_t>(), triangle_shell.data(), 4 * t);
+    auto* ends = reinterpret_cast<float*>(block + arrays["problem_edges"].get<std::size_t>());
+    auto* kinds = reinterpret_cast<uint8_t*>(block + arrays["problems"].get<std::size_t>());
     for (std::size_t i = 0; i < e; ++i) {
         for (int k = 0; k < 6; ++k) ends[6 * i + k] = static_cast<float>(topo.problem_edges[i].ends[k]);
         kinds[i] = topo.problem_edges[i].problems;
     }
-    return block;
+    return out;
 }
 
 }  // namespace
@@ -256,25 +266,23 @@ extern "C" {
 
 // The answer to a request as JSON text (UTF-8), to be freed with polyvol_free.
 char* polyvol_run(const char* request) {
-    const std::string answer = run(request).dump(2);
+    // A message may quote bytes that are not UTF-8 (a file's): replaced, not thrown on.
+    const std::string answer = run(request).dump(2, ' ', false, json::error_handler_t::replace);
     char* out = static_cast<char*>(std::malloc(answer.size() + 1));
     if (out) std::memcpy(out, answer.c_str(), answer.size() + 1);
     return out;
 }
 
-// mesh_block for a request (JSON text), to be freed with polyvol_free; its
-// size in *size. Null when even the block found no memory.
+// mesh_block for a request (JSON text; its errors are the header's), to be
+// freed with polyvol_free; its size in *size. Null when the block found no memory.
 char* polyvol_mesh(const char* request, uint32_t* size) {
-    std::vector<char> block;
     try {
-        block = mesh_block(json::parse(request));
+        const Block b = mesh_block(request);
+        *size = static_cast<uint32_t>(b.size);
+        return b.data;
     } catch (const std::exception&) {
-        return nullptr;
+        return nullptr;  // out of memory for the header's arrays
     }
-    char* out = static_cast<char*>(std::malloc(block.size()));
-    if (out) std::memcpy(out, block.data(), block.size());
-    *size = static_cast<uint32_t>(block.size());
-    return out;
 }
 
 void polyvol_free(char* p) { std::free(p); }

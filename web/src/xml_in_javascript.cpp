@@ -16,12 +16,14 @@ namespace {
 // Null on failure, with a malloc'ed message in *error and the byte offset in
 // *error_offset.
 EM_JS(void*, polyvol_js_parse_xml, (const void* data, size_t size, char** error, double* error_offset), {
+    // Pointers past 2 GiB arrive negative: read them unsigned.
+    data >>>= 0; size >>>= 0; error >>>= 0; error_offset >>>= 0;
     const fail = (text, offset) => {
         const n = lengthBytesUTF8(text) + 1;
-        const p = _malloc(n);
+        const p = _malloc(n) >>> 0;
         if (p) stringToUTF8(text, p, n);
-        HEAPU32[error >> 2] = p;
-        HEAPF64[error_offset >> 3] = offset;
+        HEAPU32[error >>> 2] = p;
+        HEAPF64[error_offset >>> 3] = offset;
         return 0;
     };
     let t;
@@ -35,11 +37,11 @@ EM_JS(void*, polyvol_js_parse_xml, (const void* data, size_t size, char** error,
     if (!t.ok) return fail(t.message, t.offset);
     const header = 5 * 4;
     const total = header + 4 * (t.nodes.length + t.attributes.length) + t.strings.length;
-    const p = _malloc(total);
+    const p = _malloc(total) >>> 0;
     if (!p) return fail('out of memory for the parsed XML (' + total + ' bytes)', 0);
-    HEAP32.set([t.encoding, t.nodes.length / 8, t.attributes.length / 2, t.strings.length, t.stringCount], p >> 2);
-    HEAP32.set(t.nodes, (p + header) >> 2);
-    HEAP32.set(t.attributes, (p + header + 4 * t.nodes.length) >> 2);
+    HEAP32.set([t.encoding, t.nodes.length / 8, t.attributes.length / 2, t.strings.length, t.stringCount], p >>> 2);
+    HEAP32.set(t.nodes, (p + header) >>> 2);
+    HEAP32.set(t.attributes, (p + header + 4 * t.nodes.length) >>> 2);
     HEAPU8.set(t.strings, p + header + 4 * (t.nodes.length + t.attributes.length));
     return p;
 });

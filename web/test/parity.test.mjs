@@ -132,6 +132,10 @@ test("3MF's and AMF's XML read as the command line reads it: encodings, line end
     'bad-number.amf': utf8(amf('abc', '<!-- ünïcödé 日本 𝄞 -->\n<!-- two lines -->\n')),
     'bad-number-crlf.amf': utf8(amf('1e999', '<!-- é -->\n').replace(/\n/g, '\r\n')),
     'bad-number-utf16.amf': utf16le(amf('x').replace('UTF-8', 'UTF-16')),
+    // A number split by a comment: pugixml's first text node, "1".
+    'comment.amf': utf8(amf('1<!-- a comment -->2')),
+    // An error at the start of a line after a byte-order mark: the command line's line.
+    'bom-bad.amf': new Uint8Array([0xef, 0xbb, 0xbf, ...utf8(amf('1').replace(/<vertex><coordinates><x>0<\/x><y>0<\/y><z>0<\/z><\/coordinates><\/vertex>/, '<vertex></vertex>'))]),
   };
   const { native, wasm } = both(['measure', '--json', '--units', 'mm'], 'measure', { units: 'mm' }, files);
   assert.equal(wasm.stdout, native.stdout);
@@ -141,6 +145,8 @@ test("3MF's and AMF's XML read as the command line reads it: encodings, line end
   assert.equal(r['cdata.amf'].volume, 2 / 6);
   assert.equal(r['entity.amf'].volume, 3 / 6);
   assert.equal(r['utf16.amf'].volume, 1 / 6);
+  assert.equal(r['comment.amf'].volume, 1 / 6);
+  assert.match(r['bom-bad.amf'].error, /^bom-bad\.amf:5: <vertex> without <coordinates>/);
   assert.match(r['bad-number.amf'].error, /^bad-number\.amf:10: bad number 'abc' in <z>/);
 });
 
