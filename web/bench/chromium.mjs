@@ -23,8 +23,9 @@ const server = createServer((req, res) => {
   const url = new URL(req.url, 'http://x').pathname;
   try {
     const p = url === '/bench-file' ? file : path.join(pageDir, decodeURIComponent(url));
+    const body = readFileSync(p);
     res.writeHead(200, { 'content-type': types[path.extname(p)] ?? 'application/octet-stream' });
-    res.end(readFileSync(p));
+    res.end(body);
   } catch {
     res.writeHead(404).end();
   }
