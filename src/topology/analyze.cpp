@@ -28,11 +28,9 @@ void count_faces(const MeshView& mesh, TopologyReport& r) {
     r.triangles = mesh.triangle_count();
 }
 
-// Holes: the boundary edges joined through their shared (welded) ends.
+// Holes: the boundary edges joined through their shared (welded) ends
+// (called only when there are some).
 std::size_t count_boundary_loops(const WeldedMesh& m, const EdgeTable& edges) {
-    if (std::none_of(edges.flagged.begin(), edges.flagged.end(),
-                     [](const EdgeTable::Flagged& e) { return e.flags & topology::kBoundary; }))
-        return 0;
     core::UnionFind ends(m.referenced());
     std::vector<char> on_boundary(m.referenced(), 0);
     for (const auto& [a, b, flags] : edges.flagged) {
@@ -69,7 +67,7 @@ void count_edges(const WeldedMesh& m, const EdgeTable& edges, TopologyReport& r)
     r.edge_manifold = r.nonmanifold_edges == 0;
     r.consistently_oriented = r.misoriented_edges == 0;
     r.closed_2_cycle = r.unbalanced_edges == 0;
-    r.holes = count_boundary_loops(m, edges);
+    r.holes = r.boundary_edges ? count_boundary_loops(m, edges) : 0;
     if (edges.unbalanced_example) {
         const double* from = m.position((*edges.unbalanced_example)[0]);
         const double* to = m.position((*edges.unbalanced_example)[1]);
