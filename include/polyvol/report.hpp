@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -34,6 +35,12 @@ namespace polyvol {
 // device asked for by --device cannot do the work (4 is the command line's
 // own: out of memory or an internal error).
 enum Exit : int { ok = 0, usage = 1, unreadable = 2, invalid = 3, device_failed = 5 };
+
+// What measure_file is doing, for a caller that shows progress: reading the
+// file (a streamed binary STL: its first pass, which measures as it reads),
+// turning it into the solid it means (the topology, overlapping and
+// crossing shells), measuring the figures (a streamed file's later passes).
+enum class FileStage { reading, checking, measuring };
 
 // What is wanted of a file and how it is to be taken. The quantities first
 // (they choose the route), then the solid policy, then the units.
@@ -86,6 +93,10 @@ struct FileOptions {
     double density_relative_error = 0;  // of measure.density against the density typed (density_in)
     std::string mass_unit = "kg";
     bool metres_when_known = false;     // SI whenever the unit is known (URDF, SDF)
+    // Progress, for a caller that shows it (empty: none; the library never
+    // prints): each stage with fraction 0 as it begins, a streamed file's
+    // passes by whole percents of their records, and (measuring, 1) at the end.
+    std::function<void(FileStage, double)> progress{};
 };
 
 // A request as a person words it, the same on every door (the command

@@ -3,11 +3,9 @@
 // cells, the classes), the prepared path and the exact reference.
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,6 +14,7 @@
 
 #include "boolean/prepared_body.hpp"
 #include "cells/cell_faces.hpp"
+#include "core/progress.hpp"
 #include "core/union_find.hpp"
 #include "exact/exact_sum.hpp"
 #include "polyvol/boolean.hpp"
@@ -25,31 +24,6 @@ namespace polyvol {
 namespace {
 
 using Box = std::array<double, 6>;  // xmin ymin zmin xmax ymax zmax
-
-// options.progress over `total` cells intersected one by one: step() after
-// each, the callback every 32nd and at the end, one thread at a time.
-class Progress {
-public:
-    Progress(const std::function<void(double)>& report, std::size_t total) : report_(report), total_(total) {}
-    void step() {
-        if (!report_) return;
-        const std::size_t done = ++done_;
-        if (done % 32 != 0 && done != total_) return;
-        if (std::unique_lock lock(mutex_, std::try_to_lock); lock.owns_lock() || done == total_) {
-            if (!lock.owns_lock()) lock.lock();
-            if (done <= reported_) return;  // a later count reported already (never back)
-            reported_ = done;
-            report_(static_cast<double>(done) / static_cast<double>(total_));
-        }
-    }
-
-private:
-    const std::function<void(double)>& report_;
-    std::size_t total_;
-    std::atomic<std::size_t> done_{0};
-    std::size_t reported_ = 0;  // under mutex_
-    std::mutex mutex_;
-};
 
 // The cells' own volumes: the caller's, or computed (checking the mesh);
 // every cell wound outward.
@@ -240,10 +214,10 @@ BodyInCells reference_volumes(const CellMeshView& m, const MeshView& body, const
     r.touched = touched;
     const std::vector<uint32_t> list = listed(touched);
     r.touched_cells = list.size();
-    Progress progress(options.progress, list.size());
+    core::ProgressCounter progress(options.progress, list.size());  // cells intersected
     tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
         r.volumes[list[i]] = intersect(cell_surface(m, cf, list[i]), body, options, list[i]);
-        progress.step();
+        progress.add();
     });
     if (options.surface) {  // not given by the booleans of the whole body
         r.wetted_area.assign(m.cell_count(), NAN);
@@ -286,7 +260,7 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
         r.surface_normal.assign(3 * m.cell_count(), 0.0);
         r.surface_bound.assign(m.cell_count(), 0.0);
     }
-    Progress progress(options.progress, list.size());
+    core::ProgressCounter progress(options.progress, list.size());  // cells intersected
     tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
         const LocalCell l = local_cell(m, cf, list[i], &winding);
         for (const int32_t x : l.winding)
@@ -299,7 +273,7 @@ BodyInCells prepared_volumes(const CellMeshView& m, const MeshView& body, const 
             std::copy_n(surface.normal, 3, &r.surface_normal[3 * std::size_t{list[i]}]);
             r.surface_bound[list[i]] = surface.bound;
         }
-        progress.step();
+        progress.add();
     });
     if (options.surface) {
         exact::ExactSum area;
@@ -356,11 +330,11 @@ BodyInCells union_in_cells(const CellMeshView& m, std::span<const MeshView> bodi
         else if (touching > 1) list.push_back(static_cast<uint32_t>(c));
     }
     r.touched_cells = list.size();
-    Progress progress(o.progress, list.size());
+    core::ProgressCounter progress(o.progress, list.size());  // cells intersected
     tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
         r.volumes[list[i]] = intersect(cell_surface(m, cf, list[i]), all.view(), o, list[i]);
         r.touched[list[i]] = 1;
-        progress.step();
+        progress.add();
     });
     classify(own.volumes, o.cells_tile, r);
     return r;

@@ -23,7 +23,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,6 +32,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/fan_triangles.hpp"
+#include "core/progress.hpp"
 #include "exact/eft.hpp"
 #include "exact/exact_sum.hpp"
 #include "grid/axis.hpp"
@@ -488,23 +488,14 @@ void run_tiles(const Job& job, const GridOptions& options, GridSummary& s, std::
     const std::size_t nb = job.bodies.size();
     tbb::enumerable_thread_specific<Workspace> workspaces;
     tbb::enumerable_thread_specific<Partial> partials([nb] { return Partial(nb); });
-    std::atomic<std::size_t> done{0};
-    std::mutex progress_mutex;
-    std::atomic<std::size_t> reported{0};
     const std::size_t ntiles = job.l.tiles();
+    core::ProgressCounter progress(options.progress, ntiles);  // tiles done
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ntiles, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         Workspace& ws = workspaces.local();
         Partial& part = partials.local();
         for (std::size_t tile = r.begin(); tile != r.end(); ++tile) {
             run_tile(job, tile, ws, part);
-            const std::size_t d = ++done;
-            if (options.progress && (d * 100 / ntiles > reported.load() * 100 / ntiles || d == ntiles)) {
-                std::lock_guard<std::mutex> lock(progress_mutex);
-                if (d > reported.load()) {
-                    reported.store(d);
-                    options.progress(static_cast<double>(d) / static_cast<double>(ntiles));
-                }
-            }
+            progress.add();
         }
     });
     for (const Partial& p : partials) {

@@ -359,6 +359,11 @@ uint64_t decompression_limit(std::size_t compressed_bytes) {
     return std::min(ceiling, std::max(scaled, floor));
 }
 
+std::string decompression_limit_words(uint64_t limit) {
+    return "the decompression limit of " + std::to_string(limit) +
+           " bytes (64 x the compressed size, at least 16 MiB, at most 4 GiB)";
+}
+
 bool is_gzip(Bytes head) { return starts_with(head, "\x1f\x8b"); }
 bool is_zip(Bytes head) { return starts_with(head, "PK\x03\x04"); }
 bool is_ply(Bytes head) {

@@ -51,10 +51,8 @@ std::vector<std::byte> gunzip(Bytes data, const std::string& name, uint64_t max_
         }
         if (out.size() - produced < chunk) {
             if (produced >= max_bytes)
-                throw ReadError::at_byte(name, in_pos - zs.avail_in,
-                                         "gzip data expands beyond the decompression limit of " +
-                                             std::to_string(max_bytes) + " bytes (" + std::to_string(data.size()) +
-                                             " compressed): refusing to decompress it (a gzip bomb?)");
+                throw ReadError::whole_file(name, "gzip data expands beyond " + decompression_limit_words(max_bytes) +
+                                                      ": refusing to decompress it (a gzip bomb?)");
             const uint64_t room = std::max<uint64_t>(max_bytes - produced, 1);
             out.resize(produced + std::min<uint64_t>(std::max(out.size(), chunk), room));
         }

@@ -43,6 +43,9 @@ uint64_t stl_triangle_count(Bytes head);
 // compressed_bytes, 16 MiB)). Meshes compress 2–20×; a bomb expands 1000×
 // per level.
 uint64_t decompression_limit(std::size_t compressed_bytes);
+// "the decompression limit of N bytes (64 x ...)": the words of every
+// refusal at the limit (gzip, bzip2, zip entries), the same in every build.
+std::string decompression_limit_words(uint64_t limit);
 
 // zlib: the decompressed bytes of a gzip stream (every member). Throws
 // ReadError on corrupt data, and before producing more than max_bytes.
@@ -53,12 +56,13 @@ std::vector<std::byte> gunzip(Bytes data, const std::string& name, uint64_t max_
 bool is_glb(Bytes head);
 LoadedMesh read_gltf(Bytes data, const std::string& name);
 
-// archive.cpp: bzip2 streams ("BZh1".."BZh9", libbz2) and tar archives
-// ("ustar" at byte 257, with a valid header checksum).
+// archive.cpp: bzip2 streams ("BZh1".."BZh9") and tar archives ("ustar"
+// at byte 257, with a valid header checksum).
 bool is_bzip2(Bytes head);
 bool is_tar(Bytes data);
-// The decompressed bytes of a bzip2 stream (concatenated streams too), at
-// most `limit`. Throws ReadError on corrupt or truncated data.
+// bzip2.cpp (libbz2): the decompressed bytes of a bzip2 stream
+// (concatenated streams too), at most `limit`. Throws ReadError on corrupt
+// or truncated data.
 std::vector<std::byte> bunzip2(Bytes data, const std::string& name, uint64_t limit);
 // A tar archive's regular files that are meshes by their extension, in
 // archive order (the tar plain, or gzip or bzip2 compressed); empty when it

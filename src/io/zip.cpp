@@ -367,8 +367,7 @@ std::vector<std::byte> ZipArchive::read(const std::string& entry) {
     const auto found = z.by_name.find(entry);
     if (found == z.by_name.end()) throw ReadError::whole_file(name_, "zip entry '" + entry + "' is missing");
     const uint64_t budget = limit_ - std::min(used_, limit_);
-    const std::string limit_text = "the decompression limit of " + bytes_text(limit_) +
-                                   " for this archive (64 x its size, at least 16 MiB, at most 4 GiB)";
+    const std::string limit_text = decompression_limit_words(limit_);
 
     unz_file_info64 info{};
     if (unzGoToFilePos64(z.uf, &z.entries[found->second].pos) != UNZ_OK ||

@@ -9,6 +9,7 @@
 #include <limits>
 #include <span>
 
+#include "core/progress.hpp"
 #include "polyvol/chain_io.hpp"
 #include "polyvol/solid.hpp"
 #include "polyvol/soup.hpp"
@@ -40,6 +41,11 @@ MassProperties volume_only_properties(const MeshView& view, const MeasureOptions
     m.method = o.method;
     m.accuracy = o.accuracy;
     return m;
+}
+
+// FileOptions::progress, where the caller asked for it.
+void tell(const FileOptions& q, FileStage stage, double fraction) {
+    if (q.progress) q.progress(stage, fraction);
 }
 
 // The route, decided here only: a binary STL of more than
@@ -77,8 +83,17 @@ std::optional<FileReport> stream_binary_stl(const std::string& path, const FileO
                   .density = q.measure.density});
     try {
         do {
+            // Pass 1 reads and measures; passes 2 and 3 decide the first moments (soup.hpp).
+            const FileStage stage = acc.pass() == 1 ? FileStage::reading : FileStage::measuring;
+            tell(q, stage, 0);
+            core::ProgressCounter records(
+                q.progress ? std::function<void(double)>([&](double f) { q.progress(stage, f); }) : nullptr,
+                file->probe().triangles);
             file->for_each_window(
-                [&](std::span<const std::byte> records, uint64_t first) { acc.add(stl_records(records), first); },
+                [&](std::span<const std::byte> window, uint64_t first) {
+                    acc.add(stl_records(window), first);
+                    records.add(window.size() / 50);
+                },
                 StlStreamOptions{.alignment = SoupAccumulator::kBlockTriangles});
         } while (acc.next_pass());
     } catch (const ReadError& e) {
@@ -93,6 +108,7 @@ std::optional<FileReport> stream_binary_stl(const std::string& path, const FileO
     r.triangles = acc.result().triangles;
     r.mass = acc.result().properties;
     r.seconds_measure = seconds_since(t0);
+    tell(q, FileStage::measuring, 1);
     return r;
 }
 
@@ -263,6 +279,7 @@ FileReport measure_file(const std::string& file, const FileOptions& request, con
             if (request.keep_signed || !s->mass || s->mass->volume >= 0) return std::move(*s);  // inside out: loaded below
     FileReport r;
     r.file = member.empty() ? file : file + ":" + member;  // the name in every message
+    tell(request, FileStage::reading, 0);
     if (!load(r, file, member)) return r;
     const auto t0 = std::chrono::steady_clock::now();
     double length_error = 0;
@@ -271,10 +288,13 @@ FileReport measure_file(const std::string& file, const FileOptions& request, con
         r.error = r.file + ": " + why;
         return r;
     }
+    tell(request, FileStage::checking, 0);
     r.policy = make_solid(r.loaded->mesh, policy_for(request));
     if (!take_solid(r, request)) return r;
+    tell(request, FileStage::measuring, 0);
     if (request.need_mass) measure_figures(r, request, length_error);
     r.seconds_measure = seconds_since(t0);
+    tell(request, FileStage::measuring, 1);
     return r;
 }
 

@@ -334,10 +334,10 @@ TEST(Gzip, ExpansionBeyondTheLimitIsRefused) {
     const std::string bomb = gzip_deflated("v 0 0 0\n" + std::string(std::size_t{64} << 20, ' '));
     ASSERT_LT(bomb.size(), std::size_t{1} << 20);
     ReadError e = read_error(bomb, "bomb.obj.gz");
-    expect_what(e, "bomb.obj.gz: byte ", "gzip data expands beyond the decompression limit of 16777216 bytes");
+    expect_what(e, "bomb.obj.gz: gzip data expands", "beyond the decompression limit of 16777216 bytes");
     const std::string nested = gzip_deflated(bomb);
     e = read_error(nested, "nested.obj.gz");
-    expect_what(e, "nested.obj.gz: byte ", "beyond the decompression limit");
+    expect_what(e, "nested.obj.gz: gzip data expands", "beyond the decompression limit");
     // A file of ordinary ratio reads.
     const std::string obj = write_obj(octahedron());
     EXPECT_EQ(read(gzip_deflated(obj), "o.obj.gz").mesh.face_count(), 8u);

@@ -5,6 +5,7 @@
 // JSON keys are report_json's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -15,6 +16,7 @@
 
 #include <unistd.h>
 
+#include "common/generate.hpp"
 #include "common/shapes.hpp"
 #include "polyvol/report.hpp"
 
@@ -85,6 +87,37 @@ TEST(MeasureFile, TheRouteIsTheLibrarysAndTheFiguresAgree) {
     ASSERT_TRUE(full.policy.topology.has_value());
     EXPECT_TRUE(full.policy.topology->closed_2_cycle);
     EXPECT_EQ(full.mass->centroid[0], 1.0);
+    fs::remove(stl);
+}
+
+// FileOptions::progress: the stages in order; a streamed file's records by
+// whole percents, never backwards, up to 1; (measuring, 1) last.
+TEST(MeasureFile, ProgressGoesThroughTheStagesAndNeverBack) {
+    const std::string stl = write_stl(generate::sphere_with_triangles(100000, 5.0), "sphere.stl");
+    std::vector<std::pair<FileStage, double>> seen;
+    FileOptions stream = table();
+    stream.stream_any_size = true;
+    stream.progress = [&](FileStage s, double f) { seen.emplace_back(s, f); };
+    const FileReport streamed = measure_file(stl, stream);
+    ASSERT_TRUE(streamed.streamed);
+    ASSERT_GE(seen.size(), 20u);  // 100,000 records in windows of about 4,000: a call per window at least
+    EXPECT_EQ(seen.front(), std::make_pair(FileStage::reading, 0.0));
+    EXPECT_EQ(seen.back(), std::make_pair(FileStage::measuring, 1.0));
+    for (std::size_t i = 1; i + 1 < seen.size(); ++i) {
+        if (seen[i].second == 0) continue;  // a pass begins
+        EXPECT_EQ(seen[i].first, seen[i - 1].first);
+        EXPECT_GT(seen[i].second, seen[i - 1].second);
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), std::make_pair(FileStage::reading, 1.0)), 1);  // pass 1, whole
+
+    seen.clear();
+    FileOptions loaded;  // `measure`: the file loaded and checked
+    loaded.progress = stream.progress;
+    const FileReport full = measure_file(stl, loaded);
+    EXPECT_EQ(full.exit_code, Exit::ok);
+    const std::vector<std::pair<FileStage, double>> stages = {
+        {FileStage::reading, 0}, {FileStage::checking, 0}, {FileStage::measuring, 0}, {FileStage::measuring, 1}};
+    EXPECT_EQ(seen, stages);
     fs::remove(stl);
 }
 

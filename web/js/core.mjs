@@ -89,12 +89,21 @@ export function bind(Module) {
   }
 
   // One request: {exitCode, stdout (the command line's --json text), messages, csv (measure)}.
+  // options.onProgress({file, stage, fraction}), if given, is called while
+  // a file is measured: stage 'reading', 'checking' or 'measuring', each
+  // as it begins (fraction 0); a streamed STL's passes by whole percents.
   function run(command, files, options = {}) {
     if (!COMMANDS.has(command)) throw new TypeError(`unknown command '${command}' (volume, measure, check or overlap)`);
+    const { onProgress, ...rest } = options;
     return inDirectory(files, (names) => {
-      const request = JSON.stringify({ command, files: names, options: words(options) });
-      const answer = call(Module._polyvol_run, request, (out) => JSON.parse(Module.UTF8ToString(out)));
-      return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages, csv: answer.csv, noteWords: answer.note_words };
+      const request = JSON.stringify({ command, files: names, options: words(rest) });
+      Module.onProgress = onProgress && ((file, stage, fraction) => onProgress({ file, stage, fraction }));
+      try {
+        const answer = call(Module._polyvol_run, request, (out) => JSON.parse(Module.UTF8ToString(out)));
+        return { exitCode: answer.exit_code, stdout: answer.stdout, messages: answer.messages, csv: answer.csv, noteWords: answer.note_words };
+      } finally {
+        Module.onProgress = undefined;
+      }
     });
   }
 

@@ -30,10 +30,20 @@ export interface Options {
   weldTolerance?: number;
   /** volume only: the table's figures, a binary STL streamed whatever its size (its shells not checked for overlap). */
   stream?: boolean;
+  /** Called while each file is measured: each stage as it begins (fraction 0), a streamed STL's passes by whole percents, ('measuring', 1) at its end. */
+  onProgress?: (p: Progress) => void;
 }
 
 /** One file's figures: the object `polyvol measure --json` prints (see docs/cli.md), one per mesh. */
 export type Report = Record<string, unknown> & { file: string; exit_code: number; error?: string; warning?: string };
+
+export interface Progress {
+  /** The file as the results name it ("parts.zip:a.stl" for a member). */
+  file: string;
+  stage: 'reading' | 'checking' | 'measuring';
+  /** Of the stage: 0 as it begins; 0..1 through a streamed binary STL's records. */
+  fraction: number;
+}
 
 export interface Answer {
   /** One object per mesh of the file, keys as the command line's JSON. */

@@ -9,6 +9,7 @@ let nextId = 0;
 
 worker.onmessage = ({ data }) => {
   const p = pending.get(data.id);
+  if (data.progress) return p.onProgress?.(data.progress);
   pending.delete(data.id);
   if (data.error !== undefined) p.reject(new Error(data.error));
   else p.resolve(data.answer);
@@ -25,12 +26,13 @@ worker.onerror = (e) => {
   setTimeout(() => { throw new Error(why); });
 };
 
-// One request to the worker: the answer of web/src/polyvol_wasm.cpp.
-function ask(command, files, options) {
+// One request to the worker: the answer of web/src/polyvol_wasm.cpp;
+// onProgress({file, stage, fraction}) meanwhile.
+function ask(command, files, options, onProgress) {
   const id = ++nextId;
   if (broken) return Promise.reject(new Error(broken));
   return new Promise((resolve, reject) => {
-    pending.set(id, { resolve, reject });
+    pending.set(id, { resolve, reject, onProgress });
     worker.postMessage({ id, command, files, options }, files.map((f) => f.data));
   });
 }
@@ -227,6 +229,9 @@ $('overlap-go').addEventListener('click', async () => {
   document.body.dataset.done = String(Number(document.body.dataset.done ?? 0) + 1);
 });
 
+const STAGES = ['reading', 'checking', 'measuring'];
+const STAGE_WORDS = { reading: 'reading', checking: 'checking its shells', measuring: 'measuring' };
+
 async function measureFiles(list) {
   const files = [...list];
   if (!files.length) return;
@@ -235,14 +240,20 @@ async function measureFiles(list) {
   bar.max = files.length;
   for (let i = 0; i < files.length; ++i) {
     const f = files[i];
-    // Files done of all; one file's own progress is not reported by the
-    // module, so a single file shows a moving (indeterminate) bar.
-    if (files.length > 1) bar.value = i;
-    else bar.removeAttribute('value');
-    $('status').textContent = `Measuring ${f.name} (${i + 1} of ${files.length})…`;
+    // Files done of all, and of this one its stages (reading, checking,
+    // measuring: a third each), never back (a file streamed, then loaded).
+    bar.value = i;
+    const counting = `Measuring ${f.name} (${i + 1} of ${files.length})`;
+    $('status').textContent = `${counting}…`;
+    const onProgress = ({ file, stage, fraction }) => {
+      bar.value = Math.max(bar.value, i + (STAGES.indexOf(stage) + fraction) / STAGES.length);
+      const member = file === f.name ? '' : `, ${file.slice(f.name.length + 1)}`;
+      const percent = fraction > 0 && fraction < 1 ? ` ${Math.floor(100 * fraction)}%` : '';
+      $('status').textContent = `${counting}${member}: ${STAGE_WORDS[stage]}${percent}…`;
+    };
     try {
       const data = await f.arrayBuffer();
-      const answer = await ask('measure', [{ name: f.name, data }], options());
+      const answer = await ask('measure', [{ name: f.name, data }], options(), onProgress);
       $('results').prepend(render(f.name, answer, f));
       remember(f);
     } catch (e) {

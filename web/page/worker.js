@@ -1,6 +1,7 @@
 // The page's worker: the WebAssembly core runs here, so that a large file
 // never freezes the page. Messages: {id, command, files: [{name, data}],
 // options} in (command 'mesh': the package's mesh() of the first file);
+// {id, progress: {file, stage, fraction}} while a file is measured, then
 // {id, answer} or {id, error} out.
 import { createPolyvol } from './polyvol/browser.mjs';
 import * as fflate from './vendor/fflate.mjs';
@@ -16,7 +17,8 @@ self.onmessage = async ({ data: { id, command, files, options } }) => {
       const m = polyvol.mesh(files[0].data, files[0].name, options);
       self.postMessage({ id, answer: m }, [m.positions.buffer]);
     } else {
-      self.postMessage({ id, answer: polyvol.run(command, files, options) });
+      const onProgress = (progress) => self.postMessage({ id, progress });
+      self.postMessage({ id, answer: polyvol.run(command, files, { ...options, onProgress }) });
     }
   } catch (e) {
     self.postMessage({ id, error: String(e && e.message ? e.message : e) });

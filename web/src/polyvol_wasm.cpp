@@ -4,6 +4,9 @@
 // (measure_file, report_json): `polyvol volume|measure|check --json` prints
 // the same objects.
 //
+// While a file is measured, Module.onProgress(file, stage, fraction) is
+// called if set (FileOptions::progress: "reading", "checking", "measuring").
+//
 //   request: {"command": "volume" | "measure" | "check" | "overlap",
 //             "files": ["a.stl", ...],           (paths in the module's file system; overlap: A and B)
 //             "options": {RequestWords' fields}} (polyvol/report.hpp; overlap: OverlapWords')
@@ -16,6 +19,8 @@
 // polyvol_mesh: a file's triangles and what `check` finds wrong, for a 3D view:
 //   request: {"file": "a.stl", "member": "" (an archive's), "edge_limit": N}
 //   answer:  a block (see mesh_block) of the header's JSON and typed arrays
+#include <emscripten.h>
+
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -35,6 +40,18 @@ namespace {
 
 using nlohmann::json;
 using polyvol::Exit;
+
+// FileOptions::progress handed to the caller's Module.onProgress(file,
+// stage, fraction), if any (the page's worker posts it to the page); what
+// it throws is dropped, the measuring goes on.
+EM_JS(void, polyvol_js_progress, (const char* file, int stage, double fraction), {
+    const report = Module['onProgress'];
+    if (!report) return;
+    try {
+        report(UTF8ToString(file >>> 0), ['reading', 'checking', 'measuring'][stage], fraction);
+    } catch (e) {
+    }
+});
 
 // RequestWords from the request's "options" (absent keys keep their defaults).
 polyvol::RequestWords words_of(const json& o) {
@@ -90,6 +107,10 @@ json measure_files(const std::string& command, const json& request, json& messag
     json out = json::array();
     std::vector<polyvol::FileReport> reports;
     for (const auto& [file, member] : inputs) {
+        const std::string name = member.empty() ? file : file + ":" + member;  // as the report names it
+        options.progress = [&name](polyvol::FileStage stage, double fraction) {
+            polyvol_js_progress(name.c_str(), static_cast<int>(stage), fraction);
+        };
         polyvol::FileReport r = polyvol::measure_file(file, options, member);
         code = std::max(code, r.exit_code);
         if (!r.error.empty()) messages.push_back("polyvol: " + r.error);

@@ -4,7 +4,8 @@
 // same exit code and the same messages as the native `polyvol` run in the
 // file's directory.
 import assert from 'node:assert/strict';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { test } from 'node:test';
@@ -86,7 +87,8 @@ test('a zip whose entry would expand past the decompression limit is refused, un
   const { native, wasm } = both(['measure', '--json'], 'measure', {}, { 'bomb.zip': zipSync({ 'bomb.stl': big }) });
   assert.equal(native.code, 2);
   assert.equal(wasm.exitCode, 2);
-  assert.match(wasm.messages.join('\n'), /limit/);
+  assert.match(wasm.messages.join('\n'), /decompression limit/);
+  assert.deepEqual(wasm.messages, native.messages);
 });
 
 test('a gzip bomb is stopped at the decompression limit, not after it went off', () => {
@@ -95,6 +97,54 @@ test('a gzip bomb is stopped at the decompression limit, not after it went off',
   assert.equal(native.code, 2);
   assert.equal(wasm.exitCode, 2);
   assert.match(wasm.messages.join('\n'), /decompression limit/);
+  assert.deepEqual(wasm.messages, native.messages);
+});
+
+// A tar of `files` ({path: bytes}), made by GNU tar (ustar, and a pax header
+// for a long name).
+function tarOf(files) {
+  const dir = mkdtempSync(path.join(tmpdir(), 'polyvol-tar-'));
+  for (const [name, data] of Object.entries(files)) {
+    mkdirSync(path.dirname(path.join(dir, name)), { recursive: true });
+    writeFileSync(path.join(dir, name), data);
+  }
+  const r = spawnSync('tar', ['--format=pax', '-cf', '-', ...Object.keys(files)], { cwd: dir, maxBuffer: 1 << 28 });
+  assert.equal(r.status, 0, String(r.stderr));
+  return r.stdout;
+}
+
+test('tar archives, plain and gzip-compressed: each mesh member measured, named ARCHIVE:MEMBER, as the command line does', () => {
+  const pick = ['stl-models/unitCube.ascii.stl', 'geomview/dodec.off', 'libcgal-demo/sphere.ply'];
+  const files = Object.fromEntries(pick.map((p) => [`parts/${path.basename(p)}`, readFileSync(path.join(corpusDir(), 'meshes', p))]));
+  files['parts/notes.txt'] = new TextEncoder().encode('not a mesh');
+  files[`parts/${'a-long-directory-name-'.repeat(6)}/cube.stl`] = files['parts/unitCube.ascii.stl'];
+  const tar = tarOf(files);
+  for (const [name, data] of [['parts.tar', tar], ['parts.tar.gz', gzipSync(tar)], ['parts.tgz', gzipSync(tar)]]) {
+    for (const r of requests) {
+      const { native, wasm } = both(r.args, r.command, r.options, { [name]: data });
+      assert.equal(wasm.stdout, native.stdout, `${name}: ${r.args.join(' ')}`);
+      assert.equal(wasm.exitCode, native.code);
+      assert.deepEqual(wasm.messages, native.messages);
+    }
+    const { results } = polyvol.measure(data, name);
+    assert.equal(results.length, 4);
+    assert.equal(results[0].file, `${name}:parts/unitCube.ascii.stl`);
+  }
+  // A tar whose header checksum is wrong: the command line's words.
+  const bad = new Uint8Array(tar);
+  bad[148] ^= 1;
+  const { native, wasm } = both(['measure', '--json'], 'measure', {}, { 'bad.tar': bad });
+  assert.equal(wasm.exitCode, native.code);
+  assert.deepEqual(wasm.messages, native.messages);
+});
+
+test('a bzip2-compressed file: refused by name with exit code 2 (the command line reads it)', () => {
+  const r = spawnSync('bzip2', ['-c'], { input: readFileSync(path.join(corpusDir(), 'meshes', 'geomview/dodec.off')) });
+  assert.equal(r.status, 0);
+  const { native, wasm } = both(['measure', '--json'], 'measure', {}, { 'dodec.off.bz2': r.stdout });
+  assert.equal(native.code, 0);
+  assert.equal(wasm.exitCode, 2);
+  assert.deepEqual(wasm.messages, ["polyvol: dodec.off.bz2: bzip2-compressed: not read by polyvol's WebAssembly build"]);
 });
 
 test("a file that is not what its name says: the command line's error, exit code 2", () => {
@@ -214,4 +264,34 @@ test('the top-level calls (import { measure, check, volume, overlap } from the p
   const bad = await pkg.measure(new Uint8Array([1, 2, 3]), 'x.stl');
   assert.equal(bad.exitCode, 2);
   assert.match(bad.results[0].error, /x\.stl/);
+});
+
+test('onProgress: each file through its stages, a streamed STL by whole percents up to 1', () => {
+  const cube = readFileSync(path.join(corpusDir(), 'meshes', 'stl-models/unitCube.ascii.stl'));
+  const seen = [];
+  const r = polyvol.measure(cube, 'cube.stl', { onProgress: (p) => seen.push(p) });
+  assert.equal(r.exitCode, 0);
+  assert.deepEqual(seen, [
+    { file: 'cube.stl', stage: 'reading', fraction: 0 }, { file: 'cube.stl', stage: 'checking', fraction: 0 },
+    { file: 'cube.stl', stage: 'measuring', fraction: 0 }, { file: 'cube.stl', stage: 'measuring', fraction: 1 }]);
+  // A binary STL of 100,000 triangles (windows of about 4,000), streamed: pass 1 read by percents.
+  const n = 100000;
+  const stl = new Uint8Array(84 + 50 * n);
+  const view = new DataView(stl.buffer);
+  view.setUint32(80, n, true);
+  for (let t = 0; t < n; ++t) {  // n/2 pairs: a triangle and its reverse (closed, volume 0)
+    const at = 84 + 50 * t + 12, k = t >> 1, flip = t & 1;
+    const pts = [[k, 0, 0], [k, 1, 0], [k, 0, 1]];
+    if (flip) pts.reverse();
+    pts.flat().forEach((x, i) => view.setFloat32(at + 4 * i, x, true));
+  }
+  seen.length = 0;
+  const s = polyvol.volume(stl, 'pairs.stl', { stream: true, onProgress: (p) => seen.push(p) });
+  assert.equal(s.exitCode, 0, s.messages.join('\n'));
+  assert.ok(seen.length > 20, `${seen.length} calls`);
+  assert.deepEqual(seen[0], { file: 'pairs.stl', stage: 'reading', fraction: 0 });
+  assert.deepEqual(seen.at(-1), { file: 'pairs.stl', stage: 'measuring', fraction: 1 });
+  assert.equal(seen.filter((p) => p.stage === 'reading' && p.fraction === 1).length, 1);
+  for (let i = 1; i + 1 < seen.length; ++i)
+    if (seen[i].fraction > 0) assert.ok(seen[i].fraction > seen[i - 1].fraction && seen[i].stage === seen[i - 1].stage);
 });
