@@ -77,7 +77,7 @@ void add_measure_options(CLI::App* cmd, MeasureCommandOptions& c) {
 // them, as for Python and the web page), then how the tables print.
 // CLI11's validators have checked each flag; what file_options refuses is
 // said in its words (exit 1).
-std::optional<Request> make_request(const MeasureCommandOptions& c, bool need_mass) {
+std::optional<Request> make_request(const MeasureCommandOptions& c, ReportOf command, bool json) {
     RequestWords w;
     w.method = c.method;
     w.accuracy = c.accuracy;
@@ -91,7 +91,9 @@ std::optional<Request> make_request(const MeasureCommandOptions& c, bool need_ma
     w.orient = c.solid_flags.orient;
     w.keep_signed = c.solid_flags.keep_signed;
     w.weld_tolerance = c.solid_flags.weld_tolerance;
-    const ReadRequest read = file_options(w, need_mass);
+    w.stream = c.stream;
+    w.volume_only = c.volume_only;
+    const ReadRequest read = file_options(w, command, json);
     if (!read.options) {
         std::cerr << "polyvol: " << read.error << "\n";
         return std::nullopt;
@@ -104,10 +106,8 @@ std::optional<Request> make_request(const MeasureCommandOptions& c, bool need_ma
     return r;
 }
 
-enum class Command { volume, measure, check };
-
-int run(Command command, const MeasureCommandOptions& c) {
-    const std::optional<Request> read = make_request(c, command != Command::check);
+int run(ReportOf command, const MeasureCommandOptions& c) {
+    const std::optional<Request> read = make_request(c, command, c.json);
     if (!read) return Exit::usage;
     Request request = *read;
     if (c.format != "table" && c.mass_unit != "kg") {
@@ -123,18 +123,6 @@ int run(Command command, const MeasureCommandOptions& c) {
         return Exit::usage;
     }
     request.metres_when_known = c.format != "table";
-    request.self_check_always = command == Command::check || c.solid;
-    request.volume_only = command == Command::volume && c.volume_only;
-    // The table's figures (the library streams a binary STL for them when it can).
-    request.table_only = command == Command::volume && (!c.json || request.volume_only || c.stream);
-    request.mesh_counts = c.json && !c.stream;
-    request.stream_any_size = c.stream;
-    request.edge_counts = !(command == Command::volume && !c.json);  // the table: closedness by fingerprint
-    request.moments_bounded = command == Command::volume && !c.json;
-    if (request.table_only) {
-        request.measure.second_moments = false;
-        request.measure.edge_length = false;
-    }
     // A zip archive of plain meshes (not a 3MF or AMF package) is its members,
     // each measured as a file of its own, "ARCHIVE:MEMBER".
     const std::vector<std::pair<std::string, std::string>> inputs = file_inputs(c.files);
@@ -153,8 +141,8 @@ int run(Command command, const MeasureCommandOptions& c) {
         if (!r.error.empty()) std::cerr << "polyvol: " << r.error << "\n";
         if (!r.warning.empty()) std::cerr << "polyvol: warning: " << r.warning << "\n";
     }
-    if (c.csv && command != Command::check) {
-        std::cout << csv_table(results, command == Command::measure, request.density_relative_error);
+    if (c.csv && command != ReportOf::check) {
+        std::cout << csv_table(results, command == ReportOf::measure, request.density_relative_error);
         return code;
     }
     if (c.json) {
@@ -164,14 +152,14 @@ int run(Command command, const MeasureCommandOptions& c) {
         return code;
     }
     switch (command) {
-        case Command::volume: std::cout << volume_table(results, request); break;
-        case Command::measure:
+        case ReportOf::volume: std::cout << volume_table(results, request); break;
+        case ReportOf::measure:
             for (const auto& r : results)
                 if (r.mass)
                     std::cout << (c.format == "table" ? measure_report(r, request)
                                                       : inertial_element(r, request, c.format == "sdf"));
             break;
-        case Command::check:
+        case ReportOf::check:
             for (const auto& r : results)
                 if (r.policy.topology) std::cout << check_report(r);
             break;
@@ -213,9 +201,9 @@ void add_measure_commands(CLI::App& app, MeasureCommands& c) {
 }
 
 int run_measure_commands(const MeasureCommands& c) {
-    if (c.volume && *c.volume) return run(Command::volume, c.volume_opts);
-    if (c.measure && *c.measure) return run(Command::measure, c.measure_opts);
-    if (c.check && *c.check) return run(Command::check, c.check_opts);
+    if (c.volume && *c.volume) return run(ReportOf::volume, c.volume_opts);
+    if (c.measure && *c.measure) return run(ReportOf::measure, c.measure_opts);
+    if (c.check && *c.check) return run(ReportOf::check, c.check_opts);
     return -1;
 }
 

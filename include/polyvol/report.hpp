@@ -112,15 +112,23 @@ struct RequestWords {
     std::string scale = "1";          // every coordinate times this first (> 0)
     bool allow_open = false, solid = false, orient = false, keep_signed = false;
     double weld_tolerance = 0;        // >= 0
+    bool stream = false;       // volume: a binary STL streamed whatever its size (--stream)
+    bool volume_only = false;  // volume: the volume, its guarantee and the closedness check only (--volume-only)
 };
 
-// FileOptions for `volume` and `measure` (need_mass) or `check`, or the
+// What a report is of: the command, and (file_options' json) whether it is
+// the JSON report (`--json`, Python's measure_file, the npm package) or a
+// table for people (`volume`'s table streams a large binary STL and bounds
+// the centroid; `measure`'s and `check`'s tables, CSV).
+enum class ReportOf { volume, measure, check };
+
+// FileOptions for a report of `command`, the route's flags included, or the
 // sentence that says which word is not understood (exit code 1).
 struct ReadRequest {
     std::optional<FileOptions> options;
     std::string error;
 };
-ReadRequest file_options(const RequestWords& words, bool need_mass);
+ReadRequest file_options(const RequestWords& words, ReportOf command, bool json);
 
 // `overlap`'s words: each operand's solid policy and the units (the others
 // of RequestWords do not apply).

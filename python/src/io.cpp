@@ -167,7 +167,7 @@ void bind_io(py::module_& m) {
             w.orient = orient;
             w.keep_signed = keep_signed;
             w.weld_tolerance = weld_tolerance;
-            const ReadRequest read = file_options(w, /*need_mass=*/true);
+            const ReadRequest read = file_options(w, ReportOf::measure, /*json=*/true);
             if (!read.options) throw py::value_error(read.error);
             const FileOptions& options = *read.options;
             nlohmann::json report;

@@ -20,7 +20,7 @@ std::optional<double> positive(const std::string& s) {
 
 }  // namespace
 
-ReadRequest file_options(const RequestWords& w, bool need_mass) {
+ReadRequest file_options(const RequestWords& w, ReportOf command, bool json) {
     ReadRequest r;
     FileOptions o;
     if (w.method == "cone") o.measure.method = Method::cone;
@@ -59,11 +59,23 @@ ReadRequest file_options(const RequestWords& w, bool need_mass) {
     o.scale = *scale;
     o.scale_typed_exactly = typed_exactly(w.scale, o.scale);
     o.allow_open = w.allow_open;
-    o.need_mass = need_mass;
-    o.self_check_always = w.solid || !need_mass;
+    o.need_mass = command != ReportOf::check;
+    o.self_check_always = w.solid || command == ReportOf::check;
     o.orient = w.orient;
     o.keep_signed = w.keep_signed;
     o.weld_tolerance = w.weld_tolerance;
+    // The route (measure_file streams a binary STL where these allow it).
+    const bool volume = command == ReportOf::volume;
+    o.volume_only = volume && w.volume_only;
+    o.table_only = volume && (!json || o.volume_only || w.stream);  // the table's figures
+    o.stream_any_size = volume && w.stream;
+    o.mesh_counts = json && !o.stream_any_size;
+    o.edge_counts = !(volume && !json);  // the table: closedness by fingerprint
+    o.moments_bounded = volume && !json;
+    if (o.table_only) {
+        o.measure.second_moments = false;
+        o.measure.edge_length = false;
+    }
     r.options = std::move(o);
     return r;
 }

@@ -3,8 +3,10 @@
 //   node web/bench/chromium.mjs FILE.stl [ROUNDS]
 // The page's directory (build-wasm/page) is served locally with FILE as
 // /bench-file; in the page the module is instantiated once, then each round
-// fetches the file and calls volume on it (loaded, as --json; and streamed, as
-// --stream --json). Prints each round and the medians.
+// fetches the file and calls volume on it: loaded (as --json), streamed (as
+// --stream --json) and streamed volume only (--stream --volume-only --json,
+// the table's one pass); `fetch` is the fetch and arrayBuffer() alone. Prints
+// each round and the medians.
 import { spawnSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { createServer } from 'node:http';
@@ -47,6 +49,7 @@ try {
   const inPage = (options) => page.evaluate(async (o) => {
     const t = performance.now();
     const data = await (await fetch('/bench-file')).arrayBuffer();
+    if (o === null) return (performance.now() - t) / 1000;  // the fetch alone
     const r = window.benchPolyvol.volume(data, 'bench.stl', o);
     if (r.exitCode !== 0) throw new Error(r.messages.join('\n'));
     return (performance.now() - t) / 1000;
@@ -57,18 +60,23 @@ try {
     if (r.status !== 0) throw new Error(r.stderr);
     return Number(process.hrtime.bigint() - t) / 1e9;
   };
-  const times = { table: [], loaded: [], stream: [] };
+  const routes = {
+    'native table': async () => native(),
+    fetch: () => inPage(null),
+    volume: () => inPage({}),
+    stream: () => inPage({ stream: true }),
+    'stream volumeOnly': () => inPage({ stream: true, volumeOnly: true }),
+  };
+  const times = Object.fromEntries(Object.keys(routes).map((k) => [k, []]));
   for (let i = 0; i < rounds; ++i) {
-    times.table.push(native());
-    times.loaded.push(await inPage({}));
-    times.stream.push(await inPage({ stream: true }));
-    console.log(`round ${i + 1}: native table ${times.table[i].toFixed(3)} s, chromium volume ${times.loaded[i].toFixed(3)} s, ` +
-      `chromium volume stream ${times.stream[i].toFixed(3)} s`);
+    for (const [k, f] of Object.entries(routes)) times[k].push(await f());
+    console.log(`round ${i + 1}: ${Object.entries(times).map(([k, v]) => `${k} ${v[i].toFixed(3)} s`).join(', ')}`);
   }
   const median = (a) => [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)];
   const m = Object.fromEntries(Object.entries(times).map(([k, v]) => [k, median(v)]));
-  console.log(`medians: native table ${m.table.toFixed(3)} s, chromium volume ${m.loaded.toFixed(3)} s, chromium stream ` +
-    `${m.stream.toFixed(3)} s; stream / table ${(m.stream / m.table).toFixed(2)}`);
+  console.log(`medians (chromium): ${Object.entries(m).map(([k, v]) => `${k} ${v.toFixed(3)} s`).join(', ')}; ` +
+    `stream / table ${(m.stream / m['native table']).toFixed(2)}, stream volumeOnly / table ` +
+    `${(m['stream volumeOnly'] / m['native table']).toFixed(2)}`);
 } finally {
   await browser.close();
   server.close();

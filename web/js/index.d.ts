@@ -30,6 +30,8 @@ export interface Options {
   weldTolerance?: number;
   /** volume only: the table's figures, a binary STL streamed whatever its size (its shells not checked for overlap). */
   stream?: boolean;
+  /** volume only: the volume, its guarantee and the closedness check, nothing else (`volume --volume-only --json`); with stream, one pass over a binary STL. */
+  volumeOnly?: boolean;
   /** Called while each file is measured: each stage as it begins (fraction 0), a streamed STL's passes by whole percents, ('measuring', 1) at its end. */
   onProgress?: (p: Progress) => void;
 }

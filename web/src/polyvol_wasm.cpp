@@ -74,6 +74,8 @@ polyvol::RequestWords words_of(const json& o) {
     flag("orient", w.orient);
     flag("keep_signed", w.keep_signed);
     flag("units_where_unstated", w.units_where_unstated);
+    flag("stream", w.stream);
+    flag("volume_only", w.volume_only);
     if (o.contains("weld_tolerance")) w.weld_tolerance = o["weld_tolerance"].get<double>();
     return w;
 }
@@ -82,26 +84,16 @@ polyvol::RequestWords words_of(const json& o) {
 // measure_file for its JSON (cli/commands/measure.cpp), each file's report.
 json measure_files(const std::string& command, const json& request, json& messages, int& code, std::string& csv,
                    json& note_words) {
-    const bool check = command == "check";
-    const polyvol::ReadRequest read = polyvol::file_options(words_of(request.value("options", json::object())), !check);
+    const polyvol::ReportOf of = command == "volume"    ? polyvol::ReportOf::volume
+                                 : command == "measure" ? polyvol::ReportOf::measure
+                                                        : polyvol::ReportOf::check;
+    const polyvol::ReadRequest read = polyvol::file_options(words_of(request.value("options", json::object())), of, true);
     if (!read.options) {
         messages.push_back("polyvol: " + read.error);
         code = Exit::usage;
         return nullptr;
     }
     polyvol::FileOptions options = *read.options;
-    options.edge_counts = true;
-    // volume's "stream" (--stream): the table's figures, a binary STL streamed
-    // in constant memory whatever its size, its shells not checked for overlap.
-    const json o = request.value("options", json::object());
-    const bool stream = command == "volume" && o.value("stream", false);
-    options.table_only = stream;
-    options.stream_any_size = stream;
-    options.mesh_counts = !stream;
-    if (stream) {
-        options.measure.second_moments = false;
-        options.measure.edge_length = false;
-    }
     // A zip archive of plain meshes is its members, "ARCHIVE:MEMBER", as on the command line.
     const auto inputs = polyvol::file_inputs(request.at("files").get<std::vector<std::string>>());
     json out = json::array();

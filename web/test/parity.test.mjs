@@ -24,6 +24,7 @@ const requests = [
   { command: 'measure', args: ['measure', '--json'], options: {} },
   { command: 'check', args: ['check', '--json'], options: {} },
   { command: 'volume', args: ['volume', '--stream', '--json'], options: { stream: true } },
+  { command: 'volume', args: ['volume', '--stream', '--volume-only', '--json'], options: { stream: true, volumeOnly: true } },
   {
     command: 'measure',
     args: ['measure', '--json', '--solid', '--density', '1.24g/cm3', '--units', 'mm', '--mass-unit', 'g'],
