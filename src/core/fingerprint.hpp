@@ -36,11 +36,27 @@ constexpr int kLanes = 4;                         // independent lanes (four 31-
     return x >= kP ? x - kP : x;
 }
 
+// mum's product from four 32 x 32 -> 64 bit products: the same bits, for
+// WebAssembly, which has no 64 x 64 -> 128 bit multiply (there __int128's
+// product is a call to __multi3, a 128 x 128 bit product).
+[[gnu::always_inline]] inline uint64_t mum_by_halves(uint64_t a, uint64_t b) {
+    const uint64_t al = a & 0xFFFFFFFFu, ah = a >> 32, bl = b & 0xFFFFFFFFu, bh = b >> 32;
+    const uint64_t ll = al * bl, lh = al * bh, hl = ah * bl, hh = ah * bh;
+    const uint64_t mid = (ll >> 32) + (lh & 0xFFFFFFFFu) + (hl & 0xFFFFFFFFu);  // < 3 * 2^32
+    const uint64_t lo = mid << 32 | (ll & 0xFFFFFFFFu);
+    const uint64_t hi = hh + (lh >> 32) + (hl >> 32) + (mid >> 32);
+    return lo ^ hi;
+}
+
 // wyhash's multiply-xor: the two halves of the 128-bit product, xored.
 [[gnu::always_inline]] inline uint64_t mum(uint64_t a, uint64_t b) {
+#if defined(__wasm__)
+    return mum_by_halves(a, b);
+#else
     __extension__ typedef unsigned __int128 u128;
     const u128 r = static_cast<u128>(a) * b;
     return static_cast<uint64_t>(r) ^ static_cast<uint64_t>(r >> 64);
+#endif
 }
 
 // A step of SplitMix64: keys derived from a seed (reproducible, for tests).

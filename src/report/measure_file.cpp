@@ -62,6 +62,18 @@ bool streams(const FileOptions& q, const std::string& member) {
            q.scale == 1 && q.scale_typed_exactly && q.density_kg_m3 == 0 && std::isfinite(q.measure.density);
 }
 
+// The streamed windows: natively StlStreamOptions' (L2-sized, one buffer per
+// thread); in a browser's worker each read of a File is a call to the
+// browser's file system costing milliseconds, so its windows are 8 MiB.
+#ifdef __EMSCRIPTEN__
+constexpr std::size_t kWindowBytes = std::size_t{8} << 20;
+#else
+constexpr std::size_t kWindowBytes = StlStreamOptions{}.window_bytes;
+#endif
+constexpr std::size_t kRecordBytes = 50;      // a binary STL's triangle
+constexpr std::size_t kSliceRecords = 4096;   // a multiple of SoupAccumulator::kBlockTriangles
+static_assert(kSliceRecords % SoupAccumulator::kBlockTriangles == 0);
+
 // The streaming route for a binary STL: nothing when the file is not binary
 // STL, cannot be probed, or is not closed (the loaded route then reports it).
 std::optional<FileReport> stream_binary_stl(const std::string& path, const FileOptions& q) {
@@ -89,12 +101,16 @@ std::optional<FileReport> stream_binary_stl(const std::string& path, const FileO
             core::ProgressCounter records(
                 q.progress ? std::function<void(double)>([&](double f) { q.progress(stage, f); }) : nullptr,
                 file->probe().triangles);
+            // A window in slices of kSliceRecords, so that progress moves within it.
             file->for_each_window(
                 [&](std::span<const std::byte> window, uint64_t first) {
-                    acc.add(stl_records(window), first);
-                    records.add(window.size() / 50);
+                    for (std::size_t at = 0; at < window.size(); at += kSliceRecords * kRecordBytes) {
+                        const auto slice = window.subspan(at, std::min(window.size() - at, kSliceRecords * kRecordBytes));
+                        acc.add(stl_records(slice), first + at / kRecordBytes);
+                        records.add(slice.size() / kRecordBytes);
+                    }
                 },
-                StlStreamOptions{.alignment = SoupAccumulator::kBlockTriangles});
+                StlStreamOptions{.window_bytes = kWindowBytes, .alignment = SoupAccumulator::kBlockTriangles});
         } while (acc.next_pass());
     } catch (const ReadError& e) {
         r.exit_code = Exit::unreadable;

@@ -2,11 +2,18 @@
 // command line on one core, in paired rounds, the file read on both sides:
 //   node web/bench/chromium.mjs FILE.stl [ROUNDS]
 // The page's directory (build-wasm/page) is served locally with FILE as
-// /bench-file; in the page the module is instantiated once, then each round
-// fetches the file and calls volume on it: loaded (as --json), streamed (as
-// --stream --json) and streamed volume only (--stream --volume-only --json,
-// the table's one pass); `fetch` is the fetch and arrayBuffer() alone. Prints
-// each round and the medians.
+// /bench-file. Two ways in, each round:
+//  * as a person gives it: FILE chosen on a file input, handed as a File to
+//    the page's own worker (page/worker.js, the module instantiated before
+//    the rounds), which reads it window by window; `file` is the call
+//    volume({stream, volumeOnly}) from posting to the answer, `file bytes`
+//    the same after file.arrayBuffer() (the whole file read first, the
+//    bytes handed over);
+//  * fetched from the server on the page's thread: `fetch` is the fetch and
+//    arrayBuffer() alone, then volume loaded (as --json), streamed (as
+//    --stream --json) and streamed volume only (--stream --volume-only
+//    --json, the table's one pass).
+// Prints each round and the medians.
 import { spawnSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { createServer } from 'node:http';
@@ -46,6 +53,30 @@ try {
     const { parseXml } = await import('/vendor/parse-xml.mjs');
     window.benchPolyvol = await createPolyvol({ fflate, parseXml });
   });
+  // The file input and the worker.
+  const input = await page.evaluateHandle(() => {
+    const e = Object.assign(document.createElement('input'), { type: 'file', id: 'bench-input' });
+    document.body.append(e);
+    window.benchWorker = new Worker('/worker.js', { type: 'module' });
+    return e;
+  });
+  await input.uploadFile(file);
+  const viaWorker = (bytes) => page.evaluate(async (whole) => {
+    const f = document.getElementById('bench-input').files[0];
+    const t = performance.now();
+    const data = whole ? await f.arrayBuffer() : f;
+    const answer = await new Promise((resolve, reject) => {
+      window.benchWorker.onmessage = ({ data: m }) => {
+        if (m.error !== undefined) reject(new Error(m.error));
+        else if (!m.progress) resolve(m.answer);
+      };
+      window.benchWorker.postMessage({ id: 1, command: 'volume', files: [{ name: f.name, data }],
+        options: { stream: true, volumeOnly: true } }, whole ? [data] : []);
+    });
+    if (answer.exitCode !== 0) throw new Error(answer.messages.join('\n'));
+    return (performance.now() - t) / 1000;
+  }, bytes);
+  await viaWorker(false);  // the worker's module instantiated, its code warm
   const inPage = (options) => page.evaluate(async (o) => {
     const t = performance.now();
     const data = await (await fetch('/bench-file')).arrayBuffer();
@@ -62,6 +93,8 @@ try {
   };
   const routes = {
     'native table': async () => native(),
+    file: () => viaWorker(false),
+    'file bytes': () => viaWorker(true),
     fetch: () => inPage(null),
     volume: () => inPage({}),
     stream: () => inPage({ stream: true }),
@@ -75,7 +108,8 @@ try {
   const median = (a) => [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)];
   const m = Object.fromEntries(Object.entries(times).map(([k, v]) => [k, median(v)]));
   console.log(`medians (chromium): ${Object.entries(m).map(([k, v]) => `${k} ${v.toFixed(3)} s`).join(', ')}; ` +
-    `stream / table ${(m.stream / m['native table']).toFixed(2)}, stream volumeOnly / table ` +
+    `file / table ${(m.file / m['native table']).toFixed(2)}, file bytes / table ` +
+    `${(m['file bytes'] / m['native table']).toFixed(2)}, stream volumeOnly (fetched) / table ` +
     `${(m['stream volumeOnly'] / m['native table']).toFixed(2)}`);
 } finally {
   await browser.close();

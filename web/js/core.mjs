@@ -1,7 +1,9 @@
 // The package's calls over an instantiated module (web/src/polyvol_wasm.cpp):
-// files go into the module's in-memory file system, one directory per call,
-// named as given (so the results name them as `polyvol` run in their
-// directory does); the answer is the command line's JSON, parsed.
+// files go into the module's file system, one directory per call, named as
+// given (so the results name them as `polyvol` run in their directory
+// does); the answer is the command line's JSON, parsed. Bytes are copied
+// into memory (MEMFS); a Blob or File in a worker is mounted (WORKERFS) and
+// read as the core reads it, window by window, never whole.
 
 const COMMANDS = new Set(['volume', 'measure', 'check', 'overlap']);
 
@@ -12,6 +14,8 @@ function words(options = {}) {
   for (const [k, v] of Object.entries(options)) if (v !== undefined && v !== null) out[key(k)] = v;
   return out;
 }
+
+const isBlob = (data) => typeof Blob !== 'undefined' && data instanceof Blob;
 
 function bytesOf(data) {
   if (data instanceof Uint8Array) return data;
@@ -35,22 +39,31 @@ export function bind(Module) {
   // Calls fn(names) with the files written into a directory of their own,
   // the current one meanwhile; names are those of the files not marked companion.
   function inDirectory(files, fn) {
+    // Blobs are read where FileReaderSync is (a worker): then every file of
+    // the call is mounted as one (bytes as a Blob of their own).
+    const mounted = files.some((f) => isBlob(f.data));
+    if (mounted && typeof FileReaderSync === 'undefined')
+      throw new TypeError('a Blob or File is read in a worker (FileReaderSync); elsewhere pass its arrayBuffer()');
     const dir = `/call${++calls}`;
     FS.mkdir(dir);
     const names = [];
+    const blobs = [];
     try {
       for (const f of files) {
         let name = baseName(f.name);
         // A second file of the same name (overlap of two versions of a part) in a directory of its own.
-        if (FS.analyzePath(`${dir}/${name}`).exists) {
+        const taken = (n) => (mounted ? blobs.some((b) => b.name === n || b.name.startsWith(`${n}/`)) : FS.analyzePath(`${dir}/${n}`).exists);
+        if (taken(name)) {
           let k = 2;
-          while (FS.analyzePath(`${dir}/copy${k}`).exists) ++k;
-          FS.mkdir(`${dir}/copy${k}`);
+          while (taken(`copy${k}`)) ++k;
+          if (!mounted) FS.mkdir(`${dir}/copy${k}`);
           name = `copy${k}/${name}`;
         }
-        FS.writeFile(`${dir}/${name}`, bytesOf(f.data));
+        if (mounted) blobs.push({ name, data: isBlob(f.data) ? f.data : new Blob([bytesOf(f.data)]) });
+        else FS.writeFile(`${dir}/${name}`, bytesOf(f.data));
         if (!f.companion) names.push(name);
       }
+      if (mounted) FS.mount(FS.filesystems.WORKERFS, { blobs }, dir);
       FS.chdir(dir);
       return fn(names);
     } finally {
@@ -64,7 +77,12 @@ export function bind(Module) {
         }
         FS.rmdir(d);
       };
-      remove(dir);
+      if (mounted) {
+        try { FS.unmount(dir); } catch { /* never mounted: the error above is the one to see */ }
+        FS.rmdir(dir);
+      } else {
+        remove(dir);
+      }
     }
   }
 

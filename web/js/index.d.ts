@@ -73,7 +73,8 @@ export interface OverlapAnswer {
 /** overlap's options: the solid policy and the units. */
 export type OverlapOptions = Pick<Options, 'units' | 'unitsWhereUnstated' | 'to' | 'orient' | 'keepSigned' | 'weldTolerance'>;
 
-export type FileData = ArrayBuffer | ArrayBufferView | string;
+/** A file's bytes; or a Blob or File, in a worker only (read there window by window with FileReaderSync, never whole). */
+export type FileData = ArrayBuffer | ArrayBufferView | string | Blob;
 export interface Companion { name: string; data: FileData }
 
 /** A file's triangles and what `check` finds wrong with its edges, for a 3D view (float32 coordinates as read). */

@@ -33,7 +33,8 @@ function ask(command, files, options, onProgress) {
   if (broken) return Promise.reject(new Error(broken));
   return new Promise((resolve, reject) => {
     pending.set(id, { resolve, reject, onProgress });
-    worker.postMessage({ id, command, files, options }, files.map((f) => f.data));
+    // A File goes as it is (the worker reads it window by window); bytes are handed over.
+    worker.postMessage({ id, command, files, options }, files.map((f) => f.data).filter((d) => d instanceof ArrayBuffer));
   });
 }
 
@@ -155,7 +156,7 @@ async function view(f, member, title) {
   $('view-words').textContent = 'Reading the mesh…';
   delete section.dataset.ready;
   try {
-    const m = await ask('mesh', [{ name: f.name, data: await f.arrayBuffer() }], { member });
+    const m = await ask('mesh', [{ name: f.name, data: f }], { member });
     if (m.exitCode) throw new Error(m.error);
     section.dataset.triangles = String(m.triangles.length / 3);
     section.dataset.problemEdges = String(m.problemEdges.length / 6);
@@ -217,7 +218,7 @@ $('overlap-go').addEventListener('click', async () => {
   $('progress').hidden = false;
   $('progress').removeAttribute('value');
   try {
-    const files = [{ name: fa.name, data: await fa.arrayBuffer() }, { name: fb.name, data: await fb.arrayBuffer() }];
+    const files = [{ name: fa.name, data: fa }, { name: fb.name, data: fb }];
     const { units } = options();
     const answer = await ask('overlap', files, { units, to: units, unitsWhereUnstated: true });
     $('results').prepend(renderOverlap(fa.name, fb.name, answer));
@@ -252,8 +253,7 @@ async function measureFiles(list) {
       $('status').textContent = `${counting}${member}: ${STAGE_WORDS[stage]}${percent}…`;
     };
     try {
-      const data = await f.arrayBuffer();
-      const answer = await ask('measure', [{ name: f.name, data }], options(), onProgress);
+      const answer = await ask('measure', [{ name: f.name, data: f }], options(), onProgress);
       $('results').prepend(render(f.name, answer, f));
       remember(f);
     } catch (e) {

@@ -1,6 +1,7 @@
 // The page's worker: the WebAssembly core runs here, so that a large file
-// never freezes the page. Messages: {id, command, files: [{name, data}],
-// options} in (command 'mesh': the package's mesh() of the first file);
+// never freezes the page, and reads a File as it needs it (FileReaderSync,
+// window by window: a file larger than memory streams). Messages: {id,
+// command, files: [{name, data: a File, Blob or ArrayBuffer}], options} in (command 'mesh': the package's mesh() of the first file);
 // {id, progress: {file, stage, fraction}} while a file is measured, then
 // {id, answer} or {id, error} out.
 import { createPolyvol } from './polyvol/browser.mjs';

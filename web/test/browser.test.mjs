@@ -250,6 +250,47 @@ test('a broken file: a clear message, and the page still works', async () => {
   assert.equal((await card('unitCube.ascii.stl')).exitCode, 0);
 });
 
+test('the worker reads a File as the core asks (WORKERFS) and reports progress: volume --stream --json, 8,334 unit cubes', async () => {
+  // 8,334 disjoint unit cubes at x = 2k, 12 triangles each: 100,008 triangles, volume 8334.
+  const QUADS = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+  const cubes = 8334, n = 12 * cubes;
+  const stl = new Uint8Array(84 + 50 * n);
+  const view = new DataView(stl.buffer);
+  view.setUint32(80, n, true);
+  let t = 0;
+  for (let k = 0; k < cubes; ++k) {
+    const p = [...Array(8).keys()].map((i) => [2 * k + (i & 1), (i >> 1) & 1, (i >> 2) & 1]);
+    for (const [a, b, c, d] of QUADS)
+      for (const tri of [[a, b, c], [a, c, d]]) tri.flatMap((i) => p[i]).forEach((x, j) => view.setFloat32(84 + 50 * t + 12 + 4 * j, x, true)), ++t;
+  }
+  const dir = mkdtempSync(path.join(tmpdir(), 'polyvol-stream-'));
+  writeFileSync(path.join(dir, 'cubes.stl'), stl);
+  const native = runCli(['volume', '--stream', '--json', 'cubes.stl'], dir);
+  assert.equal(native.code, 0);
+  const input = await page.evaluateHandle(() => {
+    const e = Object.assign(document.createElement('input'), { type: 'file', hidden: true });
+    document.body.append(e);
+    return e;
+  });
+  await input.uploadFile(path.join(dir, 'cubes.stl'));
+  const { answer, progress } = await page.evaluate((e) => new Promise((resolve, reject) => {
+    const worker = new Worker('/worker.js', { type: 'module' });
+    const progress = [];
+    worker.onmessage = ({ data: m }) => {
+      if (m.progress) return progress.push(m.progress);
+      worker.terminate();
+      if (m.error !== undefined) reject(new Error(m.error));
+      else resolve({ answer: m.answer, progress });
+    };
+    worker.postMessage({ id: 1, command: 'volume', files: [{ name: 'cubes.stl', data: e.files[0] }], options: { stream: true } });
+  }), input);
+  assert.equal(answer.stdout, native.stdout);
+  assert.equal(JSON.parse(answer.stdout)[0].volume, 8334);
+  assert.deepEqual(progress[0], { file: 'cubes.stl', stage: 'reading', fraction: 0 });
+  assert.deepEqual(progress.at(-1), { file: 'cubes.stl', stage: 'measuring', fraction: 1 });
+  assert.ok(progress.filter((p) => p.stage === 'reading' && p.fraction > 0 && p.fraction < 1).length >= 20, JSON.stringify(progress));
+});
+
 test('the page asked nothing of any other origin and threw nothing', () => {
   assert.deepEqual(foreign, []);
   assert.deepEqual(pageErrors, []);

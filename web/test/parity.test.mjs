@@ -296,3 +296,9 @@ test('onProgress: each file through its stages, a streamed STL by whole percents
   for (let i = 1; i + 1 < seen.length; ++i)
     if (seen[i].fraction > 0) assert.ok(seen[i].fraction > seen[i - 1].fraction && seen[i].stage === seen[i - 1].stage);
 });
+
+test('a Blob is read in a worker only (FileReaderSync): elsewhere a clear TypeError, the module still usable', () => {
+  const cube = readFileSync(path.join(corpusDir(), 'meshes', 'stl-models/unitCube.ascii.stl'));
+  assert.throws(() => polyvol.volume(new Blob([cube]), 'cube.stl'), /read in a worker \(FileReaderSync\)/);
+  assert.equal(polyvol.volume(cube, 'cube.stl').results[0].volume, 1);
+});
