@@ -8,7 +8,7 @@
 //    the rounds), which reads it window by window; `file` is the call
 //    volume({stream, volumeOnly}) from posting to the answer, `file bytes`
 //    the same after file.arrayBuffer() (the whole file read first, the
-//    bytes handed over);
+//    bytes handed over), `file read` file.arrayBuffer() alone;
 //  * fetched from the server on the page's thread: `fetch` is the fetch and
 //    arrayBuffer() alone, then volume loaded (as --json), streamed (as
 //    --stream --json) and streamed volume only (--stream --volume-only
@@ -77,6 +77,11 @@ try {
     return (performance.now() - t) / 1000;
   }, bytes);
   await viaWorker(false);  // the worker's module instantiated, its code warm
+  const fileRead = () => page.evaluate(async () => {
+    const t = performance.now();
+    await document.getElementById('bench-input').files[0].arrayBuffer();
+    return (performance.now() - t) / 1000;
+  });
   const inPage = (options) => page.evaluate(async (o) => {
     const t = performance.now();
     const data = await (await fetch('/bench-file')).arrayBuffer();
@@ -95,6 +100,7 @@ try {
     'native table': async () => native(),
     file: () => viaWorker(false),
     'file bytes': () => viaWorker(true),
+    'file read': fileRead,
     fetch: () => inPage(null),
     volume: () => inPage({}),
     stream: () => inPage({ stream: true }),

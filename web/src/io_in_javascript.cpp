@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <boost/crc.hpp>
 #include <nlohmann/json.hpp>
 
 #include "io/readers.hpp"
@@ -30,11 +31,13 @@ namespace {
 // One call into JavaScript: `what` (0: gunzip, 1: the zip's entry names as a
 // JSON array, 2: one zip entry) of data[0, size), at most `limit` bytes out.
 // The result is malloc'ed (its size in *out_size), or null with a malloc'ed
-// message in *error.
+// message in *error. A zip entry's CRC-32 and size as its central directory
+// record states them go to expected[0..1] (fflate checks neither).
 EM_JS(void*, polyvol_js_unpack,
-      (int what, const void* data, size_t size, const char* entry, double limit, size_t* out_size, char** error), {
+      (int what, const void* data, size_t size, const char* entry, double limit, size_t* out_size, char** error,
+       double* expected), {
     // Pointers past 2 GiB arrive negative: read them unsigned.
-    data >>>= 0; size >>>= 0; entry >>>= 0; out_size >>>= 0; error >>>= 0;
+    data >>>= 0; size >>>= 0; entry >>>= 0; out_size >>>= 0; error >>>= 0; expected >>>= 0;
     const fail = (text) => {
         const n = lengthBytesUTF8(text) + 1;
         const p = _malloc(n) >>> 0;
@@ -75,15 +78,27 @@ EM_JS(void*, polyvol_js_unpack,
             out = new TextEncoder().encode(JSON.stringify(names));
         } else {
             const want = UTF8ToString(entry);
-            let claimed = -1;
+            let claimed = -1, index = -1, seen = 0;
             const files = fflate.unzipSync(bytes, { filter: (f) => {
-                if (f.name !== want) return false;
+                if (f.name !== want) return ++seen, false;
                 claimed = f.originalSize;
+                index = seen++;
                 return f.originalSize <= limit;
             } });
             if (claimed > limit) return fail('claims ' + claimed);  // words: ZipArchive::read
             if (!(want in files)) return fail('is missing');
             out = files[want];
+            // The record of entry `index`, found as fflate finds the records
+            // (the end record, its zip64 locator, then record after record).
+            const u16 = (at) => bytes[at] | bytes[at + 1] << 8;
+            const u32 = (at) => (u16(at) | u16(at + 2) << 16) >>> 0;
+            let e = bytes.length - 22;
+            while (u32(e) !== 0x06054b50) --e;
+            let at = u32(e + 16);
+            if (e >= 20 && u32(e - 20) === 0x07064b50 && u32(u32(e - 12)) === 0x06064b50) at = u32(u32(e - 12) + 48);
+            for (let k = 0; k < index; ++k) at += 46 + u16(at + 28) + u16(at + 30) + u16(at + 32);
+            HEAPF64[expected >>> 3] = u32(at + 16);
+            HEAPF64[(expected >>> 3) + 1] = claimed;
         }
     } catch (e) {
         return fail(String(e && e.message ? e.message : e));
@@ -98,13 +113,18 @@ EM_JS(void*, polyvol_js_unpack,
 struct Unpacked {
     std::vector<std::byte> bytes;
     std::string error;  // empty: bytes are the result
+    double crc = -1, size = -1;  // a zip entry's, as its record states them
 };
 
 Unpacked unpack(int what, Bytes data, const std::string& entry, uint64_t limit) {
     std::size_t size = 0;
     char* error = nullptr;
-    void* p = polyvol_js_unpack(what, data.data(), data.size(), entry.c_str(), static_cast<double>(limit), &size, &error);
+    double expected[2] = {-1, -1};
+    void* p = polyvol_js_unpack(what, data.data(), data.size(), entry.c_str(), static_cast<double>(limit), &size, &error,
+                                expected);
     Unpacked u;
+    u.crc = expected[0];
+    u.size = expected[1];
     if (p == nullptr) {
         u.error = error ? error : "out of memory";
         std::free(error);
@@ -171,6 +191,17 @@ std::vector<std::byte> ZipArchive::read(const std::string& entry) {
         throw ReadError::whole_file(name_, "zip entry '" + entry + "' " + u.error + " bytes uncompressed, more than " +
                                                decompression_limit_words(limit_) + "; refusing to decompress it");
     if (!u.error.empty()) throw ReadError::whole_file(name_, "zip entry '" + entry + "' " + u.error);
+    // What minizip checks natively (zip.cpp's words): the size, then the CRC-32.
+    if (static_cast<double>(u.bytes.size()) != u.size)
+        throw ReadError::whole_file(name_, "cannot decompress zip entry '" + entry + "': it holds " +
+                                               std::to_string(u.bytes.size()) + " bytes where its header says " +
+                                               std::to_string(static_cast<uint64_t>(u.size)) +
+                                               " bytes (the data is corrupt)");
+    boost::crc_32_type crc;
+    crc.process_bytes(u.bytes.data(), u.bytes.size());
+    if (static_cast<double>(crc.checksum()) != u.crc)
+        throw ReadError::whole_file(name_, "cannot decompress zip entry '" + entry +
+                                               "': CRC mismatch (the data is corrupt)");
     used_ += u.bytes.size();
     return std::move(u.bytes);
 }

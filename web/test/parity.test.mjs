@@ -92,6 +92,20 @@ test('a zip whose entry would expand past the decompression limit is refused, un
   assert.deepEqual(wasm.messages, native.messages);
 });
 
+test("a zip entry whose bytes are not its CRC-32's, or fewer than its record says: the command line's words", () => {
+  const obj = readFileSync(path.join(corpusDir(), 'meshes', 'geomview/dodec.off'));
+  const stored = zipSync({ 'dodec.off': [obj, { level: 0 }] });
+  const at = stored.indexOf(obj[0], 30 + 'dodec.off'.length);  // the entry's first byte, stored as it is
+  const corrupt = new Uint8Array(stored);
+  corrupt[at + 100] ^= 0x20;
+  const { native, wasm } = both(['measure', '--json'], 'measure', {}, { 'parts.zip': corrupt });
+  assert.equal(native.code, 2);
+  assert.match(native.messages.join('\n'), /CRC mismatch/);
+  assert.equal(wasm.exitCode, native.code);
+  assert.deepEqual(wasm.messages, native.messages);
+  assert.equal(wasm.stdout, native.stdout);
+});
+
 test('a gzip bomb is stopped at the decompression limit, not after it went off', () => {
   const bomb = gzipSync(new Uint8Array(64 << 20), { level: 9 });  // 64 MiB of zeros in about 64 KB: limit 16 MiB
   const { native, wasm } = both(['measure', '--json'], 'measure', {}, { 'bomb.stl.gz': bomb });
