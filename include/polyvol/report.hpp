@@ -95,7 +95,10 @@ struct FileOptions {
     bool metres_when_known = false;     // SI whenever the unit is known (URDF, SDF)
     // Progress, for a caller that shows it (empty: none; the library never
     // prints): each stage with fraction 0 as it begins, a streamed file's
-    // passes by whole percents of their records, and (measuring, 1) at the end.
+    // passes by whole percents of their records (pass 1 reading; passes 2
+    // and 3 measuring, each half of it), and (measuring, 1) at the end of a
+    // file measured. Within a stage the fraction never falls; a streamed
+    // file found open or inside out is then loaded, its stages begun again.
     std::function<void(FileStage, double)> progress{};
 };
 

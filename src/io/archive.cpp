@@ -1,7 +1,8 @@
 // Tar archives of meshes, plain or compressed (.tar, .tar.gz, .tgz,
-// .tar.bz2, .tbz2), and the limit on what compressed data may expand to.
+// .tar.bz2, .tbz2).
 //
-// gzip and bzip2 are gzip.cpp's and bzip2.cpp's (zlib, libbz2). A tar is read here: POSIX ustar headers of 512 bytes
+// gzip and bzip2 are gunzip's and bunzip2's (readers.hpp; zlib and libbz2
+// natively, web/src/io_in_javascript.cpp in the WebAssembly build). A tar is read here: POSIX ustar headers of 512 bytes
 // (name at 0, size in octal at 124, checksum at 148, type at 156, name
 // prefix at 345), with GNU long names (type 'L') and pax headers (type 'x',
 // their "path" record); each member's data follows its header, padded to

@@ -361,7 +361,7 @@ uint64_t decompression_limit(std::size_t compressed_bytes) {
 
 std::string decompression_limit_words(uint64_t limit) {
     return "the decompression limit of " + std::to_string(limit) +
-           " bytes (64 x the compressed size, at least 16 MiB, at most 4 GiB)";
+           " bytes (all an input's compressed data may expand to: 64 x its size, at least 16 MiB, at most 4 GiB)";
 }
 
 bool is_gzip(Bytes head) { return starts_with(head, "\x1f\x8b"); }

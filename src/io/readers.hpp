@@ -43,8 +43,9 @@ uint64_t stl_triangle_count(Bytes head);
 // compressed_bytes, 16 MiB)). Meshes compress 2–20×; a bomb expands 1000×
 // per level.
 uint64_t decompression_limit(std::size_t compressed_bytes);
-// "the decompression limit of N bytes (64 x ...)": the words of every
-// refusal at the limit (gzip, bzip2, zip entries), the same in every build.
+// "the decompression limit of N bytes (...)": the words of every refusal at
+// the limit (gzip, bzip2, zip entries), the same in every build; N is what
+// was left of the input's limit (decompression_limit, or the caller's).
 std::string decompression_limit_words(uint64_t limit);
 
 // zlib: the decompressed bytes of a gzip stream (every member). Throws

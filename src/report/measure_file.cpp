@@ -95,11 +95,16 @@ std::optional<FileReport> stream_binary_stl(const std::string& path, const FileO
                   .density = q.measure.density});
     try {
         do {
-            // Pass 1 reads and measures; passes 2 and 3 decide the first moments (soup.hpp).
-            const FileStage stage = acc.pass() == 1 ? FileStage::reading : FileStage::measuring;
-            tell(q, stage, 0);
+            // Pass 1 reads and measures (reading, 0 to 1); passes 2 and 3
+            // decide the first moments (soup.hpp): measuring, 0 to 1/2 and
+            // 1/2 to 1, so that a skipped pass only jumps ahead.
+            const bool first_pass = acc.pass() == 1;
+            const FileStage stage = first_pass ? FileStage::reading : FileStage::measuring;
+            const double from = first_pass ? 0 : 0.5 * (acc.pass() - 2), width = first_pass ? 1 : 0.5;
+            tell(q, stage, from);
             core::ProgressCounter records(
-                q.progress ? std::function<void(double)>([&](double f) { q.progress(stage, f); }) : nullptr,
+                q.progress ? std::function<void(double)>([&](double f) { q.progress(stage, from + width * f); })
+                           : nullptr,
                 file->probe().triangles);
             // A window in slices of kSliceRecords, so that progress moves within it.
             file->for_each_window(
@@ -124,7 +129,6 @@ std::optional<FileReport> stream_binary_stl(const std::string& path, const FileO
     r.triangles = acc.result().triangles;
     r.mass = acc.result().properties;
     r.seconds_measure = seconds_since(t0);
-    tell(q, FileStage::measuring, 1);
     return r;
 }
 
@@ -290,9 +294,13 @@ void measure_figures(FileReport& r, const FileOptions& q, double length_error) {
 
 // The route (streams), then read → units → the solid policy → the figures.
 FileReport measure_file(const std::string& file, const FileOptions& request, const std::string& member) {
+    // A streamed file found open or inside out is loaded below: its stages begin again.
     if (streams(request, member))
         if (auto s = stream_binary_stl(file, request))
-            if (request.keep_signed || !s->mass || s->mass->volume >= 0) return std::move(*s);  // inside out: loaded below
+            if (request.keep_signed || !s->mass || s->mass->volume >= 0) {
+                if (s->exit_code == Exit::ok) tell(request, FileStage::measuring, 1);
+                return std::move(*s);
+            }
     FileReport r;
     r.file = member.empty() ? file : file + ":" + member;  // the name in every message
     tell(request, FileStage::reading, 0);

@@ -2,8 +2,9 @@
 // files go into the module's file system, one directory per call, named as
 // given (so the results name them as `polyvol` run in their directory
 // does); the answer is the command line's JSON, parsed. Bytes are copied
-// into memory (MEMFS); a Blob or File in a worker is mounted (WORKERFS) and
-// read as the core reads it, window by window, never whole.
+// into the module's memory file system (MEMFS); a Blob or File in a worker
+// is mounted (WORKERFS) and read as the core reads it: a streamed binary
+// STL window by window, any other file whole, once, into the module.
 
 const COMMANDS = new Set(['volume', 'measure', 'check', 'overlap']);
 
@@ -48,6 +49,7 @@ export function bind(Module) {
     FS.mkdir(dir);
     const names = [];
     const blobs = [];
+    let mountedAt = null;
     try {
       for (const f of files) {
         let name = baseName(f.name);
@@ -63,7 +65,10 @@ export function bind(Module) {
         else FS.writeFile(`${dir}/${name}`, bytesOf(f.data));
         if (!f.companion) names.push(name);
       }
-      if (mounted) FS.mount(FS.filesystems.WORKERFS, { blobs }, dir);
+      if (mounted) {
+        FS.mount(FS.filesystems.WORKERFS, { blobs }, dir);
+        mountedAt = dir;
+      }
       FS.chdir(dir);
       return fn(names);
     } finally {
@@ -77,12 +82,9 @@ export function bind(Module) {
         }
         FS.rmdir(d);
       };
-      if (mounted) {
-        try { FS.unmount(dir); } catch { /* never mounted: the error above is the one to see */ }
-        FS.rmdir(dir);
-      } else {
-        remove(dir);
-      }
+      if (mountedAt) FS.unmount(mountedAt);
+      if (mounted) FS.rmdir(dir);
+      else remove(dir);
     }
   }
 

@@ -73,7 +73,7 @@ export interface OverlapAnswer {
 /** overlap's options: the solid policy and the units. */
 export type OverlapOptions = Pick<Options, 'units' | 'unitsWhereUnstated' | 'to' | 'orient' | 'keepSigned' | 'weldTolerance'>;
 
-/** A file's bytes; or a Blob or File, in a worker only (read there window by window with FileReaderSync, never whole). */
+/** A file's bytes; or a Blob or File, in a worker only (read there with FileReaderSync as the core reads it: a streamed binary STL window by window, any other file whole, once). */
 export type FileData = ArrayBuffer | ArrayBufferView | string | Blob;
 export interface Companion { name: string; data: FileData }
 

@@ -191,7 +191,8 @@ std::vector<std::byte> ZipArchive::read(const std::string& entry) {
         throw ReadError::whole_file(name_, "zip entry '" + entry + "' " + u.error + " bytes uncompressed, more than " +
                                                decompression_limit_words(limit_) + "; refusing to decompress it");
     if (!u.error.empty()) throw ReadError::whole_file(name_, "zip entry '" + entry + "' " + u.error);
-    // What minizip checks natively (zip.cpp's words): the size, then the CRC-32.
+    // What minizip checks natively (zip.cpp, in its words): the CRC-32 where
+    // the size is right, else the size. Here the size first, then the CRC-32.
     if (static_cast<double>(u.bytes.size()) != u.size)
         throw ReadError::whole_file(name_, "cannot decompress zip entry '" + entry + "': it holds " +
                                                std::to_string(u.bytes.size()) + " bytes where its header says " +

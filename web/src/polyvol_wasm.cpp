@@ -100,7 +100,7 @@ json measure_files(const std::string& command, const json& request, json& messag
     std::vector<polyvol::FileReport> reports;
     for (const auto& [file, member] : inputs) {
         const std::string name = member.empty() ? file : file + ":" + member;  // as the report names it
-        options.progress = [&name](polyvol::FileStage stage, double fraction) {
+        options.progress = [name](polyvol::FileStage stage, double fraction) {
             polyvol_js_progress(name.c_str(), static_cast<int>(stage), fraction);
         };
         polyvol::FileReport r = polyvol::measure_file(file, options, member);
