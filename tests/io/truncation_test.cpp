@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstring>
@@ -55,14 +56,18 @@ std::string obj(uint32_t n) {
 // Runs `read` while another thread truncates the file at a random offset
 // after a random delay; returns whether read succeeded (it must otherwise
 // throw ReadError).
-// The delay is drawn up to the time one whole read takes, so that most cuts
-// land while the file is being read.
+// The delay is drawn up to half the time the fastest of three whole reads
+// takes (the first is cold, and a loaded machine slows some), so that most
+// cuts land while the file is being read.
 template <class Read>
 int rounds(const fs::path& path, const std::string& bytes, int n, std::mt19937_64& rng, Read&& read) {
     write(path, bytes);
-    const auto t0 = std::chrono::steady_clock::now();
-    read();
-    const auto span = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0);
+    auto span = std::chrono::microseconds::max();
+    for (int k = 0; k < 3; ++k) {
+        const auto t0 = std::chrono::steady_clock::now();
+        read();
+        span = std::min(span, std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0) / 2);
+    }
     int whole = 0;
     for (int r = 0; r < n; ++r) {
         write(path, bytes);
