@@ -2,7 +2,8 @@
 // .tar.bz2, .tbz2).
 //
 // gzip and bzip2 are gunzip's and bunzip2's (readers.hpp; zlib and libbz2
-// natively, web/src/io_in_javascript.cpp in the WebAssembly build). A tar is read here: POSIX ustar headers of 512 bytes
+// natively, web/src/io_in_javascript.cpp in the WebAssembly build). A tar is
+// read here: POSIX ustar headers of 512 bytes
 // (name at 0, size in octal at 124, checksum at 148, type at 156, name
 // prefix at 345), with GNU long names (type 'L') and pax headers (type 'x',
 // their "path" record); each member's data follows its header, padded to

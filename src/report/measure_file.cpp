@@ -70,9 +70,8 @@ constexpr std::size_t kWindowBytes = std::size_t{8} << 20;
 #else
 constexpr std::size_t kWindowBytes = StlStreamOptions{}.window_bytes;
 #endif
-constexpr std::size_t kRecordBytes = 50;      // a binary STL's triangle
-constexpr std::size_t kSliceRecords = 4096;   // a multiple of SoupAccumulator::kBlockTriangles
-static_assert(kSliceRecords % SoupAccumulator::kBlockTriangles == 0);
+constexpr std::size_t kSliceTriangles = 4096;  // a multiple of SoupAccumulator::kBlockTriangles
+static_assert(kSliceTriangles % SoupAccumulator::kBlockTriangles == 0);
 
 // The streaming route for a binary STL: nothing when the file is not binary
 // STL, cannot be probed, or is not closed (the loaded route then reports it).
@@ -106,13 +105,16 @@ std::optional<FileReport> stream_binary_stl(const std::string& path, const FileO
                 q.progress ? std::function<void(double)>([&](double f) { q.progress(stage, from + width * f); })
                            : nullptr,
                 file->probe().triangles);
-            // A window in slices of kSliceRecords, so that progress moves within it.
+            // A window in slices of kSliceTriangles, so that progress moves within it.
             file->for_each_window(
                 [&](std::span<const std::byte> window, uint64_t first) {
-                    for (std::size_t at = 0; at < window.size(); at += kSliceRecords * kRecordBytes) {
-                        const auto slice = window.subspan(at, std::min(window.size() - at, kSliceRecords * kRecordBytes));
-                        acc.add(stl_records(slice), first + at / kRecordBytes);
-                        records.add(slice.size() / kRecordBytes);
+                    const Float32Triangles all = stl_records(window);
+                    for (std::size_t k = 0; k < all.count; k += kSliceTriangles) {
+                        Float32Triangles slice = all;
+                        slice.data += k * all.stride;
+                        slice.count = std::min(all.count - k, kSliceTriangles);
+                        acc.add(slice, first + k);
+                        records.add(slice.count);
                     }
                 },
                 StlStreamOptions{.window_bytes = kWindowBytes, .alignment = SoupAccumulator::kBlockTriangles});

@@ -1,7 +1,8 @@
 // The page's worker: the WebAssembly core runs here, so that a large file
 // never freezes the page, and reads a File as the core asks (FileReaderSync:
-// whole, once, into the module; a streamed STL window by window). Messages: {id,
-// command, files: [{name, data: a File, Blob or ArrayBuffer}], options} in (command 'mesh': the package's mesh() of the first file);
+// whole, once, into the module; a streamed STL window by window). Messages:
+// {id, command, files: [{name, data: a File, Blob or ArrayBuffer}], options}
+// in (command 'mesh': the package's mesh() of the first file);
 // {id, progress: {file, stage, fraction}} while a file is measured, then
 // {id, answer} or {id, error} out.
 import { createPolyvol } from './polyvol/browser.mjs';
